@@ -1,0 +1,18 @@
+#pragma once
+// Helpers shared by the subcommands: error printing, warnings, JSON output.
+#include <string>
+
+#include "fresnel/core/error.h"
+
+namespace fresnel::cli {
+
+// Exit codes: 0 success, 1 bad input, 2 bad usage.
+inline constexpr int kExitOk = 0, kExitBadInput = 1, kExitUsage = 2;
+
+// Prints "fresnel: error: FILE: WHERE: WHAT" to stderr.
+void print_error(const Error& e);
+void print_error(const std::string& message);
+// Prints each unique warning once to stderr ("fresnel: warning: ... (xN)"), then a count.
+void print_warnings(const Diagnostics& d);
+
+}  // namespace fresnel::cli

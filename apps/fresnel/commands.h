@@ -1,0 +1,14 @@
+#pragma once
+// Each subcommand registers its options on the CLI11 app and returns the
+// function that runs it (returning the exit code).
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace fresnel::cli {
+
+using Runner = std::function<int()>;
+
+Runner add_render_command(CLI::App& app);
+Runner add_info_command(CLI::App& app);
+
+}  // namespace fresnel::cli

@@ -1,0 +1,36 @@
+// fresnel: a physically based renderer and toolkit. See README.md for the CLI reference.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "cli_common.h"
+#include "commands.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{"fresnel: physically based rendering of glTF 2.0 models", "fresnel"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "fresnel 0.1.0");
+    auto render = fresnel::cli::add_render_command(app);
+    auto info = fresnel::cli::add_info_command(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        app.exit(e);
+        return fresnel::cli::kExitUsage;
+    }
+    try {
+        if (app.got_subcommand("render")) return render();
+        if (app.got_subcommand("info")) return info();
+    } catch (const fresnel::Error& e) {
+        fresnel::cli::print_error(e);
+        return fresnel::cli::kExitBadInput;
+    } catch (const std::bad_alloc&) {
+        fresnel::cli::print_error("out of memory");
+        return fresnel::cli::kExitBadInput;
+    } catch (const std::exception& e) {
+        fresnel::cli::print_error(e.what());
+        return fresnel::cli::kExitBadInput;
+    }
+    return fresnel::cli::kExitUsage;
+}

@@ -1,0 +1,47 @@
+#pragma once
+// One error type for every bad input: it names the file, where in the file
+// (a JSON pointer such as /accessors/3/byteOffset, or "byte 1234"), and what is wrong.
+#include <cstddef>
+#include <functional>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fresnel {
+
+class Error : public std::runtime_error {
+public:
+    Error(std::string file, std::string where, std::string what);
+    const std::string& file() const { return file_; }
+    const std::string& where() const { return where_; }
+    const std::string& reason() const { return reason_; }
+
+private:
+    std::string file_, where_, reason_;
+};
+
+struct Warning {
+    std::string file, where, message;
+    std::string text() const;
+};
+
+// Collects warnings; each distinct message is kept once with a repeat count,
+// so a model with a million bad normals prints one line, not a million.
+class Diagnostics {
+public:
+    void warn(const std::string& file, const std::string& where, const std::string& message);
+    // Unique warnings in the order they were first seen.
+    const std::vector<Warning>& warnings() const { return warnings_; }
+    std::size_t count(std::size_t index) const { return counts_[index]; }
+    std::size_t total() const;
+    // "text (xN)" lines, one per unique warning.
+    std::vector<std::string> lines() const;
+
+private:
+    std::vector<Warning> warnings_;
+    std::vector<std::size_t> counts_;
+    std::map<std::string, std::size_t> index_;
+};
+
+}  // namespace fresnel

@@ -1,0 +1,58 @@
+#pragma once
+// Images in memory and on disk. Decoders treat their input as hostile: the
+// header is read first and the size checked against ImageLimits before any
+// pixel memory is allocated.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace fresnel {
+
+struct ImageLimits {
+    int max_dimension = 16384;                          // per side, pixels
+    std::size_t max_decoded_bytes = std::size_t(1) << 30;  // one image, after decoding (1 GiB)
+};
+
+// Linear float RGBA, rows top to bottom.
+struct ImageF {
+    int width = 0, height = 0;
+    std::vector<float> pixels;  // width*height*4
+    ImageF() = default;
+    ImageF(int w, int h) : width(w), height(h), pixels(std::size_t(w) * h * 4, 0.0f) {}
+    float* at(int x, int y) { return &pixels[(std::size_t(y) * width + x) * 4]; }
+    const float* at(int x, int y) const { return &pixels[(std::size_t(y) * width + x) * 4]; }
+};
+
+// 8-bit image with 1..4 channels, rows top to bottom.
+struct Image8 {
+    int width = 0, height = 0, channels = 4;
+    std::vector<std::uint8_t> pixels;
+    Image8() = default;
+    Image8(int w, int h, int c) : width(w), height(h), channels(c), pixels(std::size_t(w) * h * c, 0) {}
+    std::uint8_t* at(int x, int y) { return &pixels[(std::size_t(y) * width + x) * channels]; }
+    const std::uint8_t* at(int x, int y) const { return &pixels[(std::size_t(y) * width + x) * channels]; }
+};
+
+// Decodes PNG/JPEG (and the other formats stb_image reads) from memory into
+// 8-bit RGBA. `name` is used in error messages. Throws fresnel::Error.
+Image8 decode_image8(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits = {});
+
+// Reads the dimensions without decoding; false if the header is not understood.
+bool peek_image_size(std::span<const std::uint8_t> bytes, int& width, int& height);
+
+// Reads an 8-bit image file (PNG, JPEG, ...) into RGBA.
+Image8 read_image8(const std::filesystem::path& path, const ImageLimits& limits = {});
+// Reads a float image: Radiance .hdr or OpenEXR .exr (RGB(A), any compression OpenEXR supports).
+ImageF read_image_float(const std::filesystem::path& path, const ImageLimits& limits = {});
+
+void write_png(const std::filesystem::path& path, const Image8& image);
+void write_hdr(const std::filesystem::path& path, const ImageF& image);
+void write_exr(const std::filesystem::path& path, const ImageF& image);  // half-float RGBA, ZIP
+
+// Reads a whole file with a size cap; throws fresnel::Error naming the file.
+std::vector<std::uint8_t> read_file_bytes(const std::filesystem::path& path, std::size_t max_bytes);
+
+}  // namespace fresnel

@@ -1,0 +1,177 @@
+#include "fresnel/core/image.h"
+
+#include <ImathBox.h>
+#include <OpenEXR/ImfArray.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfIO.h>
+#include <OpenEXR/ImfRgbaFile.h>
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+#include <cstring>
+#include <fstream>
+
+#include "fresnel/core/error.h"
+
+namespace fresnel {
+namespace fs = std::filesystem;
+
+std::vector<std::uint8_t> read_file_bytes(const fs::path& path, std::size_t max_bytes) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) throw Error(path.string(), "", "not a readable file");
+    auto size = fs::file_size(path, ec);
+    if (ec) throw Error(path.string(), "", "cannot read file size: " + ec.message());
+    if (size > max_bytes)
+        throw Error(path.string(), "", "file is " + std::to_string(size) + " bytes, over the limit of " +
+                                           std::to_string(max_bytes));
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path.string(), "", "cannot open file");
+    std::vector<std::uint8_t> data(size);
+    if (size && !in.read(reinterpret_cast<char*>(data.data()), std::streamsize(size)))
+        throw Error(path.string(), "", "read failed");
+    return data;
+}
+
+namespace {
+void check_size(const std::string& name, long long w, long long h, int bytes_per_pixel, const ImageLimits& limits) {
+    if (w <= 0 || h <= 0) throw Error(name, "", "image has no pixels");
+    if (w > limits.max_dimension || h > limits.max_dimension)
+        throw Error(name, "", "image is " + std::to_string(w) + "x" + std::to_string(h) +
+                                  ", over the size limit of " + std::to_string(limits.max_dimension) + " pixels per side");
+    unsigned long long bytes = static_cast<unsigned long long>(w) * h * bytes_per_pixel;
+    if (bytes > limits.max_decoded_bytes)
+        throw Error(name, "", "image would decode to " + std::to_string(bytes) + " bytes, over the limit of " +
+                                  std::to_string(limits.max_decoded_bytes));
+}
+}  // namespace
+
+bool peek_image_size(std::span<const std::uint8_t> bytes, int& width, int& height) {
+    if (bytes.size() > std::size_t(INT32_MAX)) return false;
+    int comp = 0;
+    return stbi_info_from_memory(bytes.data(), int(bytes.size()), &width, &height, &comp) != 0;
+}
+
+Image8 decode_image8(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits) {
+    if (bytes.empty()) throw Error(name, "", "image data is empty");
+    if (bytes.size() > std::size_t(INT32_MAX)) throw Error(name, "", "image data is too large");
+    int w = 0, h = 0;
+    if (!peek_image_size(bytes, w, h))
+        throw Error(name, "", std::string("not a decodable image: ") + (stbi_failure_reason() ? stbi_failure_reason() : "unknown format"));
+    check_size(name, w, h, 4, limits);
+    int comp = 0;
+    stbi_uc* px = stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &comp, 4);
+    if (!px) throw Error(name, "", std::string("image decoding failed: ") + (stbi_failure_reason() ? stbi_failure_reason() : "?"));
+    Image8 img(w, h, 4);
+    std::memcpy(img.pixels.data(), px, img.pixels.size());
+    stbi_image_free(px);
+    return img;
+}
+
+Image8 read_image8(const fs::path& path, const ImageLimits& limits) {
+    auto bytes = read_file_bytes(path, limits.max_decoded_bytes);
+    return decode_image8(bytes, path.string(), limits);
+}
+
+namespace {
+ImageF read_hdr(const fs::path& path, const ImageLimits& limits) {
+    auto bytes = read_file_bytes(path, limits.max_decoded_bytes);
+    int w = 0, h = 0, comp = 0;
+    if (bytes.size() > std::size_t(INT32_MAX) ||
+        !stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &comp))
+        throw Error(path.string(), "", "not a Radiance .hdr file");
+    check_size(path.string(), w, h, 16, limits);
+    float* px = stbi_loadf_from_memory(bytes.data(), int(bytes.size()), &w, &h, &comp, 4);
+    if (!px) throw Error(path.string(), "", std::string("cannot decode: ") + (stbi_failure_reason() ? stbi_failure_reason() : "?"));
+    ImageF img(w, h);
+    std::memcpy(img.pixels.data(), px, img.pixels.size() * sizeof(float));
+    stbi_image_free(px);
+    return img;
+}
+
+ImageF read_exr(const fs::path& path, const ImageLimits& limits) {
+    try {
+        Imf::InputFile file(path.string().c_str());
+        const Imath::Box2i dw = file.header().dataWindow();
+        long long w = (long long)dw.max.x - dw.min.x + 1, h = (long long)dw.max.y - dw.min.y + 1;
+        check_size(path.string(), w, h, 16, limits);
+        ImageF img{static_cast<int>(w), static_cast<int>(h)};
+        const auto& channels = file.header().channels();
+        Imf::FrameBuffer fb;
+        const char* names[4] = {"R", "G", "B", "A"};
+        char* base = reinterpret_cast<char*>(img.pixels.data()) -
+                     (std::ptrdiff_t(dw.min.x) + std::ptrdiff_t(dw.min.y) * w) * 4 * std::ptrdiff_t(sizeof(float));
+        bool any = false;
+        for (int c = 0; c < 4; ++c) {
+            bool present = channels.findChannel(names[c]) != nullptr;
+            any = any || (c < 3 && present);
+            // Missing channels are filled: RGB with 0 (Y-only files get R=G=B below), alpha with 1.
+            fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), 4 * sizeof(float),
+                                           4 * sizeof(float) * w, 1, 1, c == 3 ? 1.0 : 0.0));
+        }
+        if (!any && channels.findChannel("Y")) {
+            fb.insert("Y", Imf::Slice(Imf::FLOAT, base, 4 * sizeof(float), 4 * sizeof(float) * w));
+        } else if (!any) {
+            throw Error(path.string(), "", "EXR has no R, G, B or Y channel");
+        }
+        file.setFrameBuffer(fb);
+        file.readPixels(dw.min.y, dw.max.y);
+        if (!any)
+            for (std::size_t i = 0; i < img.pixels.size(); i += 4) img.pixels[i + 1] = img.pixels[i + 2] = img.pixels[i];
+        return img;
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error(path.string(), "", std::string("cannot read OpenEXR file: ") + e.what());
+    }
+}
+
+std::string lower_ext(const fs::path& p) {
+    std::string e = p.extension().string();
+    for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return e;
+}
+}  // namespace
+
+ImageF read_image_float(const fs::path& path, const ImageLimits& limits) {
+    std::string ext = lower_ext(path);
+    if (ext == ".exr") return read_exr(path, limits);
+    if (ext == ".hdr" || ext == ".rgbe" || ext == ".pic") return read_hdr(path, limits);
+    // 8-bit formats: decode and convert from sRGB is the caller's business; here, values / 255.
+    Image8 img = read_image8(path, limits);
+    ImageF out(img.width, img.height);
+    for (std::size_t i = 0; i < img.pixels.size(); ++i) out.pixels[i] = img.pixels[i] / 255.0f;
+    return out;
+}
+
+void write_png(const fs::path& path, const Image8& image) {
+    if (!stbi_write_png(path.string().c_str(), image.width, image.height, image.channels, image.pixels.data(),
+                        image.width * image.channels))
+        throw Error(path.string(), "", "cannot write PNG");
+}
+
+void write_hdr(const fs::path& path, const ImageF& image) {
+    // stb writes RGB(A) floats; alpha is dropped by the RGBE format.
+    if (!stbi_write_hdr(path.string().c_str(), image.width, image.height, 4, image.pixels.data()))
+        throw Error(path.string(), "", "cannot write Radiance HDR");
+}
+
+void write_exr(const fs::path& path, const ImageF& image) {
+    try {
+        Imf::Header header(image.width, image.height);
+        header.compression() = Imf::ZIP_COMPRESSION;
+        Imf::RgbaOutputFile file(path.string().c_str(), header, Imf::WRITE_RGBA);
+        std::vector<Imf::Rgba> px(std::size_t(image.width) * image.height);
+        for (std::size_t i = 0; i < px.size(); ++i)
+            px[i] = Imf::Rgba(image.pixels[i * 4], image.pixels[i * 4 + 1], image.pixels[i * 4 + 2], image.pixels[i * 4 + 3]);
+        file.setFrameBuffer(px.data(), 1, std::size_t(image.width));
+        file.writePixels(image.height);
+    } catch (const std::exception& e) {
+        throw Error(path.string(), "", std::string("cannot write OpenEXR: ") + e.what());
+    }
+}
+
+}  // namespace fresnel

@@ -1,0 +1,46 @@
+#pragma once
+// Pipeline state, draws, clears, blits and read-back on the current context.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fresnel/gpu/resources.h"
+
+namespace fresnel::gpu {
+
+enum class Cull { None, Back };
+enum class Blend { None, PremultipliedOver, AlphaOver };
+enum class Primitive { Points, Lines, LineLoop, LineStrip, Triangles };
+
+struct PipelineState {
+    bool depth_test = true;
+    bool depth_write = true;
+    Cull cull = Cull::Back;
+    Blend blend = Blend::None;
+    bool sample_alpha_to_coverage = false;
+    bool front_ccw = true;  // false for nodes whose world matrix mirrors (negative determinant)
+};
+
+class Device {
+public:
+    void bind_framebuffer(const Framebuffer* fb);  // nullptr = default framebuffer
+    void viewport(int x, int y, int width, int height);
+    void clear(glm::vec4 color, bool depth = true);
+    void apply(const PipelineState& state);
+    void bind_texture(int unit, const Texture& texture);
+    void draw(const VertexArray& vao, Primitive mode, int count, bool indexed);
+    // Draws a full-screen triangle (the vertex shader makes positions from gl_VertexID).
+    void draw_fullscreen();
+    void blit_color(const Framebuffer& src, const Framebuffer& dst, int width, int height);
+    // Reads RGBA float pixels of the bound read framebuffer, rows bottom to top (GL order).
+    std::vector<float> read_rgba32f(const Framebuffer& fb, int width, int height);
+    // Returns "" or the names of pending GL errors (clears them).
+    std::string take_errors();
+    void finish();
+
+private:
+    VertexArray& empty_vao();
+    std::unique_ptr<VertexArray> empty_vao_;
+};
+
+}  // namespace fresnel::gpu

@@ -1,0 +1,151 @@
+#pragma once
+// RAII wrappers for GL objects, limited to OpenGL 3.3 core ∩ OpenGL ES 3.0.
+// Each owns one GL name; moving transfers it, destruction deletes it.
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+namespace fresnel::gpu {
+
+class Handle {
+public:
+    Handle() = default;
+    Handle(const Handle&) = delete;
+    Handle& operator=(const Handle&) = delete;
+    Handle(Handle&& o) noexcept : id_(o.id_) { o.id_ = 0; }
+    Handle& operator=(Handle&& o) noexcept {
+        std::swap(id_, o.id_);
+        return *this;
+    }
+    unsigned id() const { return id_; }
+    explicit operator bool() const { return id_ != 0; }
+
+protected:
+    unsigned id_ = 0;
+};
+
+enum class BufferKind { Vertex, Index };
+
+class Buffer : public Handle {
+public:
+    Buffer() = default;
+    Buffer(BufferKind kind, const void* data, std::size_t bytes);
+    Buffer(Buffer&&) noexcept = default;
+    Buffer& operator=(Buffer&&) noexcept = default;
+    ~Buffer();
+    BufferKind kind() const { return kind_; }
+
+private:
+    BufferKind kind_ = BufferKind::Vertex;
+};
+
+// A vertex array: float attributes from buffers, optional index buffer (uint32).
+class VertexArray : public Handle {
+public:
+    VertexArray();
+    VertexArray(VertexArray&&) noexcept = default;
+    VertexArray& operator=(VertexArray&&) noexcept = default;
+    ~VertexArray();
+    // Binds `buffer` (tightly packed floats, `components` per vertex) to attribute `location`.
+    void set_attribute(unsigned location, const Buffer& buffer, int components);
+    void set_indices(const Buffer& buffer);
+};
+
+enum class TextureFormat { RGBA8, SRGB8_ALPHA8, RGBA16F, RGBA32F, RG16F, R8 };
+
+struct SamplerState {
+    int min_filter = 0x2703;  // GL enum values (glTF uses the same)
+    int mag_filter = 0x2601;
+    int wrap_s = 0x2901, wrap_t = 0x2901, wrap_r = 0x812F;
+};
+
+class Texture : public Handle {
+public:
+    enum class Kind { Tex2D, Cube };
+    Texture() = default;
+    // Uploads a 2D image (rows top to bottom as stored; data may be null). `mipmaps` generates the chain.
+    static Texture create_2d(int width, int height, TextureFormat format, const void* data, bool mipmaps);
+    // A cube map with `levels` mip levels (data uploaded later with upload_cube_face).
+    static Texture create_cube(int size, TextureFormat format, int levels);
+    void upload_cube_face(int face, int level, int size, const float* rgba);
+    void set_sampler(const SamplerState& s);
+    Texture(Texture&&) noexcept = default;
+    Texture& operator=(Texture&&) noexcept = default;
+    ~Texture();
+    int width() const { return width_; }
+    int height() const { return height_; }
+    Kind kind() const { return kind_; }
+    TextureFormat format() const { return format_; }
+
+private:
+    int width_ = 0, height_ = 0;
+    Kind kind_ = Kind::Tex2D;
+    TextureFormat format_ = TextureFormat::RGBA8;
+};
+
+enum class RenderbufferFormat { RGBA16F, RGBA32F, RGBA8, Depth24 };
+
+class Renderbuffer : public Handle {
+public:
+    Renderbuffer() = default;
+    Renderbuffer(int width, int height, RenderbufferFormat format, int samples);
+    Renderbuffer(Renderbuffer&&) noexcept = default;
+    Renderbuffer& operator=(Renderbuffer&&) noexcept = default;
+    ~Renderbuffer();
+    int samples() const { return samples_; }
+
+private:
+    int samples_ = 0;
+};
+
+class Framebuffer : public Handle {
+public:
+    Framebuffer();
+    Framebuffer(Framebuffer&&) noexcept = default;
+    Framebuffer& operator=(Framebuffer&&) noexcept = default;
+    ~Framebuffer();
+    void attach_color(const Texture& texture);
+    void attach_color(const Renderbuffer& rb);
+    void attach_depth(const Renderbuffer& rb);
+    // Throws fresnel::Error when the framebuffer is incomplete.
+    void check() const;
+};
+
+// Largest MSAA sample count supported for float colour targets.
+int max_samples();
+
+class Program : public Handle {
+public:
+    Program() = default;
+    // Compiles and links; throws fresnel::Error naming `name` with the driver's log.
+    Program(const std::string& name, const std::string& vertex_source, const std::string& fragment_source);
+    Program(Program&&) noexcept = default;
+    Program& operator=(Program&&) noexcept = default;
+    ~Program();
+    void use() const;
+    int location(const std::string& uniform) const;
+    // Setters on the current program (call use() first); unknown names are ignored.
+    void set(const std::string& name, int v) const;
+    void set(const std::string& name, float v) const;
+    void set(const std::string& name, glm::vec2 v) const;
+    void set(const std::string& name, glm::vec3 v) const;
+    void set(const std::string& name, glm::vec4 v) const;
+    void set(const std::string& name, const glm::mat3& v) const;
+    void set(const std::string& name, const glm::mat4& v) const;
+    void set(const std::string& name, std::span<const glm::vec4> v) const;
+    void set(const std::string& name, std::span<const glm::vec3> v) const;
+
+private:
+    mutable std::map<std::string, int> locations_;
+};
+
+}  // namespace fresnel::gpu

@@ -1,0 +1,112 @@
+#include "fresnel/gpu/device.h"
+
+#include <epoxy/gl.h>
+
+namespace fresnel::gpu {
+
+void Device::bind_framebuffer(const Framebuffer* fb) { glBindFramebuffer(GL_FRAMEBUFFER, fb ? fb->id() : 0); }
+void Device::viewport(int x, int y, int w, int h) { glViewport(x, y, w, h); }
+void Device::clear(glm::vec4 c, bool depth) {
+    glDepthMask(GL_TRUE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glClearColor(c.x, c.y, c.z, c.w);
+    glClearDepthf(1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | (depth ? GL_DEPTH_BUFFER_BIT : 0));
+}
+
+void Device::apply(const PipelineState& s) {
+    if (s.depth_test) glEnable(GL_DEPTH_TEST);
+    else glDisable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glFrontFace(s.front_ccw ? GL_CCW : GL_CW);
+    glDepthMask(s.depth_write ? GL_TRUE : GL_FALSE);
+    if (s.cull == Cull::Back) {
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_BACK);
+    } else {
+        glDisable(GL_CULL_FACE);
+    }
+    switch (s.blend) {
+        case Blend::None: glDisable(GL_BLEND); break;
+        case Blend::PremultipliedOver:
+            glEnable(GL_BLEND);
+            glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+            break;
+        case Blend::AlphaOver:
+            glEnable(GL_BLEND);
+            glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+            break;
+    }
+    if (s.sample_alpha_to_coverage) glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    else glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+}
+
+void Device::bind_texture(int unit, const Texture& t) {
+    glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+    glBindTexture(t.kind() == Texture::Kind::Cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D, t.id());
+}
+
+void Device::draw(const VertexArray& vao, Primitive mode, int count, bool indexed) {
+    GLenum m = GL_TRIANGLES;
+    switch (mode) {
+        case Primitive::Points: m = GL_POINTS; break;
+        case Primitive::Lines: m = GL_LINES; break;
+        case Primitive::LineLoop: m = GL_LINE_LOOP; break;
+        case Primitive::LineStrip: m = GL_LINE_STRIP; break;
+        case Primitive::Triangles: m = GL_TRIANGLES; break;
+    }
+    glBindVertexArray(vao.id());
+    if (indexed) glDrawElements(m, count, GL_UNSIGNED_INT, nullptr);
+    else glDrawArrays(m, 0, count);
+    glBindVertexArray(0);
+}
+
+VertexArray& Device::empty_vao() {
+    if (!empty_vao_) empty_vao_ = std::make_unique<VertexArray>();
+    return *empty_vao_;
+}
+
+void Device::draw_fullscreen() {
+    glBindVertexArray(empty_vao().id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+}
+
+void Device::blit_color(const Framebuffer& src, const Framebuffer& dst, int w, int h) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, src.id());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, dst.id());
+    glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+std::vector<float> Device::read_rgba32f(const Framebuffer& fb, int w, int h) {
+    std::vector<float> px(std::size_t(w) * h * 4);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fb.id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, px.data());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return px;
+}
+
+std::string Device::take_errors() {
+    std::string out;
+    for (int i = 0; i < 16; ++i) {
+        GLenum e = glGetError();
+        if (e == GL_NO_ERROR) break;
+        const char* name = "GL error";
+        switch (e) {
+            case GL_INVALID_ENUM: name = "GL_INVALID_ENUM"; break;
+            case GL_INVALID_VALUE: name = "GL_INVALID_VALUE"; break;
+            case GL_INVALID_OPERATION: name = "GL_INVALID_OPERATION"; break;
+            case GL_INVALID_FRAMEBUFFER_OPERATION: name = "GL_INVALID_FRAMEBUFFER_OPERATION"; break;
+            case GL_OUT_OF_MEMORY: name = "GL_OUT_OF_MEMORY"; break;
+        }
+        if (!out.empty()) out += ", ";
+        out += name;
+    }
+    return out;
+}
+
+void Device::finish() { glFinish(); }
+
+}  // namespace fresnel::gpu

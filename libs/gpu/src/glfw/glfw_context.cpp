@@ -1,0 +1,56 @@
+// Windowed OpenGL through GLFW (used by `fresnel view`).
+#include "fresnel/core/error.h"
+#include "fresnel/gpu/context.h"
+
+#ifdef FRESNEL_HAVE_GLFW
+#include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+namespace fresnel::gpu {
+namespace {
+class GlfwContext final : public Context {
+public:
+    explicit GlfwContext(GLFWwindow* w) : window_(w) {}
+    ~GlfwContext() override {
+        glfwDestroyWindow(window_);
+        glfwTerminate();
+    }
+    void make_current() override { glfwMakeContextCurrent(window_); }
+    void swap_buffers() override { glfwSwapBuffers(window_); }
+    bool should_close() const override { return glfwWindowShouldClose(window_); }
+    void poll_events() override { glfwPollEvents(); }
+    void init(const ContextOptions& o) { install_debug_output(o); }
+
+private:
+    GLFWwindow* window_;
+};
+}  // namespace
+
+std::unique_ptr<Context> create_window_context(int width, int height, const std::string& title,
+                                               const ContextOptions& options) {
+    if (!glfwInit()) throw Error("GLFW", "", "cannot initialise GLFW (no display?)");
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, options.debug ? GLFW_TRUE : GLFW_FALSE);
+    GLFWwindow* w = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+    if (!w) {
+        glfwTerminate();
+        throw Error("GLFW", "", "cannot create an OpenGL 3.3 core window");
+    }
+    glfwMakeContextCurrent(w);
+    auto c = std::make_unique<GlfwContext>(w);
+    c->init(options);
+    return c;
+}
+
+}  // namespace fresnel::gpu
+#else
+namespace fresnel::gpu {
+std::unique_ptr<Context> create_window_context(int, int, const std::string&, const ContextOptions&) {
+    throw Error("GLFW", "", "this build of fresnel has no window support (GLFW was not found)");
+}
+}  // namespace fresnel::gpu
+#endif

@@ -1,0 +1,249 @@
+#include "fresnel/gpu/resources.h"
+
+#include <epoxy/gl.h>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "fresnel/core/error.h"
+
+namespace fresnel::gpu {
+
+Buffer::Buffer(BufferKind kind, const void* data, std::size_t bytes) : kind_(kind) {
+    glGenBuffers(1, &id_);
+    GLenum target = kind == BufferKind::Index ? GL_ELEMENT_ARRAY_BUFFER : GL_ARRAY_BUFFER;
+    if (kind == BufferKind::Index) glBindVertexArray(0);  // do not disturb a bound VAO's index binding
+    glBindBuffer(target, id_);
+    glBufferData(target, GLsizeiptr(bytes), data, GL_STATIC_DRAW);
+    glBindBuffer(target, 0);
+}
+Buffer::~Buffer() {
+    if (id_) glDeleteBuffers(1, &id_);
+}
+
+VertexArray::VertexArray() { glGenVertexArrays(1, &id_); }
+VertexArray::~VertexArray() {
+    if (id_) glDeleteVertexArrays(1, &id_);
+}
+void VertexArray::set_attribute(unsigned location, const Buffer& buffer, int components) {
+    glBindVertexArray(id_);
+    glBindBuffer(GL_ARRAY_BUFFER, buffer.id());
+    glEnableVertexAttribArray(location);
+    glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+void VertexArray::set_indices(const Buffer& buffer) {
+    glBindVertexArray(id_);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffer.id());
+    glBindVertexArray(0);
+}
+
+namespace {
+struct FormatInfo {
+    GLint internal;
+    GLenum format, type;
+};
+FormatInfo info(TextureFormat f) {
+    switch (f) {
+        case TextureFormat::RGBA8: return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
+        case TextureFormat::SRGB8_ALPHA8: return {GL_SRGB8_ALPHA8, GL_RGBA, GL_UNSIGNED_BYTE};
+        case TextureFormat::RGBA16F: return {GL_RGBA16F, GL_RGBA, GL_FLOAT};
+        case TextureFormat::RGBA32F: return {GL_RGBA32F, GL_RGBA, GL_FLOAT};
+        case TextureFormat::RG16F: return {GL_RG16F, GL_RG, GL_FLOAT};
+        case TextureFormat::R8: return {GL_R8, GL_RED, GL_UNSIGNED_BYTE};
+    }
+    return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
+}
+}  // namespace
+
+Texture Texture::create_2d(int width, int height, TextureFormat format, const void* data, bool mipmaps) {
+    Texture t;
+    t.width_ = width;
+    t.height_ = height;
+    t.format_ = format;
+    glGenTextures(1, &t.id_);
+    glBindTexture(GL_TEXTURE_2D, t.id_);
+    FormatInfo fi = info(format);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, fi.internal, width, height, 0, fi.format, fi.type, data);
+    if (mipmaps) glGenerateMipmap(GL_TEXTURE_2D);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    return t;
+}
+
+Texture Texture::create_cube(int size, TextureFormat format, int levels) {
+    Texture t;
+    t.width_ = t.height_ = size;
+    t.kind_ = Kind::Cube;
+    t.format_ = format;
+    glGenTextures(1, &t.id_);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, t.id_);
+    FormatInfo fi = info(format);
+    for (int level = 0; level < levels; ++level)
+        for (int face = 0; face < 6; ++face)
+            glTexImage2D(GLenum(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face), level, fi.internal, std::max(1, size >> level),
+                         std::max(1, size >> level), 0, fi.format, fi.type, nullptr);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, levels - 1);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+    return t;
+}
+
+void Texture::upload_cube_face(int face, int level, int size, const float* rgba) {
+    glBindTexture(GL_TEXTURE_CUBE_MAP, id_);
+    FormatInfo fi = info(format_);
+    glTexSubImage2D(GLenum(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face), level, 0, 0, size, size, GL_RGBA, GL_FLOAT, rgba);
+    (void)fi;
+    glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+}
+
+void Texture::set_sampler(const SamplerState& s) {
+    GLenum target = kind_ == Kind::Cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
+    glBindTexture(target, id_);
+    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, s.min_filter);
+    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, s.mag_filter);
+    glTexParameteri(target, GL_TEXTURE_WRAP_S, s.wrap_s);
+    glTexParameteri(target, GL_TEXTURE_WRAP_T, s.wrap_t);
+    if (kind_ == Kind::Cube) glTexParameteri(target, GL_TEXTURE_WRAP_R, s.wrap_r);
+    glBindTexture(target, 0);
+}
+
+Texture::~Texture() {
+    if (id_) glDeleteTextures(1, &id_);
+}
+
+Renderbuffer::Renderbuffer(int width, int height, RenderbufferFormat format, int samples) : samples_(samples) {
+    glGenRenderbuffers(1, &id_);
+    glBindRenderbuffer(GL_RENDERBUFFER, id_);
+    GLenum internal = GL_RGBA16F;
+    switch (format) {
+        case RenderbufferFormat::RGBA16F: internal = GL_RGBA16F; break;
+        case RenderbufferFormat::RGBA32F: internal = GL_RGBA32F; break;
+        case RenderbufferFormat::RGBA8: internal = GL_RGBA8; break;
+        case RenderbufferFormat::Depth24: internal = GL_DEPTH_COMPONENT24; break;
+    }
+    if (samples > 1) glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, internal, width, height);
+    else glRenderbufferStorage(GL_RENDERBUFFER, internal, width, height);
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+}
+Renderbuffer::~Renderbuffer() {
+    if (id_) glDeleteRenderbuffers(1, &id_);
+}
+
+Framebuffer::Framebuffer() { glGenFramebuffers(1, &id_); }
+Framebuffer::~Framebuffer() {
+    if (id_) glDeleteFramebuffers(1, &id_);
+}
+void Framebuffer::attach_color(const Texture& texture) {
+    glBindFramebuffer(GL_FRAMEBUFFER, id_);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture.id(), 0);
+}
+void Framebuffer::attach_color(const Renderbuffer& rb) {
+    glBindFramebuffer(GL_FRAMEBUFFER, id_);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb.id());
+}
+void Framebuffer::attach_depth(const Renderbuffer& rb) {
+    glBindFramebuffer(GL_FRAMEBUFFER, id_);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb.id());
+}
+void Framebuffer::check() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, id_);
+    GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw Error("GL", "framebuffer", "incomplete framebuffer (status 0x" + [&] {
+            char buf[16];
+            std::snprintf(buf, sizeof buf, "%X", status);
+            return std::string(buf);
+        }() + ")");
+}
+
+int max_samples() {
+    GLint n = 0;
+    glGetIntegerv(GL_MAX_SAMPLES, &n);
+    return n;
+}
+
+namespace {
+GLuint compile(const std::string& name, GLenum type, const std::string& source) {
+    GLuint s = glCreateShader(type);
+    const char* src = source.c_str();
+    glShaderSource(s, 1, &src, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
+        std::string log(std::size_t(std::max(len, 1)), '\0');
+        glGetShaderInfoLog(s, len, nullptr, log.data());
+        glDeleteShader(s);
+        throw Error(name, type == GL_VERTEX_SHADER ? "vertex shader" : "fragment shader", "compile failed:\n" + log);
+    }
+    return s;
+}
+}  // namespace
+
+Program::Program(const std::string& name, const std::string& vs, const std::string& fs) {
+    GLuint v = compile(name, GL_VERTEX_SHADER, vs);
+    GLuint f = 0;
+    try {
+        f = compile(name, GL_FRAGMENT_SHADER, fs);
+    } catch (...) {
+        glDeleteShader(v);
+        throw;
+    }
+    id_ = glCreateProgram();
+    glAttachShader(id_, v);
+    glAttachShader(id_, f);
+    // Fixed attribute locations shared by every mesh shader.
+    const char* attributes[] = {"a_position", "a_normal", "a_tangent", "a_uv0", "a_uv1", "a_color"};
+    for (unsigned i = 0; i < 6; ++i) glBindAttribLocation(id_, i, attributes[i]);
+    glLinkProgram(id_);
+    glDeleteShader(v);
+    glDeleteShader(f);
+    GLint ok = 0;
+    glGetProgramiv(id_, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetProgramiv(id_, GL_INFO_LOG_LENGTH, &len);
+        std::string log(std::size_t(std::max(len, 1)), '\0');
+        glGetProgramInfoLog(id_, len, nullptr, log.data());
+        throw Error(name, "program", "link failed:\n" + log);
+    }
+}
+Program::~Program() {
+    if (id_) glDeleteProgram(id_);
+}
+void Program::use() const { glUseProgram(id_); }
+int Program::location(const std::string& uniform) const {
+    auto it = locations_.find(uniform);
+    if (it != locations_.end()) return it->second;
+    int loc = glGetUniformLocation(id_, uniform.c_str());
+    locations_.emplace(uniform, loc);
+    return loc;
+}
+void Program::set(const std::string& n, int v) const { glUniform1i(location(n), v); }
+void Program::set(const std::string& n, float v) const { glUniform1f(location(n), v); }
+void Program::set(const std::string& n, glm::vec2 v) const { glUniform2fv(location(n), 1, glm::value_ptr(v)); }
+void Program::set(const std::string& n, glm::vec3 v) const { glUniform3fv(location(n), 1, glm::value_ptr(v)); }
+void Program::set(const std::string& n, glm::vec4 v) const { glUniform4fv(location(n), 1, glm::value_ptr(v)); }
+void Program::set(const std::string& n, const glm::mat3& v) const {
+    glUniformMatrix3fv(location(n), 1, GL_FALSE, glm::value_ptr(v));
+}
+void Program::set(const std::string& n, const glm::mat4& v) const {
+    glUniformMatrix4fv(location(n), 1, GL_FALSE, glm::value_ptr(v));
+}
+void Program::set(const std::string& n, std::span<const glm::vec4> v) const {
+    if (!v.empty()) glUniform4fv(location(n), GLsizei(v.size()), glm::value_ptr(v[0]));
+}
+void Program::set(const std::string& n, std::span<const glm::vec3> v) const {
+    if (!v.empty()) glUniform3fv(location(n), GLsizei(v.size()), glm::value_ptr(v[0]));
+}
+
+}  // namespace fresnel::gpu

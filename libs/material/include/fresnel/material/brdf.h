@@ -1,0 +1,106 @@
+#pragma once
+// The glTF 2.0 metallic-roughness BRDF (specification, Appendix B), once in C++.
+// shaders/brdf.glsl holds the same functions; tests/gpu/brdf_gpu_test.cpp renders
+// a grid of inputs through the GLSL and checks it against these.
+//
+// Conventions: all vectors unit length in the same space; n·l, n·v clamped by the
+// caller; alpha = roughness^2 (perceptual roughness squared).
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+namespace fresnel::brdf {
+
+inline constexpr float kPi = 3.14159265358979323846f;
+
+// Trowbridge-Reitz (GGX) normal distribution D(h).
+inline float d_ggx(float n_dot_h, float alpha) {
+    float a2 = alpha * alpha;
+    float f = (n_dot_h * n_dot_h) * (a2 - 1.0f) + 1.0f;
+    return a2 / (kPi * f * f);
+}
+
+// Height-correlated Smith visibility V = G / (4 n·l n·v).
+inline float v_smith_ggx_correlated(float n_dot_l, float n_dot_v, float alpha) {
+    float a2 = alpha * alpha;
+    float ggxv = n_dot_l * std::sqrt(n_dot_v * n_dot_v * (1.0f - a2) + a2);
+    float ggxl = n_dot_v * std::sqrt(n_dot_l * n_dot_l * (1.0f - a2) + a2);
+    float g = ggxv + ggxl;
+    return g > 0.0f ? 0.5f / g : 0.0f;
+}
+
+// Schlick's Fresnel approximation.
+inline glm::vec3 f_schlick(glm::vec3 f0, glm::vec3 f90, float v_dot_h) {
+    float x = std::clamp(1.0f - v_dot_h, 0.0f, 1.0f);
+    float x2 = x * x;
+    return f0 + (f90 - f0) * (x2 * x2 * x);
+}
+inline float f_schlick(float f0, float f90, float v_dot_h) {
+    float x = std::clamp(1.0f - v_dot_h, 0.0f, 1.0f);
+    float x2 = x * x;
+    return f0 + (f90 - f0) * (x2 * x2 * x);
+}
+
+inline glm::vec3 lambert(glm::vec3 diffuse_color) { return diffuse_color / kPi; }
+
+// Shading inputs at one point, after textures and factors are applied.
+struct Surface {
+    glm::vec3 base_color{1.0f};
+    float metallic = 0.0f;
+    float perceptual_roughness = 1.0f;
+    float specular_f0 = 0.04f;  // dielectric reflectance at normal incidence (ior 1.5)
+};
+
+// Smallest perceptual roughness used in shading, to keep D finite for point lights.
+inline constexpr float kMinRoughness = 0.03f;
+
+inline float alpha_from_roughness(float perceptual) {
+    float r = std::clamp(perceptual, kMinRoughness, 1.0f);
+    return r * r;
+}
+
+// The separate terms of the BRDF for debugging views and tests.
+struct Terms {
+    float d = 0, v = 0;
+    glm::vec3 f{0.0f};        // the metal/dielectric-mixed Fresnel
+    glm::vec3 diffuse{0.0f};  // f_diffuse (already weighted by 1 - F_dielectric and 1 - metallic)
+    glm::vec3 specular{0.0f}; // f_specular (already weighted)
+};
+
+// Evaluates f(l, v) following Appendix B:
+//   dielectric = mix(lambert(base), V*D, F_schlick(0.04, 1, v·h))   (fresnel_mix)
+//   metal      = F_schlick(base, 1, v·h) * V*D                      (conductor_fresnel)
+//   f          = mix(dielectric, metal, metallic)
+inline Terms evaluate_terms(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l) {
+    Terms t;
+    glm::vec3 h = l + v;
+    float hl = glm::length(h);
+    h = hl > 0.0f ? h / hl : n;
+    float n_dot_l = std::clamp(glm::dot(n, l), 0.0f, 1.0f);
+    float n_dot_v = std::clamp(glm::dot(n, v), 0.0f, 1.0f);
+    float n_dot_h = std::clamp(glm::dot(n, h), 0.0f, 1.0f);
+    float v_dot_h = std::clamp(glm::dot(v, h), 0.0f, 1.0f);
+    float alpha = alpha_from_roughness(s.perceptual_roughness);
+    t.d = d_ggx(n_dot_h, alpha);
+    t.v = v_smith_ggx_correlated(n_dot_l, n_dot_v, alpha);
+    float spec = t.v * t.d;
+    glm::vec3 f_metal = f_schlick(s.base_color, glm::vec3(1.0f), v_dot_h);
+    float f_dielectric = f_schlick(s.specular_f0, 1.0f, v_dot_h);
+    t.f = glm::mix(glm::vec3(f_dielectric), f_metal, s.metallic);
+    t.diffuse = (1.0f - s.metallic) * (1.0f - f_dielectric) * lambert(s.base_color);
+    t.specular = ((1.0f - s.metallic) * f_dielectric + s.metallic * f_metal) * spec;
+    return t;
+}
+
+inline glm::vec3 evaluate(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l) {
+    Terms t = evaluate_terms(s, n, v, l);
+    return t.diffuse + t.specular;
+}
+
+// Directional albedo: the integral of f(l, v) cos(theta_l) over the hemisphere,
+// by a stratified quadrature with `samples_per_axis`^2 points. Used by tests
+// (energy conservation) and the IBL precomputation.
+glm::vec3 directional_albedo(const Surface& s, float n_dot_v, int samples_per_axis = 256);
+
+}  // namespace fresnel::brdf

@@ -1,0 +1,40 @@
+#pragma once
+// Camera conventions. The orbit camera is defined exactly as the Khronos
+// reference tool's (../shared/tools/khronos-ref), so images line up:
+//   target = centre of the scene bounds, R = half the bounds' diagonal,
+//   eye = target + D (cos p sin y, sin p, cos p cos y), up = +Y,
+//   D = K R, K default 1/sin(a), a = min(vfov/2, atan(tan(vfov/2) W/H)),
+//   far = D + 2R, near = max(D - 2R, far/1000).
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <optional>
+
+#include "fresnel/scene/scene.h"
+
+namespace fresnel {
+
+struct CameraSetup {
+    glm::mat4 view{1.0f};
+    glm::mat4 projection{1.0f};
+    glm::vec3 eye{0.0f};
+    glm::vec3 target{0.0f};
+    float znear = 0.1f, zfar = 100.0f;
+    float yfov_deg = 45.0f;
+    bool orthographic = false;
+};
+
+struct OrbitParams {
+    float yaw_deg = 0.0f;
+    float pitch_deg = 0.0f;
+    std::optional<float> distance_k;  // D = K * R
+    float yfov_deg = 45.0f;
+};
+
+CameraSetup orbit_camera(const Bounds& bounds, const OrbitParams& params, int width, int height);
+
+// The scene's `index`-th camera (in node order of the flattened scene); nullopt when
+// no node of the scene instantiates it.
+std::optional<CameraSetup> scene_camera(const Scene& scene, const std::vector<NodeInstance>& instances, int index,
+                                        int width, int height);
+
+}  // namespace fresnel

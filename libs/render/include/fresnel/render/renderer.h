@@ -1,0 +1,76 @@
+#pragma once
+// The forward renderer: uploads a Scene to the GPU once, then renders frames
+// into a linear HDR target (MSAA), resolves, and runs the output pass
+// (exposure, tone map, encoding, background).
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "fresnel/core/color.h"
+#include "fresnel/core/image.h"
+#include "fresnel/render/camera.h"
+#include "fresnel/render/lights.h"
+#include "fresnel/scene/scene.h"
+
+namespace fresnel {
+
+namespace gpu {
+class Context;
+}
+
+enum class DebugChannel {
+    None = 0, BaseColor, Metallic, Roughness, Normal, GeometryNormal, Tangent, Bitangent, Occlusion, Emissive,
+    Alpha, Uv0, Uv1, D, G, F, Diffuse, Specular,
+};
+std::optional<DebugChannel> parse_debug_channel(const std::string& name);
+std::vector<std::string> debug_channel_names();
+
+struct RenderSettings {
+    int width = 1024, height = 768;
+    int msaa = 4;
+    float exposure_ev = 0.0f;
+    ToneMapper tone_mapper = ToneMapper::Neutral;
+    // Display encoding; nullopt = none (float output: exposure and tone map only).
+    std::optional<Encoding> encoding = Encoding::Srgb;
+    glm::vec4 background{0.0f, 0.0f, 0.0f, 1.0f};  // display-referred RGB; a = 0: transparent
+    DebugChannel debug = DebugChannel::None;
+    glm::vec3 ambient{0.0f};  // uniform ambient radiance (no image-based lighting yet)
+};
+
+struct FrameStats {
+    int draw_calls = 0;
+    std::size_t triangles = 0;
+    std::string gl_errors;  // empty when none
+};
+
+class Renderer {
+public:
+    explicit Renderer(gpu::Context& context);
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    // Uploads meshes and textures of `scene` (index -1: its default scene). The scene
+    // must outlive the renderer's use of it.
+    void set_scene(const Scene& scene, int scene_index = -1);
+
+    // Renders one frame. The result: RGBA floats, rows top to bottom; display-encoded
+    // values in [0,1] when settings.encoding is set, linear otherwise.
+    ImageF render(const CameraSetup& camera, const std::vector<LightInstance>& lights, const RenderSettings& settings,
+                  FrameStats* stats = nullptr);
+
+    // Number of shader variants compiled so far (they are cached by feature set).
+    std::size_t program_count() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// Converts a rendered display-encoded image to 8-bit (RGB, or RGBA when `alpha`).
+Image8 to_image8(const ImageF& image, bool alpha);
+
+}  // namespace fresnel

@@ -1,0 +1,33 @@
+#pragma once
+// Assembles shader sources from the embedded files in shaders/: resolves
+// #include "file", prepends the GLSL version line for the target API and the
+// feature #defines, and caches compiled programs by (files, defines).
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fresnel/gpu/resources.h"
+
+namespace fresnel {
+
+enum class GlslTarget { Gl33, Es30 };
+
+// The source of `file` with includes resolved and `defines` ("NAME" or "NAME VALUE") added.
+// Throws fresnel::Error for a missing file or an include cycle.
+std::string assemble_shader(const std::string& file, const std::vector<std::string>& defines,
+                            GlslTarget target = GlslTarget::Gl33);
+
+class ShaderLibrary {
+public:
+    explicit ShaderLibrary(GlslTarget target = GlslTarget::Gl33) : target_(target) {}
+    // Returns the program for this vertex/fragment pair and define set, compiling it once.
+    const gpu::Program& get(const std::string& vertex, const std::string& fragment, std::vector<std::string> defines);
+    std::size_t size() const { return programs_.size(); }
+
+private:
+    GlslTarget target_;
+    std::map<std::string, std::unique_ptr<gpu::Program>> programs_;
+};
+
+}  // namespace fresnel

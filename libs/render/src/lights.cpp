@@ -1,0 +1,87 @@
+#include "fresnel/render/lights.h"
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <sstream>
+
+#include "fresnel/core/error.h"
+
+namespace fresnel {
+
+std::vector<LightInstance> scene_lights(const Scene& scene, const std::vector<NodeInstance>& instances) {
+    std::vector<LightInstance> out;
+    for (const auto& inst : instances) {
+        const Node& node = scene.nodes[std::size_t(inst.node)];
+        if (node.light < 0) continue;
+        const Light& l = scene.lights[std::size_t(node.light)];
+        LightInstance li;
+        li.type = l.type;
+        li.position = glm::vec3(inst.world[3]);
+        glm::vec3 d = -glm::vec3(inst.world[2]);  // lights point down their local -Z
+        float len = glm::length(d);
+        li.direction = len > 0 ? d / len : glm::vec3(0, 0, -1);
+        li.radiance = l.color * l.intensity;
+        li.range = l.range;
+        li.inner_cone = l.inner_cone_angle;
+        li.outer_cone = l.outer_cone_angle;
+        out.push_back(li);
+    }
+    return out;
+}
+
+glm::vec3 direction_from_angles(float azimuth_deg, float elevation_deg) {
+    const float deg = 3.14159265358979f / 180.0f;
+    float a = azimuth_deg * deg, e = elevation_deg * deg;
+    glm::vec3 from(std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a));
+    return -from;
+}
+
+std::vector<LightInstance> default_lights() {
+    LightInstance key, fill;
+    key.direction = direction_from_angles(30.0f, 45.0f);
+    key.radiance = glm::vec3(3.0f);
+    fill.direction = direction_from_angles(-120.0f, 15.0f);
+    fill.radiance = glm::vec3(0.85f, 0.9f, 1.0f) * 1.0f;
+    return {key, fill};
+}
+
+LightInstance parse_light(const std::string& spec) {
+    auto colon = spec.find(':');
+    auto fail = [&](const std::string& why) -> void { throw Error("--light", spec, why); };
+    if (colon == std::string::npos) fail("expected dir:AZIMUTH,ELEVATION,LUX[,R,G,B] or point:X,Y,Z,CANDELA[,R,G,B]");
+    std::string kind = spec.substr(0, colon);
+    std::vector<float> v;
+    std::stringstream ss(spec.substr(colon + 1));
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        try {
+            std::size_t used = 0;
+            float f = std::stof(item, &used);
+            if (used != item.size() || !std::isfinite(f)) fail("'" + item + "' is not a number");
+            v.push_back(f);
+        } catch (const std::logic_error&) {
+            fail("'" + item + "' is not a number");
+        }
+    }
+    LightInstance l;
+    glm::vec3 color(1.0f);
+    if (kind == "dir") {
+        if (v.size() != 3 && v.size() != 6) fail("dir: needs AZIMUTH,ELEVATION,LUX[,R,G,B]");
+        l.type = Light::Type::Directional;
+        l.direction = direction_from_angles(v[0], v[1]);
+        if (v.size() == 6) color = {v[3], v[4], v[5]};
+        l.radiance = color * v[2];
+    } else if (kind == "point") {
+        if (v.size() != 4 && v.size() != 7) fail("point: needs X,Y,Z,CANDELA[,R,G,B]");
+        l.type = Light::Type::Point;
+        l.position = {v[0], v[1], v[2]};
+        if (v.size() == 7) color = {v[4], v[5], v[6]};
+        l.radiance = color * v[3];
+    } else {
+        fail("unknown light type '" + kind + "' (use dir or point)");
+    }
+    if (l.radiance.x < 0 || l.radiance.y < 0 || l.radiance.z < 0) fail("intensity and colour must not be negative");
+    return l;
+}
+
+}  // namespace fresnel

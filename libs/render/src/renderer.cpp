@@ -1,0 +1,362 @@
+#include "fresnel/render/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <map>
+
+#include "fresnel/core/error.h"
+#include "fresnel/gpu/context.h"
+#include "fresnel/gpu/device.h"
+#include "fresnel/gpu/resources.h"
+#include "fresnel/render/shader_library.h"
+
+namespace fresnel {
+
+namespace {
+struct NamedChannel {
+    const char* name;
+    DebugChannel channel;
+};
+constexpr NamedChannel kChannels[] = {
+    {"basecolor", DebugChannel::BaseColor}, {"metallic", DebugChannel::Metallic},
+    {"roughness", DebugChannel::Roughness}, {"normal", DebugChannel::Normal},
+    {"geometry-normal", DebugChannel::GeometryNormal}, {"tangent", DebugChannel::Tangent},
+    {"bitangent", DebugChannel::Bitangent}, {"occlusion", DebugChannel::Occlusion},
+    {"emissive", DebugChannel::Emissive}, {"alpha", DebugChannel::Alpha}, {"uv0", DebugChannel::Uv0},
+    {"uv1", DebugChannel::Uv1}, {"D", DebugChannel::D}, {"G", DebugChannel::G}, {"F", DebugChannel::F},
+    {"diffuse", DebugChannel::Diffuse}, {"specular", DebugChannel::Specular},
+};
+constexpr int kMaxLights = 16;
+
+enum Attr : unsigned { kPosition = 0, kNormal, kTangent, kUv0, kUv1, kColor };
+
+struct GpuPrimitive {
+    gpu::VertexArray vao;
+    std::vector<gpu::Buffer> buffers;
+    int count = 0;
+    bool indexed = false;
+    Topology topology = Topology::Triangles;
+    int material = -1;
+    bool has_normal = false, has_tangent = false, has_uv0 = false, has_uv1 = false, has_color = false;
+    glm::vec3 center{0.0f};
+    std::size_t triangles = 0;
+};
+
+struct Draw {
+    const GpuPrimitive* prim;
+    glm::mat4 model;
+    float depth;  // view-space distance, for sorting blended draws
+};
+
+gpu::Primitive to_gpu(Topology t) {
+    switch (t) {
+        case Topology::Points: return gpu::Primitive::Points;
+        case Topology::Lines: return gpu::Primitive::Lines;
+        case Topology::LineLoop: return gpu::Primitive::LineLoop;
+        case Topology::LineStrip: return gpu::Primitive::LineStrip;
+        case Topology::Triangles: return gpu::Primitive::Triangles;
+    }
+    return gpu::Primitive::Triangles;
+}
+}  // namespace
+
+std::optional<DebugChannel> parse_debug_channel(const std::string& name) {
+    if (name == "none") return DebugChannel::None;
+    for (const auto& c : kChannels)
+        if (name == c.name) return c.channel;
+    return std::nullopt;
+}
+std::vector<std::string> debug_channel_names() {
+    std::vector<std::string> out;
+    for (const auto& c : kChannels) out.push_back(c.name);
+    return out;
+}
+
+struct Renderer::Impl {
+    gpu::Context& context;
+    gpu::Device device;
+    ShaderLibrary shaders;
+    const Scene* scene = nullptr;
+    std::vector<NodeInstance> instances;
+    std::vector<std::vector<GpuPrimitive>> meshes;
+    std::map<std::pair<int, bool>, gpu::Texture> textures;  // (texture index, sRGB)
+
+    // Render targets, rebuilt when size or sample count change.
+    int target_w = 0, target_h = 0, target_samples = -1;
+    gpu::Renderbuffer msaa_color, msaa_depth;
+    gpu::Framebuffer msaa_fb;
+    gpu::Texture resolved;
+    gpu::Framebuffer resolved_fb;
+    gpu::Texture output;
+    gpu::Framebuffer output_fb;
+
+    explicit Impl(gpu::Context& c) : context(c) {}
+
+    void upload(const Scene& s) {
+        meshes.clear();
+        textures.clear();
+        for (const auto& mesh : s.meshes) {
+            std::vector<GpuPrimitive> prims;
+            for (const auto& p : mesh.primitives) {
+                GpuPrimitive g;
+                g.topology = p.topology;
+                g.material = p.material;
+                g.triangles = p.triangle_count();
+                g.center = (p.bounds_min + p.bounds_max) * 0.5f;
+                auto add = [&](Attr slot, const void* data, std::size_t count, int comps) {
+                    g.buffers.emplace_back(gpu::BufferKind::Vertex, data, count * std::size_t(comps) * sizeof(float));
+                    g.vao.set_attribute(slot, g.buffers.back(), comps);
+                };
+                add(kPosition, p.positions.data(), p.positions.size(), 3);
+                if ((g.has_normal = !p.normals.empty())) add(kNormal, p.normals.data(), p.normals.size(), 3);
+                if ((g.has_tangent = !p.tangents.empty())) add(kTangent, p.tangents.data(), p.tangents.size(), 4);
+                if ((g.has_uv0 = !p.uv0.empty())) add(kUv0, p.uv0.data(), p.uv0.size(), 2);
+                if ((g.has_uv1 = !p.uv1.empty())) add(kUv1, p.uv1.data(), p.uv1.size(), 2);
+                if ((g.has_color = !p.colors.empty())) add(kColor, p.colors.data(), p.colors.size(), 4);
+                if (!p.indices.empty()) {
+                    g.buffers.emplace_back(gpu::BufferKind::Index, p.indices.data(), p.indices.size() * 4);
+                    g.vao.set_indices(g.buffers.back());
+                    g.indexed = true;
+                    g.count = int(p.indices.size());
+                } else {
+                    g.count = int(p.positions.size());
+                }
+                prims.push_back(std::move(g));
+            }
+            meshes.push_back(std::move(prims));
+        }
+    }
+
+    // The GL texture for a material's reference, or nullptr when it has no usable image.
+    const gpu::Texture* texture_for(const TextureRef& ref, bool srgb) {
+        if (!ref.valid() || !scene) return nullptr;
+        const Texture& tex = scene->textures[std::size_t(ref.texture)];
+        if (tex.image < 0 || !scene->images[std::size_t(tex.image)].valid()) return nullptr;
+        auto key = std::make_pair(ref.texture, srgb);
+        auto it = textures.find(key);
+        if (it != textures.end()) return &it->second;
+        const Image8& img = scene->images[std::size_t(tex.image)].pixels;
+        bool mip = tex.sampler.min_filter >= 0x2700 && tex.sampler.min_filter <= 0x2703;
+        gpu::Texture t = gpu::Texture::create_2d(img.width, img.height,
+                                                 srgb ? gpu::TextureFormat::SRGB8_ALPHA8 : gpu::TextureFormat::RGBA8,
+                                                 img.pixels.data(), mip);
+        gpu::SamplerState ss;
+        ss.min_filter = tex.sampler.min_filter;
+        ss.mag_filter = tex.sampler.mag_filter;
+        ss.wrap_s = tex.sampler.wrap_s;
+        ss.wrap_t = tex.sampler.wrap_t;
+        t.set_sampler(ss);
+        return &textures.emplace(key, std::move(t)).first->second;
+    }
+
+    void ensure_targets(int w, int h, int samples) {
+        if (w == target_w && h == target_h && samples == target_samples) return;
+        target_w = w;
+        target_h = h;
+        target_samples = samples;
+        msaa_color = gpu::Renderbuffer(w, h, gpu::RenderbufferFormat::RGBA16F, samples);
+        msaa_depth = gpu::Renderbuffer(w, h, gpu::RenderbufferFormat::Depth24, samples);
+        msaa_fb = gpu::Framebuffer();
+        msaa_fb.attach_color(msaa_color);
+        msaa_fb.attach_depth(msaa_depth);
+        msaa_fb.check();
+        resolved = gpu::Texture::create_2d(w, h, gpu::TextureFormat::RGBA16F, nullptr, false);
+        resolved.set_sampler({0x2600, 0x2600, 0x812F, 0x812F, 0x812F});  // NEAREST, CLAMP_TO_EDGE
+        resolved_fb = gpu::Framebuffer();
+        resolved_fb.attach_color(resolved);
+        resolved_fb.check();
+        output = gpu::Texture::create_2d(w, h, gpu::TextureFormat::RGBA32F, nullptr, false);
+        output_fb = gpu::Framebuffer();
+        output_fb.attach_color(output);
+        output_fb.check();
+    }
+
+    void draw_primitive(const Draw& d, const CameraSetup& cam, const std::vector<LightInstance>& lights,
+                        const RenderSettings& settings, FrameStats& stats) {
+        static const Material kDefaultMaterial{};
+        const GpuPrimitive& p = *d.prim;
+        const Material& m = p.material >= 0 ? scene->materials[std::size_t(p.material)] : kDefaultMaterial;
+        std::vector<std::string> defines;
+        if (p.has_normal) defines.push_back("HAS_NORMAL");
+        if (p.has_tangent) defines.push_back("HAS_TANGENT");
+        if (p.has_uv0) defines.push_back("HAS_UV0");
+        if (p.has_uv1) defines.push_back("HAS_UV1");
+        if (p.has_color) defines.push_back("HAS_COLOR");
+        if (m.unlit) defines.push_back("UNLIT");
+        if (m.alpha_mode == AlphaMode::Mask) defines.push_back("ALPHA_MASK");
+        if (m.alpha_mode == AlphaMode::Blend) defines.push_back("ALPHA_BLEND");
+        if (settings.debug != DebugChannel::None) defines.push_back("DEBUG_VIEW");
+        defines.push_back("MAX_LIGHTS " + std::to_string(kMaxLights));
+
+        struct MapUse {
+            const char* name;
+            const char* define;
+            const TextureRef* ref;
+            bool srgb;
+        };
+        MapUse maps[] = {
+            {"base_color", "HAS_BASE_COLOR_MAP", &m.base_color, true},
+            {"metallic_roughness", "HAS_METALLIC_ROUGHNESS_MAP", &m.metallic_roughness, false},
+            {"normal", "HAS_NORMAL_MAP", &m.normal, false},
+            {"occlusion", "HAS_OCCLUSION_MAP", &m.occlusion, false},
+            {"emissive", "HAS_EMISSIVE_MAP", &m.emissive, true},
+        };
+        const gpu::Texture* bound[5] = {};
+        bool has_uv = p.has_uv0;
+        for (int i = 0; i < 5; ++i) {
+            const TextureRef& ref = *maps[i].ref;
+            if (!ref.valid() || !has_uv) continue;
+            if (ref.tex_coord == 1 && !p.has_uv1) continue;
+            if (i == 2 && !p.has_tangent) continue;  // a normal map needs a tangent frame
+            bound[i] = texture_for(ref, maps[i].srgb);
+            if (bound[i]) defines.push_back(maps[i].define);
+        }
+
+        const gpu::Program& prog = shaders.get("pbr.vert", "pbr.frag", defines);
+        prog.use();
+        prog.set("u_model", d.model);
+        glm::mat3 normal_matrix = glm::inverseTranspose(glm::mat3(d.model));
+        prog.set("u_normal_matrix", normal_matrix);
+        prog.set("u_view_projection", cam.projection * cam.view);
+        float det = glm::determinant(glm::mat3(d.model));
+        prog.set("u_handedness", det < 0 ? -1.0f : 1.0f);
+        prog.set("u_point_size", 1.0f);
+        prog.set("u_camera_position", cam.eye);
+        prog.set("u_debug", int(settings.debug));
+        prog.set("u_ambient", settings.ambient);
+        prog.set("u_base_color_factor", m.base_color_factor);
+        prog.set("u_metallic_factor", m.metallic_factor);
+        prog.set("u_roughness_factor", m.roughness_factor);
+        prog.set("u_normal_scale", m.normal_scale);
+        prog.set("u_occlusion_strength", m.occlusion_strength);
+        prog.set("u_emissive", m.emissive_factor * m.emissive_strength);
+        prog.set("u_alpha_cutoff", m.alpha_cutoff);
+        for (int i = 0; i < 5; ++i) {
+            if (!bound[i]) continue;
+            std::string base = std::string("u_") + maps[i].name;
+            device.bind_texture(i, *bound[i]);
+            prog.set(base + "_map", i);
+            prog.set(base + "_uv", maps[i].ref->tex_coord);
+            prog.set(base + "_transform", maps[i].ref->transform);
+        }
+        // Lights.
+        int count = std::min<int>(int(lights.size()), kMaxLights);
+        std::vector<glm::vec4> pos_type(kMaxLights), dir_range(kMaxLights), color(kMaxLights), cone(kMaxLights);
+        for (int i = 0; i < count; ++i) {
+            const LightInstance& l = lights[std::size_t(i)];
+            float type = l.type == Light::Type::Directional ? 0.0f : l.type == Light::Type::Point ? 1.0f : 2.0f;
+            pos_type[std::size_t(i)] = glm::vec4(l.position, type);
+            dir_range[std::size_t(i)] = glm::vec4(l.direction, l.range);
+            color[std::size_t(i)] = glm::vec4(l.radiance, 0.0f);
+            float scale = 1.0f / std::max(0.001f, std::cos(l.inner_cone) - std::cos(l.outer_cone));
+            cone[std::size_t(i)] = glm::vec4(scale, -std::cos(l.outer_cone) * scale, 0, 0);
+        }
+        prog.set("u_light_count", count);
+        prog.set("u_light_position_type", std::span<const glm::vec4>(pos_type));
+        prog.set("u_light_direction_range", std::span<const glm::vec4>(dir_range));
+        prog.set("u_light_color", std::span<const glm::vec4>(color));
+        prog.set("u_light_cone", std::span<const glm::vec4>(cone));
+
+        gpu::PipelineState state;
+        state.cull = m.double_sided ? gpu::Cull::None : gpu::Cull::Back;
+        state.front_ccw = det >= 0;
+        if (m.alpha_mode == AlphaMode::Blend) {
+            state.blend = gpu::Blend::PremultipliedOver;
+            state.depth_write = false;
+        }
+        device.apply(state);
+        device.draw(p.vao, to_gpu(p.topology), p.count, p.indexed);
+        ++stats.draw_calls;
+        stats.triangles += p.triangles;
+    }
+};
+
+Renderer::Renderer(gpu::Context& context) : impl_(std::make_unique<Impl>(context)) {}
+Renderer::~Renderer() = default;
+
+void Renderer::set_scene(const Scene& scene, int scene_index) {
+    impl_->scene = &scene;
+    impl_->instances = flatten(scene, scene_index);
+    impl_->upload(scene);
+}
+
+std::size_t Renderer::program_count() const { return impl_->shaders.size(); }
+
+ImageF Renderer::render(const CameraSetup& cam, const std::vector<LightInstance>& lights,
+                        const RenderSettings& settings, FrameStats* stats_out) {
+    Impl& r = *impl_;
+    FrameStats stats;
+    int w = settings.width, h = settings.height;
+    int samples = std::clamp(settings.msaa, 1, std::max(1, gpu::max_samples()));
+    if (samples == 1) samples = 0;
+    r.ensure_targets(w, h, samples);
+
+    r.device.bind_framebuffer(&r.msaa_fb);
+    r.device.viewport(0, 0, w, h);
+    r.device.clear(glm::vec4(0.0f), true);
+
+    if (r.scene) {
+        std::vector<Draw> opaque, blended;
+        for (const auto& inst : r.instances) {
+            const Node& node = r.scene->nodes[std::size_t(inst.node)];
+            if (node.mesh < 0) continue;
+            for (const auto& p : r.meshes[std::size_t(node.mesh)]) {
+                glm::vec4 c = cam.view * inst.world * glm::vec4(p.center, 1.0f);
+                Draw d{&p, inst.world, -c.z};
+                const Material* m = p.material >= 0 ? &r.scene->materials[std::size_t(p.material)] : nullptr;
+                if (m && m->alpha_mode == AlphaMode::Blend) blended.push_back(d);
+                else opaque.push_back(d);
+            }
+        }
+        // Blended primitives last, far to near.
+        std::stable_sort(blended.begin(), blended.end(), [](const Draw& a, const Draw& b) { return a.depth > b.depth; });
+        for (const auto& d : opaque) r.draw_primitive(d, cam, lights, settings, stats);
+        for (const auto& d : blended) r.draw_primitive(d, cam, lights, settings, stats);
+    }
+
+    r.device.blit_color(r.msaa_fb, r.resolved_fb, w, h);
+
+    // Output pass.
+    r.device.bind_framebuffer(&r.output_fb);
+    r.device.viewport(0, 0, w, h);
+    gpu::PipelineState post;
+    post.depth_test = false;
+    post.depth_write = false;
+    post.cull = gpu::Cull::None;
+    r.device.apply(post);
+    const gpu::Program& prog = r.shaders.get("fullscreen.vert", "post.frag", {});
+    prog.use();
+    r.device.bind_texture(0, r.resolved);
+    prog.set("u_hdr", 0);
+    prog.set("u_exposure", exposure_scale(settings.exposure_ev));
+    prog.set("u_tonemap", int(settings.tone_mapper));
+    prog.set("u_encoding", settings.encoding ? int(*settings.encoding) : -1);
+    prog.set("u_passthrough", settings.debug != DebugChannel::None ? 1 : 0);
+    prog.set("u_background", settings.background);
+    r.device.draw_fullscreen();
+
+    std::vector<float> px = r.device.read_rgba32f(r.output_fb, w, h);
+    stats.gl_errors = r.device.take_errors();
+    ImageF img(w, h);
+    for (int y = 0; y < h; ++y)  // GL rows are bottom to top
+        std::copy_n(&px[std::size_t(h - 1 - y) * std::size_t(w) * 4], std::size_t(w) * 4, img.at(0, y));
+    if (stats_out) *stats_out = stats;
+    return img;
+}
+
+Image8 to_image8(const ImageF& image, bool alpha) {
+    Image8 out(image.width, image.height, alpha ? 4 : 3);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const float* s = image.at(x, y);
+            std::uint8_t* d = out.at(x, y);
+            for (int c = 0; c < out.channels; ++c) {
+                float v = std::isfinite(s[c]) ? std::clamp(s[c], 0.0f, 1.0f) : 0.0f;
+                d[c] = std::uint8_t(std::lround(v * 255.0f));
+            }
+        }
+    return out;
+}
+
+}  // namespace fresnel

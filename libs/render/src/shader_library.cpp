@@ -1,0 +1,64 @@
+#include "fresnel/render/shader_library.h"
+
+#include <algorithm>
+#include <set>
+#include <sstream>
+
+#include "fresnel/core/error.h"
+#include "fresnel/shaders/shaders.h"
+
+namespace fresnel {
+namespace {
+
+void expand(const std::string& file, std::set<std::string>& included, std::vector<std::string>& stack,
+            std::string& out) {
+    if (std::find(stack.begin(), stack.end(), file) != stack.end())
+        throw Error(file, "#include", "include cycle");
+    if (included.count(file)) return;  // each file once (include guards for free)
+    std::string_view src = shaders::find(file);
+    if (src.empty()) throw Error(file, "", "no such embedded shader file");
+    included.insert(file);
+    stack.push_back(file);
+    std::istringstream in{std::string(src)};
+    std::string line;
+    int number = 0;
+    while (std::getline(in, line)) {
+        ++number;
+        auto first = line.find_first_not_of(" \t");
+        if (first != std::string::npos && line.compare(first, 8, "#include") == 0) {
+            auto a = line.find('"'), b = line.rfind('"');
+            if (a == std::string::npos || b <= a) throw Error(file, "line " + std::to_string(number), "malformed #include");
+            expand(line.substr(a + 1, b - a - 1), included, stack, out);
+            continue;
+        }
+        out += line;
+        out += '\n';
+    }
+    stack.pop_back();
+}
+
+}  // namespace
+
+std::string assemble_shader(const std::string& file, const std::vector<std::string>& defines, GlslTarget target) {
+    std::string out = target == GlslTarget::Gl33 ? "#version 330 core\n"
+                                                 : "#version 300 es\nprecision highp float;\nprecision highp int;\n";
+    for (const auto& d : defines) out += "#define " + d + "\n";
+    std::set<std::string> included;
+    std::vector<std::string> stack;
+    expand(file, included, stack, out);
+    return out;
+}
+
+const gpu::Program& ShaderLibrary::get(const std::string& vertex, const std::string& fragment,
+                                       std::vector<std::string> defines) {
+    std::sort(defines.begin(), defines.end());
+    std::string key = vertex + "|" + fragment;
+    for (const auto& d : defines) key += "|" + d;
+    auto it = programs_.find(key);
+    if (it != programs_.end()) return *it->second;
+    auto program = std::make_unique<gpu::Program>(key, assemble_shader(vertex, defines, target_),
+                                                  assemble_shader(fragment, defines, target_));
+    return *programs_.emplace(key, std::move(program)).first->second;
+}
+
+}  // namespace fresnel

@@ -1,0 +1,38 @@
+#pragma once
+// glTF 2.0 loader: .gltf (with external, data-URI or no buffers) and .glb.
+// The file is treated as hostile: every offset, stride, count and index is
+// checked before use; sizes are capped; URIs may not leave the model's folder.
+#include <filesystem>
+
+#include "fresnel/core/error.h"
+#include "fresnel/core/image.h"
+#include "fresnel/scene/scene.h"
+
+namespace fresnel {
+
+struct GltfLoadOptions {
+    // Allow URIs outside the model's folder (absolute paths, ".." escapes). Never network.
+    bool allow_external_files = false;
+    std::size_t max_file_bytes = std::size_t(2) << 30;     // the .gltf/.glb and each external file
+    std::size_t max_total_bytes = std::size_t(8) << 30;    // all buffers and images together
+    std::size_t max_data_uri_bytes = std::size_t(512) << 20;
+    std::size_t max_vertices = std::size_t(200) << 20;     // per primitive, after expansion
+    int max_node_depth = 1024;
+    ImageLimits image_limits{};
+    bool decode_images = true;  // false: skip texture decoding (fresnel info)
+    unsigned threads = 0;       // image decoding threads, 0 = hardware concurrency
+};
+
+// Loads a model; throws fresnel::Error (file, JSON pointer, reason) on bad input.
+// Recoverable problems (a missing texture, non-finite normals, ...) become warnings.
+Scene load_gltf(const std::filesystem::path& path, Diagnostics& diagnostics, const GltfLoadOptions& options = {});
+
+// Same, from memory (`name` is used in messages; external URIs resolve against `base_dir`).
+Scene load_gltf_from_memory(std::span<const std::uint8_t> bytes, const std::string& name,
+                            const std::filesystem::path& base_dir, Diagnostics& diagnostics,
+                            const GltfLoadOptions& options = {});
+
+// Extensions this loader understands (others in extensionsRequired are an error).
+const std::vector<std::string>& supported_gltf_extensions();
+
+}  // namespace fresnel

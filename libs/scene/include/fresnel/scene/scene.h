@@ -1,0 +1,159 @@
+#pragma once
+// The in-memory scene every loader produces and every renderer consumes.
+// Geometry is already decoded to float arrays, triangle strips/fans are
+// converted to lists, and missing normals/tangents are generated, so
+// consumers never see raw glTF accessors.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "fresnel/core/image.h"
+
+namespace fresnel {
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+// A material's reference to a texture, with KHR_texture_transform folded into a matrix.
+struct TextureRef {
+    int texture = -1;          // index into Scene::textures, -1 = none
+    int tex_coord = 0;         // 0 or 1 (TEXCOORD_n)
+    bool has_transform = false;
+    glm::mat3 transform{1.0f};  // uv' = (transform * vec3(uv, 1)).xy
+    bool valid() const { return texture >= 0; }
+};
+
+// glTF metallic-roughness material (plus the KHR extensions we support).
+struct Material {
+    std::string name;
+    glm::vec4 base_color_factor{1.0f};
+    TextureRef base_color;            // sRGB
+    float metallic_factor = 1.0f;
+    float roughness_factor = 1.0f;
+    TextureRef metallic_roughness;    // B = metallic, G = roughness, linear
+    TextureRef normal;                // tangent space, linear
+    float normal_scale = 1.0f;
+    TextureRef occlusion;             // R, linear
+    float occlusion_strength = 1.0f;
+    TextureRef emissive;              // sRGB
+    glm::vec3 emissive_factor{0.0f};
+    float emissive_strength = 1.0f;   // KHR_materials_emissive_strength
+    AlphaMode alpha_mode = AlphaMode::Opaque;
+    float alpha_cutoff = 0.5f;
+    bool double_sided = false;
+    bool unlit = false;               // KHR_materials_unlit
+};
+
+// Sampler state with glTF / OpenGL enum values.
+struct Sampler {
+    int mag_filter = 0x2601;  // LINEAR
+    int min_filter = 0x2703;  // LINEAR_MIPMAP_LINEAR
+    int wrap_s = 0x2901;      // REPEAT
+    int wrap_t = 0x2901;
+};
+
+struct Texture {
+    int image = -1;  // index into Scene::images; -1 = missing (renderers use a neutral fallback)
+    Sampler sampler;
+};
+
+struct SceneImage {
+    std::string name;  // URI or "image N" for diagnostics
+    Image8 pixels;     // RGBA8; empty when the image could not be decoded (a warning was issued)
+    bool valid() const { return pixels.width > 0; }
+};
+
+enum class Topology { Points, Lines, LineLoop, LineStrip, Triangles };
+
+struct Primitive {
+    Topology topology = Topology::Triangles;
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;    // always present for triangles (generated flat when absent)
+    std::vector<glm::vec4> tangents;   // present when given, or generated when a normal map is used
+    std::vector<glm::vec2> uv0, uv1;
+    std::vector<glm::vec4> colors;     // COLOR_0 as RGBA (alpha 1 for vec3)
+    std::vector<std::uint32_t> indices;  // empty = non-indexed
+    int material = -1;                   // -1 = the glTF default material
+    // The POSITION accessor's min/max (used by the camera convention); falls back to the data.
+    glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
+    std::size_t source_vertex_count = 0;  // the POSITION accessor's count, before any re-indexing
+    bool generated_normals = false;
+    bool generated_tangents = false;
+    std::size_t vertex_count() const { return positions.size(); }
+    std::size_t triangle_count() const;
+};
+
+struct Mesh {
+    std::string name;
+    std::vector<Primitive> primitives;
+};
+
+struct Camera {
+    enum class Type { Perspective, Orthographic } type = Type::Perspective;
+    std::string name;
+    float yfov = 0.8f;                 // radians
+    std::optional<float> aspect_ratio;
+    float znear = 0.01f;
+    std::optional<float> zfar;         // perspective: absent = infinite
+    float xmag = 1.0f, ymag = 1.0f;    // orthographic half extents
+};
+
+// KHR_lights_punctual. Intensity: directional in lux, point and spot in candela.
+struct Light {
+    enum class Type { Directional, Point, Spot } type = Type::Directional;
+    std::string name;
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;
+    float range = 0.0f;                 // 0 = infinite
+    float inner_cone_angle = 0.0f;      // radians
+    float outer_cone_angle = 0.7853982f;
+};
+
+struct Node {
+    std::string name;
+    glm::mat4 local{1.0f};
+    int mesh = -1, camera = -1, light = -1;
+    std::vector<int> children;
+};
+
+struct Scene {
+    std::string source;  // file it came from
+    std::vector<Node> nodes;
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<SceneImage> images;
+    std::vector<Camera> cameras;
+    std::vector<Light> lights;
+    std::vector<std::vector<int>> scenes;  // root nodes of each scene
+    int default_scene = 0;                 // the file's `scene`, else 0
+    std::vector<std::string> extensions_used, extensions_required;
+};
+
+// A node instance in the scene graph with its world matrix (rest pose).
+struct NodeInstance {
+    int node = -1;
+    glm::mat4 world{1.0f};
+};
+
+// Flattens the scene graph of scene `index` (-1 = default scene) into node instances.
+std::vector<NodeInstance> flatten(const Scene& scene, int index = -1);
+
+// World-space axis-aligned bounds following the camera convention: the 8 corners
+// of each primitive's POSITION min/max box transformed by its node's world matrix.
+struct Bounds {
+    glm::vec3 min{0.0f}, max{0.0f};
+    bool empty = true;
+    glm::vec3 center() const { return (min + max) * 0.5f; }
+    float radius() const;  // half the diagonal
+};
+Bounds scene_bounds(const Scene& scene, const std::vector<NodeInstance>& instances);
+
+}  // namespace fresnel

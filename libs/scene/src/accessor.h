@@ -1,0 +1,50 @@
+#pragma once
+// Bounds-checked decoding of glTF accessors (all component types, normalized
+// integers, byteStride/interleaving, sparse substitution, no bufferView = zeros).
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "json_reader.h"
+
+namespace fresnel::gltf {
+
+struct BufferViewInfo {
+    int buffer = -1;
+    std::size_t offset = 0, length = 0, stride = 0;  // stride 0 = tightly packed
+};
+
+struct AccessorData {
+    std::size_t count = 0;
+    int components = 0;     // 1..16
+    int component_type = 0;  // 5120..5126
+    bool normalized = false;
+    std::vector<double> values;  // count * components, dequantized when normalized
+};
+
+class AccessorDecoder {
+public:
+    AccessorDecoder(const JsonReader& reader, const json& doc, const std::vector<std::vector<std::uint8_t>>& buffers,
+                    std::size_t max_elements);
+    std::size_t accessor_count() const { return accessors_->size(); }
+    // Decodes accessor `index`. `ptr` is the pointer of the reference (for messages).
+    AccessorData read(int index) const;
+    // Reads the "type" and "componentType" without decoding.
+    void describe(int index, int& components, int& component_type, bool& normalized, std::size_t& count) const;
+
+private:
+    const JsonReader& r_;
+    const json* accessors_;
+    std::vector<BufferViewInfo> views_;
+    const std::vector<std::vector<std::uint8_t>>& buffers_;
+    std::size_t max_elements_;
+    void read_elements(std::span<const std::uint8_t> bytes, std::size_t stride, std::size_t count, int comps,
+                       int ctype, bool normalized, bool matrix_padding, double* out, std::size_t out_stride) const;
+    std::span<const std::uint8_t> view_range(int view, std::size_t offset, std::size_t count, std::size_t elem_size,
+                                             std::size_t& stride, const std::string& ptr) const;
+};
+
+int component_size(int component_type);
+
+}  // namespace fresnel::gltf

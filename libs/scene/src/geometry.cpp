@@ -1,0 +1,227 @@
+#include "geometry.h"
+
+#include <cmath>
+#include <glm/geometric.hpp>
+
+#include "fresnel/scene/tangents.h"
+
+namespace fresnel::gltf {
+namespace {
+
+template <class V>
+std::vector<V> to_vectors(const AccessorData& d) {
+    constexpr int n = V::length();
+    std::vector<V> out(d.count);
+    for (std::size_t i = 0; i < d.count; ++i)
+        for (int c = 0; c < n; ++c) out[i][c] = c < d.components ? float(d.values[i * std::size_t(d.components) + std::size_t(c)]) : 1.0f;
+    return out;
+}
+
+// Expands every per-vertex array through `remap` (output vertex -> input vertex).
+template <class T>
+void remap_array(std::vector<T>& a, const std::vector<std::uint32_t>& remap) {
+    if (a.empty()) return;
+    std::vector<T> out(remap.size());
+    for (std::size_t i = 0; i < remap.size(); ++i) out[i] = a[remap[i]];
+    a.swap(out);
+}
+void remap_all(Primitive& p, const std::vector<std::uint32_t>& remap) {
+    remap_array(p.positions, remap);
+    remap_array(p.normals, remap);
+    remap_array(p.tangents, remap);
+    remap_array(p.uv0, remap);
+    remap_array(p.uv1, remap);
+    remap_array(p.colors, remap);
+}
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+}  // namespace
+
+std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, const std::string& ptr,
+                                         const AccessorDecoder& accessors, const std::vector<Material>& materials,
+                                         std::size_t max_vertices, Diagnostics& diag) {
+    auto warn = [&](const std::string& where, const std::string& what) { diag.warn(r.file(), where, what); };
+    if (!prim.is_object()) r.fail(ptr, "must be an object");
+    Primitive p;
+    int mode = int(r.integer(prim, "mode", ptr, 4, 0, 6));
+    p.material = r.index(prim, "material", ptr, materials.size(), "material");
+    const json& attrs = r.object(prim, "attributes", ptr);
+    std::string ap = ptr + "/attributes";
+    if (r.has(prim, "extensions") && r.has(r.object(prim, "extensions", ptr), "KHR_draco_mesh_compression"))
+        { warn(ptr, "Draco-compressed primitive is not supported; skipped"); return std::nullopt; }
+    int pos_index = r.index(attrs, "POSITION", ap, accessors.accessor_count(), "accessor");
+    if (pos_index < 0) {
+        warn(ap, "primitive has no POSITION; skipped");
+        return std::nullopt;
+    }
+
+    // Reads an attribute, checking its type and that its count matches POSITION.
+    std::size_t vertex_count = 0;
+    auto attribute = [&](const char* name, std::initializer_list<int> allowed_components,
+                         bool float_or_normalized) -> std::optional<AccessorData> {
+        int idx = r.index(attrs, name, ap, accessors.accessor_count(), "accessor");
+        if (idx < 0) return std::nullopt;
+        std::string where = ap + "/" + name;
+        AccessorData d = accessors.read(idx);
+        if (std::find(allowed_components.begin(), allowed_components.end(), d.components) == allowed_components.end())
+            r.fail(where, std::string("accessor ") + std::to_string(idx) + " has the wrong type for " + name);
+        if (float_or_normalized && d.component_type != 5126 && !d.normalized)
+            r.fail(where, std::string(name) + " must be float or normalized integers");
+        if (vertex_count && d.count != vertex_count)
+            r.fail(where, "has " + std::to_string(d.count) + " elements, POSITION has " + std::to_string(vertex_count));
+        return d;
+    };
+    {
+        auto pos = attribute("POSITION", {3}, false);
+        vertex_count = pos->count;
+        p.source_vertex_count = vertex_count;
+        if (vertex_count > max_vertices) r.fail(ap + "/POSITION", "too many vertices");
+        p.positions = to_vectors<glm::vec3>(*pos);
+        // The camera convention uses the POSITION accessor's min/max, which for a valid
+        // file is the exact box of all its elements (referenced or not): take it from the
+        // data before any re-indexing drops unreferenced vertices.
+        p.bounds_min = p.bounds_max = p.positions[0];
+        for (const auto& v : p.positions) {
+            p.bounds_min = glm::min(p.bounds_min, v);
+            p.bounds_max = glm::max(p.bounds_max, v);
+        }
+    }
+    if (auto n = attribute("NORMAL", {3}, true)) p.normals = to_vectors<glm::vec3>(*n);
+    if (auto t = attribute("TANGENT", {4}, true)) p.tangents = to_vectors<glm::vec4>(*t);
+    if (auto t = attribute("TEXCOORD_0", {2}, true)) p.uv0 = to_vectors<glm::vec2>(*t);
+    if (auto t = attribute("TEXCOORD_1", {2}, true)) p.uv1 = to_vectors<glm::vec2>(*t);
+    if (auto c = attribute("COLOR_0", {3, 4}, true)) p.colors = to_vectors<glm::vec4>(*c);
+
+    if (!std::all_of(p.positions.begin(), p.positions.end(), finite)) {
+        warn(ap + "/POSITION", "non-finite vertex positions; primitive skipped");
+        return std::nullopt;
+    }
+
+    // Indices.
+    std::vector<std::uint32_t> indices;
+    bool indexed = false;
+    int iidx = r.index(prim, "indices", ptr, accessors.accessor_count(), "accessor");
+    if (iidx >= 0) {
+        AccessorData d = accessors.read(iidx);
+        if (d.components != 1 || (d.component_type != 5121 && d.component_type != 5123 && d.component_type != 5125))
+            r.fail(ptr + "/indices", "indices must be SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
+        indices.resize(d.count);
+        for (std::size_t i = 0; i < d.count; ++i) {
+            double v = d.values[i];
+            if (v >= double(vertex_count))
+                r.fail(ptr + "/indices", "index " + std::to_string((unsigned long long)v) + " at position " +
+                                             std::to_string(i) + " is out of range for " + std::to_string(vertex_count) +
+                                             " vertices");
+            indices[i] = std::uint32_t(v);
+        }
+        indexed = true;
+    } else {
+        indices.resize(vertex_count);
+        for (std::size_t i = 0; i < vertex_count; ++i) indices[i] = std::uint32_t(i);
+    }
+
+    switch (mode) {
+        case 0: p.topology = Topology::Points; break;
+        case 1: p.topology = Topology::Lines; break;
+        case 2: p.topology = Topology::LineLoop; break;
+        case 3: p.topology = Topology::LineStrip; break;
+        default: p.topology = Topology::Triangles; break;
+    }
+    if (mode == 5 || mode == 6) {  // strips and fans become lists
+        std::vector<std::uint32_t> list;
+        for (std::size_t i = 2; i < indices.size(); ++i) {
+            if (mode == 5) {
+                if (i % 2 == 0) list.insert(list.end(), {indices[i - 2], indices[i - 1], indices[i]});
+                else list.insert(list.end(), {indices[i - 1], indices[i - 2], indices[i]});
+            } else {
+                list.insert(list.end(), {indices[0], indices[i - 1], indices[i]});
+            }
+        }
+        indices.swap(list);
+    }
+    if (p.topology == Topology::Triangles) {
+        if (indices.size() % 3 != 0) {
+            warn(indexed ? ptr + "/indices" : ap, "triangle count is not a whole number; extra indices ignored");
+            indices.resize(indices.size() / 3 * 3);
+        }
+        if (indices.empty()) {
+            warn(ptr, "primitive has no complete triangle; skipped");
+            return std::nullopt;
+        }
+    }
+
+    // Sanitise normals: non-finite or zero-length normals get the (area-weighted) smooth normal.
+    if (!p.normals.empty() && p.topology == Topology::Triangles) {
+        std::vector<glm::vec3> smooth;
+        std::size_t bad = 0;
+        for (auto& n : p.normals) {
+            float len = finite(n) ? glm::length(n) : 0.0f;
+            if (!(len > 1e-20f) || !std::isfinite(len)) {
+                if (smooth.empty()) {
+                    smooth.assign(p.positions.size(), glm::vec3(0.0f));
+                    for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+                        glm::vec3 fn = glm::cross(p.positions[indices[t + 1]] - p.positions[indices[t]],
+                                                  p.positions[indices[t + 2]] - p.positions[indices[t]]);
+                        if (!finite(fn)) continue;
+                        for (int k = 0; k < 3; ++k) smooth[indices[t + std::size_t(k)]] += fn;
+                    }
+                }
+                std::size_t v = std::size_t(&n - p.normals.data());
+                float sl = glm::length(smooth[v]);
+                n = sl > 0 && std::isfinite(sl) ? smooth[v] / sl : glm::vec3(0, 0, 1);
+                ++bad;
+            } else {
+                n /= len;
+            }
+        }
+        if (bad) warn(ap + "/NORMAL", std::to_string(bad) + " invalid normals replaced by computed ones");
+    }
+
+    // Flat normals when absent: each triangle gets its own three vertices.
+    if (p.normals.empty() && p.topology == Topology::Triangles) {
+        std::vector<std::uint32_t> remap(indices.begin(), indices.end());
+        remap_all(p, remap);
+        p.normals.resize(p.positions.size());
+        for (std::size_t t = 0; t < p.positions.size(); t += 3) {
+            glm::vec3 n = glm::cross(p.positions[t + 1] - p.positions[t], p.positions[t + 2] - p.positions[t]);
+            float len = glm::length(n);
+            n = len > 0 && std::isfinite(len) ? n / len : glm::vec3(0, 0, 1);
+            p.normals[t] = p.normals[t + 1] = p.normals[t + 2] = n;
+        }
+        for (std::size_t i = 0; i < indices.size(); ++i) indices[i] = std::uint32_t(i);
+        p.generated_normals = true;
+    }
+
+    // Tangents when a normal map needs them and the file has none (MikkTSpace).
+    const Material* mat = p.material >= 0 ? &materials[std::size_t(p.material)] : nullptr;
+    if (mat && mat->normal.valid() && p.tangents.empty() && p.topology == Topology::Triangles) {
+        const auto& uv = mat->normal.tex_coord == 1 ? p.uv1 : p.uv0;
+        if (uv.empty()) {
+            warn(ptr, "normal map without texture coordinates; normal map ignored");
+        } else {
+            TangentMesh tm = generate_tangents(p.positions, p.normals, uv, indices);
+            remap_all(p, tm.remap);
+            p.tangents = std::move(tm.tangents);
+            indices = std::move(tm.indices);
+            p.generated_tangents = true;
+        }
+    }
+    if (!p.tangents.empty()) {
+        for (auto& t : p.tangents) {
+            glm::vec3 v(t);
+            float len = finite(v) ? glm::length(v) : 0.0f;
+            if (!(len > 0) || !std::isfinite(len)) t = glm::vec4(1, 0, 0, 1);
+            else t = glm::vec4(v / len, t.w < 0 ? -1.0f : 1.0f);
+        }
+    }
+
+    // Drop the index buffer when it is the identity.
+    bool identity = indices.size() == p.positions.size();
+    for (std::size_t i = 0; identity && i < indices.size(); ++i) identity = indices[i] == i;
+    if (!identity) p.indices = std::move(indices);
+
+    return p;
+}
+
+}  // namespace fresnel::gltf

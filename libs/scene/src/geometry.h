@@ -1,0 +1,19 @@
+#pragma once
+// Turns a glTF mesh primitive into a fresnel::Primitive: decodes attributes,
+// checks indices, converts strips and fans to lists, and generates flat
+// normals and MikkTSpace tangents where the file has none.
+#include <optional>
+#include <vector>
+
+#include "accessor.h"
+#include "fresnel/scene/scene.h"
+
+namespace fresnel::gltf {
+
+// Returns nullopt (after a warning) for primitives that cannot be drawn but do
+// not make the file unusable; throws for structural errors.
+std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, const std::string& ptr,
+                                         const AccessorDecoder& accessors, const std::vector<Material>& materials,
+                                         std::size_t max_vertices, Diagnostics& diag);
+
+}  // namespace fresnel::gltf

@@ -1,0 +1,631 @@
+// glTF 2.0 loader. Parses the JSON with nlohmann::json directly rather than
+// through tinygltf 2.7 (Debian's): we need JSON-pointer locations in every
+// error, exact control of file access (URI policy), buffers larger than their
+// byteLength (valid glTF, rejected by tinygltf 2.7) and parallel image decoding.
+#include "fresnel/scene/gltf_loader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <set>
+
+#include "accessor.h"
+#include "fresnel/core/parallel.h"
+#include "geometry.h"
+#include "json_reader.h"
+#include "uri_policy.h"
+
+namespace fresnel {
+namespace fs = std::filesystem;
+using gltf::json;
+using gltf::JsonReader;
+
+const std::vector<std::string>& supported_gltf_extensions() {
+    static const std::vector<std::string> list = {
+        "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform",
+        "KHR_materials_unlit", "KHR_mesh_quantization",
+    };
+    return list;
+}
+
+namespace {
+
+constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
+constexpr std::uint32_t kChunkJson = 0x4E4F534A;
+constexpr std::uint32_t kChunkBin = 0x004E4942;
+
+std::uint32_t read_u32(const std::uint8_t* p) {
+    std::uint32_t v;
+    std::memcpy(&v, p, 4);
+    return v;
+}
+
+struct GlbParts {
+    std::string_view json;
+    std::span<const std::uint8_t> bin;
+    bool has_bin = false;
+};
+
+GlbParts split_glb(std::span<const std::uint8_t> bytes, const std::string& file) {
+    auto fail = [&](std::size_t at, const std::string& what) -> void {
+        throw Error(file, "byte " + std::to_string(at), what);
+    };
+    if (bytes.size() < 20) fail(0, "GLB file is too short for a header and a chunk (" + std::to_string(bytes.size()) + " bytes)");
+    if (read_u32(bytes.data()) != kGlbMagic) fail(0, "not a GLB file (bad magic)");
+    std::uint32_t version = read_u32(bytes.data() + 4);
+    if (version != 2) fail(4, "unsupported GLB version " + std::to_string(version));
+    std::uint32_t length = read_u32(bytes.data() + 8);
+    if (length > bytes.size())
+        fail(8, "header says the file is " + std::to_string(length) + " bytes but it has " + std::to_string(bytes.size()) +
+                    " (truncated?)");
+    if (length < 20) fail(8, "header length " + std::to_string(length) + " is too small");
+    GlbParts parts;
+    std::size_t pos = 12;
+    bool first = true;
+    while (pos + 8 <= length) {
+        std::uint32_t clen = read_u32(bytes.data() + pos), ctype = read_u32(bytes.data() + pos + 4);
+        if (std::size_t(clen) > length - pos - 8)
+            fail(pos, "chunk length " + std::to_string(clen) + " runs past the end of the file");
+        if (clen % 4 != 0) fail(pos, "chunk length " + std::to_string(clen) + " is not a multiple of 4");
+        const std::uint8_t* data = bytes.data() + pos + 8;
+        if (first) {
+            if (ctype != kChunkJson) fail(pos + 4, "the first chunk must be JSON");
+            parts.json = std::string_view(reinterpret_cast<const char*>(data), clen);
+            first = false;
+        } else if (ctype == kChunkBin) {
+            if (parts.has_bin) fail(pos + 4, "more than one BIN chunk");
+            parts.bin = {data, clen};
+            parts.has_bin = true;
+        }  // unknown chunks are skipped, as the spec says
+        pos += 8 + std::size_t(clen);
+    }
+    if (first) fail(12, "GLB has no JSON chunk");
+    if (pos != length) fail(pos, "trailing bytes after the last chunk");
+    return parts;
+}
+
+class Loader {
+public:
+    Loader(std::string file, fs::path base_dir, Diagnostics& diag, const GltfLoadOptions& opt)
+        : r_(std::move(file)), base_dir_(std::move(base_dir)), diag_(diag), opt_(opt) {}
+
+    Scene load(std::span<const std::uint8_t> bytes) {
+        bool glb = bytes.size() >= 4 && read_u32(bytes.data()) == kGlbMagic;
+        GlbParts parts;
+        std::string_view text;
+        if (glb) {
+            parts = split_glb(bytes, r_.file());
+            text = parts.json;
+        } else {
+            text = std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+        }
+        try {
+            doc_ = json::parse(text.begin(), text.end());
+        } catch (const json::parse_error& e) {
+            throw Error(r_.file(), "byte " + std::to_string(e.byte), std::string("invalid JSON: ") + e.what());
+        }
+        if (!doc_.is_object()) r_.fail("", "the glTF document must be a JSON object");
+        scene_.source = r_.file();
+        check_asset();
+        check_extensions();
+        load_buffers(glb ? &parts : nullptr);
+        gltf::AccessorDecoder accessors(r_, doc_, buffers_, opt_.max_vertices * 16);
+        load_images();
+        load_samplers_and_textures();
+        load_materials();
+        load_meshes(accessors);
+        load_cameras();
+        load_lights();
+        load_nodes();
+        load_scenes();
+        return std::move(scene_);
+    }
+
+private:
+    JsonReader r_;
+    fs::path base_dir_;
+    Diagnostics& diag_;
+    const GltfLoadOptions& opt_;
+    json doc_;
+    Scene scene_;
+    std::vector<std::vector<std::uint8_t>> buffers_;
+    std::size_t total_bytes_ = 0;
+    std::vector<Sampler> samplers_;
+
+    void warn(const std::string& where, const std::string& what) { diag_.warn(r_.file(), where, what); }
+
+    void account(std::size_t bytes, const std::string& ptr) {
+        total_bytes_ += bytes;
+        if (total_bytes_ > opt_.max_total_bytes)
+            r_.fail(ptr, "buffers and images exceed the limit of " + std::to_string(opt_.max_total_bytes) + " bytes");
+    }
+
+    void check_asset() {
+        const json* asset = r_.find(doc_, "asset");
+        if (!asset || !asset->is_object()) r_.fail("/asset", "is required");
+        std::string version = r_.string(*asset, "version", "/asset");
+        if (version.empty()) r_.fail("/asset/version", "is required");
+        if (version.rfind("2.", 0) != 0) r_.fail("/asset/version", "unsupported glTF version '" + version + "'");
+        std::string min_version = r_.string(*asset, "minVersion", "/asset");
+        if (!min_version.empty() && min_version != "2.0")
+            r_.fail("/asset/minVersion", "requires glTF " + min_version + ", this loader reads 2.0");
+    }
+
+    std::vector<std::string> string_list(const char* key) {
+        std::vector<std::string> out;
+        const json& arr = r_.array(doc_, key, "");
+        for (std::size_t i = 0; i < arr.size(); ++i) {
+            if (!arr[i].is_string()) r_.fail(JsonReader::at(std::string("/") + key, i), "must be a string");
+            out.push_back(arr[i].get<std::string>());
+        }
+        return out;
+    }
+
+    void check_extensions() {
+        scene_.extensions_used = string_list("extensionsUsed");
+        scene_.extensions_required = string_list("extensionsRequired");
+        const auto& ok = supported_gltf_extensions();
+        for (std::size_t i = 0; i < scene_.extensions_required.size(); ++i) {
+            const auto& e = scene_.extensions_required[i];
+            if (std::find(ok.begin(), ok.end(), e) == ok.end())
+                r_.fail("/extensionsRequired/" + std::to_string(i), "required extension '" + e + "' is not supported");
+        }
+        for (const auto& e : scene_.extensions_used)
+            if (std::find(ok.begin(), ok.end(), e) == ok.end())
+                warn("/extensionsUsed", "extension '" + e + "' is not supported; rendering without it");
+    }
+
+    std::vector<std::uint8_t> read_uri(const std::string& uri, const std::string& ptr, std::size_t max_bytes) {
+        if (gltf::is_data_uri(uri)) {
+            std::string mime, error;
+            auto data = gltf::decode_data_uri(uri, std::min(max_bytes, opt_.max_data_uri_bytes), mime, error);
+            if (!data) r_.fail(ptr, error);
+            return std::move(*data);
+        }
+        std::string error;
+        auto path = gltf::resolve_uri(uri, base_dir_, opt_.allow_external_files, error);
+        if (!path) r_.fail(ptr, error);
+        try {
+            return read_file_bytes(*path, max_bytes);
+        } catch (const Error& e) {
+            r_.fail(ptr, "URI '" + uri + "': " + e.reason());
+        }
+    }
+
+    void load_buffers(const GlbParts* glb) {
+        const json& arr = r_.array(doc_, "buffers", "");
+        buffers_.resize(arr.size());
+        for (std::size_t i = 0; i < arr.size(); ++i) {
+            std::string ptr = "/buffers/" + std::to_string(i);
+            const json& b = arr[i];
+            if (!b.is_object()) r_.fail(ptr, "must be an object");
+            std::size_t length = std::size_t(r_.integer(b, "byteLength", ptr, 0, 1, LLONG_MAX, true));
+            if (length > opt_.max_file_bytes)
+                r_.fail(ptr + "/byteLength", "buffer of " + std::to_string(length) + " bytes is over the limit");
+            if (!r_.has(b, "uri")) {
+                if (!glb || i != 0) r_.fail(ptr + "/uri", "is required (only the first buffer of a GLB may omit it)");
+                if (!glb->has_bin) r_.fail(ptr, "refers to the GLB BIN chunk, but the file has none");
+                if (glb->bin.size() < length)
+                    r_.fail(ptr + "/byteLength", "is " + std::to_string(length) + " but the BIN chunk holds " +
+                                                      std::to_string(glb->bin.size()) + " bytes");
+                if (glb->bin.size() > length + 3)
+                    warn(ptr + "/byteLength", "BIN chunk is larger than the buffer's byteLength");
+                buffers_[i].assign(glb->bin.begin(), glb->bin.begin() + std::ptrdiff_t(length));
+            } else {
+                std::string uri = r_.string(b, "uri", ptr);
+                auto data = read_uri(uri, ptr + "/uri", opt_.max_file_bytes);
+                if (data.size() < length)
+                    r_.fail(ptr + "/byteLength", "is " + std::to_string(length) + " but '" +
+                                                      (gltf::is_data_uri(uri) ? std::string("data URI") : uri) +
+                                                      "' holds only " + std::to_string(data.size()) + " bytes");
+                data.resize(length);
+                buffers_[i] = std::move(data);
+            }
+            account(length, ptr);
+        }
+    }
+
+    void load_images() {
+        const json& arr = r_.array(doc_, "images", "");
+        const json& views = r_.array(doc_, "bufferViews", "");
+        scene_.images.resize(arr.size());
+        std::vector<std::vector<std::uint8_t>> encoded(arr.size());
+        for (std::size_t i = 0; i < arr.size(); ++i) {
+            std::string ptr = "/images/" + std::to_string(i);
+            const json& img = arr[i];
+            if (!img.is_object()) r_.fail(ptr, "must be an object");
+            SceneImage& out = scene_.images[i];
+            out.name = r_.string(img, "name", ptr);
+            bool has_uri = r_.has(img, "uri"), has_view = r_.has(img, "bufferView");
+            if (has_uri && has_view) r_.fail(ptr, "has both uri and bufferView");
+            if (has_uri) {
+                std::string uri = r_.string(img, "uri", ptr);
+                if (out.name.empty()) out.name = gltf::is_data_uri(uri) ? "image " + std::to_string(i) : uri;
+                if (!gltf::is_data_uri(uri)) {
+                    std::string error;
+                    auto path = gltf::resolve_uri(uri, base_dir_, opt_.allow_external_files, error);
+                    if (!path) r_.fail(ptr + "/uri", error);  // policy violations are errors, not warnings
+                    std::error_code ec;
+                    if (!fs::is_regular_file(*path, ec)) {
+                        warn(ptr + "/uri", "image file '" + uri + "' not found; using a neutral texture");
+                        continue;
+                    }
+                }
+                if (!opt_.decode_images) continue;
+                encoded[i] = read_uri(uri, ptr + "/uri", opt_.image_limits.max_decoded_bytes);
+            } else if (has_view) {
+                if (out.name.empty()) out.name = "image " + std::to_string(i);
+                int v = r_.index(img, "bufferView", ptr, views.size(), "bufferView");
+                if (!r_.has(img, "mimeType")) r_.fail(ptr + "/mimeType", "is required with bufferView");
+                if (!opt_.decode_images) continue;
+                const json& view = views[std::size_t(v)];
+                std::size_t b = std::size_t(view.value("buffer", 0)), off = view.value("byteOffset", std::size_t(0)),
+                            len = view.value("byteLength", std::size_t(0));
+                // The AccessorDecoder validated every bufferView's range already.
+                encoded[i].assign(buffers_[b].begin() + std::ptrdiff_t(off),
+                                  buffers_[b].begin() + std::ptrdiff_t(off + len));
+            } else {
+                r_.fail(ptr, "has neither uri nor bufferView");
+            }
+            account(encoded[i].size(), ptr);
+        }
+        // Decode in parallel; a bad image becomes a warning and a neutral fallback.
+        std::vector<std::string> errors(arr.size());
+        parallel_for(
+            arr.size(),
+            [&](std::size_t i) {
+                if (encoded[i].empty()) return;
+                try {
+                    scene_.images[i].pixels = decode_image8(encoded[i], scene_.images[i].name, opt_.image_limits);
+                } catch (const Error& e) {
+                    errors[i] = e.reason();
+                }
+                encoded[i] = {};
+            },
+            opt_.threads);
+        for (std::size_t i = 0; i < errors.size(); ++i)
+            if (!errors[i].empty())
+                warn("/images/" + std::to_string(i), "'" + scene_.images[i].name + "': " + errors[i] + "; using a neutral texture");
+    }
+
+    void load_samplers_and_textures() {
+        const json& sarr = r_.array(doc_, "samplers", "");
+        for (std::size_t i = 0; i < sarr.size(); ++i) {
+            std::string ptr = "/samplers/" + std::to_string(i);
+            const json& s = sarr[i];
+            if (!s.is_object()) r_.fail(ptr, "must be an object");
+            Sampler out;
+            auto filter = [&](const char* key, int fallback, bool min) {
+                int v = int(r_.integer(s, key, ptr, fallback, 0, 1 << 20));
+                bool ok = v == 9728 || v == 9729 || (min && v >= 9984 && v <= 9987);
+                if (!ok) {
+                    warn(ptr + "/" + key, "invalid filter " + std::to_string(v) + "; using LINEAR");
+                    return min ? 9987 : 9729;
+                }
+                return v;
+            };
+            auto wrap = [&](const char* key) {
+                int v = int(r_.integer(s, key, ptr, 10497, 0, 1 << 20));
+                if (v != 33071 && v != 33648 && v != 10497) {
+                    warn(ptr + "/" + key, "invalid wrap mode " + std::to_string(v) + "; using REPEAT");
+                    return 10497;
+                }
+                return v;
+            };
+            out.mag_filter = filter("magFilter", 9729, false);
+            out.min_filter = filter("minFilter", 9987, true);
+            out.wrap_s = wrap("wrapS");
+            out.wrap_t = wrap("wrapT");
+            samplers_.push_back(out);
+        }
+        const json& tarr = r_.array(doc_, "textures", "");
+        for (std::size_t i = 0; i < tarr.size(); ++i) {
+            std::string ptr = "/textures/" + std::to_string(i);
+            const json& t = tarr[i];
+            if (!t.is_object()) r_.fail(ptr, "must be an object");
+            Texture out;
+            out.image = r_.index(t, "source", ptr, scene_.images.size(), "image");
+            if (out.image < 0) warn(ptr, "texture has no supported image source; using a neutral texture");
+            int s = r_.index(t, "sampler", ptr, samplers_.size(), "sampler");
+            if (s >= 0) out.sampler = samplers_[std::size_t(s)];
+            scene_.textures.push_back(out);
+        }
+    }
+
+    TextureRef texture_ref(const json& mat, const char* key, const std::string& mptr, float* scale = nullptr,
+                           const char* scale_key = nullptr) {
+        TextureRef ref;
+        const json* info = r_.find(mat, key);
+        if (!info) return ref;
+        std::string ptr = JsonReader::at(mptr, key);
+        if (!info->is_object()) r_.fail(ptr, "must be an object");
+        ref.texture = r_.index(*info, "index", ptr, scene_.textures.size(), "texture", true);
+        ref.tex_coord = int(r_.integer(*info, "texCoord", ptr, 0, 0, 1 << 20));
+        if (scale) *scale = float(r_.number(*info, scale_key, ptr, *scale));
+        const json& ext = r_.object(*info, "extensions", ptr);
+        if (const json* tt = r_.find(ext, "KHR_texture_transform")) {
+            std::string tp = ptr + "/extensions/KHR_texture_transform";
+            auto offset = r_.numbers<2>(*tt, "offset", tp, {0.0, 0.0});
+            double rotation = r_.number(*tt, "rotation", tp, 0.0);
+            auto sc = r_.numbers<2>(*tt, "scale", tp, {1.0, 1.0});
+            ref.tex_coord = int(r_.integer(*tt, "texCoord", tp, ref.tex_coord, 0, 1 << 20));
+            float c = float(std::cos(rotation)), s = float(std::sin(rotation));
+            // uv' = T * R * S * uv, with R rotating the UVs counter-clockwise (the extension's definition).
+            glm::mat3 t(1, 0, 0, 0, 1, 0, float(offset[0]), float(offset[1]), 1);
+            glm::mat3 r(c, -s, 0, s, c, 0, 0, 0, 1);
+            glm::mat3 m(float(sc[0]), 0, 0, 0, float(sc[1]), 0, 0, 0, 1);
+            ref.transform = t * r * m;
+            ref.has_transform = true;
+        }
+        if (ref.tex_coord > 1) {
+            warn(ptr + "/texCoord", "TEXCOORD_" + std::to_string(ref.tex_coord) + " is not supported; texture ignored");
+            ref.texture = -1;
+        }
+        return ref;
+    }
+
+    void load_materials() {
+        const json& arr = r_.array(doc_, "materials", "");
+        for (std::size_t i = 0; i < arr.size(); ++i) {
+            std::string ptr = "/materials/" + std::to_string(i);
+            const json& m = arr[i];
+            if (!m.is_object()) r_.fail(ptr, "must be an object");
+            Material out;
+            out.name = r_.string(m, "name", ptr);
+            const json& pbr = r_.object(m, "pbrMetallicRoughness", ptr);
+            std::string pp = ptr + "/pbrMetallicRoughness";
+            auto bc = r_.numbers<4>(pbr, "baseColorFactor", pp, {1, 1, 1, 1});
+            out.base_color_factor = glm::clamp(glm::vec4(bc[0], bc[1], bc[2], bc[3]), 0.0f, 1.0f);
+            out.base_color = texture_ref(pbr, "baseColorTexture", pp);
+            out.metallic_factor = std::clamp(float(r_.number(pbr, "metallicFactor", pp, 1.0)), 0.0f, 1.0f);
+            out.roughness_factor = std::clamp(float(r_.number(pbr, "roughnessFactor", pp, 1.0)), 0.0f, 1.0f);
+            out.metallic_roughness = texture_ref(pbr, "metallicRoughnessTexture", pp);
+            out.normal = texture_ref(m, "normalTexture", ptr, &out.normal_scale, "scale");
+            out.occlusion = texture_ref(m, "occlusionTexture", ptr, &out.occlusion_strength, "strength");
+            out.occlusion_strength = std::clamp(out.occlusion_strength, 0.0f, 1.0f);
+            out.emissive = texture_ref(m, "emissiveTexture", ptr);
+            auto em = r_.numbers<3>(m, "emissiveFactor", ptr, {0, 0, 0});
+            out.emissive_factor = glm::max(glm::vec3(em[0], em[1], em[2]), 0.0f);
+            std::string mode = r_.string(m, "alphaMode", ptr, "OPAQUE");
+            if (mode == "OPAQUE") out.alpha_mode = AlphaMode::Opaque;
+            else if (mode == "MASK") out.alpha_mode = AlphaMode::Mask;
+            else if (mode == "BLEND") out.alpha_mode = AlphaMode::Blend;
+            else r_.fail(ptr + "/alphaMode", "invalid alpha mode '" + mode + "'");
+            out.alpha_cutoff = std::max(0.0f, float(r_.number(m, "alphaCutoff", ptr, 0.5)));
+            out.double_sided = r_.boolean(m, "doubleSided", ptr, false);
+            const json& ext = r_.object(m, "extensions", ptr);
+            if (const json* es = r_.find(ext, "KHR_materials_emissive_strength"))
+                out.emissive_strength = std::max(0.0f, float(r_.number(*es, "emissiveStrength", ptr + "/extensions/KHR_materials_emissive_strength", 1.0)));
+            out.unlit = r_.has(ext, "KHR_materials_unlit");
+            scene_.materials.push_back(std::move(out));
+        }
+    }
+
+    void load_meshes(const gltf::AccessorDecoder& accessors) {
+        const json& arr = r_.array(doc_, "meshes", "");
+        for (std::size_t i = 0; i < arr.size(); ++i) {
+            std::string ptr = "/meshes/" + std::to_string(i);
+            const json& m = arr[i];
+            if (!m.is_object()) r_.fail(ptr, "must be an object");
+            Mesh mesh;
+            mesh.name = r_.string(m, "name", ptr);
+            const json& prims = r_.array(m, "primitives", ptr);
+            if (prims.empty()) r_.fail(ptr + "/primitives", "a mesh needs at least one primitive");
+            for (std::size_t p = 0; p < prims.size(); ++p) {
+                std::string pptr = ptr + "/primitives/" + std::to_string(p);
+                auto prim = gltf::build_primitive(r_, prims[p], pptr, accessors, scene_.materials, opt_.max_vertices,
+                                                  diag_);
+                if (prim) mesh.primitives.push_back(std::move(*prim));
+            }
+            scene_.meshes.push_back(std::move(mesh));
+        }
+    }
+
+    void load_cameras() {
+        const json& arr = r_.array(doc_, "cameras", "");
+        for (std::size_t i = 0; i < arr.size(); ++i) {
+            std::string ptr = "/cameras/" + std::to_string(i);
+            const json& c = arr[i];
+            if (!c.is_object()) r_.fail(ptr, "must be an object");
+            Camera cam;
+            cam.name = r_.string(c, "name", ptr);
+            std::string type = r_.string(c, "type", ptr);
+            if (type == "perspective") {
+                const json* p = r_.find(c, "perspective");
+                if (!p || !p->is_object()) r_.fail(ptr + "/perspective", "is required for a perspective camera");
+                std::string pp = ptr + "/perspective";
+                cam.yfov = float(r_.number(*p, "yfov", pp, -1));
+                if (!(cam.yfov > 0 && cam.yfov < 3.14159f)) r_.fail(pp + "/yfov", "must be in (0, pi)");
+                if (r_.has(*p, "aspectRatio")) {
+                    float a = float(r_.number(*p, "aspectRatio", pp, 1));
+                    if (a > 0) cam.aspect_ratio = a;
+                    else warn(pp + "/aspectRatio", "must be positive; using the image's aspect ratio");
+                }
+                cam.znear = float(r_.number(*p, "znear", pp, -1));
+                if (!(cam.znear > 0)) r_.fail(pp + "/znear", "must be positive");
+                if (r_.has(*p, "zfar")) {
+                    float f = float(r_.number(*p, "zfar", pp, 0));
+                    if (!(f > cam.znear)) r_.fail(pp + "/zfar", "must be greater than znear");
+                    cam.zfar = f;
+                }
+            } else if (type == "orthographic") {
+                const json* o = r_.find(c, "orthographic");
+                if (!o || !o->is_object()) r_.fail(ptr + "/orthographic", "is required for an orthographic camera");
+                std::string op = ptr + "/orthographic";
+                cam.type = Camera::Type::Orthographic;
+                cam.xmag = float(r_.number(*o, "xmag", op, 0));
+                cam.ymag = float(r_.number(*o, "ymag", op, 0));
+                cam.znear = float(r_.number(*o, "znear", op, -1));
+                cam.zfar = float(r_.number(*o, "zfar", op, 0));
+                if (cam.xmag == 0 || cam.ymag == 0) r_.fail(op, "xmag and ymag must be non-zero");
+                if (!(cam.znear >= 0) || !(*cam.zfar > cam.znear)) r_.fail(op, "needs 0 <= znear < zfar");
+            } else {
+                r_.fail(ptr + "/type", "must be 'perspective' or 'orthographic'");
+            }
+            scene_.cameras.push_back(cam);
+        }
+    }
+
+    void load_lights() {
+        const json& ext = r_.object(doc_, "extensions", "");
+        const json& lp = r_.object(ext, "KHR_lights_punctual", "/extensions");
+        std::string base = "/extensions/KHR_lights_punctual";
+        const json& arr = r_.array(lp, "lights", base);
+        for (std::size_t i = 0; i < arr.size(); ++i) {
+            std::string ptr = base + "/lights/" + std::to_string(i);
+            const json& l = arr[i];
+            if (!l.is_object()) r_.fail(ptr, "must be an object");
+            Light light;
+            light.name = r_.string(l, "name", ptr);
+            auto col = r_.numbers<3>(l, "color", ptr, {1, 1, 1});
+            light.color = glm::max(glm::vec3(col[0], col[1], col[2]), 0.0f);
+            light.intensity = std::max(0.0f, float(r_.number(l, "intensity", ptr, 1.0)));
+            std::string type = r_.string(l, "type", ptr);
+            if (type == "directional") light.type = Light::Type::Directional;
+            else if (type == "point") light.type = Light::Type::Point;
+            else if (type == "spot") light.type = Light::Type::Spot;
+            else r_.fail(ptr + "/type", "must be directional, point or spot");
+            if (light.type != Light::Type::Directional) {
+                light.range = float(r_.number(l, "range", ptr, 0.0));
+                if (light.range < 0) r_.fail(ptr + "/range", "must be positive");
+            }
+            if (light.type == Light::Type::Spot) {
+                const json* s = r_.find(l, "spot");
+                static const json empty = json::object();
+                const json& spot = s ? *s : empty;
+                light.inner_cone_angle = float(r_.number(spot, "innerConeAngle", ptr + "/spot", 0.0));
+                light.outer_cone_angle = float(r_.number(spot, "outerConeAngle", ptr + "/spot", 0.7853981634));
+                if (!(light.outer_cone_angle > 0 && light.outer_cone_angle <= 1.5707964f) ||
+                    !(light.inner_cone_angle >= 0 && light.inner_cone_angle < light.outer_cone_angle))
+                    r_.fail(ptr + "/spot", "needs 0 <= innerConeAngle < outerConeAngle <= pi/2");
+            }
+            scene_.lights.push_back(light);
+        }
+    }
+
+    void load_nodes() {
+        const json& arr = r_.array(doc_, "nodes", "");
+        scene_.nodes.resize(arr.size());
+        std::vector<int> parents(arr.size(), 0);
+        for (std::size_t i = 0; i < arr.size(); ++i) {
+            std::string ptr = "/nodes/" + std::to_string(i);
+            const json& n = arr[i];
+            if (!n.is_object()) r_.fail(ptr, "must be an object");
+            Node& node = scene_.nodes[i];
+            node.name = r_.string(n, "name", ptr);
+            node.mesh = r_.index(n, "mesh", ptr, scene_.meshes.size(), "mesh");
+            node.camera = r_.index(n, "camera", ptr, scene_.cameras.size(), "camera");
+            const json& ext = r_.object(n, "extensions", ptr);
+            if (const json* l = r_.find(ext, "KHR_lights_punctual"))
+                node.light = r_.index(*l, "light", ptr + "/extensions/KHR_lights_punctual", scene_.lights.size(), "light", true);
+            const json& children = r_.array(n, "children", ptr);
+            for (std::size_t c = 0; c < children.size(); ++c) {
+                std::string cp = ptr + "/children/" + std::to_string(c);
+                if (!children[c].is_number_integer()) r_.fail(cp, "must be a node index");
+                long long k = children[c].get<long long>();
+                if (k < 0 || std::size_t(k) >= arr.size()) r_.fail(cp, "node " + std::to_string(k) + " does not exist");
+                if (std::size_t(k) == i) r_.fail(cp, "node is its own child");
+                if (++parents[std::size_t(k)] > 1) r_.fail(cp, "node " + std::to_string(k) + " has more than one parent");
+                node.children.push_back(int(k));
+            }
+            if (const json* m = r_.find(n, "matrix")) {
+                if (!m->is_array() || m->size() != 16) r_.fail(ptr + "/matrix", "must be 16 numbers");
+                float v[16];
+                for (int k = 0; k < 16; ++k) {
+                    if (!(*m)[std::size_t(k)].is_number()) r_.fail(ptr + "/matrix/" + std::to_string(k), "must be a number");
+                    v[k] = (*m)[std::size_t(k)].get<float>();
+                    if (!std::isfinite(v[k])) r_.fail(ptr + "/matrix/" + std::to_string(k), "must be finite");
+                }
+                node.local = glm::make_mat4(v);  // column-major, as glTF stores it
+            } else {
+                auto t = r_.numbers<3>(n, "translation", ptr, {0, 0, 0});
+                auto q = r_.numbers<4>(n, "rotation", ptr, {0, 0, 0, 1});
+                auto s = r_.numbers<3>(n, "scale", ptr, {1, 1, 1});
+                glm::quat rot{static_cast<float>(q[3]), static_cast<float>(q[0]), static_cast<float>(q[1]), static_cast<float>(q[2])};
+                float len = glm::length(rot);
+                rot = len > 0 ? rot / len : glm::quat(1, 0, 0, 0);
+                node.local = glm::translate(glm::mat4(1.0f), glm::vec3(t[0], t[1], t[2])) * glm::mat4_cast(rot) *
+                             glm::scale(glm::mat4(1.0f), glm::vec3(s[0], s[1], s[2]));
+            }
+        }
+        // With at most one parent per node, a cycle means a set of nodes none of which is a root.
+        std::vector<int> depth(arr.size(), -1);
+        std::vector<int> stack;
+        for (std::size_t i = 0; i < arr.size(); ++i) {
+            if (parents[i] != 0) continue;
+            stack.push_back(int(i));
+            depth[i] = 0;
+            while (!stack.empty()) {
+                int n = stack.back();
+                stack.pop_back();
+                if (depth[std::size_t(n)] > opt_.max_node_depth)
+                    r_.fail("/nodes/" + std::to_string(n), "node hierarchy deeper than " + std::to_string(opt_.max_node_depth));
+                for (int c : scene_.nodes[std::size_t(n)].children) {
+                    depth[std::size_t(c)] = depth[std::size_t(n)] + 1;
+                    stack.push_back(c);
+                }
+            }
+        }
+        for (std::size_t i = 0; i < arr.size(); ++i)
+            if (depth[i] < 0) r_.fail("/nodes/" + std::to_string(i), "node is part of a cycle in the node hierarchy");
+        roots_parents_ = std::move(parents);
+    }
+    std::vector<int> roots_parents_;
+
+    void load_scenes() {
+        const json& arr = r_.array(doc_, "scenes", "");
+        for (std::size_t i = 0; i < arr.size(); ++i) {
+            std::string ptr = "/scenes/" + std::to_string(i);
+            const json& s = arr[i];
+            if (!s.is_object()) r_.fail(ptr, "must be an object");
+            std::vector<int> roots;
+            const json& nodes = r_.array(s, "nodes", ptr);
+            for (std::size_t k = 0; k < nodes.size(); ++k) {
+                std::string np = ptr + "/nodes/" + std::to_string(k);
+                if (!nodes[k].is_number_integer()) r_.fail(np, "must be a node index");
+                long long n = nodes[k].get<long long>();
+                if (n < 0 || std::size_t(n) >= scene_.nodes.size()) r_.fail(np, "node " + std::to_string(n) + " does not exist");
+                if (roots_parents_[std::size_t(n)] != 0) r_.fail(np, "scene root node " + std::to_string(n) + " has a parent");
+                if (std::find(roots.begin(), roots.end(), int(n)) != roots.end()) r_.fail(np, "node listed twice");
+                roots.push_back(int(n));
+            }
+            scene_.scenes.push_back(std::move(roots));
+        }
+        if (r_.has(doc_, "scene")) scene_.default_scene = r_.index(doc_, "scene", "", scene_.scenes.size(), "scene");
+        if (scene_.scenes.empty()) {
+            // No scenes: show every root node, so the model is still viewable.
+            std::vector<int> roots;
+            for (std::size_t i = 0; i < scene_.nodes.size(); ++i)
+                if (roots_parents_[i] == 0) roots.push_back(int(i));
+            if (!roots.empty()) warn("/scenes", "file has no scenes; showing all root nodes");
+            scene_.scenes.push_back(std::move(roots));
+            scene_.default_scene = 0;
+        }
+    }
+};
+
+}  // namespace
+
+Scene load_gltf_from_memory(std::span<const std::uint8_t> bytes, const std::string& name, const fs::path& base_dir,
+                            Diagnostics& diagnostics, const GltfLoadOptions& options) {
+    Loader loader(name, base_dir, diagnostics, options);
+    try {
+        return loader.load(bytes);
+    } catch (const Error&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw Error(name, "", "out of memory while loading");
+    } catch (const std::exception& e) {
+        throw Error(name, "", e.what());
+    }
+}
+
+Scene load_gltf(const fs::path& path, Diagnostics& diagnostics, const GltfLoadOptions& options) {
+    auto bytes = read_file_bytes(path, options.max_file_bytes);
+    return load_gltf_from_memory(bytes, path.string(), path.parent_path(), diagnostics, options);
+}
+
+}  // namespace fresnel

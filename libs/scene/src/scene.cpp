@@ -1,0 +1,57 @@
+#include "fresnel/scene/scene.h"
+
+#include <glm/geometric.hpp>
+
+namespace fresnel {
+
+std::size_t Primitive::triangle_count() const {
+    if (topology != Topology::Triangles) return 0;
+    return (indices.empty() ? positions.size() : indices.size()) / 3;
+}
+
+std::vector<NodeInstance> flatten(const Scene& scene, int index) {
+    std::vector<NodeInstance> out;
+    if (index < 0) index = scene.default_scene;
+    if (index < 0 || std::size_t(index) >= scene.scenes.size()) return out;
+    // The loader guarantees a forest (no cycles, one parent each), so this terminates.
+    std::vector<NodeInstance> stack;
+    for (auto it = scene.scenes[std::size_t(index)].rbegin(); it != scene.scenes[std::size_t(index)].rend(); ++it)
+        stack.push_back({*it, scene.nodes[std::size_t(*it)].local});
+    while (!stack.empty()) {
+        NodeInstance inst = stack.back();
+        stack.pop_back();
+        out.push_back(inst);
+        const Node& node = scene.nodes[std::size_t(inst.node)];
+        for (auto it = node.children.rbegin(); it != node.children.rend(); ++it)
+            stack.push_back({*it, inst.world * scene.nodes[std::size_t(*it)].local});
+    }
+    return out;
+}
+
+float Bounds::radius() const { return glm::length(max - min) * 0.5f; }
+
+Bounds scene_bounds(const Scene& scene, const std::vector<NodeInstance>& instances) {
+    Bounds b;
+    for (const auto& inst : instances) {
+        const Node& node = scene.nodes[std::size_t(inst.node)];
+        if (node.mesh < 0) continue;
+        for (const auto& prim : scene.meshes[std::size_t(node.mesh)].primitives) {
+            for (int c = 0; c < 8; ++c) {
+                glm::vec3 corner((c & 1) ? prim.bounds_max.x : prim.bounds_min.x,
+                                 (c & 2) ? prim.bounds_max.y : prim.bounds_min.y,
+                                 (c & 4) ? prim.bounds_max.z : prim.bounds_min.z);
+                glm::vec3 w = glm::vec3(inst.world * glm::vec4(corner, 1.0f));
+                if (b.empty) {
+                    b.min = b.max = w;
+                    b.empty = false;
+                } else {
+                    b.min = glm::min(b.min, w);
+                    b.max = glm::max(b.max, w);
+                }
+            }
+        }
+    }
+    return b;
+}
+
+}  // namespace fresnel

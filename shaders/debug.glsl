@@ -1,0 +1,30 @@
+// Debug channels: display-ready values, written without tone mapping. The
+// numbers match render::DebugChannel. Scalars show as grey; vectors map
+// [-1,1] to [0,1]; colours are sRGB-encoded; BRDF terms use light 0 (or the
+// view direction when there is no light) and are clamped to [0,1].
+#ifdef DEBUG_VIEW
+vec3 debug_value(int channel, MaterialInputs m, vec3 n, vec3 ng, vec3 t, vec3 b, vec3 v) {
+    if (channel == 1) return linear_to_srgb(clamp(m.base_color.rgb, 0.0, 1.0));
+    if (channel == 2) return vec3(m.metallic);
+    if (channel == 3) return vec3(m.roughness);
+    if (channel == 4) return n * 0.5 + 0.5;
+    if (channel == 5) return ng * 0.5 + 0.5;
+    if (channel == 6) return t * 0.5 + 0.5;
+    if (channel == 7) return b * 0.5 + 0.5;
+    if (channel == 8) return vec3(m.occlusion);
+    if (channel == 9) return linear_to_srgb(clamp(m.emissive, 0.0, 1.0));
+    if (channel == 10) return vec3(m.base_color.a);
+    if (channel == 11) return vec3(fract(v_uv0), 0.0);
+    if (channel == 12) return vec3(fract(v_uv1), 0.0);
+    vec3 l = v;
+    if (u_light_count > 0) light_incident(0, v_position, l);
+    BrdfTerms bt = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, 0.04, n, v, l);
+    float n_dot_l = clamped_dot(n, l), n_dot_v = clamped_dot(n, v);
+    if (channel == 13) return vec3(clamp(bt.d, 0.0, 1.0));
+    if (channel == 14) return vec3(clamp(bt.v * 4.0 * n_dot_l * n_dot_v, 0.0, 1.0));
+    if (channel == 15) return clamp(bt.f, 0.0, 1.0);
+    if (channel == 16) return clamp(bt.diffuse * PI, 0.0, 1.0);
+    if (channel == 17) return clamp(bt.specular * n_dot_l, 0.0, 1.0);
+    return vec3(1.0, 0.0, 1.0);
+}
+#endif

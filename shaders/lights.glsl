@@ -1,0 +1,42 @@
+// KHR_lights_punctual: directional (lux), point and spot (candela) lights.
+// Packed per light: position.xyz + type (0 dir, 1 point, 2 spot); direction the light
+// travels .xyz + range (0 = infinite); colour * intensity; spot cone scale and offset.
+#ifndef MAX_LIGHTS
+#define MAX_LIGHTS 16
+#endif
+uniform int u_light_count;
+uniform vec4 u_light_position_type[MAX_LIGHTS];
+uniform vec4 u_light_direction_range[MAX_LIGHTS];
+uniform vec4 u_light_color[MAX_LIGHTS];
+uniform vec4 u_light_cone[MAX_LIGHTS];
+
+// The extension's recommended range window: smooth fall to zero at `range`, on top of 1/d^2.
+float range_attenuation(float range, float distance) {
+    float d2 = max(distance * distance, 1e-8);
+    if (range <= 0.0) return 1.0 / d2;
+    float r = distance / range;
+    return clamp(1.0 - r * r * r * r, 0.0, 1.0) / d2;
+}
+
+float spot_attenuation(vec3 light_to_point_dir, vec3 spot_dir, vec2 cone) {
+    float cd = dot(spot_dir, light_to_point_dir);
+    float a = clamp(cd * cone.x + cone.y, 0.0, 1.0);
+    return a * a;
+}
+
+// Returns the irradiance-scaled light colour at `position` and the unit direction to the light.
+vec3 light_incident(int i, vec3 position, out vec3 l) {
+    vec4 pt = u_light_position_type[i];
+    vec4 dr = u_light_direction_range[i];
+    vec3 radiance = u_light_color[i].rgb;
+    if (pt.w < 0.5) {
+        l = -dr.xyz;
+        return radiance;
+    }
+    vec3 to_light = pt.xyz - position;
+    float dist = length(to_light);
+    l = dist > 0.0 ? to_light / dist : vec3(0.0, 0.0, 1.0);
+    radiance *= range_attenuation(dr.w, dist);
+    if (pt.w > 1.5) radiance *= spot_attenuation(-l, dr.xyz, u_light_cone[i].xy);
+    return radiance;
+}

@@ -1,0 +1,67 @@
+// Material parameters and texture lookups. Which maps exist is decided per
+// material by defines (HAS_BASE_COLOR_MAP, ...), so absent maps cost nothing.
+uniform vec4 u_base_color_factor;
+uniform float u_metallic_factor;
+uniform float u_roughness_factor;
+uniform float u_normal_scale;
+uniform float u_occlusion_strength;
+uniform vec3 u_emissive;          // emissiveFactor * emissive_strength
+uniform float u_alpha_cutoff;
+
+// Per map: sampler, UV set (0/1) and the KHR_texture_transform matrix.
+#define DECLARE_MAP(name) uniform sampler2D u_##name##_map; uniform int u_##name##_uv; uniform mat3 u_##name##_transform;
+#ifdef HAS_BASE_COLOR_MAP
+DECLARE_MAP(base_color)
+#endif
+#ifdef HAS_METALLIC_ROUGHNESS_MAP
+DECLARE_MAP(metallic_roughness)
+#endif
+#ifdef HAS_NORMAL_MAP
+DECLARE_MAP(normal)
+#endif
+#ifdef HAS_OCCLUSION_MAP
+DECLARE_MAP(occlusion)
+#endif
+#ifdef HAS_EMISSIVE_MAP
+DECLARE_MAP(emissive)
+#endif
+
+vec2 map_uv(int set, mat3 transform) {
+    vec2 uv = set == 1 ? v_uv1 : v_uv0;
+    return (transform * vec3(uv, 1.0)).xy;
+}
+#define SAMPLE_MAP(name) texture(u_##name##_map, map_uv(u_##name##_uv, u_##name##_transform))
+
+struct MaterialInputs {
+    vec4 base_color;      // linear, alpha in .a
+    float metallic;
+    float roughness;      // perceptual
+    float occlusion;
+    vec3 emissive;
+};
+
+MaterialInputs read_material() {
+    MaterialInputs m;
+    m.base_color = u_base_color_factor * v_color;
+#ifdef HAS_BASE_COLOR_MAP
+    m.base_color *= SAMPLE_MAP(base_color);  // an SRGB8_ALPHA8 texture: decoded by the sampler
+#endif
+    m.metallic = u_metallic_factor;
+    m.roughness = u_roughness_factor;
+#ifdef HAS_METALLIC_ROUGHNESS_MAP
+    vec4 mr = SAMPLE_MAP(metallic_roughness);
+    m.metallic *= mr.b;
+    m.roughness *= mr.g;
+#endif
+    m.metallic = clamp(m.metallic, 0.0, 1.0);
+    m.roughness = clamp(m.roughness, 0.0, 1.0);
+    m.occlusion = 1.0;
+#ifdef HAS_OCCLUSION_MAP
+    m.occlusion = 1.0 + u_occlusion_strength * (SAMPLE_MAP(occlusion).r - 1.0);
+#endif
+    m.emissive = u_emissive;
+#ifdef HAS_EMISSIVE_MAP
+    m.emissive *= SAMPLE_MAP(emissive).rgb;
+#endif
+    return m;
+}

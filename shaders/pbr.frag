@@ -1,0 +1,92 @@
+// Forward shading of one glTF primitive into the linear HDR target.
+in vec3 v_position;
+in vec3 v_normal;
+in vec4 v_tangent;
+in vec2 v_uv0;
+in vec2 v_uv1;
+in vec4 v_color;
+
+out vec4 frag_color;
+
+uniform vec3 u_camera_position;
+uniform int u_debug;  // 0 = shading; other values select a debug channel (see debug.glsl)
+uniform vec3 u_ambient;  // uniform ambient radiance (0 unless requested)
+
+#include "common.glsl"
+#include "color.glsl"
+#include "brdf.glsl"
+#include "lights.glsl"
+#include "material_inputs.glsl"
+#include "debug.glsl"
+
+struct Frame {
+    vec3 n;    // shading normal
+    vec3 ng;   // geometric normal (interpolated vertex normal, flipped for back faces)
+    vec3 t;
+    vec3 b;
+};
+
+Frame shading_frame() {
+    Frame f;
+    f.ng = normalize(v_normal);
+    f.t = normalize(v_tangent.xyz - f.ng * dot(f.ng, v_tangent.xyz));
+    f.b = cross(f.ng, f.t) * v_tangent.w;
+#ifdef HAS_NORMAL
+    // Back faces of double-sided materials shade with the flipped frame.
+    if (!gl_FrontFacing) {
+        f.ng = -f.ng;
+        f.t = -f.t;
+        f.b = -f.b;
+    }
+#else
+    // No normals at all (points and lines): face the viewer.
+    f.ng = normalize(u_camera_position - v_position);
+#endif
+    f.n = f.ng;
+#ifdef HAS_NORMAL_MAP
+    vec3 tn = SAMPLE_MAP(normal).rgb * 2.0 - 1.0;
+    tn.xy *= u_normal_scale;
+    f.n = normalize(mat3(f.t, f.b, f.ng) * tn);
+#endif
+    return f;
+}
+
+void main() {
+    MaterialInputs m = read_material();
+#ifdef ALPHA_MASK
+    if (m.base_color.a < u_alpha_cutoff) discard;
+    m.base_color.a = 1.0;
+#endif
+#if !defined(ALPHA_BLEND) && !defined(ALPHA_MASK)
+    m.base_color.a = 1.0;
+#endif
+    Frame f = shading_frame();
+    vec3 v = normalize(u_camera_position - v_position);
+
+    vec3 color = vec3(0.0);
+#ifdef UNLIT
+    color = m.base_color.rgb;
+#else
+    for (int i = 0; i < MAX_LIGHTS; ++i) {
+        if (i >= u_light_count) break;
+        vec3 l;
+        vec3 radiance = light_incident(i, v_position, l);
+        float n_dot_l = clamped_dot(f.n, l);
+        if (n_dot_l <= 0.0) continue;
+        BrdfTerms t = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, 0.04, f.n, v, l);
+        color += radiance * n_dot_l * (t.diffuse + t.specular);
+    }
+    // Occlusion applies to indirect light only.
+    color += u_ambient * m.base_color.rgb * (1.0 - m.metallic) * m.occlusion;
+    color += m.emissive;
+#endif
+
+#ifdef DEBUG_VIEW
+    if (u_debug != 0) {
+        frag_color = vec4(debug_value(u_debug, m, f.n, f.ng, f.t, f.b, v), 1.0);
+        return;
+    }
+#endif
+    // Premultiplied alpha into the HDR target.
+    frag_color = vec4(color * m.base_color.a, m.base_color.a);
+}
