@@ -1,10 +1,10 @@
 // The glTF 2.0 metallic-roughness BRDF (Appendix B); the same functions as
 // libs/material/include/fresnel/material/brdf.h.
-const float MIN_ROUGHNESS = 0.03;
+const float MIN_ROUGHNESS = 0.0;
 
 float d_ggx(float n_dot_h, float alpha) {
     float a2 = alpha * alpha;
-    float f = (n_dot_h * n_dot_h) * (a2 - 1.0) + 1.0;
+    float f = max((n_dot_h * n_dot_h) * (a2 - 1.0) + 1.0, 1e-7);  // alpha = 0 must not give 0/0
     return a2 / (PI * f * f);
 }
 

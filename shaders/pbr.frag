@@ -2,6 +2,7 @@
 in vec3 v_position;
 in vec3 v_normal;
 in vec4 v_tangent;
+in vec3 v_bitangent;
 in vec2 v_uv0;
 in vec2 v_uv1;
 in vec4 v_color;
@@ -11,9 +12,13 @@ out vec4 frag_color;
 uniform vec3 u_camera_position;
 uniform int u_debug;  // 0 = shading; other values select a debug channel (see debug.glsl)
 uniform vec3 u_ambient;  // uniform ambient radiance (0 unless requested)
+uniform float u_exposure;  // linear multiplier, 2^EV
+uniform int u_tonemap;     // see tonemap.glsl
+uniform int u_encoding;    // -1 = none (linear output), 0 = sRGB, 1 = gamma 2.2
 
 #include "common.glsl"
 #include "color.glsl"
+#include "tonemap.glsl"
 #include "brdf.glsl"
 #include "lights.glsl"
 #include "material_inputs.glsl"
@@ -29,8 +34,10 @@ struct Frame {
 Frame shading_frame() {
     Frame f;
     f.ng = normalize(v_normal);
-    f.t = normalize(v_tangent.xyz - f.ng * dot(f.ng, v_tangent.xyz));
-    f.b = cross(f.ng, f.t) * v_tangent.w;
+    // The interpolated frame, normalised but not re-orthogonalised (as the Khronos
+    // Sample Viewer does, so normal-mapped detail matches it).
+    f.t = normalize(v_tangent.xyz);
+    f.b = normalize(v_bitangent);
 #ifdef HAS_NORMAL
     // Back faces of double-sided materials shade with the flipped frame.
     if (!gl_FrontFacing) {
@@ -87,6 +94,14 @@ void main() {
         return;
     }
 #endif
-    // Premultiplied alpha into the HDR target.
-    frag_color = vec4(color * m.base_color.a, m.base_color.a);
+    // Exposure, tone map and encoding per sample, before the MSAA resolve: edges then
+    // average display values, as every display renderer (and the Khronos Sample
+    // Viewer) does; with --tonemap none and float output this is linear radiance.
+    if (any(isnan(color)) || any(isinf(color))) {
+        frag_color = vec4(1.0, 0.0, 1.0, 1.0);  // NaN / Inf shows as magenta
+        return;
+    }
+    color = tone_map(u_tonemap, color * u_exposure);
+    if (u_encoding >= 0) color = encode_display(u_encoding, color);
+    frag_color = vec4(color, m.base_color.a);  // straight alpha; blending composites
 }

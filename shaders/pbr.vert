@@ -15,6 +15,7 @@ uniform float u_point_size;
 out vec3 v_position;
 out vec3 v_normal;
 out vec4 v_tangent;
+out vec3 v_bitangent;
 out vec2 v_uv0;
 out vec2 v_uv1;
 out vec4 v_color;
@@ -29,8 +30,10 @@ void main() {
 #endif
 #ifdef HAS_TANGENT
     v_tangent = vec4(normalize(mat3(u_model) * a_tangent.xyz), a_tangent.w * u_handedness);
+    v_bitangent = cross(v_normal, v_tangent.xyz) * v_tangent.w;
 #else
     v_tangent = vec4(1.0, 0.0, 0.0, 1.0);
+    v_bitangent = vec3(0.0, 1.0, 0.0);
 #endif
 #ifdef HAS_UV0
     v_uv0 = a_uv0;

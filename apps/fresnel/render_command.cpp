@@ -187,7 +187,7 @@ int run_render(const RenderOptions& o) {
     rs.background = background;
     if (float_output) {
         rs.encoding.reset();
-        rs.background = glm::vec4(0.0f);  // float outputs keep alpha; no display-space background
+        rs.straight_alpha = false;  // EXR convention: premultiplied alpha
     } else {
         rs.encoding = *encoding;
     }

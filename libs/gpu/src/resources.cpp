@@ -2,6 +2,7 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "fresnel/core/error.h"
@@ -111,6 +112,12 @@ void Texture::set_sampler(const SamplerState& s) {
     glTexParameteri(target, GL_TEXTURE_WRAP_S, s.wrap_s);
     glTexParameteri(target, GL_TEXTURE_WRAP_T, s.wrap_t);
     if (kind_ == Kind::Cube) glTexParameteri(target, GL_TEXTURE_WRAP_R, s.wrap_r);
+    if (s.max_anisotropy > 1.0f && (epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic") ||
+                                    epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic"))) {
+        GLfloat max = 1.0f;
+        glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY_EXT, &max);
+        glTexParameterf(target, GL_TEXTURE_MAX_ANISOTROPY_EXT, std::min(max, s.max_anisotropy));
+    }
     glBindTexture(target, 0);
 }
 

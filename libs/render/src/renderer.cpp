@@ -146,6 +146,9 @@ struct Renderer::Impl {
         ss.mag_filter = tex.sampler.mag_filter;
         ss.wrap_s = tex.sampler.wrap_s;
         ss.wrap_t = tex.sampler.wrap_t;
+        // Trilinear samplers get 16x anisotropic filtering, as the Khronos Sample Viewer does.
+        bool trilinear = tex.sampler.min_filter == 0x2703 || tex.sampler.min_filter == 0x2702;
+        if (trilinear && tex.sampler.mag_filter != 0x2600) ss.max_anisotropy = 16.0f;
         t.set_sampler(ss);
         return &textures.emplace(key, std::move(t)).first->second;
     }
@@ -225,6 +228,9 @@ struct Renderer::Impl {
         prog.set("u_camera_position", cam.eye);
         prog.set("u_debug", int(settings.debug));
         prog.set("u_ambient", settings.ambient);
+        prog.set("u_exposure", exposure_scale(settings.exposure_ev));
+        prog.set("u_tonemap", int(settings.tone_mapper));
+        prog.set("u_encoding", settings.encoding ? int(*settings.encoding) : -1);
         prog.set("u_base_color_factor", m.base_color_factor);
         prog.set("u_metallic_factor", m.metallic_factor);
         prog.set("u_roughness_factor", m.roughness_factor);
@@ -262,7 +268,7 @@ struct Renderer::Impl {
         state.cull = m.double_sided ? gpu::Cull::None : gpu::Cull::Back;
         state.front_ccw = det >= 0;
         if (m.alpha_mode == AlphaMode::Blend) {
-            state.blend = gpu::Blend::PremultipliedOver;
+            state.blend = gpu::Blend::AlphaOver;
             state.depth_write = false;
         }
         device.apply(state);
@@ -294,7 +300,9 @@ ImageF Renderer::render(const CameraSetup& cam, const std::vector<LightInstance>
 
     r.device.bind_framebuffer(&r.msaa_fb);
     r.device.viewport(0, 0, w, h);
-    r.device.clear(glm::vec4(0.0f), true);
+    // The background is display-referred and written as-is (like the Khronos Sample Viewer's clear colour).
+    bool transparent = settings.background.w == 0.0f;
+    r.device.clear(transparent ? glm::vec4(0.0f) : glm::vec4(glm::vec3(settings.background), 1.0f), true);
 
     if (r.scene) {
         std::vector<Draw> opaque, blended;
@@ -328,12 +336,8 @@ ImageF Renderer::render(const CameraSetup& cam, const std::vector<LightInstance>
     const gpu::Program& prog = r.shaders.get("fullscreen.vert", "post.frag", {});
     prog.use();
     r.device.bind_texture(0, r.resolved);
-    prog.set("u_hdr", 0);
-    prog.set("u_exposure", exposure_scale(settings.exposure_ev));
-    prog.set("u_tonemap", int(settings.tone_mapper));
-    prog.set("u_encoding", settings.encoding ? int(*settings.encoding) : -1);
-    prog.set("u_passthrough", settings.debug != DebugChannel::None ? 1 : 0);
-    prog.set("u_background", settings.background);
+    prog.set("u_frame", 0);
+    prog.set("u_transparent", transparent && settings.straight_alpha ? 1 : 0);
     r.device.draw_fullscreen();
 
     std::vector<float> px = r.device.read_rgba32f(r.output_fb, w, h);

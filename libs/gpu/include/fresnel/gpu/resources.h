@@ -66,6 +66,9 @@ struct SamplerState {
     int min_filter = 0x2703;  // GL enum values (glTF uses the same)
     int mag_filter = 0x2601;
     int wrap_s = 0x2901, wrap_t = 0x2901, wrap_r = 0x812F;
+    // Anisotropic filtering (EXT_texture_filter_anisotropic, applied only where the
+    // driver has it), clamped to the driver's maximum. 1 = off.
+    float max_anisotropy = 1.0f;
 };
 
 class Texture : public Handle {

@@ -17,7 +17,8 @@ inline constexpr float kPi = 3.14159265358979323846f;
 // Trowbridge-Reitz (GGX) normal distribution D(h).
 inline float d_ggx(float n_dot_h, float alpha) {
     float a2 = alpha * alpha;
-    float f = (n_dot_h * n_dot_h) * (a2 - 1.0f) + 1.0f;
+    // f >= a2 > 0 in exact arithmetic; the floor keeps alpha = 0 (a mirror) from giving 0/0.
+    float f = std::max((n_dot_h * n_dot_h) * (a2 - 1.0f) + 1.0f, 1e-7f);
     return a2 / (kPi * f * f);
 }
 
@@ -53,7 +54,7 @@ struct Surface {
 };
 
 // Smallest perceptual roughness used in shading, to keep D finite for point lights.
-inline constexpr float kMinRoughness = 0.03f;
+inline constexpr float kMinRoughness = 0.0f;
 
 inline float alpha_from_roughness(float perceptual) {
     float r = std::clamp(perceptual, kMinRoughness, 1.0f);

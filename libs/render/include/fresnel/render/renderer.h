@@ -36,6 +36,7 @@ struct RenderSettings {
     // Display encoding; nullopt = none (float output: exposure and tone map only).
     std::optional<Encoding> encoding = Encoding::Srgb;
     glm::vec4 background{0.0f, 0.0f, 0.0f, 1.0f};  // display-referred RGB; a = 0: transparent
+    bool straight_alpha = true;  // transparent frames: un-premultiply (PNG); false keeps premultiplied (EXR)
     DebugChannel debug = DebugChannel::None;
     glm::vec3 ambient{0.0f};  // uniform ambient radiance (no image-based lighting yet)
 };
