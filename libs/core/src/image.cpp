@@ -51,6 +51,20 @@ void check_size(const std::string& name, long long w, long long h, int bytes_per
 
 bool peek_image_size(std::span<const std::uint8_t> bytes, int& width, int& height) {
     if (bytes.size() > std::size_t(INT32_MAX)) return false;
+    // PNG: read IHDR ourselves. stb refuses to even report the size of images whose
+    // decoded size passes 1 GiB, and we want to name the size and our limit instead.
+    static const std::uint8_t png_sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    if (bytes.size() >= 24 && std::memcmp(bytes.data(), png_sig, 8) == 0 && std::memcmp(bytes.data() + 12, "IHDR", 4) == 0) {
+        auto be32 = [&](std::size_t at) {
+            return (std::uint32_t(bytes[at]) << 24) | (std::uint32_t(bytes[at + 1]) << 16) |
+                   (std::uint32_t(bytes[at + 2]) << 8) | std::uint32_t(bytes[at + 3]);
+        };
+        std::uint32_t w = be32(16), h = be32(20);
+        if (w == 0 || h == 0 || w > 0x7FFFFFFF || h > 0x7FFFFFFF) return false;
+        width = int(w);
+        height = int(h);
+        return true;
+    }
     int comp = 0;
     return stbi_info_from_memory(bytes.data(), int(bytes.size()), &width, &height, &comp) != 0;
 }

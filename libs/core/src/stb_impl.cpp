@@ -2,7 +2,7 @@
 // headers into this library, so that sanitizer and fuzzing builds instrument them.
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_IMPLEMENTATION
-#define STBI_MAX_DIMENSIONS (1 << 16)
+// Size limits are ours (ImageLimits, checked from the header before decoding), not stb's.
 #define STBI_FAILURE_USERMSG
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"

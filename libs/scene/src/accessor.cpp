@@ -61,10 +61,40 @@ AccessorDecoder::AccessorDecoder(const JsonReader& reader, const json& doc,
         info.stride = std::size_t(r_.integer(v, "byteStride", ptr, 0, 4, 252));
         if (info.stride % 4 != 0) r_.fail(ptr + "/byteStride", "must be a multiple of 4");
         std::size_t size = buffers_[std::size_t(info.buffer)].size();
-        if (info.offset > size || info.length > size - info.offset)
-            r_.fail(ptr, "byte range [" + std::to_string(info.offset) + ", " + std::to_string(info.offset + info.length) +
-                             ") exceeds buffer " + std::to_string(info.buffer) + " of " + std::to_string(size) + " bytes");
+        if (size == 0) {
+            info.error = "buffer " + std::to_string(info.buffer) + " has no data";
+            info.placeholder = true;
+        }
+        else if (info.offset > size || info.length > size - info.offset)
+            info.error = "byte range [" + std::to_string(info.offset) + ", " + std::to_string(info.offset + info.length) +
+                         ") exceeds buffer " + std::to_string(info.buffer) + " of " + std::to_string(size) + " bytes";
     }
+}
+
+bool AccessorDecoder::has_data(int index) const {
+    if (index < 0 || std::size_t(index) >= accessors_->size()) return true;  // read() reports it
+    const json& a = (*accessors_)[std::size_t(index)];
+    auto placeholder = [&](const json& obj) {
+        if (!obj.is_object()) return false;
+        auto it = obj.find("bufferView");
+        if (it == obj.end() || !it->is_number_unsigned()) return false;
+        std::size_t v = it->get<std::size_t>();
+        return v < views_.size() && views_[v].placeholder;
+    };
+    if (placeholder(a)) return false;
+    if (a.is_object() && a.contains("sparse") && a["sparse"].is_object()) {
+        const json& sp = a["sparse"];
+        if (sp.contains("indices") && placeholder(sp["indices"])) return false;
+        if (sp.contains("values") && placeholder(sp["values"])) return false;
+    }
+    return true;
+}
+
+std::span<const std::uint8_t> AccessorDecoder::view_bytes(int view, const std::string& ptr) const {
+    if (view < 0 || std::size_t(view) >= views_.size()) r_.fail(ptr, "bufferView does not exist");
+    const BufferViewInfo& v = views_[std::size_t(view)];
+    if (!v.error.empty()) r_.fail("/bufferViews/" + std::to_string(view), v.error);
+    return {buffers_[std::size_t(v.buffer)].data() + v.offset, v.length};
 }
 
 void AccessorDecoder::describe(int index, int& components, int& component_type, bool& normalized,
@@ -88,6 +118,7 @@ std::span<const std::uint8_t> AccessorDecoder::view_range(int view, std::size_t 
                                                           std::size_t elem_size, std::size_t& stride,
                                                           const std::string& ptr) const {
     const BufferViewInfo& v = views_[std::size_t(view)];
+    if (!v.error.empty()) r_.fail("/bufferViews/" + std::to_string(view), v.error);
     stride = v.stride ? v.stride : elem_size;
     if (stride < elem_size)
         r_.fail(ptr, "byteStride " + std::to_string(stride) + " of bufferView " + std::to_string(view) +

@@ -13,6 +13,8 @@ namespace fresnel::gltf {
 struct BufferViewInfo {
     int buffer = -1;
     std::size_t offset = 0, length = 0, stride = 0;  // stride 0 = tightly packed
+    std::string error;  // why the view cannot be read (reported when something uses it)
+    bool placeholder = false;  // its buffer has no data at all
 };
 
 struct AccessorData {
@@ -28,6 +30,11 @@ public:
     AccessorDecoder(const JsonReader& reader, const json& doc, const std::vector<std::vector<std::uint8_t>>& buffers,
                     std::size_t max_elements);
     std::size_t accessor_count() const { return accessors_->size(); }
+    // False when the accessor's data lives in a placeholder buffer (no uri, no data):
+    // such primitives are skipped with a warning rather than failing the file.
+    bool has_data(int index) const;
+    // The validated byte range of a bufferView; throws if the view is unusable.
+    std::span<const std::uint8_t> view_bytes(int view, const std::string& ptr) const;
     // Decodes accessor `index`. `ptr` is the pointer of the reference (for messages).
     AccessorData read(int index) const;
     // Reads the "type" and "componentType" without decoding.

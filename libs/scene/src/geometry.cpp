@@ -55,6 +55,18 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
         warn(ap, "primitive has no POSITION; skipped");
         return std::nullopt;
     }
+    {
+        bool available = true;
+        if (attrs.is_object())
+            for (auto it = attrs.begin(); it != attrs.end(); ++it)
+                if (it->is_number_unsigned()) available = available && accessors.has_data(it->get<int>());
+        if (prim.contains("indices") && prim["indices"].is_number_unsigned())
+            available = available && accessors.has_data(prim["indices"].get<int>());
+        if (!available) {
+            warn(ptr, "primitive data lives in a buffer without data; skipped");
+            return std::nullopt;
+        }
+    }
 
     // Reads an attribute, checking its type and that its count matches POSITION.
     std::size_t vertex_count = 0;

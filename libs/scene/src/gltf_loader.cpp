@@ -113,7 +113,7 @@ public:
         check_extensions();
         load_buffers(glb ? &parts : nullptr);
         gltf::AccessorDecoder accessors(r_, doc_, buffers_, opt_.max_vertices * 16);
-        load_images();
+        load_images(accessors);
         load_samplers_and_textures();
         load_materials();
         load_meshes(accessors);
@@ -151,7 +151,7 @@ private:
         if (version.rfind("2.", 0) != 0) r_.fail("/asset/version", "unsupported glTF version '" + version + "'");
         std::string min_version = r_.string(*asset, "minVersion", "/asset");
         if (!min_version.empty() && min_version != "2.0")
-            r_.fail("/asset/minVersion", "requires glTF " + min_version + ", this loader reads 2.0");
+            warn("/asset/minVersion", "asset asks for glTF " + min_version + "; reading it as 2.0");
     }
 
     std::vector<std::string> string_list(const char* key) {
@@ -197,6 +197,14 @@ private:
 
     void load_buffers(const GlbParts* glb) {
         const json& arr = r_.array(doc_, "buffers", "");
+        // Buffers no bufferView uses are never read: a missing or refused URI there is a warning only.
+        std::vector<bool> used(arr.size(), false);
+        const json& views = r_.array(doc_, "bufferViews", "");
+        for (const auto& v : views)
+            if (v.is_object() && v.contains("buffer") && v["buffer"].is_number()) {
+                double b = v["buffer"].get<double>();
+                if (b >= 0 && b < double(arr.size())) used[std::size_t(b)] = true;
+            }
         buffers_.resize(arr.size());
         for (std::size_t i = 0; i < arr.size(); ++i) {
             std::string ptr = "/buffers/" + std::to_string(i);
@@ -206,7 +214,11 @@ private:
             if (length > opt_.max_file_bytes)
                 r_.fail(ptr + "/byteLength", "buffer of " + std::to_string(length) + " bytes is over the limit");
             if (!r_.has(b, "uri")) {
-                if (!glb || i != 0) r_.fail(ptr + "/uri", "is required (only the first buffer of a GLB may omit it)");
+                if (!glb || i != 0) {
+                    // A placeholder (data supplied by an extension we lack): an error only if an accessor reads it.
+                    warn(ptr, "buffer has no uri; its data is not available");
+                    continue;
+                }
                 if (!glb->has_bin) r_.fail(ptr, "refers to the GLB BIN chunk, but the file has none");
                 if (glb->bin.size() < length)
                     r_.fail(ptr + "/byteLength", "is " + std::to_string(length) + " but the BIN chunk holds " +
@@ -216,6 +228,10 @@ private:
                 buffers_[i].assign(glb->bin.begin(), glb->bin.begin() + std::ptrdiff_t(length));
             } else {
                 std::string uri = r_.string(b, "uri", ptr);
+                if (!used[i]) {
+                    warn(ptr, "buffer is not used by any bufferView; not read");
+                    continue;
+                }
                 auto data = read_uri(uri, ptr + "/uri", opt_.max_file_bytes);
                 if (data.size() < length)
                     r_.fail(ptr + "/byteLength", "is " + std::to_string(length) + " but '" +
@@ -228,7 +244,7 @@ private:
         }
     }
 
-    void load_images() {
+    void load_images(const gltf::AccessorDecoder& accessors) {
         const json& arr = r_.array(doc_, "images", "");
         const json& views = r_.array(doc_, "bufferViews", "");
         scene_.images.resize(arr.size());
@@ -261,12 +277,13 @@ private:
                 int v = r_.index(img, "bufferView", ptr, views.size(), "bufferView");
                 if (!r_.has(img, "mimeType")) r_.fail(ptr + "/mimeType", "is required with bufferView");
                 if (!opt_.decode_images) continue;
-                const json& view = views[std::size_t(v)];
-                std::size_t b = std::size_t(view.value("buffer", 0)), off = view.value("byteOffset", std::size_t(0)),
-                            len = view.value("byteLength", std::size_t(0));
-                // The AccessorDecoder validated every bufferView's range already.
-                encoded[i].assign(buffers_[b].begin() + std::ptrdiff_t(off),
-                                  buffers_[b].begin() + std::ptrdiff_t(off + len));
+                try {
+                    auto bytes = accessors.view_bytes(v, ptr + "/bufferView");
+                    encoded[i].assign(bytes.begin(), bytes.end());
+                } catch (const Error& e) {
+                    warn(ptr + "/bufferView", e.reason() + "; using a neutral texture");
+                    continue;
+                }
             } else {
                 r_.fail(ptr, "has neither uri nor bufferView");
             }
@@ -438,7 +455,11 @@ private:
                 if (!p || !p->is_object()) r_.fail(ptr + "/perspective", "is required for a perspective camera");
                 std::string pp = ptr + "/perspective";
                 cam.yfov = float(r_.number(*p, "yfov", pp, -1));
-                if (!(cam.yfov > 0 && cam.yfov < 3.14159f)) r_.fail(pp + "/yfov", "must be in (0, pi)");
+                if (!(cam.yfov > 0)) r_.fail(pp + "/yfov", "must be positive");
+                if (cam.yfov >= 3.1f) {
+                    warn(pp + "/yfov", "field of view of " + std::to_string(cam.yfov) + " rad is too wide; using 3.1");
+                    cam.yfov = 3.1f;
+                }
                 if (r_.has(*p, "aspectRatio")) {
                     float a = float(r_.number(*p, "aspectRatio", pp, 1));
                     if (a > 0) cam.aspect_ratio = a;
@@ -487,7 +508,10 @@ private:
             if (type == "directional") light.type = Light::Type::Directional;
             else if (type == "point") light.type = Light::Type::Point;
             else if (type == "spot") light.type = Light::Type::Spot;
-            else r_.fail(ptr + "/type", "must be directional, point or spot");
+            else {
+                warn(ptr + "/type", "unknown light type '" + type + "'; light ignored");
+                light.intensity = 0.0f;
+            }
             if (light.type != Light::Type::Directional) {
                 light.range = float(r_.number(l, "range", ptr, 0.0));
                 if (light.range < 0) r_.fail(ptr + "/range", "must be positive");
@@ -524,9 +548,7 @@ private:
             const json& children = r_.array(n, "children", ptr);
             for (std::size_t c = 0; c < children.size(); ++c) {
                 std::string cp = ptr + "/children/" + std::to_string(c);
-                if (!children[c].is_number_integer()) r_.fail(cp, "must be a node index");
-                long long k = children[c].get<long long>();
-                if (k < 0 || std::size_t(k) >= arr.size()) r_.fail(cp, "node " + std::to_string(k) + " does not exist");
+                long long k = r_.index_value(children[c], cp, arr.size(), "node");
                 if (std::size_t(k) == i) r_.fail(cp, "node is its own child");
                 if (++parents[std::size_t(k)] > 1) r_.fail(cp, "node " + std::to_string(k) + " has more than one parent");
                 node.children.push_back(int(k));
@@ -585,9 +607,7 @@ private:
             const json& nodes = r_.array(s, "nodes", ptr);
             for (std::size_t k = 0; k < nodes.size(); ++k) {
                 std::string np = ptr + "/nodes/" + std::to_string(k);
-                if (!nodes[k].is_number_integer()) r_.fail(np, "must be a node index");
-                long long n = nodes[k].get<long long>();
-                if (n < 0 || std::size_t(n) >= scene_.nodes.size()) r_.fail(np, "node " + std::to_string(n) + " does not exist");
+                long long n = r_.index_value(nodes[k], np, scene_.nodes.size(), "node");
                 if (roots_parents_[std::size_t(n)] != 0) r_.fail(np, "scene root node " + std::to_string(n) + " has a parent");
                 if (std::find(roots.begin(), roots.end(), int(n)) != roots.end()) r_.fail(np, "node listed twice");
                 roots.push_back(int(n));

@@ -76,6 +76,16 @@ public:
                                    std::to_string(hi) + "]");
         return n;
     }
+    // A JSON value (e.g. an array element) that must be an index into `count` elements.
+    // Integers written as floats (1.0) are accepted, as the spec's JSON number allows.
+    int index_value(const json& v, const std::string& ptr, std::size_t count, const char* what) const {
+        double d = 0;
+        if (v.is_number_integer() || v.is_number_float()) d = v.get<double>();
+        else fail(ptr, std::string("must be an index of a ") + what);
+        if (!(d == std::floor(d)) || d < 0 || d >= double(count))
+            fail(ptr, std::string(what) + " " + v.dump() + " does not exist (there are " + std::to_string(count) + ")");
+        return int(d);
+    }
     // An index into an array of `count` elements; -1 when absent and not required.
     int index(const json& obj, const char* key, const std::string& ptr, std::size_t count, const char* what,
               bool required = false) const {

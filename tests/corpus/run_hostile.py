@@ -1,0 +1,136 @@
+#!/usr/bin/env python3
+"""Hostile-input checks through the CLI: URI policy, truncated GLB files, a PNG that
+claims to be 100000x100000. Generates every file itself (no shared assets needed).
+
+usage: run_hostile.py FRESNEL_BINARY
+"""
+import base64, json, os, struct, subprocess, sys, tempfile, time, zlib
+
+SANITIZER_MARKERS = ("ERROR: AddressSanitizer", "ERROR: LeakSanitizer", "runtime error:")
+failures = []
+
+
+def fresnel(binary, *args, timeout=20):
+    start = time.monotonic()
+    try:
+        p = subprocess.run([binary, *args], capture_output=True, text=True, errors="replace", timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return "timeout", "", timeout
+    return p.returncode, p.stderr, time.monotonic() - start
+
+
+def expect(name, cond, detail=""):
+    print(("ok   " if cond else "FAIL ") + name + ("" if cond else f": {detail}"))
+    if not cond:
+        failures.append(name)
+
+
+def png_bytes(width, height, with_data=True):
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+    ihdr = struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)
+    out = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr)
+    if with_data:
+        raw = b"".join(b"\x00" + b"\x80\x80\x80\xff" * width for _ in range(height))
+        out += chunk(b"IDAT", zlib.compress(raw))
+    else:
+        out += chunk(b"IDAT", zlib.compress(b"\x00" * 64))  # far too little data for the claimed size
+    return out + chunk(b"IEND", b"")
+
+
+def triangle_gltf(image_uri=None, embed_buffer=True):
+    pos = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0)
+    uv = struct.pack("<6f", 0, 0, 1, 0, 0, 1)
+    buf = pos + uv
+    doc = {
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0}]}],
+        "materials": [{"pbrMetallicRoughness": {}}],
+        "buffers": [{"byteLength": len(buf)}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}],
+    }
+    if embed_buffer:
+        doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(buf).decode()
+    if image_uri is not None:
+        doc["images"] = [{"uri": image_uri}]
+        doc["textures"] = [{"source": 0}]
+        doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 0}
+    return doc, buf
+
+
+def glb(doc, bin_data):
+    js = json.dumps(doc).encode()
+    js += b" " * (-len(js) % 4)
+    bin_data += b"\x00" * (-len(bin_data) % 4)
+    body = struct.pack("<II", len(js), 0x4E4F534A) + js + struct.pack("<II", len(bin_data), 0x004E4942) + bin_data
+    return struct.pack("<III", 0x46546C67, 2, 12 + len(body)) + body
+
+
+def main():
+    binary = sys.argv[1]
+    with tempfile.TemporaryDirectory() as tmp:
+        model_dir = os.path.join(tmp, "model")
+        os.makedirs(model_dir)
+        outside = os.path.join(tmp, "outside.png")
+        with open(outside, "wb") as f:
+            f.write(png_bytes(4, 4))
+        out_png = os.path.join(tmp, "out.png")
+
+        def write_model(name, doc):
+            path = os.path.join(model_dir, name)
+            with open(path, "w") as f:
+                json.dump(doc, f)
+            return path
+
+        # URI policy.
+        for label, uri in (("dot-dot", "../../../../etc/passwd"), ("absolute", outside),
+                           ("http", "http://example.com/texture.png")):
+            path = write_model(label + ".gltf", triangle_gltf(uri)[0])
+            for cmd in (["info", path], ["render", path, "-o", out_png, "--size", "32x32"]):
+                rc, err, _ = fresnel(binary, *cmd)
+                expect(f"{label} URI refused by {cmd[0]}", rc == 1 and uri in err and "fresnel: error:" in err,
+                       f"exit {rc}, stderr {err[-300:]!r}")
+        path = os.path.join(model_dir, "absolute.gltf")
+        rc, err, _ = fresnel(binary, "render", path, "-o", out_png, "--size", "32x32", "--allow-external-files")
+        expect("absolute URI loads with --allow-external-files", rc == 0, f"exit {rc}: {err[-300:]!r}")
+        path = os.path.join(model_dir, "http.gltf")
+        rc, err, _ = fresnel(binary, "info", path, "--allow-external-files")
+        expect("http URI refused even with --allow-external-files", rc == 1 and "http://" in err, f"exit {rc}")
+
+        # A PNG claiming 100000 x 100000 pixels: refused quickly, naming the limit, no 40 GB allocation.
+        with open(os.path.join(model_dir, "huge.png"), "wb") as f:
+            f.write(png_bytes(100000, 100000, with_data=False))
+        path = write_model("huge.gltf", triangle_gltf("huge.png")[0])
+        rc, err, secs = fresnel(binary, "render", path, "-o", out_png, "--size", "32x32")
+        expect("100000x100000 PNG: clear message naming the limit, within seconds",
+               rc in (0, 1) and "limit" in err and "100000" in err and secs < 10,
+               f"exit {rc} in {secs:.1f} s: {err[-300:]!r}")
+
+        # Truncated GLB at every length: exit 1 with a clear message, quickly.
+        doc, buf = triangle_gltf(embed_buffer=False)
+        data = glb(doc, buf)
+        bad, slow = [], 0.0
+        for n in range(0, len(data)):
+            p = os.path.join(tmp, "cut.glb")
+            with open(p, "wb") as f:
+                f.write(data[:n])
+            rc, err, secs = fresnel(binary, "info", p)
+            slow = max(slow, secs)
+            if rc != 1 or "fresnel: error:" not in err or any(m in err for m in SANITIZER_MARKERS):
+                bad.append((n, rc, err[-200:]))
+        expect(f"GLB truncated at each of {len(data)} lengths -> exit 1 with message", not bad, str(bad[:3]))
+        expect("truncated GLB handled quickly", slow < 5, f"slowest {slow:.1f} s")
+        full = os.path.join(tmp, "full.glb")
+        with open(full, "wb") as f:
+            f.write(data)
+        rc, err, _ = fresnel(binary, "info", full)
+        expect("the untruncated GLB loads", rc == 0, err[-300:])
+    print(f"{len(failures)} failure(s)")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
