@@ -91,27 +91,49 @@ Image8 read_image8(const fs::path& path, const ImageLimits& limits) {
 }
 
 namespace {
-ImageF read_hdr(const fs::path& path, const ImageLimits& limits) {
-    auto bytes = read_file_bytes(path, limits.max_decoded_bytes);
+ImageF decode_hdr(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits) {
     int w = 0, h = 0, comp = 0;
-    if (bytes.size() > std::size_t(INT32_MAX) ||
-        !stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &comp))
-        throw Error(path.string(), "", "not a Radiance .hdr file");
-    check_size(path.string(), w, h, 16, limits);
+    if (bytes.size() > std::size_t(INT32_MAX) || !stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &comp))
+        throw Error(name, "", "not a Radiance .hdr file");
+    check_size(name, w, h, 16, limits);
     float* px = stbi_loadf_from_memory(bytes.data(), int(bytes.size()), &w, &h, &comp, 4);
-    if (!px) throw Error(path.string(), "", std::string("cannot decode: ") + (stbi_failure_reason() ? stbi_failure_reason() : "?"));
+    if (!px) throw Error(name, "", std::string("cannot decode: ") + (stbi_failure_reason() ? stbi_failure_reason() : "?"));
     ImageF img(w, h);
     std::memcpy(img.pixels.data(), px, img.pixels.size() * sizeof(float));
     stbi_image_free(px);
     return img;
 }
 
-ImageF read_exr(const fs::path& path, const ImageLimits& limits) {
+// OpenEXR reads through this stream so that EXR data in memory is never written to disk.
+class MemoryStream final : public Imf::IStream {
+public:
+    MemoryStream(std::span<const std::uint8_t> bytes, const std::string& name) : Imf::IStream(name.c_str()), bytes_(bytes) {}
+    bool isMemoryMapped() const override { return false; }
+    bool read(char c[], int n) override {
+        if (n < 0 || pos_ + std::uint64_t(n) > bytes_.size()) throw std::runtime_error("unexpected end of file");
+        std::memcpy(c, bytes_.data() + pos_, std::size_t(n));
+        pos_ += std::uint64_t(n);
+        return pos_ < bytes_.size();
+    }
+    std::uint64_t tellg() override { return pos_; }
+    void seekg(std::uint64_t pos) override {
+        if (pos > bytes_.size()) throw std::runtime_error("seek past the end of the file");
+        pos_ = pos;
+    }
+    void clear() override {}
+
+private:
+    std::span<const std::uint8_t> bytes_;
+    std::uint64_t pos_ = 0;
+};
+
+ImageF decode_exr(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits) {
     try {
-        Imf::InputFile file(path.string().c_str());
+        MemoryStream stream(bytes, name);
+        Imf::InputFile file(stream);
         const Imath::Box2i dw = file.header().dataWindow();
         long long w = (long long)dw.max.x - dw.min.x + 1, h = (long long)dw.max.y - dw.min.y + 1;
-        check_size(path.string(), w, h, 16, limits);
+        check_size(name, w, h, 16, limits);
         ImageF img{static_cast<int>(w), static_cast<int>(h)};
         const auto& channels = file.header().channels();
         Imf::FrameBuffer fb;
@@ -124,12 +146,12 @@ ImageF read_exr(const fs::path& path, const ImageLimits& limits) {
             any = any || (c < 3 && present);
             // Missing channels are filled: RGB with 0 (Y-only files get R=G=B below), alpha with 1.
             fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), 4 * sizeof(float),
-                                           4 * sizeof(float) * w, 1, 1, c == 3 ? 1.0 : 0.0));
+                                           4 * sizeof(float) * std::size_t(w), 1, 1, c == 3 ? 1.0 : 0.0));
         }
         if (!any && channels.findChannel("Y")) {
-            fb.insert("Y", Imf::Slice(Imf::FLOAT, base, 4 * sizeof(float), 4 * sizeof(float) * w));
+            fb.insert("Y", Imf::Slice(Imf::FLOAT, base, 4 * sizeof(float), 4 * sizeof(float) * std::size_t(w)));
         } else if (!any) {
-            throw Error(path.string(), "", "EXR has no R, G, B or Y channel");
+            throw Error(name, "", "EXR has no R, G, B or Y channel");
         }
         file.setFrameBuffer(fb);
         file.readPixels(dw.min.y, dw.max.y);
@@ -139,26 +161,26 @@ ImageF read_exr(const fs::path& path, const ImageLimits& limits) {
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {
-        throw Error(path.string(), "", std::string("cannot read OpenEXR file: ") + e.what());
+        throw Error(name, "", std::string("cannot read OpenEXR data: ") + e.what());
     }
 }
 
-std::string lower_ext(const fs::path& p) {
-    std::string e = p.extension().string();
-    for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return e;
-}
 }  // namespace
 
-ImageF read_image_float(const fs::path& path, const ImageLimits& limits) {
-    std::string ext = lower_ext(path);
-    if (ext == ".exr") return read_exr(path, limits);
-    if (ext == ".hdr" || ext == ".rgbe" || ext == ".pic") return read_hdr(path, limits);
-    // 8-bit formats: decode and convert from sRGB is the caller's business; here, values / 255.
-    Image8 img = read_image8(path, limits);
+ImageF decode_image_float(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits) {
+    static const std::uint8_t exr_magic[4] = {0x76, 0x2f, 0x31, 0x01};
+    if (bytes.size() >= 4 && std::memcmp(bytes.data(), exr_magic, 4) == 0) return decode_exr(bytes, name, limits);
+    if (bytes.size() >= 2 && bytes[0] == '#' && bytes[1] == '?') return decode_hdr(bytes, name, limits);
+    // 8-bit formats: values / 255 (no transfer curve applied).
+    Image8 img = decode_image8(bytes, name, limits);
     ImageF out(img.width, img.height);
     for (std::size_t i = 0; i < img.pixels.size(); ++i) out.pixels[i] = img.pixels[i] / 255.0f;
     return out;
+}
+
+ImageF read_image_float(const fs::path& path, const ImageLimits& limits) {
+    auto bytes = read_file_bytes(path, limits.max_decoded_bytes);
+    return decode_image_float(bytes, path.string(), limits);
 }
 
 void write_png(const fs::path& path, const Image8& image) {

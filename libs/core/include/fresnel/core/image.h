@@ -48,6 +48,9 @@ Image8 read_image8(const std::filesystem::path& path, const ImageLimits& limits 
 // Reads a float image: Radiance .hdr or OpenEXR .exr (RGB(A), any compression OpenEXR supports).
 ImageF read_image_float(const std::filesystem::path& path, const ImageLimits& limits = {});
 
+// Decodes a float image from memory, by its magic bytes: OpenEXR or Radiance .hdr.
+ImageF decode_image_float(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits = {});
+
 void write_png(const std::filesystem::path& path, const Image8& image);
 void write_hdr(const std::filesystem::path& path, const ImageF& image);
 void write_exr(const std::filesystem::path& path, const ImageF& image);  // half-float RGBA, ZIP

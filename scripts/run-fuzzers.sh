@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Runs every libFuzzer target for SECONDS each, seeded from the regression corpus and,
+# when present, ../shared (assets and the broken-glTF corpus). New crashes land in
+# fuzz/findings/<target>/; copy minimised ones into fuzz/regressions/<target>/.
+# usage: scripts/run-fuzzers.sh BUILD_DIR SECONDS [TARGET...]
+set -euo pipefail
+build=$1; seconds=$2; shift 2
+root=$(cd "$(dirname "$0")/.." && pwd)
+shared="$root/../shared"
+targets=("$@"); [[ ${#targets[@]} -eq 0 ]] && targets=(gltf image hdr exr)
+for t in "${targets[@]}"; do
+  work="$root/fuzz/work/$t"; findings="$root/fuzz/findings/$t"
+  mkdir -p "$work" "$findings"
+  seeds=("$root/fuzz/regressions/$t")
+  if [[ -d $shared ]]; then
+    case $t in
+      gltf) seeds+=("$shared/corpus" "$shared/assets/models");;
+      image) mkdir -p "$work.seeds"; find "$shared/assets/models" -name '*.png' -size -200k -exec cp -n {} "$work.seeds/" \; ; find "$shared/assets/models" -name '*.jpg' -size -200k -exec cp -n {} "$work.seeds/" \; ; seeds+=("$work.seeds");;
+      hdr) mkdir -p "$work.seeds"; for f in "$shared"/assets/env/*.hdr; do tail -c +3 "$f" | head -c 200000 > "$work.seeds/$(basename "$f")"; done; seeds+=("$work.seeds");;
+      exr) mkdir -p "$work.seeds"; for f in "$shared"/assets/env/*.exr; do tail -c +5 "$f" > "$work.seeds/$(basename "$f")"; done; seeds+=("$work.seeds");;
+    esac
+  fi
+  echo "== fuzz_$t for ${seconds}s"
+  "$build/fuzz/fuzz_$t" "$work" "${seeds[@]}" -max_total_time="$seconds" -max_len=1048576 -rss_limit_mb=3072 \
+      -timeout=10 -artifact_prefix="$findings/" -print_final_stats=1 2>&1 | tail -25 || echo "fuzz_$t stopped with a finding (see $findings)"
+done
