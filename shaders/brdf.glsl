@@ -37,7 +37,9 @@ struct BrdfTerms {
     float v;
     vec3 f;
     vec3 diffuse;
-    vec3 specular;
+    vec3 specular;             // specular_dielectric + specular_metal
+    float specular_dielectric; // (1 - metallic) F_dielectric V D
+    vec3 specular_metal;       // metallic F_metal V D
 };
 
 BrdfTerms brdf_terms(vec3 base_color, float metallic, float perceptual_roughness, float specular_f0,
@@ -58,6 +60,8 @@ BrdfTerms brdf_terms(vec3 base_color, float metallic, float perceptual_roughness
     float f_dielectric = f_schlick(specular_f0, 1.0, v_dot_h);
     t.f = mix(vec3(f_dielectric), f_metal, metallic);
     t.diffuse = (1.0 - metallic) * (1.0 - f_dielectric) * base_color / PI;
-    t.specular = ((1.0 - metallic) * f_dielectric + metallic * f_metal) * spec;
+    t.specular_dielectric = (1.0 - metallic) * f_dielectric * spec;
+    t.specular_metal = metallic * f_metal * spec;
+    t.specular = t.specular_dielectric + t.specular_metal;
     return t;
 }

@@ -25,6 +25,23 @@ vec3 debug_value(int channel, MaterialInputs m, vec3 n, vec3 ng, vec3 t, vec3 b,
     if (channel == 15) return clamp(bt.f, 0.0, 1.0);
     if (channel == 16) return clamp(bt.diffuse * PI, 0.0, 1.0);
     if (channel == 17) return clamp(bt.specular * n_dot_l, 0.0, 1.0);
+#ifdef USE_IBL
+    // Image-based light terms, tone mapped by the neutral curve so they stay readable.
+    if (channel == 18) return linear_to_srgb(tone_map_neutral(ibl_irradiance(n)));
+    if (channel == 19) return linear_to_srgb(tone_map_neutral(ibl_radiance(reflect(-v, n), m.roughness)));
+    if (channel == 20) {
+        vec3 fd = ibl_ggx_fresnel(n_dot_v, m.roughness, vec3(0.04));
+        return linear_to_srgb(tone_map_neutral(ibl_irradiance(n) * m.base_color.rgb * (1.0 - fd) * (1.0 - m.metallic) * m.occlusion));
+    }
+    if (channel == 21) {
+        vec3 spec = ibl_radiance(reflect(-v, n), m.roughness);
+        vec3 fd = ibl_ggx_fresnel(n_dot_v, m.roughness, vec3(0.04));
+        vec3 fm = ibl_ggx_fresnel(n_dot_v, m.roughness, m.base_color.rgb);
+        return linear_to_srgb(tone_map_neutral(spec * mix(fd, fm, m.metallic)));
+    }
+#else
+    if (channel >= 18 && channel <= 21) return vec3(0.0);  // no environment
+#endif
     return vec3(1.0, 0.0, 1.0);
 }
 #endif

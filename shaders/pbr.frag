@@ -12,6 +12,7 @@ out vec4 frag_color;
 uniform vec3 u_camera_position;
 uniform int u_debug;  // 0 = shading; other values select a debug channel (see debug.glsl)
 uniform vec3 u_ambient;  // uniform ambient radiance (0 unless requested)
+uniform int u_energy_compensation;  // 1: multiple-scattering compensation of punctual specular
 uniform float u_exposure;  // linear multiplier, 2^EV
 uniform int u_tonemap;     // see tonemap.glsl
 uniform int u_encoding;    // -1 = none (linear output), 0 = sRGB, 1 = gamma 2.2
@@ -21,6 +22,7 @@ uniform int u_encoding;    // -1 = none (linear output), 0 = sRGB, 1 = gamma 2.2
 #include "tonemap.glsl"
 #include "brdf.glsl"
 #include "lights.glsl"
+#include "ibl.glsl"
 #include "material_inputs.glsl"
 #include "debug.glsl"
 
@@ -74,6 +76,11 @@ void main() {
 #ifdef UNLIT
     color = m.base_color.rgb;
 #else
+    float n_dot_v = clamped_dot(f.n, v);
+    // Directional albedo E of the GGX lobe, for energy compensation of punctual specular.
+    float e = brdf_lut(n_dot_v, m.roughness).b;
+    float comp_dielectric = u_energy_compensation == 1 ? energy_compensation(vec3(0.04), e).x : 1.0;
+    vec3 comp_metal = u_energy_compensation == 1 ? energy_compensation(m.base_color.rgb, e) : vec3(1.0);
     for (int i = 0; i < MAX_LIGHTS; ++i) {
         if (i >= u_light_count) break;
         vec3 l;
@@ -81,8 +88,23 @@ void main() {
         float n_dot_l = clamped_dot(f.n, l);
         if (n_dot_l <= 0.0) continue;
         BrdfTerms t = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, 0.04, f.n, v, l);
-        color += radiance * n_dot_l * (t.diffuse + t.specular);
+        vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;
+        color += radiance * n_dot_l * (t.diffuse + specular);
     }
+#ifdef USE_IBL
+    {
+        // Split-sum image-based light, weighted as the glTF BRDF's dielectric/metal mix.
+        vec3 r = reflect(-v, f.n);
+        vec3 diffuse = ibl_irradiance(f.n) * m.base_color.rgb;
+        vec3 specular = ibl_radiance(r, m.roughness);
+        vec3 fresnel_dielectric = ibl_ggx_fresnel(n_dot_v, m.roughness, vec3(0.04));
+        vec3 fresnel_metal = ibl_ggx_fresnel(n_dot_v, m.roughness, m.base_color.rgb);
+        float so = specular_occlusion(n_dot_v, m.occlusion, m.roughness);
+        vec3 dielectric = diffuse * (1.0 - fresnel_dielectric) * m.occlusion + specular * fresnel_dielectric * so;
+        vec3 metal = specular * fresnel_metal * so;
+        color += mix(dielectric, metal, m.metallic);
+    }
+#endif
     // Occlusion applies to indirect light only.
     color += u_ambient * m.base_color.rgb * (1.0 - m.metallic) * m.occlusion;
     color += m.emissive;

@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "fresnel 0.1.0");
     auto render = fresnel::cli::add_render_command(app);
     auto info = fresnel::cli::add_info_command(app);
+    auto bake = fresnel::cli::add_bake_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
     try {
         if (app.got_subcommand("render")) return render();
         if (app.got_subcommand("info")) return info();
+        if (app.got_subcommand("bake")) return bake();
     } catch (const fresnel::Error& e) {
         fresnel::cli::print_error(e);
         return fresnel::cli::kExitBadInput;

@@ -10,6 +10,8 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "fresnel/gpu/context.h"
+#include "fresnel/ibl/bake.h"
+#include "progress.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/scene/gltf_loader.h"
 #include "fresnel/scene/procedural.h"
@@ -29,7 +31,7 @@ struct RenderOptions {
     std::string tonemap = "neutral";
     float exposure = 0;
     std::string encoding = "srgb";
-    std::string background = "0,0,0";
+    std::string background;
     std::vector<std::string> lights;
     bool no_scene_lights = false;
     int msaa = 4;
@@ -37,6 +39,15 @@ struct RenderOptions {
     bool json = false;
     bool allow_external = false;
     bool gl_debug = false;
+    std::string env;
+    bool env_given = false;
+    float env_rotation = 0;
+    float env_intensity = 1;
+    bool no_ibl = false;
+    bool no_cache = false;
+    bool no_energy_compensation = false;
+    int env_samples = 1024;
+    int env_size = 256;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -99,12 +110,18 @@ int run_render(const RenderOptions& o) {
         return kExitUsage;
     }
     glm::vec4 background(0, 0, 0, 1);
-    if (o.background == "transparent") {
+    auto background_mode = RenderSettings::Background::Color;
+    bool background_given = !o.background.empty();
+    if (o.background == "env") {
+        background_mode = RenderSettings::Background::Environment;
+    } else if (o.background == "blur" || o.background.empty()) {
+        background_mode = RenderSettings::Background::Blurred;  // the default when there is an environment
+    } else if (o.background == "transparent") {
         background = glm::vec4(0.0f);
     } else {
         auto v = parse_floats(o.background, "--background");
         if (v.size() != 3) {
-            print_error("--background: expected R,G,B (0..1, display-encoded) or 'transparent'");
+            print_error("--background: expected env, blur, R,G,B (0..1, display-encoded) or transparent");
             return kExitUsage;
         }
         background = glm::vec4(v[0], v[1], v[2], 1.0f);
@@ -160,12 +177,32 @@ int run_render(const RenderOptions& o) {
         camera = orbit_camera(bounds, op, width, height);
     }
 
-    // Lights: the scene's, then the command line's; the default pair when there are none.
+    // Lights: the scene's, then the command line's.
     std::vector<LightInstance> lights;
     if (!o.no_scene_lights) lights = scene_lights(scene, instances);
     lights.insert(lights.end(), cli_lights.begin(), cli_lights.end());
-    bool default_lighting = lights.empty();
+
+    // Image-based light: --env, else the built-in studio unless the scene or the command
+    // line brings its own lights. --no-ibl turns it off.
+    ibl::BakeOptions bake_options;
+    bake_options.samples = o.env_samples;
+    bake_options.size = o.env_size;
+    std::optional<ibl::BakedIbl> environment;
+    double env_ms = 0;
+    bool use_ibl = !o.no_ibl && (o.env_given || lights.empty());
+    if (use_ibl) {
+        auto t_env = Clock::now();
+        ibl::EnvironmentSource source = ibl::parse_environment(o.env_given ? o.env : "studio");
+        ProgressBar bar("baking " + source.describe());
+        environment = ibl::load_or_bake(source, bake_options, [&](double f) { bar.update(f); }, !o.no_cache);
+        bar.finish();
+        env_ms = ms_since(t_env);
+    }
+    // The default pair of directional lights only when nothing else lights the scene.
+    bool default_lighting = lights.empty() && !environment;
     if (default_lighting) lights = default_lights();
+    ImageF lut;
+    if (!environment && !o.no_energy_compensation) lut = ibl::load_or_bake_lut(bake_options, !o.no_cache);
 
     // GPU.
     auto t_gpu = Clock::now();
@@ -185,6 +222,15 @@ int run_render(const RenderOptions& o) {
     rs.tone_mapper = *tone;
     rs.debug = *debug;
     rs.background = background;
+    rs.background_mode = environment && !(background_given && background_mode == RenderSettings::Background::Color)
+                             ? background_mode
+                             : RenderSettings::Background::Color;
+    if (!environment || background_mode == RenderSettings::Background::Color) rs.background_mode = RenderSettings::Background::Color;
+    rs.environment = environment ? &*environment : nullptr;
+    rs.env_intensity = o.env_intensity;
+    rs.env_rotation_deg = o.env_rotation;
+    rs.brdf_lut = lut.width > 0 ? &lut : nullptr;
+    rs.energy_compensation = !o.no_energy_compensation;
     if (float_output) {
         rs.encoding.reset();
         rs.straight_alpha = false;  // EXR convention: premultiplied alpha
@@ -218,6 +264,9 @@ int run_render(const RenderOptions& o) {
         j["programs"] = renderer.program_count();
         j["lights"] = lights.size();
         j["default_lights"] = default_lighting;
+        j["environment"] = environment ? environment->source : "none";
+        j["environment_ms"] = env_ms;
+        j["environment_cached"] = environment ? environment->from_cache : false;
         j["camera"] = {{"eye", {camera.eye.x, camera.eye.y, camera.eye.z}},
                        {"target", {camera.target.x, camera.target.y, camera.target.z}},
                        {"znear", camera.znear}, {"zfar", camera.zfar}, {"yfov_deg", camera.yfov_deg}};
@@ -249,8 +298,23 @@ Runner add_render_command(CLI::App& app) {
     cmd->add_option("--exposure", o->exposure, "Exposure in EV (radiance x 2^EV)")->capture_default_str();
     cmd->add_option("--encoding", o->encoding, "PNG encoding: srgb (exact curve) or gamma2.2 (pow 1/2.2)")
         ->capture_default_str();
-    cmd->add_option("--background", o->background, "Background R,G,B (0..1, display-encoded) or 'transparent'")
+    cmd->add_option("--background", o->background,
+                    "Background: env (the environment, sharp), blur (a prefiltered level; the default with an "
+                    "environment), R,G,B (0..1, display-encoded; default 0,0,0 without one) or transparent");
+    cmd->add_option("--env", o->env,
+                    "Environment light: an equirectangular .hdr/.exr, a folder made by `fresnel bake`, color:R,G,B "
+                    "(linear) or studio (built in). Default: studio, unless the scene or --light brings lights")
+        ->each([o](const std::string&) { o->env_given = true; });
+    cmd->add_option("--env-rotation", o->env_rotation, "Turn the environment about +Y, degrees")->capture_default_str();
+    cmd->add_option("--env-intensity", o->env_intensity, "Scale the environment's radiance")->capture_default_str();
+    cmd->add_flag("--no-ibl", o->no_ibl, "No image-based light");
+    cmd->add_option("--env-samples", o->env_samples, "GGX samples per texel when baking")->capture_default_str()
+        ->check(CLI::Range(1, 65536));
+    cmd->add_option("--env-size", o->env_size, "Specular cube face size when baking (power of two)")
         ->capture_default_str();
+    cmd->add_flag("--no-cache", o->no_cache, "Bake the environment again instead of using $XDG_CACHE_HOME/fresnel");
+    cmd->add_flag("--no-energy-compensation", o->no_energy_compensation,
+                  "Single-scattering specular only (no multiple-scattering compensation of punctual lights)");
     cmd->add_option("--light", o->lights,
                     "Add a light: dir:AZIMUTH,ELEVATION,LUX[,R,G,B] (arriving from that direction) or "
                     "point:X,Y,Z,CANDELA[,R,G,B]; repeatable");

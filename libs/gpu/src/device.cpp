@@ -18,6 +18,8 @@ void Device::apply(const PipelineState& s) {
     if (s.depth_test) glEnable(GL_DEPTH_TEST);
     else glDisable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
+    // Filter across cube faces (always on in OpenGL ES 3.0 / WebGL 2; a core enable in GL 3.2+).
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     glFrontFace(s.front_ccw ? GL_CCW : GL_CW);
     glDepthMask(s.depth_write ? GL_TRUE : GL_FALSE);
     if (s.cull == Cull::Back) {

@@ -26,6 +26,8 @@ constexpr NamedChannel kChannels[] = {
     {"emissive", DebugChannel::Emissive}, {"alpha", DebugChannel::Alpha}, {"uv0", DebugChannel::Uv0},
     {"uv1", DebugChannel::Uv1}, {"D", DebugChannel::D}, {"G", DebugChannel::G}, {"F", DebugChannel::F},
     {"diffuse", DebugChannel::Diffuse}, {"specular", DebugChannel::Specular},
+    {"irradiance", DebugChannel::Irradiance}, {"prefiltered", DebugChannel::Prefiltered},
+    {"ibl-diffuse", DebugChannel::IblDiffuse}, {"ibl-specular", DebugChannel::IblSpecular},
 };
 constexpr int kMaxLights = 16;
 
@@ -90,6 +92,70 @@ struct Renderer::Impl {
     gpu::Framebuffer resolved_fb;
     gpu::Texture output;
     gpu::Framebuffer output_fb;
+
+    // Image-based light on the GPU, re-uploaded when the environment or table changes.
+    const ibl::BakedIbl* uploaded_env = nullptr;
+    gpu::Texture env_specular;
+    gpu::Texture env_irradiance;
+    const ImageF* uploaded_lut = nullptr;
+    gpu::Texture lut_texture;
+
+    void ensure_environment(const RenderSettings& s) {
+        if (s.environment && s.environment != uploaded_env) {
+            const ibl::Cubemap& c = s.environment->specular;
+            env_specular = gpu::Texture::create_cube(c.size(), gpu::TextureFormat::RGBA16F, int(c.levels.size()));
+            for (std::size_t l = 0; l < c.levels.size(); ++l)
+                for (int f = 0; f < 6; ++f)
+                    env_specular.upload_cube_face(f, int(l), c.levels[l].size, c.levels[l].faces[std::size_t(f)].data());
+            const ibl::Cubemap& irr = s.environment->irradiance_map;
+            env_irradiance = gpu::Texture::create_cube(irr.size(), gpu::TextureFormat::RGBA16F, 1);
+            for (int f = 0; f < 6; ++f)
+                env_irradiance.upload_cube_face(f, 0, irr.size(), irr.levels[0].faces[std::size_t(f)].data());
+            uploaded_env = s.environment;
+        }
+        const ImageF* lut = s.brdf_lut ? s.brdf_lut : (s.environment ? &s.environment->lut : nullptr);
+        if (lut && lut != uploaded_lut) {
+            lut_texture = gpu::Texture::create_2d(lut->width, lut->height, gpu::TextureFormat::RGBA32F,
+                                                  lut->pixels.data(), false);
+            lut_texture.set_sampler({0x2601, 0x2601, 0x812F, 0x812F, 0x812F});  // LINEAR, CLAMP_TO_EDGE
+            uploaded_lut = lut;
+        }
+    }
+
+    glm::mat3 env_rotation(const RenderSettings& s) const {
+        // World -> environment: turning the environment by +angle about +Y samples it at -angle.
+        float a = -s.env_rotation_deg * 3.14159265358979f / 180.0f;
+        float c = std::cos(a), si = std::sin(a);
+        return glm::mat3(c, 0, -si, 0, 1, 0, si, 0, c);
+    }
+
+    void set_ibl_uniforms(const gpu::Program& prog, const RenderSettings& s) {
+        if (!s.environment) return;
+        prog.set("u_env_levels", float(s.environment->specular.levels.size()));
+        prog.set("u_env_intensity", s.env_intensity);
+        prog.set("u_env_rotation", env_rotation(s));
+    }
+
+    void draw_sky(const CameraSetup& cam, const RenderSettings& s) {
+        gpu::PipelineState st;
+        st.depth_test = false;
+        st.depth_write = false;
+        st.cull = gpu::Cull::None;
+        device.apply(st);
+        const gpu::Program& prog = shaders.get("fullscreen.vert", "sky.frag", {});
+        prog.use();
+        device.bind_texture(0, env_specular);
+        prog.set("u_specular_env", 0);
+        prog.set("u_inverse_view_projection", glm::inverse(cam.projection * cam.view));
+        prog.set("u_env_rotation", env_rotation(s));
+        prog.set("u_env_intensity", s.env_intensity);
+        float levels = float(s.environment->specular.levels.size());
+        prog.set("u_lod", s.background_mode == RenderSettings::Background::Blurred ? s.blur_roughness * (levels - 1.0f) : 0.0f);
+        prog.set("u_exposure", exposure_scale(s.exposure_ev));
+        prog.set("u_tonemap", int(s.tone_mapper));
+        prog.set("u_encoding", s.encoding ? int(*s.encoding) : -1);
+        device.draw_fullscreen();
+    }
 
     explicit Impl(gpu::Context& c) : context(c) {}
 
@@ -190,6 +256,7 @@ struct Renderer::Impl {
         if (m.alpha_mode == AlphaMode::Mask) defines.push_back("ALPHA_MASK");
         if (m.alpha_mode == AlphaMode::Blend) defines.push_back("ALPHA_BLEND");
         if (settings.debug != DebugChannel::None) defines.push_back("DEBUG_VIEW");
+        if (settings.environment) defines.push_back("USE_IBL");
         defines.push_back("MAX_LIGHTS " + std::to_string(kMaxLights));
 
         struct MapUse {
@@ -231,6 +298,18 @@ struct Renderer::Impl {
         prog.set("u_exposure", exposure_scale(settings.exposure_ev));
         prog.set("u_tonemap", int(settings.tone_mapper));
         prog.set("u_encoding", settings.encoding ? int(*settings.encoding) : -1);
+        // Units 5 and 6: the split-sum table and the prefiltered environment.
+        bool have_lut = lut_texture && uploaded_lut;
+        if (have_lut) device.bind_texture(5, lut_texture);
+        prog.set("u_brdf_lut", 5);
+        prog.set("u_energy_compensation", settings.energy_compensation && have_lut ? 1 : 0);
+        if (settings.environment) {
+            device.bind_texture(6, env_specular);
+            prog.set("u_specular_env", 6);
+            device.bind_texture(7, env_irradiance);
+            prog.set("u_irradiance_env", 7);
+            set_ibl_uniforms(prog, settings);
+        }
         prog.set("u_base_color_factor", m.base_color_factor);
         prog.set("u_metallic_factor", m.metallic_factor);
         prog.set("u_roughness_factor", m.roughness_factor);
@@ -303,6 +382,12 @@ ImageF Renderer::render(const CameraSetup& cam, const std::vector<LightInstance>
     // The background is display-referred and written as-is (like the Khronos Sample Viewer's clear colour).
     bool transparent = settings.background.w == 0.0f;
     r.device.clear(transparent ? glm::vec4(0.0f) : glm::vec4(glm::vec3(settings.background), 1.0f), true);
+    r.ensure_environment(settings);
+    if (settings.environment && settings.background_mode != RenderSettings::Background::Color &&
+        settings.debug == DebugChannel::None) {
+        transparent = false;
+        r.draw_sky(cam, settings);
+    }
 
     if (r.scene) {
         std::vector<Draw> opaque, blended;

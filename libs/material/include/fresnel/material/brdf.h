@@ -66,7 +66,9 @@ struct Terms {
     float d = 0, v = 0;
     glm::vec3 f{0.0f};        // the metal/dielectric-mixed Fresnel
     glm::vec3 diffuse{0.0f};  // f_diffuse (already weighted by 1 - F_dielectric and 1 - metallic)
-    glm::vec3 specular{0.0f}; // f_specular (already weighted)
+    glm::vec3 specular{0.0f}; // f_specular = specular_dielectric + specular_metal
+    float specular_dielectric = 0;      // (1 - metallic) F_dielectric V D
+    glm::vec3 specular_metal{0.0f};     // metallic F_metal V D
 };
 
 // Evaluates f(l, v) following Appendix B:
@@ -90,7 +92,9 @@ inline Terms evaluate_terms(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec
     float f_dielectric = f_schlick(s.specular_f0, 1.0f, v_dot_h);
     t.f = glm::mix(glm::vec3(f_dielectric), f_metal, s.metallic);
     t.diffuse = (1.0f - s.metallic) * (1.0f - f_dielectric) * lambert(s.base_color);
-    t.specular = ((1.0f - s.metallic) * f_dielectric + s.metallic * f_metal) * spec;
+    t.specular_dielectric = (1.0f - s.metallic) * f_dielectric * spec;
+    t.specular_metal = s.metallic * f_metal * spec;
+    t.specular = glm::vec3(t.specular_dielectric) + t.specular_metal;
     return t;
 }
 

@@ -11,6 +11,7 @@
 
 #include "fresnel/core/color.h"
 #include "fresnel/core/image.h"
+#include "fresnel/ibl/bake.h"
 #include "fresnel/render/camera.h"
 #include "fresnel/render/lights.h"
 #include "fresnel/scene/scene.h"
@@ -23,7 +24,7 @@ class Context;
 
 enum class DebugChannel {
     None = 0, BaseColor, Metallic, Roughness, Normal, GeometryNormal, Tangent, Bitangent, Occlusion, Emissive,
-    Alpha, Uv0, Uv1, D, G, F, Diffuse, Specular,
+    Alpha, Uv0, Uv1, D, G, F, Diffuse, Specular, Irradiance, Prefiltered, IblDiffuse, IblSpecular,
 };
 std::optional<DebugChannel> parse_debug_channel(const std::string& name);
 std::vector<std::string> debug_channel_names();
@@ -38,7 +39,19 @@ struct RenderSettings {
     glm::vec4 background{0.0f, 0.0f, 0.0f, 1.0f};  // display-referred RGB; a = 0: transparent
     bool straight_alpha = true;  // transparent frames: un-premultiply (PNG); false keeps premultiplied (EXR)
     DebugChannel debug = DebugChannel::None;
-    glm::vec3 ambient{0.0f};  // uniform ambient radiance (no image-based lighting yet)
+    glm::vec3 ambient{0.0f};  // uniform ambient radiance added to diffuse (default none)
+
+    // Image-based light (nullptr = none). Baked by libs/ibl; must outlive the call.
+    const ibl::BakedIbl* environment = nullptr;
+    float env_intensity = 1.0f;
+    float env_rotation_deg = 0.0f;  // turns the environment about +Y
+    // Background: the colour above, or the environment (sharp, or blurred = a prefiltered level).
+    enum class Background { Color, Environment, Blurred } background_mode = Background::Color;
+    float blur_roughness = 0.6f;  // the prefiltered level shown as the blurred background
+    // The split-sum table (for energy compensation of punctual lights); when null the
+    // environment's table is used, else compensation is off.
+    const ImageF* brdf_lut = nullptr;
+    bool energy_compensation = true;
 };
 
 struct FrameStats {

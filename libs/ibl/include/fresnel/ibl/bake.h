@@ -1,0 +1,78 @@
+#pragma once
+// Baking an environment into what the renderer samples, on disk and in a cache.
+//
+// A baked folder holds:
+//   manifest.json      parameters, source, content hash, SH coefficients, timings, file list
+//   specular.ktx2      GGX-prefiltered cube map, RGBA16F, all faces and levels
+//   irradiance.ktx2    irradiance / pi as a small cube map (brute-force convolution), RGBA16F
+//   irradiance_sh.json the 9 SH coefficients of irradiance / pi (RGB)
+//   brdf_lut.ktx2      split-sum table, RGBA16F: R = A, G = B, B = A + B (directional albedo)
+//   preview/           OpenEXR previews: specular_level<k>.exr and irradiance.exr (faces side by side), brdf_lut.exr
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "fresnel/core/image.h"
+#include "fresnel/ibl/cubemap.h"
+#include "fresnel/ibl/environment.h"
+#include "fresnel/ibl/precompute.h"
+
+namespace fresnel::ibl {
+
+struct BakeOptions {
+    int size = 256;          // specular level 0 face size
+    int levels = 5;          // specular levels (roughness k/(levels-1))
+    int samples = 1024;      // GGX samples per texel
+    int lut_size = 128;
+    int lut_samples = 1024;
+    int irradiance_size = 32;  // face size of the irradiance cube written to disk
+    // Face size of the source mip the irradiance is convolved from. The convolution is
+    // exact for that mip; 8 reproduces the blur of the Khronos Sample Viewer's sampled
+    // irradiance (its filtering reads mip ~4.6 of a 256 cube), 32 or more is sharper.
+    // Irradiance: filtered importance sampling with this many cosine samples (the Khronos
+    // Sample Viewer's method and blur), or 0 for the exact brute-force convolution of the
+    // 32x32 mip (sharper near small bright sources).
+    int irradiance_samples = 2048;
+    float lod_bias = 1.8257f;  // see PrefilterOptions::lod_bias
+    unsigned threads = 0;
+    std::string key() const;  // the parameters as a string (cache key, manifest)
+};
+
+struct BakedIbl {
+    Cubemap specular;
+    Cubemap irradiance_map;  // irradiance / pi, irradiance_size^2 faces (what shading samples)
+    SH9 irradiance;          // the same as SH: evaluate(n) = irradiance(n) / pi
+    ImageF lut;      // lut_size^2: R = A, G = B, B = A + B
+    std::string source;
+    std::string key;
+    double bake_ms = 0;
+    bool from_cache = false;
+};
+
+// Bakes a panorama (equirect, linear).
+BakedIbl bake(const ImageF& panorama, const BakeOptions& options, const Progress& progress = {});
+
+// Only the BRDF table (for punctual-light energy compensation without an environment).
+ImageF bake_lut(const BakeOptions& options);
+
+void save_baked(const BakedIbl& ibl, const std::filesystem::path& dir, const BakeOptions& options, bool previews = true);
+// Loads a folder written by save_baked; throws fresnel::Error naming the file on bad input.
+BakedIbl load_baked(const std::filesystem::path& dir);
+bool is_baked_dir(const std::filesystem::path& dir);
+
+// The BRDF table alone, cached under cache_root() by its parameters.
+ImageF load_or_bake_lut(const BakeOptions& options, bool use_cache = true);
+
+// 64-bit FNV-1a of a byte range (cache keys).
+std::uint64_t content_hash(std::span<const std::uint8_t> bytes, std::uint64_t seed = 1469598103934665603ull);
+
+// The cache folder: $XDG_CACHE_HOME/fresnel (or ~/.cache/fresnel).
+std::filesystem::path cache_root();
+
+// The environment of `source` baked with `options`: a baked folder is loaded as is; a
+// panorama is baked once and cached under cache_root() by content hash and parameters.
+BakedIbl load_or_bake(const EnvironmentSource& source, const BakeOptions& options, const Progress& progress = {},
+                      bool use_cache = true);
+
+}  // namespace fresnel::ibl

@@ -1,0 +1,34 @@
+#pragma once
+// Where image-based light comes from: an equirectangular panorama file (.hdr, .exr),
+// a uniform colour, or the built-in procedural studio.
+#include <filesystem>
+#include <glm/vec3.hpp>
+#include <string>
+
+#include "fresnel/core/image.h"
+
+namespace fresnel::ibl {
+
+struct EnvironmentSource {
+    enum class Kind { File, Uniform, Studio } kind = Kind::Studio;
+    std::filesystem::path path;  // Kind::File
+    glm::vec3 color{1.0f};       // Kind::Uniform, linear
+    // A stable description used in cache keys and manifests ("studio-v1", "color:1,1,1", the path).
+    std::string describe() const;
+};
+
+// Parses the --env argument: "color:R,G,B", "studio", or a file path. Throws fresnel::Error.
+EnvironmentSource parse_environment(const std::string& arg);
+
+// The procedural studio: a dark-grey room with a soft overhead box light, two
+// rectangular side soft boxes (warm key at +X+Z, cool fill at -X), a horizon
+// band and a floor gradient. Values are linear radiance; 2:1 equirectangular.
+ImageF make_studio_panorama(int width = 1024);
+
+// A panorama of one colour.
+ImageF make_uniform_panorama(glm::vec3 color, int width = 64);
+
+// Loads the panorama of a source (files through read_image_float, with limits).
+ImageF load_panorama(const EnvironmentSource& source, const ImageLimits& limits = {});
+
+}  // namespace fresnel::ibl

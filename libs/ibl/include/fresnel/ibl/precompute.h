@@ -1,0 +1,70 @@
+#pragma once
+// Image-based lighting precomputation on the CPU (multithreaded):
+//  - specular: GGX-prefiltered cube map, level k at perceptual roughness k/(levels-1),
+//    level 0 = the mirror image, by importance sampling with filtered importance
+//    sampling (Krivanek & Colbert 2008: each sample reads the source mip whose texel
+//    solid angle matches the sample's share of the lobe);
+//  - diffuse: irradiance as a small cube map by brute-force cosine convolution (what we
+//    shade with), and as 9 spherical-harmonic coefficients (Ramamoorthi & Hanrahan 2001)
+//    for clients that want them;
+//  - the split-sum BRDF table (Karis 2013) for the same GGX / height-correlated Smith
+//    model as direct lighting; R = scale A, G = bias B of F0; A + B is the directional
+//    albedo E used for multiple-scattering compensation (Fdez-Aguera 2019).
+#include <array>
+#include <functional>
+#include <glm/vec3.hpp>
+
+#include "fresnel/core/image.h"
+#include "fresnel/ibl/cubemap.h"
+
+namespace fresnel::ibl {
+
+using Progress = std::function<void(double fraction)>;
+
+struct SH9 {
+    std::array<glm::vec3, 9> c{};
+    glm::vec3 evaluate(glm::vec3 n) const;  // sum c_i Y_i(n)
+};
+
+// SH projection of the radiance of a cube map (level 0), weighted by texel solid angle.
+SH9 project_radiance(const Cubemap& cube);
+// Cosine-convolved and divided by pi: evaluate(n) = irradiance(n) / pi, i.e. the
+// outgoing radiance of a white Lambertian surface with normal n.
+SH9 irradiance_from_radiance(const SH9& radiance);
+
+// Irradiance / pi as a cube map of `size`, by brute-force cosine convolution of the
+// source mip whose faces are `source_size` (every source texel, weighted by its solid
+// angle). Exact up to the source resolution, unlike 9 SH coefficients, whose
+// truncation error reaches several percent on environments with a small bright source.
+Cubemap irradiance_convolution(const Cubemap& source_with_mips, int size = 32, int source_size = 32,
+                               unsigned threads = 0);
+
+// Irradiance / pi as a cube map of `size` by cosine-weighted importance sampling of the
+// source's mip chain with filtered importance sampling (the Khronos Sample Viewer's
+// method: `samples` Hammersley directions, mip from the sample's solid angle + lod_bias).
+// Blurrier than the exact convolution near small bright sources; matches that viewer.
+Cubemap irradiance_filtered(const Cubemap& source_with_mips, int size = 32, int samples = 2048,
+                            float lod_bias = 1.8257f, unsigned threads = 0);
+
+struct PrefilterOptions {
+    int size = 256;        // level 0 face size
+    int levels = 5;        // down to size >> (levels-1)
+    int samples = 1024;    // GGX samples per texel (levels >= 1)
+    unsigned threads = 0;  // 0 = all cores
+    // Added to the filtered-importance-sampling mip level log2(sqrt(sample solid angle /
+    // texel solid angle)). Krivanek & Colbert suggest 1; the default, 0.5 log2(4 pi) = 1.83,
+    // is what the Khronos Sample Viewer's filter effectively uses (its ratio omits 4 pi),
+    // so that the same panorama gives the same blur.
+    float lod_bias = 1.8257f;
+};
+
+// `source` must hold a full mip chain (build_mip_chain) at the output's level-0 size or larger.
+Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& options, const Progress& progress = {});
+
+// Split-sum table, `size` x `size`: x = n.v, y = perceptual roughness (texel centres).
+ImageF compute_brdf_lut(int size = 128, int samples = 1024, unsigned threads = 0);
+
+// The same integrals for one (n.v, roughness), by importance sampling with `samples` samples.
+glm::vec2 integrate_split_sum(float n_dot_v, float roughness, int samples);
+
+}  // namespace fresnel::ibl

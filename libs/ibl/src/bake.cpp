@@ -1,0 +1,232 @@
+#include "fresnel/ibl/bake.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <glm/common.hpp>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "fresnel/core/error.h"
+#include "fresnel/ibl/ktx2.h"
+
+namespace fresnel::ibl {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+constexpr int kFormatVersion = 1;  // bump when the bake's output changes, to invalidate caches
+
+double ms_since(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+// The six faces of one level side by side (+X -X +Y -Y +Z -Z), for previews.
+ImageF face_strip(const CubeLevel& lv) {
+    ImageF img(lv.size * 6, lv.size);
+    for (int f = 0; f < 6; ++f)
+        for (int y = 0; y < lv.size; ++y)
+            for (int x = 0; x < lv.size; ++x) std::copy_n(lv.texel(f, x, y), 4, img.at(f * lv.size + x, y));
+    return img;
+}
+}  // namespace
+
+std::string BakeOptions::key() const {
+    std::ostringstream s;
+    s << "v" << kFormatVersion << "-size" << size << "-levels" << levels << "-samples" << samples << "-lut" << lut_size
+      << "x" << lut_samples << "-irr" << irradiance_size << "s" << irradiance_samples << "-bias" << lod_bias;
+    return s.str();
+}
+
+ImageF bake_lut(const BakeOptions& o) { return compute_brdf_lut(o.lut_size, o.lut_samples, o.threads); }
+
+BakedIbl bake(const ImageF& panorama, const BakeOptions& o, const Progress& progress) {
+    if (o.size < 4 || o.size > 4096 || (o.size & (o.size - 1)) != 0)
+        throw Error("bake", "--size", "face size must be a power of two in [4, 4096]");
+    if (o.levels < 1 || (o.size >> (o.levels - 1)) < 1) throw Error("bake", "--levels", "too many levels for the size");
+    if (o.samples < 1 || o.lut_size < 2 || o.lut_samples < 1) throw Error("bake", "", "sample counts must be positive");
+    auto start = std::chrono::steady_clock::now();
+    BakedIbl out;
+    out.key = o.key();
+    // Source cube at the output size with a full mip chain for filtered importance sampling.
+    Cubemap source = cubemap_from_equirect(panorama, o.size, o.threads);
+    build_mip_chain(source);
+    if (progress) progress(0.05);
+    out.irradiance = irradiance_from_radiance(project_radiance(source));
+    out.irradiance_map = o.irradiance_samples > 0
+                             ? irradiance_filtered(source, o.irradiance_size, o.irradiance_samples, o.lod_bias, o.threads)
+                             : irradiance_convolution(source, o.irradiance_size, 32, o.threads);
+    PrefilterOptions po{o.size, o.levels, o.samples, o.threads, o.lod_bias};
+    out.specular = prefilter_ggx(source, po, [&](double f) {
+        if (progress) progress(0.05 + 0.85 * f);
+    });
+    out.lut = bake_lut(o);
+    if (progress) progress(1.0);
+    out.bake_ms = ms_since(start);
+    return out;
+}
+
+void save_baked(const BakedIbl& ibl, const fs::path& dir, const BakeOptions& o, bool previews) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw Error(dir.string(), "", "cannot create folder: " + ec.message());
+    write_ktx2_cube(dir / "specular.ktx2", ibl.specular);
+    const Cubemap& irr = ibl.irradiance_map;
+    write_ktx2_cube(dir / "irradiance.ktx2", irr);
+    write_ktx2_2d(dir / "brdf_lut.ktx2", ibl.lut);
+    json sh = json::array();
+    for (const auto& c : ibl.irradiance.c) sh.push_back({c.x, c.y, c.z});
+    {
+        std::ofstream f(dir / "irradiance_sh.json");
+        f << json{{"description", "irradiance / pi as real SH, bands 0-2, order (0,0) (1,-1) (1,0) (1,1) (2,-2) (2,-1) (2,0) (2,1) (2,2)"},
+                  {"coefficients", sh}}
+                 .dump(2);
+    }
+    json files = {"specular.ktx2", "irradiance.ktx2", "irradiance_sh.json", "brdf_lut.ktx2"};
+    if (previews) {
+        fs::create_directories(dir / "preview", ec);
+        for (std::size_t l = 0; l < ibl.specular.levels.size(); ++l) {
+            std::string name = "preview/specular_level" + std::to_string(l) + ".exr";
+            write_exr(dir / name, face_strip(ibl.specular.levels[l]));
+            files.push_back(name);
+        }
+        write_exr(dir / "preview/irradiance.exr", face_strip(irr.levels[0]));
+        write_exr(dir / "preview/brdf_lut.exr", ibl.lut);
+        files.push_back("preview/irradiance.exr");
+        files.push_back("preview/brdf_lut.exr");
+    }
+    json manifest = {
+        {"generator", "fresnel 0.1.0"},
+        {"format_version", kFormatVersion},
+        {"source", ibl.source},
+        {"key", ibl.key},
+        {"parameters",
+         {{"size", o.size}, {"levels", o.levels}, {"samples", o.samples}, {"lut_size", o.lut_size},
+          {"lut_samples", o.lut_samples}, {"irradiance_size", o.irradiance_size}, {"irradiance_samples", o.irradiance_samples}, {"lod_bias", o.lod_bias},
+          {"roughness_of_level", "k / (levels - 1)"}, {"lod_of_roughness", "roughness * (levels - 1)"},
+          {"orientation", "+Y top row, +Z centre column (u = 0.5), +X u = 0.25, -X u = 0.75 (Khronos Sample Viewer)"},
+          {"faces", "+X -X +Y -Y +Z -Z (OpenGL order)"}}},
+        {"irradiance_sh", sh},
+        {"bake_ms", ibl.bake_ms},
+        {"files", files},
+    };
+    std::ofstream f(dir / "manifest.json");
+    f << manifest.dump(2);
+    if (!f) throw Error((dir / "manifest.json").string(), "", "cannot write");
+}
+
+bool is_baked_dir(const fs::path& dir) {
+    std::error_code ec;
+    return fs::is_directory(dir, ec) && fs::is_regular_file(dir / "manifest.json", ec);
+}
+
+BakedIbl load_baked(const fs::path& dir) {
+    fs::path mpath = dir / "manifest.json";
+    auto bytes = read_file_bytes(mpath, 16u << 20);
+    json m;
+    try {
+        m = json::parse(bytes.begin(), bytes.end());
+    } catch (const json::exception& e) {
+        throw Error(mpath.string(), "", std::string("invalid manifest: ") + e.what());
+    }
+    BakedIbl ibl;
+    try {
+        if (m.at("format_version").get<int>() != kFormatVersion)
+            throw Error(mpath.string(), "/format_version", "baked with another format version; bake again");
+        ibl.source = m.value("source", "");
+        ibl.key = m.value("key", "");
+        const json& sh = m.at("irradiance_sh");
+        if (!sh.is_array() || sh.size() != 9) throw Error(mpath.string(), "/irradiance_sh", "needs 9 RGB triples");
+        for (std::size_t i = 0; i < 9; ++i)
+            ibl.irradiance.c[i] = {sh[i].at(0).get<float>(), sh[i].at(1).get<float>(), sh[i].at(2).get<float>()};
+    } catch (const json::exception& e) {
+        throw Error(mpath.string(), "", std::string("invalid manifest: ") + e.what());
+    }
+    ibl.specular = read_ktx2_cube(dir / "specular.ktx2");
+    ibl.irradiance_map = read_ktx2_cube(dir / "irradiance.ktx2");
+    ibl.lut = read_ktx2_2d(dir / "brdf_lut.ktx2");
+    ibl.from_cache = true;
+    return ibl;
+}
+
+std::uint64_t content_hash(std::span<const std::uint8_t> bytes, std::uint64_t h) {
+    for (std::uint8_t b : bytes) {
+        h ^= b;
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+fs::path cache_root() {
+    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return fs::path(x) / "fresnel";
+    if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "fresnel";
+    return fs::temp_directory_path() / "fresnel-cache";
+}
+
+ImageF load_or_bake_lut(const BakeOptions& o, bool use_cache) {
+    fs::path file = cache_root() / ("brdf_lut-v" + std::to_string(kFormatVersion) + "-" + std::to_string(o.lut_size) + "x" +
+                                    std::to_string(o.lut_samples) + ".ktx2");
+    std::error_code ec;
+    if (use_cache && fs::is_regular_file(file, ec)) {
+        try {
+            ImageF lut = read_ktx2_2d(file);
+            if (lut.width == o.lut_size && lut.height == o.lut_size) return lut;
+        } catch (const Error&) {
+        }
+    }
+    ImageF lut = bake_lut(o);
+    if (use_cache) {
+        fs::create_directories(file.parent_path(), ec);
+        fs::path tmp = file.string() + ".tmp" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count());
+        try {
+            write_ktx2_2d(tmp, lut);
+            fs::rename(tmp, file, ec);
+        } catch (const Error&) {
+        }
+        fs::remove(tmp, ec);
+    }
+    return lut;
+}
+
+BakedIbl load_or_bake(const EnvironmentSource& source, const BakeOptions& options, const Progress& progress,
+                      bool use_cache) {
+    if (source.kind == EnvironmentSource::Kind::File && is_baked_dir(source.path)) return load_baked(source.path);
+    std::uint64_t h = content_hash({reinterpret_cast<const std::uint8_t*>(options.key().data()), options.key().size()});
+    if (source.kind == EnvironmentSource::Kind::File) {
+        auto bytes = read_file_bytes(source.path, std::size_t(2) << 30);
+        h = content_hash(bytes, h);
+    } else {
+        std::string d = source.describe();
+        h = content_hash({reinterpret_cast<const std::uint8_t*>(d.data()), d.size()}, h);
+    }
+    char name[17];
+    std::snprintf(name, sizeof name, "%016llx", static_cast<unsigned long long>(h));
+    fs::path dir = cache_root() / "env" / name;
+    if (use_cache && is_baked_dir(dir)) {
+        try {
+            return load_baked(dir);
+        } catch (const Error&) {
+            // A damaged cache entry is rebuilt below.
+        }
+    }
+    BakedIbl ibl = bake(load_panorama(source), options, progress);
+    ibl.source = source.describe();
+    if (use_cache) {
+        // Write to a temporary folder and rename, so a concurrent reader never sees half a bake.
+        fs::path tmp = dir.string() + ".tmp" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count());
+        try {
+            save_baked(ibl, tmp, options, false);
+            std::error_code ec;
+            fs::remove_all(dir, ec);
+            fs::rename(tmp, dir, ec);
+            if (ec) fs::remove_all(tmp, ec);
+        } catch (const Error&) {
+            std::error_code ec;
+            fs::remove_all(tmp, ec);  // caching is best effort; the render goes on
+        }
+    }
+    return ibl;
+}
+
+}  // namespace fresnel::ibl

@@ -1,0 +1,353 @@
+#include "fresnel/ibl/precompute.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <glm/geometric.hpp>
+
+#include "fresnel/core/parallel.h"
+#include "fresnel/material/brdf.h"
+#include "fresnel/material/sampling.h"
+
+namespace fresnel::ibl {
+
+namespace {
+constexpr float kPi = 3.14159265358979323846f;
+
+void sh_basis(glm::vec3 n, float y[9]) {
+    y[0] = 0.282095f;
+    y[1] = 0.488603f * n.y;
+    y[2] = 0.488603f * n.z;
+    y[3] = 0.488603f * n.x;
+    y[4] = 1.092548f * n.x * n.y;
+    y[5] = 1.092548f * n.y * n.z;
+    y[6] = 0.315392f * (3.0f * n.z * n.z - 1.0f);
+    y[7] = 1.092548f * n.x * n.z;
+    y[8] = 0.546274f * (n.x * n.x - n.y * n.y);
+}
+}  // namespace
+
+glm::vec3 SH9::evaluate(glm::vec3 n) const {
+    float y[9];
+    sh_basis(n, y);
+    glm::vec3 r(0.0f);
+    for (int i = 0; i < 9; ++i) r += c[std::size_t(i)] * y[i];
+    return r;
+}
+
+SH9 project_radiance(const Cubemap& cube) {
+    const CubeLevel& lv = cube.levels[0];
+    std::array<glm::dvec3, 9> acc{};
+    for (int f = 0; f < 6; ++f)
+        for (int y = 0; y < lv.size; ++y)
+            for (int x = 0; x < lv.size; ++x) {
+                glm::vec3 d = cube_texel_direction(f, x, y, lv.size);
+                double w = cube_texel_solid_angle(x, y, lv.size);
+                const float* t = lv.texel(f, x, y);
+                float b[9];
+                sh_basis(d, b);
+                for (int i = 0; i < 9; ++i) acc[std::size_t(i)] += glm::dvec3(t[0], t[1], t[2]) * (w * b[i]);
+            }
+    SH9 sh;
+    for (int i = 0; i < 9; ++i) sh.c[std::size_t(i)] = glm::vec3(acc[std::size_t(i)]);
+    return sh;
+}
+
+SH9 irradiance_from_radiance(const SH9& radiance) {
+    // Cosine-lobe convolution weights per band (pi, 2pi/3, pi/4), then / pi.
+    const float band[9] = {1.0f, 2.0f / 3.0f, 2.0f / 3.0f, 2.0f / 3.0f, 0.25f, 0.25f, 0.25f, 0.25f, 0.25f};
+    SH9 out;
+    for (int i = 0; i < 9; ++i) out.c[std::size_t(i)] = radiance.c[std::size_t(i)] * band[i];
+    return out;
+}
+
+Cubemap irradiance_convolution(const Cubemap& source, int size, int source_size, unsigned threads) {
+    std::size_t level = 0;
+    while (level + 1 < source.levels.size() && source.levels[level].size > source_size) ++level;
+    const CubeLevel& src = source.levels[level];
+    // Flatten the source: direction * solid angle and radiance, one entry per texel.
+    std::vector<glm::vec4> dirs;  // xyz = direction, w = solid angle
+    std::vector<glm::vec3> radiance;
+    for (int f = 0; f < 6; ++f)
+        for (int y = 0; y < src.size; ++y)
+            for (int x = 0; x < src.size; ++x) {
+                dirs.emplace_back(cube_texel_direction(f, x, y, src.size), cube_texel_solid_angle(x, y, src.size));
+                const float* t = src.texel(f, x, y);
+                radiance.emplace_back(t[0], t[1], t[2]);
+            }
+    Cubemap out = make_cubemap(size, 1);
+    parallel_for(
+        std::size_t(6 * size),
+        [&](std::size_t row) {
+            int f = int(row / std::size_t(size)), y = int(row % std::size_t(size));
+            for (int x = 0; x < size; ++x) {
+                glm::vec3 n = cube_texel_direction(f, x, y, size);
+                float r = 0, g = 0, b = 0;
+                for (std::size_t i = 0; i < dirs.size(); ++i) {
+                    float c = n.x * dirs[i].x + n.y * dirs[i].y + n.z * dirs[i].z;
+                    float w = c > 0.0f ? c * dirs[i].w : 0.0f;
+                    r += radiance[i].x * w;
+                    g += radiance[i].y * w;
+                    b += radiance[i].z * w;
+                }
+                float* t = out.levels[0].texel(f, x, y);
+                t[0] = r / kPi, t[1] = g / kPi, t[2] = b / kPi, t[3] = 1.0f;
+            }
+        },
+        threads);
+    return out;
+}
+
+namespace {
+// The inner loop of the prefilter: one face selection per sample, then bilinear
+// reads at the two mip levels around the sample's lod, weights pre-multiplied.
+struct LevelView {
+    const float* faces[6];
+    int size;
+    float fsize;
+};
+
+inline void accumulate_bilinear(const LevelView& L, int face, float s, float t, float w, float acc[4]) {
+    float fx = s * L.fsize - 0.5f, fy = t * L.fsize - 0.5f;
+    float maxc = L.fsize - 1.0f;
+    fx = fx < 0.0f ? 0.0f : (fx > maxc ? maxc : fx);
+    fy = fy < 0.0f ? 0.0f : (fy > maxc ? maxc : fy);
+    int x0 = int(fx), y0 = int(fy);
+    int x1 = x0 + (x0 < L.size - 1 ? 1 : 0), y1 = y0 + (y0 < L.size - 1 ? 1 : 0);
+    float ax = fx - float(x0), ay = fy - float(y0);
+    const float* f = L.faces[face];
+    const std::size_t n = std::size_t(L.size);
+    const float* p00 = f + (std::size_t(y0) * n + std::size_t(x0)) * 4;
+    const float* p10 = f + (std::size_t(y0) * n + std::size_t(x1)) * 4;
+    const float* p01 = f + (std::size_t(y1) * n + std::size_t(x0)) * 4;
+    const float* p11 = f + (std::size_t(y1) * n + std::size_t(x1)) * 4;
+    float w00 = (1 - ax) * (1 - ay) * w, w10 = ax * (1 - ay) * w, w01 = (1 - ax) * ay * w, w11 = ax * ay * w;
+    for (int c = 0; c < 4; ++c) acc[c] += p00[c] * w00 + p10[c] * w10 + p01[c] * w01 + p11[c] * w11;
+}
+
+inline void face_coords(float x, float y, float z, int& face, float& s, float& t) {
+    float ax = std::fabs(x), ay = std::fabs(y), az = std::fabs(z);
+    float sc, tc, ma;
+    if (ax >= ay && ax >= az) {
+        ma = ax;
+        face = x > 0 ? 0 : 1;
+        sc = x > 0 ? -z : z;
+        tc = -y;
+    } else if (ay >= az) {
+        ma = ay;
+        face = y > 0 ? 2 : 3;
+        sc = x;
+        tc = y > 0 ? z : -z;
+    } else {
+        ma = az;
+        face = z > 0 ? 4 : 5;
+        sc = z > 0 ? x : -x;
+        tc = -y;
+    }
+    float inv = 0.5f / ma;
+    s = sc * inv + 0.5f;
+    t = tc * inv + 0.5f;
+}
+
+struct LobeSample {
+    glm::vec3 dir;  // in the frame where n = v = r = +Z
+    float weight;   // n.l
+    float lod;      // source mip level
+    int level0;     // floor(lod)
+    float w0, w1;   // weight * (1 - frac), weight * frac
+};
+
+std::vector<LobeSample> lobe_samples(float roughness, int count, int source_size, int source_levels, float lod_bias) {
+    std::vector<LobeSample> out;
+    float alpha = roughness * roughness;
+    // Solid angle of one source texel at level 0 (average over the sphere).
+    float texel_solid_angle = 4.0f * kPi / (6.0f * float(source_size) * float(source_size));
+    for (int i = 0; i < count; ++i) {
+        glm::vec3 h = sampling::sample_ggx_half(sampling::hammersley(std::uint32_t(i), std::uint32_t(count)), alpha);
+        glm::vec3 l = 2.0f * h.z * h - glm::vec3(0, 0, 1);  // reflect v = +Z about h
+        if (l.z <= 0.0f) continue;
+        // pdf of l: D(h) h.z / (4 v.h), with v.h = h.z here: D / 4.
+        float pdf = brdf::d_ggx(h.z, alpha) * 0.25f;
+        float sample_solid_angle = 1.0f / (float(count) * std::max(pdf, 1e-8f));
+        float lod = std::clamp(0.5f * std::log2(sample_solid_angle / texel_solid_angle) + lod_bias, 0.0f,
+                               float(source_levels - 1));
+        int level0 = std::min(int(lod), source_levels - 1);
+        float frac = level0 + 1 < source_levels ? lod - float(level0) : 0.0f;
+        out.push_back({l, l.z, lod, level0, l.z * (1.0f - frac), l.z * frac});
+    }
+    return out;
+}
+}  // namespace
+
+Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& o, const Progress& progress) {
+    Cubemap out = make_cubemap(o.size, o.levels);
+    // Level 0: the mirror image, the source resampled to the output size.
+    int skip = 0;
+    while ((source.levels[std::size_t(skip)].size > o.size) && skip + 1 < int(source.levels.size())) ++skip;
+    for (int f = 0; f < 6; ++f) {
+        const CubeLevel& src = source.levels[std::size_t(skip)];
+        if (src.size == o.size) {
+            out.levels[0].faces[std::size_t(f)] = src.faces[std::size_t(f)];
+        } else {
+            for (int y = 0; y < o.size; ++y)
+                for (int x = 0; x < o.size; ++x) {
+                    glm::vec3 c = source.sample(cube_texel_direction(f, x, y, o.size), float(skip));
+                    float* t = out.levels[0].texel(f, x, y);
+                    t[0] = c.x, t[1] = c.y, t[2] = c.z, t[3] = 1.0f;
+                }
+        }
+    }
+    // Work units: rows of every face of every level >= 1, weighted by their cost.
+    struct Row {
+        int level, face, y;
+    };
+    std::vector<Row> rows;
+    std::vector<std::vector<LobeSample>> lobes(std::size_t(o.levels));
+    double total_cost = 0;
+    for (int l = 1; l < o.levels; ++l) {
+        float roughness = float(l) / float(o.levels - 1);
+        lobes[std::size_t(l)] = lobe_samples(roughness, o.samples, source.size(), int(source.levels.size()), o.lod_bias);
+        int size = out.levels[std::size_t(l)].size;
+        for (int f = 0; f < 6; ++f)
+            for (int y = 0; y < size; ++y) rows.push_back({l, f, y});
+        total_cost += double(size) * size * 6 * double(lobes[std::size_t(l)].size());
+    }
+    std::vector<LevelView> views;
+    for (const auto& lv : source.levels) {
+        LevelView v;
+        for (int f = 0; f < 6; ++f) v.faces[f] = lv.faces[std::size_t(f)].data();
+        v.size = lv.size;
+        v.fsize = float(lv.size);
+        views.push_back(v);
+    }
+    std::atomic<double> done_cost{0};
+    parallel_for(
+        rows.size(),
+        [&](std::size_t i) {
+            const Row& row = rows[i];
+            CubeLevel& lv = out.levels[std::size_t(row.level)];
+            const auto& lobe = lobes[std::size_t(row.level)];
+            for (int x = 0; x < lv.size; ++x) {
+                glm::vec3 n = cube_texel_direction(row.face, x, row.y, lv.size);
+                glm::vec3 t, b;
+                sampling::basis(n, t, b);
+                float acc[4] = {0, 0, 0, 0};
+                float wsum = 0.0f;
+                for (const LobeSample& s : lobe) {
+                    float dx = t.x * s.dir.x + b.x * s.dir.y + n.x * s.dir.z;
+                    float dy = t.y * s.dir.x + b.y * s.dir.y + n.y * s.dir.z;
+                    float dz = t.z * s.dir.x + b.z * s.dir.y + n.z * s.dir.z;
+                    int face;
+                    float fs, ft;
+                    face_coords(dx, dy, dz, face, fs, ft);
+                    accumulate_bilinear(views[std::size_t(s.level0)], face, fs, ft, s.w0, acc);
+                    if (s.w1 > 0.0f) accumulate_bilinear(views[std::size_t(s.level0 + 1)], face, fs, ft, s.w1, acc);
+                    wsum += s.weight;
+                }
+                glm::vec3 sum = glm::vec3(acc[0], acc[1], acc[2]) / std::max(wsum, 1e-8f);
+                float* px = lv.texel(row.face, x, row.y);
+                px[0] = sum.x, px[1] = sum.y, px[2] = sum.z, px[3] = 1.0f;
+            }
+            if (progress) {
+                double c = double(lv.size) * double(lobe.size());
+                double now = done_cost.fetch_add(c) + c;
+                progress(now / total_cost);
+            }
+        },
+        o.threads);
+    return out;
+}
+
+Cubemap irradiance_filtered(const Cubemap& source, int size, int samples, float lod_bias, unsigned threads) {
+    std::vector<LobeSample> lobe;
+    float texel_solid_angle = 4.0f * kPi / (6.0f * float(source.size()) * float(source.size()));
+    int levels = int(source.levels.size());
+    for (int i = 0; i < samples; ++i) {
+        glm::vec3 l = sampling::sample_cosine(sampling::hammersley(std::uint32_t(i), std::uint32_t(samples)));
+        if (l.z <= 0.0f) continue;
+        float pdf = l.z / kPi;
+        float lod = std::clamp(0.5f * std::log2(1.0f / (float(samples) * pdf) / texel_solid_angle) + lod_bias, 0.0f,
+                               float(levels - 1));
+        int level0 = std::min(int(lod), levels - 1);
+        float frac = level0 + 1 < levels ? lod - float(level0) : 0.0f;
+        // Cosine-distributed samples: each counts once (the cosine is in the pdf).
+        lobe.push_back({l, 1.0f, lod, level0, 1.0f - frac, frac});
+    }
+    std::vector<LevelView> views;
+    for (const auto& lv : source.levels) {
+        LevelView v;
+        for (int f = 0; f < 6; ++f) v.faces[f] = lv.faces[std::size_t(f)].data();
+        v.size = lv.size;
+        v.fsize = float(lv.size);
+        views.push_back(v);
+    }
+    Cubemap out = make_cubemap(size, 1);
+    parallel_for(
+        std::size_t(6 * size),
+        [&](std::size_t row) {
+            int f = int(row / std::size_t(size)), y = int(row % std::size_t(size));
+            for (int x = 0; x < size; ++x) {
+                glm::vec3 n = cube_texel_direction(f, x, y, size);
+                glm::vec3 t, b;
+                sampling::basis(n, t, b);
+                float acc[4] = {0, 0, 0, 0};
+                for (const LobeSample& s : lobe) {
+                    float dx = t.x * s.dir.x + b.x * s.dir.y + n.x * s.dir.z;
+                    float dy = t.y * s.dir.x + b.y * s.dir.y + n.y * s.dir.z;
+                    float dz = t.z * s.dir.x + b.z * s.dir.y + n.z * s.dir.z;
+                    int face;
+                    float fs, ft;
+                    face_coords(dx, dy, dz, face, fs, ft);
+                    accumulate_bilinear(views[std::size_t(s.level0)], face, fs, ft, s.w0, acc);
+                    if (s.w1 > 0.0f) accumulate_bilinear(views[std::size_t(s.level0 + 1)], face, fs, ft, s.w1, acc);
+                }
+                float inv = lobe.empty() ? 0.0f : 1.0f / float(lobe.size());
+                float* px = out.levels[0].texel(f, x, y);
+                px[0] = acc[0] * inv, px[1] = acc[1] * inv, px[2] = acc[2] * inv, px[3] = 1.0f;
+            }
+        },
+        threads);
+    return out;
+}
+
+glm::vec2 integrate_split_sum(float n_dot_v, float roughness, int samples) {
+    // Visible-normal sampling (Heitz 2018): with h ~ D_v(h) and l = reflect(-v, h),
+    // f cos / pdf = F G2(l, v) / G1(v). G2 is the height-correlated Smith term of
+    // the direct-lighting BRDF: G2 = 4 V n.l n.v.
+    float alpha = roughness * roughness;
+    n_dot_v = std::max(n_dot_v, 1e-4f);
+    glm::vec3 v(std::sqrt(1.0f - n_dot_v * n_dot_v), 0.0f, n_dot_v);
+    float g1 = sampling::smith_g1(v, alpha);
+    double a = 0, b = 0;
+    for (int i = 0; i < samples; ++i) {
+        glm::vec3 h = sampling::sample_ggx_vndf(v, sampling::hammersley(std::uint32_t(i), std::uint32_t(samples)), alpha);
+        float v_dot_h = glm::dot(v, h);
+        glm::vec3 l = 2.0f * v_dot_h * h - v;
+        if (l.z <= 0.0f || v_dot_h <= 0.0f) continue;
+        float g2 = brdf::v_smith_ggx_correlated(l.z, n_dot_v, alpha) * 4.0f * l.z * n_dot_v;
+        float w = g2 / g1;
+        float fc = std::pow(1.0f - v_dot_h, 5.0f);
+        a += (1.0f - fc) * w;
+        b += fc * w;
+    }
+    return {float(a / samples), float(b / samples)};
+}
+
+ImageF compute_brdf_lut(int size, int samples, unsigned threads) {
+    ImageF lut(size, size);
+    parallel_for(
+        std::size_t(size),
+        [&](std::size_t j) {
+            float roughness = (float(j) + 0.5f) / float(size);
+            for (int i = 0; i < size; ++i) {
+                float n_dot_v = (float(i) + 0.5f) / float(size);
+                glm::vec2 ab = integrate_split_sum(n_dot_v, roughness, samples);
+                float* p = lut.at(i, int(j));
+                p[0] = ab.x, p[1] = ab.y, p[2] = ab.x + ab.y, p[3] = 1.0f;
+            }
+        },
+        threads);
+    return lut;
+}
+
+}  // namespace fresnel::ibl

@@ -1,0 +1,47 @@
+// Image-based lighting: the irradiance cube map, the GGX-prefiltered cube map and
+// the split-sum table (libs/ibl bakes all three). Roughness k/(levels-1) lives at
+// level k, so lod = roughness * (levels - 1).
+uniform sampler2D u_brdf_lut;  // R = A, G = B, B = A + B (directional albedo E)
+#ifdef USE_IBL
+uniform samplerCube u_specular_env;
+uniform samplerCube u_irradiance_env;  // irradiance / pi
+uniform float u_env_levels;
+uniform float u_env_intensity;
+uniform mat3 u_env_rotation;   // world -> environment
+#endif
+
+vec3 brdf_lut(float n_dot_v, float roughness) {
+    return texture(u_brdf_lut, clamp(vec2(n_dot_v, roughness), vec2(0.0), vec2(1.0))).rgb;
+}
+
+// Multiple-scattering energy compensation for a lobe with reflectance f0
+// (Fdez-Aguera 2019, as Filament applies it): 1 + f0 (1/E - 1).
+vec3 energy_compensation(vec3 f0, float e) { return 1.0 + f0 * (1.0 / max(e, 1e-4) - 1.0); }
+
+// Fdez-Aguera's single + multiple scattering Fresnel-weighted albedo with the
+// roughness-dependent Fresnel term (what the Khronos Sample Viewer uses).
+vec3 ibl_ggx_fresnel(float n_dot_v, float roughness, vec3 f0) {
+    vec2 ab = brdf_lut(n_dot_v, roughness).rg;
+    vec3 fr = max(vec3(1.0 - roughness), f0) - f0;
+    vec3 k_s = f0 + fr * pow(1.0 - n_dot_v, 5.0);
+    vec3 fss_ess = k_s * ab.x + ab.y;
+    float ems = 1.0 - (ab.x + ab.y);
+    vec3 f_avg = f0 + (1.0 - f0) / 21.0;
+    vec3 fms_ems = ems * fss_ess * f_avg / (1.0 - f_avg * ems);
+    return fss_ess + fms_ems;
+}
+
+#ifdef USE_IBL
+vec3 ibl_irradiance(vec3 n) {
+    return texture(u_irradiance_env, u_env_rotation * n).rgb * u_env_intensity;
+}
+
+vec3 ibl_radiance(vec3 r, float roughness) {
+    return textureLod(u_specular_env, u_env_rotation * r, roughness * (u_env_levels - 1.0)).rgb * u_env_intensity;
+}
+
+// Specular occlusion from ambient occlusion (Lagarde & de Rousiers 2014).
+float specular_occlusion(float n_dot_v, float ao, float roughness) {
+    return clamp(pow(n_dot_v + ao, exp2(-16.0 * roughness - 1.0)) - 1.0 + ao, 0.0, 1.0);
+}
+#endif
