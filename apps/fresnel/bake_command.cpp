@@ -34,7 +34,9 @@ int run_bake(const BakeCommandOptions& o) {
     if (o.json) {
         nlohmann::json j = {{"output", o.output}, {"source", baked.source}, {"key", baked.key},
                             {"panorama", {panorama.width, panorama.height}}, {"load_ms", load_ms},
-                            {"bake_ms", baked.bake_ms}, {"total_ms", total_ms}};
+                            {"bake_ms", baked.bake_ms}, {"total_ms", total_ms},
+                            {"breakdown_ms", {{"cube", baked.cube_ms}, {"specular", baked.specular_ms},
+                                              {"irradiance", baked.irradiance_ms}, {"lut", baked.lut_ms}}}};
         std::printf("%s\n", j.dump().c_str());
     } else {
         std::printf("baked %s (%dx%d) into %s: %.0f ms bake, %.0f ms total\n", baked.source.c_str(), panorama.width,

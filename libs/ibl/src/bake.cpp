@@ -52,16 +52,24 @@ BakedIbl bake(const ImageF& panorama, const BakeOptions& o, const Progress& prog
     // Source cube at the output size with a full mip chain for filtered importance sampling.
     Cubemap source = cubemap_from_equirect(panorama, o.size, o.threads);
     build_mip_chain(source);
+    out.cube_ms = ms_since(start);
     if (progress) progress(0.05);
+    auto t = std::chrono::steady_clock::now();
     out.irradiance = irradiance_from_radiance(project_radiance(source));
     out.irradiance_map = o.irradiance_samples > 0
                              ? irradiance_filtered(source, o.irradiance_size, o.irradiance_samples, o.lod_bias, o.threads)
                              : irradiance_convolution(source, o.irradiance_size, 32, o.threads);
+    out.irradiance_ms = ms_since(t);
+    t = std::chrono::steady_clock::now();
     PrefilterOptions po{o.size, o.levels, o.samples, o.threads, o.lod_bias};
     out.specular = prefilter_ggx(source, po, [&](double f) {
         if (progress) progress(0.05 + 0.85 * f);
     });
-    out.lut = bake_lut(o);
+    out.specular_ms = ms_since(t);
+    t = std::chrono::steady_clock::now();
+    // The table does not depend on the environment: it comes from the cache when present.
+    out.lut = o.use_lut_cache ? load_or_bake_lut(o) : bake_lut(o);
+    out.lut_ms = ms_since(t);
     if (progress) progress(1.0);
     out.bake_ms = ms_since(start);
     return out;
@@ -109,6 +117,7 @@ void save_baked(const BakedIbl& ibl, const fs::path& dir, const BakeOptions& o, 
           {"faces", "+X -X +Y -Y +Z -Z (OpenGL order)"}}},
         {"irradiance_sh", sh},
         {"bake_ms", ibl.bake_ms},
+        {"bake_breakdown_ms", {{"cube", ibl.cube_ms}, {"specular", ibl.specular_ms}, {"irradiance", ibl.irradiance_ms}, {"lut", ibl.lut_ms}}},
         {"files", files},
     };
     std::ofstream f(dir / "manifest.json");

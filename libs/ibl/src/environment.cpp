@@ -19,7 +19,7 @@ std::string EnvironmentSource::describe() const {
             s << "color:" << color.x << "," << color.y << "," << color.z;
             return s.str();
         }
-        case Kind::Studio: return "studio-v1";
+        case Kind::Studio: return "studio-v2";
     }
     return "?";
 }
@@ -69,18 +69,18 @@ ImageF make_studio_panorama(int width) {
             float el = std::asin(std::clamp(d.y, -1.0f, 1.0f));
             float az = std::atan2(d.x, d.z);  // 0 = +Z, pi/2 = +X
             // Room: dark walls, a slightly brighter ceiling, a floor gradient to the horizon.
-            glm::vec3 c = d.y >= 0 ? glm::mix(glm::vec3(0.16f, 0.165f, 0.17f), glm::vec3(0.28f), d.y)
-                                   : glm::mix(glm::vec3(0.12f, 0.115f, 0.11f), glm::vec3(0.05f), std::min(1.0f, -d.y * 2.0f));
+            glm::vec3 c = d.y >= 0 ? glm::mix(glm::vec3(0.035f, 0.037f, 0.04f), glm::vec3(0.08f), d.y)
+                                   : glm::mix(glm::vec3(0.05f, 0.047f, 0.045f), glm::vec3(0.02f), std::min(1.0f, -d.y * 2.0f));
             // Horizon glow band.
-            c += glm::vec3(0.10f, 0.10f, 0.11f) * std::exp(-(el * el) / 0.01f);
-            // Overhead soft box (large, white).
-            c += glm::vec3(9.0f) * glm::smoothstep(0.86f, 0.93f, d.y);
+            c += glm::vec3(0.05f, 0.05f, 0.055f) * std::exp(-(el * el) / 0.01f);
+            // Overhead soft box (round, white).
+            c += glm::vec3(6.0f) * glm::smoothstep(0.955f, 0.975f, d.y);
             // Warm key soft box at azimuth 45 degrees (+X+Z), elevation 25.
-            c += glm::vec3(14.0f, 12.5f, 10.5f) * soft_box(az, el, 0.785f, 0.44f, 0.22f, 0.28f, 0.05f);
+            c += glm::vec3(12.0f, 10.5f, 9.0f) * soft_box(az, el, 0.785f, 0.44f, 0.2f, 0.26f, 0.04f);
             // Cool fill strip at azimuth -100 degrees (-X), elevation 10.
-            c += glm::vec3(3.0f, 3.6f, 4.5f) * soft_box(az, el, -1.75f, 0.17f, 0.12f, 0.45f, 0.06f);
+            c += glm::vec3(2.2f, 2.6f, 3.2f) * soft_box(az, el, -1.75f, 0.17f, 0.1f, 0.42f, 0.05f);
             // Rim light behind (-Z), narrow and bright.
-            c += glm::vec3(8.0f) * soft_box(az, el, 3.14159f, 0.35f, 0.06f, 0.35f, 0.03f);
+            c += glm::vec3(6.0f) * soft_box(az, el, 3.14159f, 0.35f, 0.05f, 0.32f, 0.03f);
             float* p = img.at(x, y);
             p[0] = c.x, p[1] = c.y, p[2] = c.z, p[3] = 1.0f;
         }

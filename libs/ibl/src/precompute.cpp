@@ -173,6 +173,10 @@ std::vector<LobeSample> lobe_samples(float roughness, int count, int source_size
                                float(source_levels - 1));
         int level0 = std::min(int(lod), source_levels - 1);
         float frac = level0 + 1 < source_levels ? lod - float(level0) : 0.0f;
+        // Blend two mips only where the lod is really between them: near a level, read
+        // that level alone (saves about half of the reads; the lod is a heuristic anyway).
+        if (frac < 0.2f) frac = 0.0f;
+        if (frac > 0.8f) level0 += 1, frac = 0.0f;
         out.push_back({l, l.z, lod, level0, l.z * (1.0f - frac), l.z * frac});
     }
     return out;

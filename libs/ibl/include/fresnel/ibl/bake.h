@@ -26,7 +26,7 @@ struct BakeOptions {
     int samples = 1024;      // GGX samples per texel
     int lut_size = 128;
     int lut_samples = 1024;
-    int irradiance_size = 32;  // face size of the irradiance cube written to disk
+    int irradiance_size = 16;  // face size of the irradiance cube (irradiance is smooth; sampled bilinearly)
     // Face size of the source mip the irradiance is convolved from. The convolution is
     // exact for that mip; 8 reproduces the blur of the Khronos Sample Viewer's sampled
     // irradiance (its filtering reads mip ~4.6 of a 256 cube), 32 or more is sharper.
@@ -36,6 +36,7 @@ struct BakeOptions {
     int irradiance_samples = 2048;
     float lod_bias = 1.8257f;  // see PrefilterOptions::lod_bias
     unsigned threads = 0;
+    bool use_lut_cache = true;  // take the BRDF table from cache_root() when it is there
     std::string key() const;  // the parameters as a string (cache key, manifest)
 };
 
@@ -47,6 +48,8 @@ struct BakedIbl {
     std::string source;
     std::string key;
     double bake_ms = 0;
+    // Where the bake's time went: cube conversion + mips, specular prefilter, irradiance, LUT.
+    double cube_ms = 0, specular_ms = 0, irradiance_ms = 0, lut_ms = 0;
     bool from_cache = false;
 };
 

@@ -1,0 +1,170 @@
+// fresnel-bench: load, upload, frame and IBL bake timings on this machine, with the
+// Khronos Sample Renderer's figures from ../shared/refs/khronos/timings.jsonl for scale.
+// usage: fresnel-bench [--quick] [--json]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "fresnel/gpu/context.h"
+#include "fresnel/ibl/bake.h"
+#include "fresnel/render/renderer.h"
+#include "fresnel/scene/gltf_loader.h"
+
+using namespace fresnel;
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0 : v[v.size() / 2];
+}
+
+std::string cpu_model() {
+    std::ifstream in("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(in, line))
+        if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+    return "unknown CPU";
+}
+
+double memory_gib() {
+    std::ifstream in("/proc/meminfo");
+    std::string key;
+    double kb = 0;
+    in >> key >> kb;
+    return kb / (1024.0 * 1024.0);
+}
+
+// The Khronos reference renderer's median figure for a model and key, if recorded.
+double khronos_figure(const fs::path& timings, const std::string& model, const std::string& key) {
+    std::ifstream in(timings);
+    std::string line;
+    std::vector<double> values;
+    while (std::getline(in, line)) {
+        try {
+            auto j = nlohmann::json::parse(line);
+            if (j.value("model", "") == model && j.contains(key) && j[key].is_number()) values.push_back(j[key].get<double>());
+        } catch (...) {
+        }
+    }
+    return median(values);
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+    bool quick = false, as_json = false;
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--quick")) quick = true;
+        if (!std::strcmp(argv[i], "--json")) as_json = true;
+    }
+    fs::path shared = FRESNEL_SHARED_DIR;
+    fs::path helmet = shared / "assets/models/DamagedHelmet/DamagedHelmet.glb";
+    fs::path env = shared / "assets/env/studio_small_03_1k.hdr";
+    fs::path timings = shared / "refs/khronos/timings.jsonl";
+    if (!fs::exists(helmet) || !fs::exists(env)) {
+        std::printf("fresnel-bench: %s is absent; nothing to measure\n", shared.string().c_str());
+        return 0;
+    }
+    auto context = gpu::create_headless_context();
+    nlohmann::json out;
+    out["machine"] = {{"cpu", cpu_model()}, {"threads", std::thread::hardware_concurrency()}, {"memory_gib", memory_gib()},
+                      {"gl_renderer", context->renderer()}, {"gl_version", context->version()}};
+    const int runs = quick ? 3 : 7;
+
+    // 1. DamagedHelmet.glb: parse + decode (parallel), upload, frame at 1024^2.
+    std::vector<double> load, upload, frame, first;
+    for (int r = 0; r < runs; ++r) {
+        auto t = Clock::now();
+        Diagnostics d;
+        Scene scene = load_gltf(helmet, d);
+        load.push_back(ms_since(t));
+        t = Clock::now();
+        Renderer renderer(*context);
+        renderer.set_scene(scene);
+        RenderSettings rs;
+        rs.width = rs.height = 1024;
+        auto inst = flatten(scene);
+        CameraSetup cam = orbit_camera(scene_bounds(scene, inst), {}, 1024, 1024);
+        auto lights = default_lights();
+        // First frame includes shader compilation and texture upload (lazy).
+        renderer.render(cam, lights, rs);
+        upload.push_back(ms_since(t));
+        if (r == 0) first.push_back(upload.back());
+        for (int f = 0; f < (quick ? 3 : 10); ++f) {
+            t = Clock::now();
+            renderer.render(cam, lights, rs);  // includes the read-back: a full, fenced frame
+            frame.push_back(ms_since(t));
+        }
+    }
+    out["damaged_helmet"] = {{"load_ms_median", median(load)},
+                             {"upload_and_first_frame_ms_median", median(upload)},
+                             {"frame_1024_ms_median", median(frame)},
+                             {"khronos_load_ms", khronos_figure(timings, "DamagedHelmet.glb", "load_ms")},
+                             {"khronos_frame_512_ms", khronos_figure(timings, "DamagedHelmet.glb", "frame_ms_median")}};
+
+    // 2. IBL bake at the defaults (256^2, 5 levels, 1024 samples, irradiance, 128^2 LUT).
+    ImageF pano = read_image_float(env);
+    ibl::BakeOptions bo;
+    std::vector<double> bake;
+    for (int r = 0; r < (quick ? 1 : 3); ++r) {
+        auto t = Clock::now();
+        ibl::BakedIbl b = ibl::bake(pano, bo);
+        bake.push_back(ms_since(t));
+    }
+    // Warm cache: load the baked environment and draw a first frame with it.
+    fs::path cache = fs::temp_directory_path() / "fresnel-bench-cache";
+    setenv("XDG_CACHE_HOME", cache.c_str(), 1);
+    ibl::EnvironmentSource src = ibl::parse_environment(env.string());
+    ibl::load_or_bake(src, bo);  // fill the cache
+    Diagnostics d;
+    Scene scene = load_gltf(helmet, d);
+    auto t = Clock::now();
+    ibl::BakedIbl warm = ibl::load_or_bake(src, bo);
+    double cache_ms = ms_since(t);
+    Renderer renderer(*context);
+    renderer.set_scene(scene);
+    RenderSettings rs;
+    rs.width = rs.height = 512;
+    rs.environment = &warm;
+    auto inst = flatten(scene);
+    renderer.render(orbit_camera(scene_bounds(scene, inst), {}, 512, 512), {}, rs);
+    double first_frame_ms = ms_since(t);
+    fs::remove_all(cache);
+    double khronos_env = khronos_figure(timings, "DamagedHelmet.glb", "env_ms");
+    out["ibl"] = {{"bake_ms_median", median(bake)},
+                  {"warm_cache_load_ms", cache_ms},
+                  {"warm_cache_to_first_frame_512_ms", first_frame_ms},
+                  {"khronos_env_ms", khronos_env},
+                  {"speedup_vs_khronos", khronos_env > 0 ? khronos_env / median(bake) : 0.0}};
+
+    if (as_json) {
+        std::printf("%s\n", out.dump(2).c_str());
+        return 0;
+    }
+    const auto& m = out["machine"];
+    std::printf("machine: %s, %d threads, %.1f GiB; GL: %s\n", m["cpu"].get<std::string>().c_str(), m["threads"].get<int>(),
+                m["memory_gib"].get<double>(), m["gl_renderer"].get<std::string>().c_str());
+    const auto& h = out["damaged_helmet"];
+    std::printf("DamagedHelmet.glb load (parse + decode 5 images): %.1f ms median  [Khronos Sample Renderer: %.1f ms]\n",
+                h["load_ms_median"].get<double>(), h["khronos_load_ms"].get<double>());
+    std::printf("  upload + first frame 1024^2:  %.1f ms median\n", h["upload_and_first_frame_ms_median"].get<double>());
+    std::printf("  frame 1024^2, 4x MSAA:        %.1f ms median  [Khronos, 512^2 on SwiftShader: %.1f ms]\n",
+                h["frame_1024_ms_median"].get<double>(), h["khronos_frame_512_ms"].get<double>());
+    const auto& i = out["ibl"];
+    std::printf("IBL bake studio_small_03_1k.hdr at defaults: %.0f ms median  [Khronos: %.0f ms, %.0fx slower]\n",
+                i["bake_ms_median"].get<double>(), i["khronos_env_ms"].get<double>(), i["speedup_vs_khronos"].get<double>());
+    std::printf("  warm cache: %.1f ms to load, %.1f ms to a first 512^2 frame\n", i["warm_cache_load_ms"].get<double>(),
+                i["warm_cache_to_first_frame_512_ms"].get<double>());
+    return 0;
+}
