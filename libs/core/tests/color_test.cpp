@@ -106,7 +106,6 @@ D3 ref_agx(D3 c) {
 }
 
 glm::vec3 to_vec(const D3& d) { return glm::vec3(float(d[0]), float(d[1]), float(d[2])); }
-D3 to_d3(glm::vec3 v) { return {v.x, v.y, v.z}; }
 
 // Inputs the tone mappers are compared on: greys at the required points and a few colours.
 std::vector<D3> tone_inputs() {
@@ -279,19 +278,43 @@ TEST(ToneMap, DispatchMatchesNamedFunctions) {
     EXPECT_EQ(tone_map(ToneMapper::None, glm::vec3(5.0f, 0.0f, 123.0f)), glm::vec3(5.0f, 0.0f, 123.0f));
 }
 
-TEST(ToneMap, GreyRampIsMonotonic) {
+// Allowed decrease in the monotonicity tests. The published curves are monotonic up to tiny
+// cross-channel effects, checked against the double references above:
+//  - AgX: once one channel reaches max_ev (saturation) the others still rise, and the inverse
+//    matrix's negative off-diagonal terms pull the saturated channel down by up to ~3e-5;
+//  - Khronos Neutral: raising the smallest channel raises the common offset, which can lower that
+//    same channel by ~1.5e-5 when another channel is being compressed.
+// Real mistakes (a wrong sign, a swapped coefficient) give decreases orders of magnitude larger.
+static float monotonic_slack(ToneMapper t) {
+    return t == ToneMapper::Agx ? 5e-5f : t == ToneMapper::Neutral ? 3e-5f : 2e-6f;
+}
+
+TEST(ToneMap, ExposureRampsAreMonotonicPerChannel) {
+    // Raising the exposure of a colour never lowers any output channel.
+    const glm::vec3 colours[] = {glm::vec3(1.0f),          glm::vec3(1.0f, 0.5f, 0.1f), glm::vec3(0.05f, 0.3f, 1.0f),
+                                 glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(0.2f, 1.0f, 0.7f),
+                                 glm::vec3(1.0f, 0.9f, 0.0f)};
+    for (ToneMapper t : kDisplayMappers)
+        for (const glm::vec3& colour : colours) {
+            glm::vec3 prev = tone_map(t, glm::vec3(0.0f));
+            for (int i = 1; i <= 3000; ++i) {
+                float k = 1000.0f * std::pow(float(i) / 3000.0f, 3.0f);  // 0 .. 1000, denser near 0
+                glm::vec3 cur = tone_map(t, colour * k);
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_GE(cur[c], prev[c] - monotonic_slack(t))
+                        << tone_mapper_name(t) << " colour " << colour.x << "," << colour.y << "," << colour.z
+                        << " exposure " << k << " channel " << c;
+                prev = cur;
+            }
+        }
+    // Greys actually rise over the range (not a constant), strictly for these steps.
     for (ToneMapper t : kDisplayMappers) {
-        glm::vec3 prev = tone_map(t, glm::vec3(0.0f));
-        for (int i = 1; i <= 4000; ++i) {
-            // 0 .. 1000, denser near 0.
-            float x = 1000.0f * std::pow(float(i) / 4000.0f, 3.0f);
-            glm::vec3 cur = tone_map(t, glm::vec3(x));
-            for (int c = 0; c < 3; ++c)
-                ASSERT_GE(cur[c], prev[c] - 1e-6f) << tone_mapper_name(t) << " x = " << x << " channel " << c;
+        float prev = -1.0f;
+        for (float x : {0.0f, 0.01f, 0.18f, 1.0f, 10.0f}) {
+            float cur = tone_map(t, glm::vec3(x)).x;
+            EXPECT_GT(cur, prev) << tone_mapper_name(t) << " x = " << x;
             prev = cur;
         }
-        // And it actually rises over the range (not a constant).
-        EXPECT_GT(tone_map(t, glm::vec3(10.0f)).x, tone_map(t, glm::vec3(0.1f)).x) << tone_mapper_name(t);
     }
 }
 
@@ -307,8 +330,8 @@ TEST(ToneMap, EachChannelMonotonicInItsInput) {
                 for (int i = 1; i <= 2000; ++i) {
                     in[ch] = 200.0f * std::pow(float(i) / 2000.0f, 3.0f);
                     float cur = tone_map(t, in)[ch];
-                    ASSERT_GE(cur, prev - 1e-6f) << tone_mapper_name(t) << " channel " << ch << " others " << o
-                                                 << " value " << in[ch];
+                    ASSERT_GE(cur, prev - monotonic_slack(t))
+                        << tone_mapper_name(t) << " channel " << ch << " others " << o << " value " << in[ch];
                     prev = cur;
                 }
             }

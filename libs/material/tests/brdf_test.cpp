@@ -2,14 +2,13 @@
 // bsdfs_test: positivity, reciprocity, energy bounds, normalisation of D, and the
 // white furnace. Integrals are checked both through the library's directional_albedo
 // and through an independent quadrature written here (cosine grid for the smooth
-// diffuse lobe, GGX importance grid in half-vector space for the specular lobe).
+// diffuse lobe, a grid over GGX visible-normal sampling for the specular lobe).
 #include "fresnel/material/brdf.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -45,12 +44,18 @@ struct Albedo {
     double total() const { return diffuse + specular; }
 };
 
-// Independent estimate of the directional albedo (red channel) for view cosine n_dot_v.
-Albedo reference_albedo(const Surface& s, double n_dot_v, int n = 384) {
+// Independent estimate of the directional albedo (red channel) for view cosine n_dot_v, in double
+// precision around the library's (float) BRDF:
+//  - diffuse: smooth in l, a midpoint grid in (cos theta, phi);
+//  - specular: a midpoint grid over Heitz's (2018) GGX visible-normal sampling, written here from the
+//    paper: h ~ D_v(h) = G1(v) max(0, v.h) D(h) / (n.v), l = reflect(-v, h), pdf(l) = D_v(h) / (4 v.h),
+//    each point contributing f cos / pdf (= F G2 / G1 for the specular lobe, smooth and bounded).
+//    The radial coordinate u1 = 1 - (1 - w)^3 resolves the tail u1 -> 1 (steep microfacets whose
+//    reflection leaves the hemisphere), which a uniform grid only catches by luck.
+Albedo reference_albedo(const Surface& s, double n_dot_v, int n = 256) {
     const glm::vec3 nrm(0, 0, 1);
     const glm::vec3 v = direction(n_dot_v, 0.0);
     Albedo a;
-    // Diffuse: smooth in l, so a midpoint grid in (cos theta, phi) (uniform in projected solid angle / cos).
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
             double ct = (i + 0.5) / n;
@@ -58,25 +63,33 @@ Albedo reference_albedo(const Surface& s, double n_dot_v, int n = 384) {
             Terms t = evaluate_terms(s, nrm, v, l);
             a.diffuse += double(t.diffuse.x) * ct * (1.0 / n) * (2.0 * kPiD / n);
         }
-    // Specular: h distributed as D(h)(n.h) (the GGX inverse CDF), l = reflect(-v, h);
-    // pdf(l) = D(h)(n.h) / (4 v.h), so each sample contributes f cos / pdf.
     const double alpha = std::max(1e-4, double(s.perceptual_roughness) * double(s.perceptual_roughness));
+    const double a2 = alpha * alpha;
     const glm::dvec3 vd(v);
+    const glm::dvec3 vh = glm::normalize(glm::dvec3(alpha * vd.x, alpha * vd.y, vd.z));  // hemisphere config
+    const double lensq = vh.x * vh.x + vh.y * vh.y;
+    const glm::dvec3 t1 = lensq > 0 ? glm::dvec3(-vh.y, vh.x, 0.0) / std::sqrt(lensq) : glm::dvec3(1, 0, 0);
+    const glm::dvec3 t2 = glm::cross(vh, t1);
+    const double g1 = 2.0 * vd.z / (vd.z + std::sqrt(a2 + (1.0 - a2) * vd.z * vd.z));
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
-            double u = (i + 0.5) / n, phi = 2.0 * kPiD * (j + 0.5) / n;
-            double tan2 = alpha * alpha * u / (1.0 - u);
-            double ct = 1.0 / std::sqrt(1.0 + tan2), st = std::sqrt(std::max(0.0, 1.0 - ct * ct));
-            glm::dvec3 h(st * std::cos(phi), st * std::sin(phi), ct);
-            double vh = glm::dot(vd, h);
-            if (vh <= 0) continue;
-            glm::dvec3 l = 2.0 * vh * h - vd;
+            double w = (i + 0.5) / n;
+            double u1 = 1.0 - (1.0 - w) * (1.0 - w) * (1.0 - w), du1 = 3.0 * (1.0 - w) * (1.0 - w);
+            double r = std::sqrt(u1), phi = 2.0 * kPiD * (j + 0.5) / n;
+            double p1 = r * std::cos(phi), p2 = r * std::sin(phi);
+            double sh = 0.5 * (1.0 + vh.z);
+            p2 = (1.0 - sh) * std::sqrt(std::max(0.0, 1.0 - p1 * p1)) + sh * p2;
+            glm::dvec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
+            glm::dvec3 h = glm::normalize(glm::dvec3(alpha * nh.x, alpha * nh.y, std::max(0.0, nh.z)));
+            double v_dot_h = glm::dot(vd, h);
+            if (v_dot_h <= 0) continue;
+            glm::dvec3 l = 2.0 * v_dot_h * h - vd;
             if (l.z <= 0) continue;
-            Terms t = evaluate_terms(s, nrm, v, glm::vec3(l));
-            double a2 = alpha * alpha, f = ct * ct * (a2 - 1.0) + 1.0;
+            double f = h.z * h.z * (a2 - 1.0) + 1.0;
             double d = a2 / (kPiD * f * f);
-            double pdf = d * ct / (4.0 * vh);
-            a.specular += double(t.specular.x) * l.z / pdf / (double(n) * n);
+            double pdf = g1 * v_dot_h * d / vd.z / (4.0 * v_dot_h);
+            Terms t = evaluate_terms(s, nrm, v, glm::vec3(l));
+            a.specular += du1 * double(t.specular.x) * l.z / pdf / (double(n) * n);
         }
     return a;
 }
@@ -286,58 +299,52 @@ TEST(Brdf, EnergyBoundIndependentIntegral) {
         }
 }
 
-TEST(Brdf, DirectionalAlbedoEnergyBound) {
-    // directional_albedo <= 1 + 1e-3 for a white base colour, metallic 0 and 1.
-    std::ostringstream violations;
-    int count = 0;
-    for (float m : {0.0f, 1.0f})
-        for (float r : kRoughness)
-            for (float nv : kNdotV) {
-                double e = directional_albedo(white(m, r), nv).x;
-                if (e > 1.0 + 1e-3) {
-                    double ref = reference_albedo(white(m, r), nv).total();
-                    violations << "\n  metallic " << m << " roughness " << r << " n.v " << nv << ": " << e
-                               << " (independent integral " << ref << ")";
-                    ++count;
-                }
+TEST(Brdf, DirectionalAlbedoEnergyBoundMetal) {
+    // directional_albedo <= 1 + 1e-3 for a white metal at every roughness and view angle. At
+    // roughness 0.05 the float evaluation of D near its peak (n.h quantised to float) adds ~0.4%
+    // (the independent double-precision integral of the same float BRDF agrees), hence 5e-3 there.
+    for (float r : kRoughness)
+        for (float nv : kNdotV) {
+            double e = directional_albedo(white(1.0f, r), nv).x;
+            EXPECT_LE(e, 1.0 + (r < 0.1f ? 5e-3 : 1e-3)) << "roughness " << r << " n.v " << nv;
+            EXPECT_GT(e, 0.3) << "roughness " << r << " n.v " << nv;  // the minimum is 1 - ln 2 (rough, normal view)
+        }
+}
+
+TEST(Brdf, DirectionalAlbedoEnergyBoundDielectric) {
+    // directional_albedo <= 1 + 1e-3 for a white dielectric holds at near-normal view only: Appendix B's
+    // fresnel_mix gains energy at grazing view (see DielectricFresnelMixGainsEnergyAtGrazingView, which
+    // confirms it with the independent integral). The full (roughness x n.v) grid is checked and the
+    // cases above the bound are required to be exactly those where the independent integral is too.
+    for (float r : kRoughness)
+        for (float nv : kNdotV) {
+            double e = directional_albedo(white(0.0f, r), nv).x;
+            if (nv >= 0.8f) {
+                EXPECT_LE(e, 1.0 + 1e-3) << "roughness " << r << " n.v " << nv;
+            } else if (e > 1.0 + 1e-3) {
+                double ref = reference_albedo(white(0.0f, r), nv).total();
+                EXPECT_GT(ref, 1.0) << "directional_albedo " << e << " above 1 where the model is not: roughness " << r
+                                    << " n.v " << nv;
             }
-    if (count)
-        GTEST_SKIP() << "known bug (" << count << " cases): white-base directional albedo above 1 + 1e-3. Where "
-                     << "the independent integral is <= 1 the cause is directional_albedo's quadrature; where it "
-                     << "is also > 1 (dielectrics at grazing view) it is the Appendix B fresnel_mix model itself:"
-                     << violations.str();
+        }
 }
 
 TEST(Brdf, DirectionalAlbedoMatchesIndependentIntegral) {
-    // Where the library quadrature resolves the lobe (roughness >= 0.5) it must agree closely.
+    // The library quadrature (used by the IBL precomputation) agrees with the independent one at every
+    // roughness, including narrow lobes at grazing view.
     for (float m : {0.0f, 1.0f})
-        for (float r : {0.5f, 0.7f, 1.0f})
+        for (float r : kRoughness)
             for (float nv : kNdotV) {
                 double lib = directional_albedo(white(m, r), nv).x;
                 double ref = reference_albedo(white(m, r), nv).total();
-                EXPECT_NEAR(lib, ref, 5e-3) << "metallic " << m << " roughness " << r << " n.v " << nv;
+                EXPECT_NEAR(lib, ref, 3e-3) << "metallic " << m << " roughness " << r << " n.v " << nv;
             }
-}
-
-TEST(Brdf, DirectionalAlbedoAccurateAtLowRoughness) {
-    // The IBL precomputation uses directional_albedo at every roughness; it must be accurate
-    // for glossy lobes too (1% absolute).
-    std::ostringstream errors;
-    int count = 0;
-    for (float m : {0.0f, 1.0f})
-        for (float r : {0.05f, 0.1f, 0.2f, 0.3f})
-            for (float nv : kNdotV) {
-                double lib = directional_albedo(white(m, r), nv).x;
-                double ref = reference_albedo(white(m, r), nv).total();
-                if (std::fabs(lib - ref) > 0.01) {
-                    errors << "\n  metallic " << m << " roughness " << r << " n.v " << nv << ": directional_albedo "
-                           << lib << " vs independent integral " << ref;
-                    ++count;
-                }
-            }
-    if (count)
-        GTEST_SKIP() << "known bug (" << count << " cases): directional_albedo's (cos theta = 1 - u^2, phi) grid "
-                     << "does not resolve narrow specular lobes away from the normal:" << errors.str();
+    // Coloured base: per channel, and linear in the base colour for a metal at normal view.
+    Surface s = white(1.0f, 0.5f);
+    s.base_color = glm::vec3(1.0f, 0.5f, 0.25f);
+    glm::vec3 c = directional_albedo(s, 1.0f);
+    EXPECT_GT(c.x, c.y);
+    EXPECT_GT(c.y, c.z);
 }
 
 TEST(Brdf, WhiteFurnaceShowsSingleScatteringEnergyLoss) {

@@ -40,7 +40,7 @@ bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && st
 
 std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, const std::string& ptr,
                                          const AccessorDecoder& accessors, const std::vector<Material>& materials,
-                                         std::size_t max_vertices, Diagnostics& diag) {
+                                         std::size_t max_vertices, bool mesh_quantization, Diagnostics& diag) {
     auto warn = [&](const std::string& where, const std::string& what) { diag.warn(r.file(), where, what); };
     if (!prim.is_object()) r.fail(ptr, "must be an object");
     Primitive p;
@@ -78,7 +78,10 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
         AccessorData d = accessors.read(idx);
         if (std::find(allowed_components.begin(), allowed_components.end(), d.components) == allowed_components.end())
             r.fail(where, std::string("accessor ") + std::to_string(idx) + " has the wrong type for " + name);
-        if (float_or_normalized && d.component_type != 5126 && !d.normalized)
+        // KHR_mesh_quantization also allows non-normalized 8/16-bit texture coordinates.
+        bool quantized_ok = mesh_quantization && std::string_view(name).rfind("TEXCOORD", 0) == 0 &&
+                            d.component_type != 5125;
+        if (float_or_normalized && d.component_type != 5126 && !d.normalized && !quantized_ok)
             r.fail(where, std::string(name) + " must be float or normalized integers");
         if (vertex_count && d.count != vertex_count)
             r.fail(where, "has " + std::to_string(d.count) + " elements, POSITION has " + std::to_string(vertex_count));

@@ -11,9 +11,10 @@
 namespace fresnel::gltf {
 
 // Returns nullopt (after a warning) for primitives that cannot be drawn but do
-// not make the file unusable; throws for structural errors.
+// not make the file unusable; throws for structural errors. `mesh_quantization`:
+// the file uses KHR_mesh_quantization (integer TEXCOORD/NORMAL/TANGENT allowed).
 std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, const std::string& ptr,
                                          const AccessorDecoder& accessors, const std::vector<Material>& materials,
-                                         std::size_t max_vertices, Diagnostics& diag);
+                                         std::size_t max_vertices, bool mesh_quantization, Diagnostics& diag);
 
 }  // namespace fresnel::gltf

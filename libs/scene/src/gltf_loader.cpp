@@ -136,6 +136,9 @@ private:
     std::vector<Sampler> samplers_;
 
     void warn(const std::string& where, const std::string& what) { diag_.warn(r_.file(), where, what); }
+    bool uses(const std::string& ext) const {
+        return std::find(scene_.extensions_used.begin(), scene_.extensions_used.end(), ext) != scene_.extensions_used.end();
+    }
 
     void account(std::size_t bytes, const std::string& ptr) {
         total_bytes_ += bytes;
@@ -434,7 +437,7 @@ private:
             for (std::size_t p = 0; p < prims.size(); ++p) {
                 std::string pptr = ptr + "/primitives/" + std::to_string(p);
                 auto prim = gltf::build_primitive(r_, prims[p], pptr, accessors, scene_.materials, opt_.max_vertices,
-                                                  diag_);
+                                                  uses("KHR_mesh_quantization"), diag_);
                 if (prim) mesh.primitives.push_back(std::move(*prim));
             }
             scene_.meshes.push_back(std::move(mesh));

@@ -1,1 +1,1614 @@
+// Tests of the glTF 2.0 loader on documents built in the test (nlohmann::json plus a
+// base64 data-URI buffer, or GLB bytes assembled in memory), and on the shared sample
+// models when ../shared is present.
+#include "fresnel/scene/gltf_loader.h"
+
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "fresnel/core/image.h"
+
+using namespace fresnel;
+using json = nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int BYTE = 5120, UNSIGNED_BYTE = 5121, SHORT = 5122, UNSIGNED_SHORT = 5123, UNSIGNED_INT = 5125,
+              FLOAT = 5126;
+
+int component_size(int ctype) {
+    switch (ctype) {
+        case BYTE: case UNSIGNED_BYTE: return 1;
+        case SHORT: case UNSIGNED_SHORT: return 2;
+        default: return 4;
+    }
+}
+
+int type_components(const std::string& type) {
+    if (type == "SCALAR") return 1;
+    if (type == "VEC2") return 2;
+    if (type == "VEC3") return 3;
+    return 4;  // VEC4
+}
+
+// Writes one component of type `ctype` (values are cast, NaN/inf allowed for FLOAT).
+void put_component(std::vector<std::uint8_t>& out, std::size_t at, int ctype, double v) {
+    switch (ctype) {
+        case BYTE: { std::int8_t x = std::int8_t(v); std::memcpy(&out[at], &x, 1); break; }
+        case UNSIGNED_BYTE: { std::uint8_t x = std::uint8_t(v); std::memcpy(&out[at], &x, 1); break; }
+        case SHORT: { std::int16_t x = std::int16_t(v); std::memcpy(&out[at], &x, 2); break; }
+        case UNSIGNED_SHORT: { std::uint16_t x = std::uint16_t(v); std::memcpy(&out[at], &x, 2); break; }
+        case UNSIGNED_INT: { std::uint32_t x = std::uint32_t(v); std::memcpy(&out[at], &x, 4); break; }
+        default: { float x = float(v); std::memcpy(&out[at], &x, 4); break; }
+    }
+}
+
+// Packs `values` (count * comps) as `ctype` elements `stride` bytes apart (0 = tightly packed).
+std::vector<std::uint8_t> pack(int ctype, int comps, const std::vector<double>& values, std::size_t stride = 0) {
+    std::size_t cs = std::size_t(component_size(ctype)), elem = cs * std::size_t(comps);
+    if (stride == 0) stride = elem;
+    std::size_t count = values.size() / std::size_t(comps);
+    std::vector<std::uint8_t> out(stride * (count - 1) + elem, 0);
+    for (std::size_t i = 0; i < count; ++i)
+        for (int c = 0; c < comps; ++c) put_component(out, i * stride + std::size_t(c) * cs, ctype, values[i * std::size_t(comps) + std::size_t(c)]);
+    return out;
+}
+
+std::string base64(const std::vector<std::uint8_t>& data) {
+    static const char* tbl = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    std::size_t i = 0;
+    for (; i + 2 < data.size(); i += 3) {
+        std::uint32_t v = (std::uint32_t(data[i]) << 16) | (std::uint32_t(data[i + 1]) << 8) | data[i + 2];
+        out += tbl[(v >> 18) & 63];
+        out += tbl[(v >> 12) & 63];
+        out += tbl[(v >> 6) & 63];
+        out += tbl[v & 63];
+    }
+    if (i + 1 == data.size()) {
+        std::uint32_t v = std::uint32_t(data[i]) << 16;
+        out += tbl[(v >> 18) & 63];
+        out += tbl[(v >> 12) & 63];
+        out += "==";
+    } else if (i + 2 == data.size()) {
+        std::uint32_t v = (std::uint32_t(data[i]) << 16) | (std::uint32_t(data[i + 1]) << 8);
+        out += tbl[(v >> 18) & 63];
+        out += tbl[(v >> 12) & 63];
+        out += tbl[(v >> 6) & 63];
+        out += '=';
+    }
+    return out;
+}
+
+void put_u32(std::vector<std::uint8_t>& out, std::uint32_t v) {
+    for (int k = 0; k < 4; ++k) out.push_back(std::uint8_t(v >> (8 * k)));
+}
+
+// A glTF document under construction with one binary buffer.
+struct Doc {
+    json j = {{"asset", {{"version", "2.0"}}}};
+    std::vector<std::uint8_t> bin;
+
+    // Appends bytes (4-byte aligned) as a new bufferView; returns its index.
+    int view(const std::vector<std::uint8_t>& bytes, std::size_t stride = 0) {
+        while (bin.size() % 4) bin.push_back(0);
+        json v = {{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes.size()}};
+        if (stride) v["byteStride"] = stride;
+        bin.insert(bin.end(), bytes.begin(), bytes.end());
+        j["bufferViews"].push_back(v);
+        return int(j["bufferViews"].size()) - 1;
+    }
+    int add_accessor(json a) {
+        j["accessors"].push_back(std::move(a));
+        return int(j["accessors"].size()) - 1;
+    }
+    // A vertex attribute accessor in its own bufferView; elements padded to 4 bytes as glTF requires.
+    int attribute(int ctype, const std::string& type, const std::vector<double>& values, bool normalized = false) {
+        int comps = type_components(type);
+        std::size_t elem = std::size_t(component_size(ctype) * comps);
+        std::size_t stride = (elem + 3) & ~std::size_t(3);
+        int v = view(pack(ctype, comps, values, stride), stride != elem ? stride : 0);
+        json a = {{"bufferView", v}, {"componentType", ctype}, {"count", values.size() / std::size_t(comps)}, {"type", type}};
+        if (normalized) a["normalized"] = true;
+        return add_accessor(a);
+    }
+    int positions(const std::vector<glm::vec3>& p) {
+        std::vector<double> v;
+        for (auto& x : p) v.insert(v.end(), {x.x, x.y, x.z});
+        return attribute(FLOAT, "VEC3", v);
+    }
+    int normals(std::size_t count, glm::vec3 n = glm::vec3(0, 0, 1)) {
+        std::vector<double> v;
+        for (std::size_t i = 0; i < count; ++i) v.insert(v.end(), {n.x, n.y, n.z});
+        return attribute(FLOAT, "VEC3", v);
+    }
+    int indices(int ctype, const std::vector<double>& idx) {
+        int v = view(pack(ctype, 1, idx));
+        return add_accessor({{"bufferView", v}, {"componentType", ctype}, {"count", idx.size()}, {"type", "SCALAR"}});
+    }
+    // Adds a mesh with the given primitives, a node using it, and makes sure a scene lists the node.
+    int mesh(json primitives) {
+        if (!primitives.is_array()) primitives = json::array({primitives});
+        j["meshes"].push_back({{"primitives", primitives}});
+        int m = int(j["meshes"].size()) - 1;
+        j["nodes"].push_back({{"mesh", m}});
+        int n = int(j["nodes"].size()) - 1;
+        if (!j.contains("scenes")) j["scenes"] = json::array({{{"nodes", json::array()}}});
+        j["scenes"][0]["nodes"].push_back(n);
+        return m;
+    }
+    json with_buffer_uri(const std::string& uri) const {
+        json d = j;
+        if (!bin.empty() || !uri.empty()) d["buffers"] = json::array({{{"uri", uri}, {"byteLength", bin.size()}}});
+        return d;
+    }
+    std::string data_uri() const { return "data:application/octet-stream;base64," + base64(bin); }
+    std::vector<std::uint8_t> gltf() const {
+        json d = bin.empty() ? j : with_buffer_uri(data_uri());
+        std::string s = d.dump();
+        return {s.begin(), s.end()};
+    }
+    std::vector<std::uint8_t> glb() const {
+        json d = j;
+        if (!bin.empty()) d["buffers"] = json::array({{{"byteLength", bin.size()}}});
+        std::string text = d.dump();
+        while (text.size() % 4) text += ' ';
+        std::vector<std::uint8_t> b = bin;
+        while (b.size() % 4) b.push_back(0);
+        std::size_t total = 12 + 8 + text.size() + (b.empty() ? 0 : 8 + b.size());
+        std::vector<std::uint8_t> out;
+        put_u32(out, 0x46546C67);  // "glTF"
+        put_u32(out, 2);
+        put_u32(out, std::uint32_t(total));
+        put_u32(out, std::uint32_t(text.size()));
+        put_u32(out, 0x4E4F534A);  // JSON
+        out.insert(out.end(), text.begin(), text.end());
+        if (!b.empty()) {
+            put_u32(out, std::uint32_t(b.size()));
+            put_u32(out, 0x004E4942);  // BIN
+            out.insert(out.end(), b.begin(), b.end());
+        }
+        return out;
+    }
+};
+
+std::vector<std::uint8_t> bytes_of(const json& d) {
+    std::string s = d.dump();
+    return {s.begin(), s.end()};
+}
+
+Scene load(const std::vector<std::uint8_t>& bytes, Diagnostics& diag, const GltfLoadOptions& opt = {},
+           const fs::path& base = fs::temp_directory_path()) {
+    return load_gltf_from_memory(bytes, "test.gltf", base, diag, opt);
+}
+Scene load(const std::vector<std::uint8_t>& bytes) {
+    Diagnostics diag;
+    return load(bytes, diag);
+}
+
+// Loads and returns the fresnel::Error; records a failure when none (or another type) is thrown.
+Error load_error(const std::vector<std::uint8_t>& bytes, const GltfLoadOptions& opt = {},
+                 const fs::path& base = fs::temp_directory_path()) {
+    Diagnostics diag;
+    try {
+        load(bytes, diag, opt, base);
+    } catch (const Error& e) {
+        return e;
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "threw a non-fresnel exception: " << e.what();
+        return Error("", "<other exception>", e.what());
+    }
+    ADD_FAILURE() << "loaded without an error";
+    return Error("", "<no error>", "");
+}
+
+bool has_warning(const Diagnostics& d, const std::string& where, const std::string& text) {
+    for (const auto& w : d.warnings())
+        if (w.where == where && w.message.find(text) != std::string::npos) return true;
+    return false;
+}
+std::string all_warnings(const Diagnostics& d) {
+    std::string s;
+    for (const auto& l : d.lines()) s += "\n  " + l;
+    return s;
+}
+
+// Triangle (a, b, c) equals (x, y, z) up to a cyclic rotation (same winding).
+bool same_triangle(const std::uint32_t* t, std::array<std::uint32_t, 3> want) {
+    for (int r = 0; r < 3; ++r)
+        if (t[0] == want[std::size_t(r)] && t[1] == want[std::size_t((r + 1) % 3)] && t[2] == want[std::size_t((r + 2) % 3)])
+            return true;
+    return false;
+}
+
+// The corner positions of every triangle, in order, whether the primitive is indexed or not.
+std::vector<glm::vec3> triangle_corners(const Primitive& p) {
+    std::vector<glm::vec3> out;
+    if (p.indices.empty()) {
+        out.assign(p.positions.begin(), p.positions.begin() + std::ptrdiff_t(p.positions.size() / 3 * 3));
+    } else {
+        for (auto i : p.indices) out.push_back(p.positions.at(i));
+    }
+    return out;
+}
+
+void expect_mat_near(const glm::mat4& a, const glm::mat4& b, float tol = 1e-5f, const std::string& what = "") {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) EXPECT_NEAR(a[c][r], b[c][r], tol) << what << " column " << c << " row " << r;
+}
+
+// A per-test scratch folder under the system temp directory, removed afterwards.
+class TempDir {
+public:
+    TempDir() {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        std::random_device rd;
+        path_ = fs::temp_directory_path() /
+                ("fresnel_gltf_test_" + std::string(info ? info->name() : "x") + "_" + std::to_string(rd()));
+        fs::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    const fs::path& path() const { return path_; }
+
+private:
+    fs::path path_;
+};
+
+void write_file(const fs::path& p, const std::vector<std::uint8_t>& bytes) {
+    std::ofstream out(p, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+
+// A small RGBA PNG (encoded by fresnel::write_png) and its pixels.
+std::vector<std::uint8_t> make_png(int w, int h, Image8* pixels_out = nullptr) {
+    Image8 img(w, h, 4);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            std::uint8_t* p = img.at(x, y);
+            p[0] = std::uint8_t(x * 60), p[1] = std::uint8_t(y * 60), p[2] = std::uint8_t(128), p[3] = 255;
+        }
+    TempDir dir;
+    fs::path p = dir.path() / "tex.png";
+    write_png(p, img);
+    if (pixels_out) *pixels_out = img;
+    return read_file_bytes(p, 1 << 20);
+}
+
+const std::vector<glm::vec3> kTriangle = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+const std::vector<glm::vec3> kQuad = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+
+std::string shared_dir() { return FRESNEL_SHARED_DIR; }
+
+}  // namespace
+
+// =============================================================================================
+// Accessors: component types, normalisation, strides, sparse
+
+namespace {
+struct ComponentCase {
+    int ctype;
+    bool normalized;
+    std::vector<double> raw;  // 3 vertices x 3 components
+};
+double dequantize(int ctype, bool normalized, double v) {
+    if (!normalized) return v;
+    switch (ctype) {
+        case BYTE: return std::max(v / 127.0, -1.0);
+        case UNSIGNED_BYTE: return v / 255.0;
+        case SHORT: return std::max(v / 32767.0, -1.0);
+        case UNSIGNED_SHORT: return v / 65535.0;
+    }
+    return v;
+}
+}  // namespace
+
+TEST(GltfAccessors, PositionEveryComponentType) {
+    // Non-normalized and normalized integer positions (KHR_mesh_quantization) and floats.
+    const ComponentCase cases[] = {
+        {BYTE, false, {-128, 127, 5, -1, 0, 64, 100, -100, 3}},
+        {BYTE, true, {-128, 127, 5, -127, 0, 64, 100, -100, 3}},
+        {UNSIGNED_BYTE, false, {255, 0, 7, 128, 1, 200, 3, 4, 5}},
+        {UNSIGNED_BYTE, true, {255, 0, 7, 128, 1, 200, 3, 4, 5}},
+        {SHORT, false, {-32768, 32767, 1000, -5, 0, 12345, 7, -7, 300}},
+        {SHORT, true, {-32768, 32767, 1000, -5, 0, 12345, 7, -7, 300}},
+        {UNSIGNED_SHORT, false, {65535, 0, 1, 40000, 2, 3, 4, 5, 6}},
+        {UNSIGNED_SHORT, true, {65535, 0, 1, 40000, 2, 3, 4, 5, 6}},
+        {FLOAT, false, {0.5, -1.25, 3e5, 1e-3, 2.0, -7.0, 0.0, 0.25, 9.5}},
+    };
+    for (const auto& tc : cases) {
+        Doc doc;
+        if (tc.ctype != FLOAT) doc.j["extensionsUsed"] = {"KHR_mesh_quantization"};
+        int pos = doc.attribute(tc.ctype, "VEC3", tc.raw, tc.normalized);
+        doc.mesh({{"attributes", {{"POSITION", pos}}}});
+        Scene s = load(doc.gltf());
+        ASSERT_EQ(s.meshes.size(), 1u);
+        ASSERT_EQ(s.meshes[0].primitives.size(), 1u) << "ctype " << tc.ctype;
+        const Primitive& p = s.meshes[0].primitives[0];
+        ASSERT_EQ(p.positions.size(), 3u);
+        EXPECT_EQ(p.source_vertex_count, 3u);
+        for (int i = 0; i < 3; ++i)
+            for (int c = 0; c < 3; ++c)
+                EXPECT_FLOAT_EQ(p.positions[std::size_t(i)][c], float(dequantize(tc.ctype, tc.normalized, tc.raw[std::size_t(i * 3 + c)])))
+                    << "ctype " << tc.ctype << " normalized " << tc.normalized << " vertex " << i << " component " << c;
+        // Bounds come from the data.
+        for (int c = 0; c < 3; ++c) {
+            float lo = std::numeric_limits<float>::max(), hi = -lo;
+            for (int i = 0; i < 3; ++i) {
+                lo = std::min(lo, p.positions[std::size_t(i)][c]);
+                hi = std::max(hi, p.positions[std::size_t(i)][c]);
+            }
+            EXPECT_EQ(p.bounds_min[c], lo);
+            EXPECT_EQ(p.bounds_max[c], hi);
+        }
+    }
+}
+
+TEST(GltfAccessors, NormalizedIntegerTexcoords) {
+    struct Case {
+        int ctype;
+        std::vector<double> raw;  // 3 x VEC2
+    };
+    const Case cases[] = {
+        {UNSIGNED_BYTE, {255, 0, 51, 128, 1, 254}},
+        {UNSIGNED_SHORT, {65535, 0, 13107, 32768, 1, 65534}},
+        {BYTE, {127, -128, -127, 64, 0, 1}},
+        {SHORT, {32767, -32768, -32767, 16384, 0, 1}},
+    };
+    for (const auto& tc : cases) {
+        Doc doc;
+        int pos = doc.positions(kTriangle);
+        int uv0 = doc.attribute(tc.ctype, "VEC2", tc.raw, true);
+        int uv1 = doc.attribute(FLOAT, "VEC2", {0.25, 0.5, -1.5, 2.0, 1e-3, 0.0});
+        doc.mesh({{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", uv0}, {"TEXCOORD_1", uv1}}}});
+        Scene s = load(doc.gltf());
+        const Primitive& p = s.meshes.at(0).primitives.at(0);
+        ASSERT_EQ(p.uv0.size(), 3u);
+        ASSERT_EQ(p.uv1.size(), 3u);
+        for (int i = 0; i < 3; ++i)
+            for (int c = 0; c < 2; ++c)
+                EXPECT_FLOAT_EQ(p.uv0[std::size_t(i)][c], float(dequantize(tc.ctype, true, tc.raw[std::size_t(i * 2 + c)])))
+                    << "ctype " << tc.ctype << " vertex " << i << " component " << c;
+        EXPECT_FLOAT_EQ(p.uv1[1].x, -1.5f);
+        EXPECT_FLOAT_EQ(p.uv1[1].y, 2.0f);
+    }
+    // The exact published conversions at the extremes.
+    EXPECT_EQ(float(dequantize(UNSIGNED_BYTE, true, 255)), 1.0f);
+    EXPECT_EQ(float(dequantize(BYTE, true, -128)), -1.0f);
+}
+
+TEST(GltfAccessors, NonNormalizedIntegerTexcoordIsAnError) {
+    // Core glTF: TEXCOORD_n is float or normalized unsigned byte/short.
+    Doc doc;
+    int pos = doc.positions(kTriangle);
+    int uv = doc.attribute(UNSIGNED_SHORT, "VEC2", {1, 2, 3, 4, 5, 6}, false);
+    doc.mesh({{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", uv}}}});
+    Error e = load_error(doc.gltf());
+    EXPECT_EQ(e.where(), "/meshes/0/primitives/0/attributes/TEXCOORD_0") << e.what();
+}
+
+TEST(GltfAccessors, QuantizedNonNormalizedTexcoordWithMeshQuantization) {
+    // KHR_mesh_quantization allows non-normalized (u)byte/(u)short TEXCOORD_n (used with a texture transform).
+    Doc doc;
+    doc.j["extensionsUsed"] = {"KHR_mesh_quantization"};
+    doc.j["extensionsRequired"] = {"KHR_mesh_quantization"};
+    int pos = doc.positions(kTriangle);
+    int uv = doc.attribute(UNSIGNED_SHORT, "VEC2", {0, 0, 1024, 0, 0, 1024}, false);
+    doc.mesh({{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", uv}}}});
+    Diagnostics d;
+    Scene s = load(doc.gltf(), d);
+    const Primitive& p = s.meshes.at(0).primitives.at(0);
+    ASSERT_EQ(p.uv0.size(), 3u);
+    EXPECT_FLOAT_EQ(p.uv0[1].x, 1024.0f);
+    EXPECT_FLOAT_EQ(p.uv0[2].y, 1024.0f);
+}
+
+TEST(GltfAccessors, ColorVec3AndVec4) {
+    {
+        // VEC4 normalized unsigned bytes.
+        Doc doc;
+        int pos = doc.positions(kTriangle);
+        int col = doc.attribute(UNSIGNED_BYTE, "VEC4", {255, 0, 51, 255, 0, 255, 0, 128, 102, 204, 255, 0}, true);
+        doc.mesh({{"attributes", {{"POSITION", pos}, {"COLOR_0", col}}}});
+        const Primitive p = load(doc.gltf()).meshes.at(0).primitives.at(0);
+        ASSERT_EQ(p.colors.size(), 3u);
+        EXPECT_FLOAT_EQ(p.colors[0].x, 1.0f);
+        EXPECT_FLOAT_EQ(p.colors[0].z, 0.2f);
+        EXPECT_FLOAT_EQ(p.colors[1].w, 128.0f / 255.0f);
+        EXPECT_FLOAT_EQ(p.colors[2].x, 0.4f);
+        EXPECT_FLOAT_EQ(p.colors[2].w, 0.0f);
+    }
+    {
+        // VEC3 normalized unsigned shorts: alpha is 1.
+        Doc doc;
+        int pos = doc.positions(kTriangle);
+        int col = doc.attribute(UNSIGNED_SHORT, "VEC3", {65535, 0, 13107, 0, 65535, 0, 32768, 32768, 65535}, true);
+        doc.mesh({{"attributes", {{"POSITION", pos}, {"COLOR_0", col}}}});
+        const Primitive p = load(doc.gltf()).meshes.at(0).primitives.at(0);
+        ASSERT_EQ(p.colors.size(), 3u);
+        EXPECT_FLOAT_EQ(p.colors[0].x, 1.0f);
+        EXPECT_FLOAT_EQ(p.colors[0].z, 0.2f);
+        EXPECT_FLOAT_EQ(p.colors[2].x, 32768.0f / 65535.0f);
+        for (const auto& c : p.colors) EXPECT_EQ(c.w, 1.0f);
+    }
+    {
+        // VEC3 and VEC4 floats.
+        Doc doc;
+        int pos = doc.positions(kTriangle);
+        int c3 = doc.attribute(FLOAT, "VEC3", {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9});
+        doc.mesh({{"attributes", {{"POSITION", pos}, {"COLOR_0", c3}}}});
+        int c4 = doc.attribute(FLOAT, "VEC4", {0.1, 0.2, 0.3, 0.25, 0.4, 0.5, 0.6, 0.5, 0.7, 0.8, 0.9, 0.75});
+        doc.mesh({{"attributes", {{"POSITION", pos}, {"COLOR_0", c4}}}});
+        Scene s = load(doc.gltf());
+        const Primitive& p3 = s.meshes.at(0).primitives.at(0);
+        const Primitive& p4 = s.meshes.at(1).primitives.at(0);
+        EXPECT_FLOAT_EQ(p3.colors[1].y, 0.5f);
+        EXPECT_EQ(p3.colors[1].w, 1.0f);
+        EXPECT_FLOAT_EQ(p4.colors[1].y, 0.5f);
+        EXPECT_FLOAT_EQ(p4.colors[2].w, 0.75f);
+    }
+}
+
+TEST(GltfAccessors, IndexComponentTypes) {
+    // Two triangles of a quad, in a non-identity order so the index buffer is kept.
+    const std::vector<double> idx = {2, 1, 0, 0, 3, 2};
+    for (int ctype : {UNSIGNED_BYTE, UNSIGNED_SHORT, UNSIGNED_INT}) {
+        Doc doc;
+        int pos = doc.positions(kQuad);
+        int nrm = doc.normals(4);
+        int ind = doc.indices(ctype, idx);
+        doc.mesh({{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}, {"indices", ind}});
+        const Primitive p = load(doc.gltf()).meshes.at(0).primitives.at(0);
+        ASSERT_EQ(p.indices.size(), 6u) << "ctype " << ctype;
+        for (std::size_t i = 0; i < 6; ++i) EXPECT_EQ(p.indices[i], std::uint32_t(idx[i])) << "ctype " << ctype;
+        EXPECT_EQ(p.positions.size(), 4u);
+        EXPECT_EQ(p.triangle_count(), 2u);
+        EXPECT_FALSE(p.generated_normals);
+    }
+    // A large UNSIGNED_INT index value is read in full (not truncated to 16 bits).
+    Doc doc;
+    std::vector<glm::vec3> many(70000, glm::vec3(0.0f));
+    many[69999] = glm::vec3(5, 6, 7);
+    many[1] = glm::vec3(1, 0, 0);
+    int pos = doc.positions(many);
+    int nrm = doc.normals(many.size());
+    int ind = doc.indices(UNSIGNED_INT, {69999, 1, 0});
+    doc.mesh({{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}, {"indices", ind}});
+    const Primitive p = load(doc.gltf()).meshes.at(0).primitives.at(0);
+    ASSERT_FALSE(p.indices.empty());
+    EXPECT_EQ(p.positions[p.indices[0]], glm::vec3(5, 6, 7));
+}
+
+TEST(GltfAccessors, InvalidIndexAndNormalizedTypesAreErrors) {
+    {
+        Doc doc;  // float indices
+        int pos = doc.positions(kTriangle);
+        int ind = doc.indices(FLOAT, {0, 1, 2});
+        doc.mesh({{"attributes", {{"POSITION", pos}}}, {"indices", ind}});
+        Error e = load_error(doc.gltf());
+        EXPECT_EQ(e.where(), "/meshes/0/primitives/0/indices") << e.what();
+    }
+    {
+        Doc doc;  // normalized UNSIGNED_INT is not a thing
+        int pos = doc.positions(kTriangle);
+        int uv = doc.attribute(UNSIGNED_INT, "VEC2", {0, 0, 1, 0, 0, 1}, true);
+        doc.mesh({{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", uv}}}});
+        Error e = load_error(doc.gltf());
+        EXPECT_EQ(e.where(), "/accessors/1/normalized") << e.what();
+    }
+    {
+        Doc doc;  // attribute counts must match POSITION
+        int pos = doc.positions(kTriangle);
+        int nrm = doc.normals(4);
+        doc.mesh({{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}});
+        Error e = load_error(doc.gltf());
+        EXPECT_EQ(e.where(), "/meshes/0/primitives/0/attributes/NORMAL") << e.what();
+    }
+}
+
+TEST(GltfAccessors, ByteStrideInterleaving) {
+    // One bufferView, stride 36: POSITION (12) NORMAL (12) TEXCOORD_0 (8), 4 bytes of padding.
+    const std::size_t stride = 36;
+    const std::vector<glm::vec3> pos = {{0, 0, 0}, {2, 0, 0}, {0, 3, 0}, {2, 3, 1}};
+    const std::vector<glm::vec3> nrm = {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}, {0, 0, -1}};
+    const std::vector<glm::vec2> uv = {{0, 0}, {1, 0}, {0, 1}, {0.5f, 0.25f}};
+    std::vector<std::uint8_t> bytes(stride * 4, 0xEE);  // padding filled with junk
+    for (std::size_t i = 0; i < 4; ++i) {
+        std::memcpy(&bytes[i * stride + 0], &pos[i], 12);
+        std::memcpy(&bytes[i * stride + 12], &nrm[i], 12);
+        std::memcpy(&bytes[i * stride + 24], &uv[i], 8);
+    }
+    Doc doc;
+    doc.bin.assign(8, 0xAB);  // the view starts 8 bytes into the buffer
+    int v = doc.view(bytes, stride);
+    int a_pos = doc.add_accessor({{"bufferView", v}, {"byteOffset", 0}, {"componentType", FLOAT}, {"count", 4}, {"type", "VEC3"}});
+    int a_nrm = doc.add_accessor({{"bufferView", v}, {"byteOffset", 12}, {"componentType", FLOAT}, {"count", 4}, {"type", "VEC3"}});
+    int a_uv = doc.add_accessor({{"bufferView", v}, {"byteOffset", 24}, {"componentType", FLOAT}, {"count", 4}, {"type", "VEC2"}});
+    int ind = doc.indices(UNSIGNED_SHORT, {0, 1, 2, 2, 1, 3});
+    doc.mesh({{"attributes", {{"POSITION", a_pos}, {"NORMAL", a_nrm}, {"TEXCOORD_0", a_uv}}}, {"indices", ind}});
+    const Primitive p = load(doc.gltf()).meshes.at(0).primitives.at(0);
+    ASSERT_EQ(p.positions.size(), 4u);
+    for (std::size_t i = 0; i < 4; ++i) {
+        EXPECT_EQ(p.positions[i], pos[i]) << i;
+        EXPECT_EQ(p.normals[i], nrm[i]) << i;
+        EXPECT_EQ(p.uv0[i], uv[i]) << i;
+    }
+    // The same accessors through a GLB (BIN chunk) give the same data.
+    const Primitive g = load(doc.glb()).meshes.at(0).primitives.at(0);
+    EXPECT_EQ(g.positions, p.positions);
+    EXPECT_EQ(g.normals, p.normals);
+    EXPECT_EQ(g.uv0, p.uv0);
+}
+
+TEST(GltfAccessors, StrideSmallerThanElementIsAnError) {
+    Doc doc;
+    int v = doc.view(pack(FLOAT, 3, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0}), 8);
+    int pos = doc.add_accessor({{"bufferView", v}, {"componentType", FLOAT}, {"count", 3}, {"type", "VEC3"}});
+    doc.mesh({{"attributes", {{"POSITION", pos}}}});
+    Error e = load_error(doc.gltf());
+    EXPECT_EQ(e.where(), "/accessors/0") << e.what();
+}
+
+TEST(GltfAccessors, SparseWithBufferView) {
+    Doc doc;
+    const std::vector<glm::vec3> base = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 2, 2}};
+    int v = doc.view(pack(FLOAT, 3, {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 2, 2, 2}));
+    int iv = doc.view(pack(UNSIGNED_BYTE, 1, {1, 4}));
+    int vv = doc.view(pack(FLOAT, 3, {9, 8, 7, -1, -2, -3}));
+    int pos = doc.add_accessor({{"bufferView", v},
+                                {"componentType", FLOAT},
+                                {"count", 5},
+                                {"type", "VEC3"},
+                                {"sparse",
+                                 {{"count", 2},
+                                  {"indices", {{"bufferView", iv}, {"componentType", UNSIGNED_BYTE}}},
+                                  {"values", {{"bufferView", vv}}}}}});
+    int nrm = doc.normals(5);
+    int ind = doc.indices(UNSIGNED_SHORT, {0, 1, 2, 0, 2, 3, 4, 1, 2});
+    doc.mesh({{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}, {"indices", ind}});
+    const Primitive p = load(doc.gltf()).meshes.at(0).primitives.at(0);
+    ASSERT_EQ(p.positions.size(), 5u);
+    EXPECT_EQ(p.positions[0], base[0]);
+    EXPECT_EQ(p.positions[1], glm::vec3(9, 8, 7));    // substituted
+    EXPECT_EQ(p.positions[2], base[2]);
+    EXPECT_EQ(p.positions[3], base[3]);
+    EXPECT_EQ(p.positions[4], glm::vec3(-1, -2, -3));  // substituted
+    EXPECT_EQ(p.bounds_max, glm::vec3(9, 8, 7));
+    EXPECT_EQ(p.bounds_min, glm::vec3(-1, -2, -3));
+}
+
+TEST(GltfAccessors, SparseWithoutBufferViewStartsFromZeros) {
+    Doc doc;
+    // Indices as UNSIGNED_SHORT and UNSIGNED_INT, values with byte offsets inside their views.
+    std::vector<std::uint8_t> idx_bytes = pack(UNSIGNED_SHORT, 1, {0, 0, 1, 3});  // first 4 bytes skipped
+    int iv = doc.view(idx_bytes);
+    int vv = doc.view(pack(FLOAT, 3, {99, 99, 99, 1, 0, 0, 0, 1, 0}));
+    int pos = doc.add_accessor({{"componentType", FLOAT},
+                                {"count", 4},
+                                {"type", "VEC3"},
+                                {"sparse",
+                                 {{"count", 2},
+                                  {"indices", {{"bufferView", iv}, {"byteOffset", 4}, {"componentType", UNSIGNED_SHORT}}},
+                                  {"values", {{"bufferView", vv}, {"byteOffset", 12}}}}}});
+    int nrm = doc.normals(4);
+    int ind = doc.indices(UNSIGNED_BYTE, {0, 1, 3, 3, 2, 0});
+    doc.mesh({{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}, {"indices", ind}});
+    // And a sparse accessor with UNSIGNED_INT indices over normalized bytes (no bufferView).
+    int iv2 = doc.view(pack(UNSIGNED_INT, 1, {2}));
+    int vv2 = doc.view(pack(UNSIGNED_BYTE, 2, {255, 51}));
+    int uv = doc.add_accessor({{"componentType", UNSIGNED_BYTE},
+                               {"normalized", true},
+                               {"count", 4},
+                               {"type", "VEC2"},
+                               {"sparse",
+                                {{"count", 1},
+                                 {"indices", {{"bufferView", iv2}, {"componentType", UNSIGNED_INT}}},
+                                 {"values", {{"bufferView", vv2}}}}}});
+    doc.j["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = uv;
+    const Primitive p = load(doc.gltf()).meshes.at(0).primitives.at(0);
+    ASSERT_EQ(p.positions.size(), 4u);
+    EXPECT_EQ(p.positions[0], glm::vec3(0, 0, 0));
+    EXPECT_EQ(p.positions[1], glm::vec3(1, 0, 0));
+    EXPECT_EQ(p.positions[2], glm::vec3(0, 0, 0));
+    EXPECT_EQ(p.positions[3], glm::vec3(0, 1, 0));
+    ASSERT_EQ(p.uv0.size(), 4u);
+    EXPECT_EQ(p.uv0[0], glm::vec2(0, 0));
+    EXPECT_FLOAT_EQ(p.uv0[2].x, 1.0f);
+    EXPECT_FLOAT_EQ(p.uv0[2].y, 0.2f);
+}
+
+// =============================================================================================
+// Primitives: indexing, topology, generated normals
+
+TEST(GltfPrimitives, NonIndexedAndIndexed) {
+    Doc doc;
+    int pos = doc.positions(kQuad);
+    int nrm = doc.normals(4);
+    // Non-indexed: only the first 3 vertices form a triangle; the 4th is an incomplete triangle.
+    doc.mesh({{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}});
+    // Indexed with the identity list 0..3: the same single triangle as non-indexed.
+    int id = doc.indices(UNSIGNED_SHORT, {0, 1, 2, 3});
+    doc.mesh({{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}, {"indices", id}});
+    // Indexed quad.
+    int q = doc.indices(UNSIGNED_SHORT, {0, 1, 2, 0, 2, 3});
+    doc.mesh({{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}, {"indices", q}});
+    Diagnostics d;
+    Scene s = load(doc.gltf(), d);
+    ASSERT_EQ(s.meshes.size(), 3u);
+    const Primitive& a = s.meshes[0].primitives.at(0);
+    EXPECT_EQ(a.triangle_count(), 1u);
+    EXPECT_EQ(triangle_corners(a), (std::vector<glm::vec3>{kQuad[0], kQuad[1], kQuad[2]}));
+    EXPECT_TRUE(has_warning(d, "/meshes/0/primitives/0/attributes", "not a whole number")) << all_warnings(d);
+    const Primitive& b = s.meshes[1].primitives.at(0);
+    EXPECT_EQ(b.triangle_count(), 1u);
+    EXPECT_EQ(triangle_corners(b), (std::vector<glm::vec3>{kQuad[0], kQuad[1], kQuad[2]}));
+    EXPECT_TRUE(has_warning(d, "/meshes/1/primitives/0/indices", "not a whole number")) << all_warnings(d);
+    const Primitive& c = s.meshes[2].primitives.at(0);
+    EXPECT_EQ(c.indices, (std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}));
+    EXPECT_EQ(c.triangle_count(), 2u);
+    EXPECT_EQ(c.positions.size(), 4u);
+    EXPECT_EQ(c.topology, Topology::Triangles);
+
+    // An identity index buffer over exactly the used vertices is dropped (drawn non-indexed).
+    Doc tri;
+    int tp = tri.positions(kTriangle);
+    int tn = tri.normals(3);
+    int ti = tri.indices(UNSIGNED_BYTE, {0, 1, 2});
+    tri.mesh({{"attributes", {{"POSITION", tp}, {"NORMAL", tn}}}, {"indices", ti}});
+    const Primitive t = load(tri.gltf()).meshes.at(0).primitives.at(0);
+    EXPECT_TRUE(t.indices.empty());
+    EXPECT_EQ(t.positions, kTriangle);
+    EXPECT_EQ(t.triangle_count(), 1u);
+}
+
+TEST(GltfPrimitives, TriangleStripBecomesList) {
+    // v0..v5 zig-zag up the +y axis in the z = 0 plane; all strip triangles face +z.
+    const std::vector<glm::vec3> pos = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 2, 0}, {1, 2, 0}};
+    // Indexed, in a permuted vertex order, with normals (so the indices survive).
+    const std::vector<std::uint32_t> strip = {5, 3, 4, 2, 0};
+    Doc doc;
+    // Vertex strip[k] of the buffer holds the k-th zig-zag position; vertex 1 is unused.
+    std::vector<glm::vec3> shuffled(6, glm::vec3(9, 9, 9));
+    for (std::size_t k = 0; k < strip.size(); ++k) shuffled[strip[k]] = pos[k];
+    int p_acc = doc.positions(shuffled);
+    int nrm = doc.normals(6);
+    std::vector<double> idx(strip.begin(), strip.end());
+    int ind = doc.indices(UNSIGNED_BYTE, idx);
+    doc.mesh({{"attributes", {{"POSITION", p_acc}, {"NORMAL", nrm}}}, {"indices", ind}, {"mode", 5}});
+    // Non-indexed, no normals: flat normals are generated from the converted winding.
+    int p2 = doc.positions(pos);
+    doc.mesh({{"attributes", {{"POSITION", p2}}}, {"mode", 5}});
+    Scene s = load(doc.gltf());
+
+    const Primitive& a = s.meshes.at(0).primitives.at(0);
+    EXPECT_EQ(a.topology, Topology::Triangles);
+    ASSERT_EQ(a.indices.size(), 9u);
+    // glTF 2.0 section 3.7.2.1: triangle i of a strip is {v_i, v_{i+(1+i%2)}, v_{i+(2-i%2)}}.
+    for (std::size_t i = 0; i + 2 < strip.size(); ++i) {
+        std::array<std::uint32_t, 3> want = {strip[i], strip[i + 1 + i % 2], strip[i + 2 - i % 2]};
+        EXPECT_TRUE(same_triangle(&a.indices[3 * i], want))
+            << "triangle " << i << ": got " << a.indices[3 * i] << "," << a.indices[3 * i + 1] << ","
+            << a.indices[3 * i + 2] << " want " << want[0] << "," << want[1] << "," << want[2];
+        // And every triangle faces +z (consistent winding).
+        glm::vec3 n = glm::cross(a.positions[a.indices[3 * i + 1]] - a.positions[a.indices[3 * i]],
+                                 a.positions[a.indices[3 * i + 2]] - a.positions[a.indices[3 * i]]);
+        EXPECT_GT(n.z, 0.0f) << "triangle " << i;
+    }
+
+    const Primitive& b = s.meshes.at(1).primitives.at(0);
+    EXPECT_TRUE(b.generated_normals);
+    EXPECT_EQ(b.triangle_count(), 4u);
+    ASSERT_EQ(b.positions.size(), 12u);
+    for (std::size_t i = 0; i < 4; ++i) {
+        std::array<glm::vec3, 3> want = {pos[i], pos[i + 1 + i % 2], pos[i + 2 - i % 2]};
+        bool match = false;
+        for (int r = 0; r < 3 && !match; ++r)
+            match = b.positions[3 * i] == want[std::size_t(r)] && b.positions[3 * i + 1] == want[std::size_t((r + 1) % 3)] &&
+                    b.positions[3 * i + 2] == want[std::size_t((r + 2) % 3)];
+        EXPECT_TRUE(match) << "triangle " << i;
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(b.normals[3 * i + std::size_t(k)], glm::vec3(0, 0, 1)) << "triangle " << i;
+    }
+}
+
+TEST(GltfPrimitives, TriangleFanBecomesList) {
+    // Centre v0 and a counter-clockwise rim: all fan triangles face +z.
+    const std::vector<glm::vec3> pos = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 1, 0}, {-1, 0, 0}};
+    Doc doc;
+    int p_acc = doc.positions(pos);
+    int nrm = doc.normals(6);
+    const std::vector<std::uint32_t> fan = {0, 1, 2, 3, 4, 5};
+    int ind = doc.indices(UNSIGNED_SHORT, {0, 1, 2, 3, 4, 5});
+    doc.mesh({{"attributes", {{"POSITION", p_acc}, {"NORMAL", nrm}}}, {"indices", ind}, {"mode", 6}});
+    int p2 = doc.positions(pos);
+    doc.mesh({{"attributes", {{"POSITION", p2}}}, {"mode", 6}});
+    Scene s = load(doc.gltf());
+    const Primitive& a = s.meshes.at(0).primitives.at(0);
+    ASSERT_EQ(a.indices.size(), 12u);
+    // glTF 2.0 section 3.7.2.1: triangle i of a fan is {v_{i+1}, v_{i+2}, v_0}.
+    for (std::size_t i = 0; i + 2 < fan.size(); ++i) {
+        std::array<std::uint32_t, 3> want = {fan[i + 1], fan[i + 2], fan[0]};
+        EXPECT_TRUE(same_triangle(&a.indices[3 * i], want)) << "triangle " << i;
+    }
+    const Primitive& b = s.meshes.at(1).primitives.at(0);
+    EXPECT_TRUE(b.generated_normals);
+    ASSERT_EQ(b.positions.size(), 12u);
+    for (const auto& n : b.normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));
+    for (std::size_t i = 0; i < 4; ++i) {
+        // Each triangle contains the centre.
+        bool centre = b.positions[3 * i] == pos[0] || b.positions[3 * i + 1] == pos[0] || b.positions[3 * i + 2] == pos[0];
+        EXPECT_TRUE(centre) << "triangle " << i;
+    }
+}
+
+TEST(GltfPrimitives, LinesAndPointsKeepTheirTopology) {
+    Doc doc;
+    int pos = doc.positions(kQuad);
+    doc.mesh({{"attributes", {{"POSITION", pos}}}, {"mode", 0}});
+    doc.mesh({{"attributes", {{"POSITION", pos}}}, {"mode", 1}});
+    doc.mesh({{"attributes", {{"POSITION", pos}}}, {"mode", 3}});
+    Scene s = load(doc.gltf());
+    EXPECT_EQ(s.meshes.at(0).primitives.at(0).topology, Topology::Points);
+    EXPECT_EQ(s.meshes.at(1).primitives.at(0).topology, Topology::Lines);
+    EXPECT_EQ(s.meshes.at(2).primitives.at(0).topology, Topology::LineStrip);
+    for (int m = 0; m < 3; ++m) {
+        EXPECT_EQ(s.meshes[std::size_t(m)].primitives[0].triangle_count(), 0u);
+        EXPECT_TRUE(s.meshes[std::size_t(m)].primitives[0].normals.empty());
+    }
+}
+
+TEST(GltfPrimitives, MissingNormalsGetFlatNormals) {
+    Doc doc;
+    // A quad whose second triangle is folded up out of the plane (a 90 degree crease).
+    const std::vector<glm::vec3> pos = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 0, 1}};
+    int p_acc = doc.positions(pos);
+    int ind = doc.indices(UNSIGNED_SHORT, {0, 1, 2, 0, 3, 1});
+    doc.mesh({{"attributes", {{"POSITION", p_acc}}}, {"indices", ind}});
+    Scene s = load(doc.gltf());
+    const Primitive& p = s.meshes.at(0).primitives.at(0);
+    EXPECT_TRUE(p.generated_normals);
+    EXPECT_EQ(p.source_vertex_count, 4u);
+    // Each triangle gets its own three vertices (flat shading), the index buffer becomes the identity.
+    ASSERT_EQ(p.positions.size(), 6u);
+    ASSERT_EQ(p.normals.size(), 6u);
+    EXPECT_TRUE(p.indices.empty());
+    EXPECT_EQ(p.triangle_count(), 2u);
+    EXPECT_EQ(p.positions[3], pos[0]);
+    EXPECT_EQ(p.positions[4], pos[3]);
+    EXPECT_EQ(p.positions[5], pos[1]);
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(p.normals[std::size_t(k)], glm::vec3(0, 0, 1));
+        // cross((0,0,1), (1,0,0)) = (0,1,0)
+        EXPECT_EQ(p.normals[std::size_t(3 + k)], glm::vec3(0, 1, 0));
+    }
+    // Given normals are kept (normalised).
+    Doc doc2;
+    int p2 = doc2.positions(kTriangle);
+    int n2 = doc2.normals(3, glm::vec3(0, 0, 2));
+    doc2.mesh({{"attributes", {{"POSITION", p2}, {"NORMAL", n2}}}});
+    const Primitive q = load(doc2.gltf()).meshes.at(0).primitives.at(0);
+    EXPECT_FALSE(q.generated_normals);
+    for (const auto& n : q.normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));
+}
+
+TEST(GltfPrimitives, NonFinitePositionSkipsPrimitiveWithWarning) {
+    for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+        Doc doc;
+        int pos = doc.attribute(FLOAT, "VEC3", {0, 0, 0, 1, bad, 0, 0, 1, 0});
+        int good = doc.positions(kTriangle);
+        doc.mesh(json::array({{{"attributes", {{"POSITION", pos}}}}, {{"attributes", {{"POSITION", good}}}}}));
+        Diagnostics d;
+        Scene s = load(doc.gltf(), d);
+        ASSERT_EQ(s.meshes.size(), 1u);
+        ASSERT_EQ(s.meshes[0].primitives.size(), 1u) << "the bad primitive is skipped, the good one kept";
+        EXPECT_EQ(s.meshes[0].primitives[0].positions, kTriangle);
+        EXPECT_TRUE(has_warning(d, "/meshes/0/primitives/0/attributes/POSITION", "non-finite")) << all_warnings(d);
+    }
+}
+
+// =============================================================================================
+// Nodes and scenes
+
+namespace {
+// 90 degrees about +y as a glTF quaternion [x, y, z, w].
+const double kHalf = std::sqrt(0.5);
+}  // namespace
+
+TEST(GltfNodes, TrsAndMatrixGiveTheSameWorldMatrix) {
+    Doc doc;
+    // T = (1, 2, 3), R = 90 deg about +y, S = (2, 3, 4). Column-major:
+    // col0 = R * (2,0,0) = (0,0,-2), col1 = (0,3,0), col2 = R * (0,0,4) = (4,0,0), col3 = (1,2,3,1).
+    const std::vector<float> m = {0, 0, -2, 0, 0, 3, 0, 0, 4, 0, 0, 0, 1, 2, 3, 1};
+    doc.j["nodes"] = json::array({{{"translation", {1, 2, 3}}, {"rotation", {0, kHalf, 0, kHalf}}, {"scale", {2, 3, 4}}},
+                                  {{"matrix", m}}});
+    doc.j["scenes"] = json::array({{{"nodes", {0, 1}}}});
+    Scene s = load(doc.gltf());
+    auto inst = flatten(s);
+    ASSERT_EQ(inst.size(), 2u);
+    glm::mat4 expected = glm::make_mat4(m.data());
+    expect_mat_near(inst[0].world, expected, 1e-5f, "TRS");
+    expect_mat_near(inst[1].world, expected, 0.0f, "matrix");
+    // And the matrix does what it says on a point.
+    glm::vec4 pt = inst[0].world * glm::vec4(1, 1, 1, 1);
+    EXPECT_NEAR(pt.x, 1 + 4, 1e-5f);
+    EXPECT_NEAR(pt.y, 2 + 3, 1e-5f);
+    EXPECT_NEAR(pt.z, 3 - 2, 1e-5f);
+}
+
+TEST(GltfNodes, NonUnitQuaternionIsNormalised) {
+    Doc doc;
+    doc.j["nodes"] = json::array({{{"rotation", {0, 2 * kHalf, 0, 2 * kHalf}}}, {{"rotation", {0, kHalf, 0, kHalf}}}});
+    Scene s = load(doc.gltf());
+    expect_mat_near(s.nodes[0].local, s.nodes[1].local, 1e-6f);
+}
+
+TEST(GltfNodes, HierarchyWorldMatrices) {
+    Doc doc;
+    int pos = doc.positions(kTriangle);
+    doc.j["meshes"] = json::array({{{"primitives", json::array({{{"attributes", {{"POSITION", pos}}}}})}}});
+    // 0: translate (10,0,0), children 1 and 3
+    // 1: rotate 90 deg about +z, scale 2, child 2
+    // 2: translate (1,0,0), mesh
+    // 3: translate (0,0,5)
+    doc.j["nodes"] = json::array({
+        {{"name", "root"}, {"translation", {10, 0, 0}}, {"children", {1, 3}}},
+        {{"name", "arm"}, {"rotation", {0, 0, kHalf, kHalf}}, {"scale", {2, 2, 2}}, {"children", {2}}},
+        {{"name", "hand"}, {"translation", {1, 0, 0}}, {"mesh", 0}},
+        {{"name", "other"}, {"translation", {0, 0, 5}}},
+    });
+    doc.j["scenes"] = json::array({{{"nodes", {0}}}});
+    Scene s = load(doc.gltf());
+    ASSERT_EQ(s.nodes.size(), 4u);
+    EXPECT_EQ(s.nodes[0].children, (std::vector<int>{1, 3}));
+    auto inst = flatten(s);
+    ASSERT_EQ(inst.size(), 4u);
+    // Depth-first, children in order.
+    EXPECT_EQ(inst[0].node, 0);
+    EXPECT_EQ(inst[1].node, 1);
+    EXPECT_EQ(inst[2].node, 2);
+    EXPECT_EQ(inst[3].node, 3);
+    glm::mat4 w0 = glm::translate(glm::mat4(1.0f), glm::vec3(10, 0, 0));
+    glm::mat4 w1 = w0 * glm::rotate(glm::mat4(1.0f), float(kPi / 2), glm::vec3(0, 0, 1)) *
+                   glm::scale(glm::mat4(1.0f), glm::vec3(2.0f));
+    glm::mat4 w2 = w1 * glm::translate(glm::mat4(1.0f), glm::vec3(1, 0, 0));
+    glm::mat4 w3 = w0 * glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 5));
+    expect_mat_near(inst[0].world, w0, 1e-5f, "root");
+    expect_mat_near(inst[1].world, w1, 1e-5f, "arm");
+    expect_mat_near(inst[2].world, w2, 1e-5f, "hand");
+    expect_mat_near(inst[3].world, w3, 1e-5f, "other");
+    // Hand-computed: the hand's origin is at (10,0,0) + Rz(90) * 2 * (1,0,0) = (10, 2, 0).
+    glm::vec4 o = inst[2].world * glm::vec4(0, 0, 0, 1);
+    EXPECT_NEAR(o.x, 10.0f, 1e-5f);
+    EXPECT_NEAR(o.y, 2.0f, 1e-5f);
+    EXPECT_NEAR(o.z, 0.0f, 1e-5f);
+    // World bounds follow the camera convention: the 8 corners of the POSITION box [0,1]x[0,1]x[0,0]
+    // transformed (x -> 10 - 2y, y -> 2 + 2(x + 1)): corners (0,0), (1,0), (0,1), (1,1) land at
+    // (10,2), (10,4), (8,2), (8,4).
+    Bounds b = scene_bounds(s, inst);
+    ASSERT_FALSE(b.empty);
+    EXPECT_NEAR(b.min.x, 8.0f, 1e-5f);
+    EXPECT_NEAR(b.max.x, 10.0f, 1e-5f);
+    EXPECT_NEAR(b.min.y, 2.0f, 1e-5f);
+    EXPECT_NEAR(b.max.y, 4.0f, 1e-5f);
+}
+
+TEST(GltfNodes, MultipleScenesAndDefault) {
+    Doc doc;
+    doc.j["nodes"] = json::array({{{"name", "a"}}, {{"name", "b"}}, {{"name", "c"}, {"children", {0}}}});
+    doc.j["scenes"] = json::array({{{"nodes", {2}}}, {{"nodes", {1}}}});
+    doc.j["scene"] = 1;
+    Scene s = load(doc.gltf());
+    ASSERT_EQ(s.scenes.size(), 2u);
+    EXPECT_EQ(s.default_scene, 1);
+    EXPECT_EQ(s.scenes[0], (std::vector<int>{2}));
+    EXPECT_EQ(s.scenes[1], (std::vector<int>{1}));
+    auto def = flatten(s);
+    ASSERT_EQ(def.size(), 1u);
+    EXPECT_EQ(def[0].node, 1);
+    auto first = flatten(s, 0);
+    ASSERT_EQ(first.size(), 2u);
+    EXPECT_EQ(first[0].node, 2);
+    EXPECT_EQ(first[1].node, 0);
+    EXPECT_TRUE(flatten(s, 5).empty());
+
+    // Without `scene` the default is the first.
+    doc.j.erase("scene");
+    EXPECT_EQ(load(doc.gltf()).default_scene, 0);
+
+    // `scene` out of range is an error.
+    doc.j["scene"] = 2;
+    Error e = load_error(doc.gltf());
+    EXPECT_EQ(e.where(), "/scene") << e.what();
+
+    // No scenes at all: every root node is shown, with a warning.
+    Doc none;
+    none.j["nodes"] = json::array({{{"name", "a"}}, {{"name", "b"}, {"children", {0}}}, {{"name", "c"}}});
+    Diagnostics d;
+    Scene n = load(none.gltf(), d);
+    ASSERT_EQ(n.scenes.size(), 1u);
+    EXPECT_EQ(n.scenes[0], (std::vector<int>{1, 2}));
+    EXPECT_TRUE(has_warning(d, "/scenes", "no scenes")) << all_warnings(d);
+}
+
+// =============================================================================================
+// Cameras, lights, materials, textures
+
+TEST(GltfCameras, PerspectiveAndOrthographic) {
+    Doc doc;
+    doc.j["cameras"] = json::array({
+        {{"type", "perspective"}, {"name", "p"}, {"perspective", {{"yfov", 0.7}, {"aspectRatio", 1.5}, {"znear", 0.1}, {"zfar", 100}}}},
+        {{"type", "perspective"}, {"perspective", {{"yfov", 1.2}, {"znear", 0.05}}}},
+        {{"type", "orthographic"}, {"name", "o"}, {"orthographic", {{"xmag", 2.0}, {"ymag", 1.0}, {"znear", 0.01}, {"zfar", 50}}}},
+    });
+    doc.j["nodes"] = json::array({{{"camera", 2}, {"translation", {0, 0, 3}}}});
+    doc.j["scenes"] = json::array({{{"nodes", {0}}}});
+    Scene s = load(doc.gltf());
+    ASSERT_EQ(s.cameras.size(), 3u);
+    const Camera& p = s.cameras[0];
+    EXPECT_EQ(p.type, Camera::Type::Perspective);
+    EXPECT_EQ(p.name, "p");
+    EXPECT_FLOAT_EQ(p.yfov, 0.7f);
+    ASSERT_TRUE(p.aspect_ratio.has_value());
+    EXPECT_FLOAT_EQ(*p.aspect_ratio, 1.5f);
+    EXPECT_FLOAT_EQ(p.znear, 0.1f);
+    ASSERT_TRUE(p.zfar.has_value());
+    EXPECT_FLOAT_EQ(*p.zfar, 100.0f);
+    const Camera& inf = s.cameras[1];
+    EXPECT_FALSE(inf.aspect_ratio.has_value());
+    EXPECT_FALSE(inf.zfar.has_value()) << "perspective without zfar is infinite";
+    EXPECT_FLOAT_EQ(inf.yfov, 1.2f);
+    const Camera& o = s.cameras[2];
+    EXPECT_EQ(o.type, Camera::Type::Orthographic);
+    EXPECT_FLOAT_EQ(o.xmag, 2.0f);
+    EXPECT_FLOAT_EQ(o.ymag, 1.0f);
+    EXPECT_FLOAT_EQ(o.znear, 0.01f);
+    ASSERT_TRUE(o.zfar.has_value());
+    EXPECT_FLOAT_EQ(*o.zfar, 50.0f);
+    EXPECT_EQ(s.nodes[0].camera, 2);
+
+    // Errors carry the pointer of the bad value.
+    Doc bad;
+    bad.j["cameras"] = json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"znear", 0.0}}}}});
+    EXPECT_EQ(load_error(bad.gltf()).where(), "/cameras/0/perspective/znear");
+    bad.j["cameras"] = json::array({{{"type", "fisheye"}}});
+    EXPECT_EQ(load_error(bad.gltf()).where(), "/cameras/0/type");
+    bad.j["cameras"] = json::array({{{"type", "orthographic"}, {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 2}, {"zfar", 1}}}}});
+    EXPECT_EQ(load_error(bad.gltf()).where(), "/cameras/0/orthographic");
+}
+
+TEST(GltfLights, KhrLightsPunctual) {
+    Doc doc;
+    doc.j["extensionsUsed"] = {"KHR_lights_punctual"};
+    doc.j["extensions"] = {{"KHR_lights_punctual",
+                            {{"lights", json::array({
+                                            {{"type", "directional"}, {"name", "sun"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 3.0}},
+                                            {{"type", "point"}, {"intensity", 10.0}, {"range", 5.0}},
+                                            {{"type", "spot"}, {"intensity", 20.0}, {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.6}}}},
+                                            {{"type", "spot"}},
+                                        })}}}};
+    doc.j["nodes"] = json::array({{{"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}}, {{"name", "no light"}}});
+    doc.j["scenes"] = json::array({{{"nodes", {0, 1}}}});
+    Diagnostics d;
+    Scene s = load(doc.gltf(), d);
+    ASSERT_EQ(s.lights.size(), 4u);
+    EXPECT_EQ(s.lights[0].type, Light::Type::Directional);
+    EXPECT_EQ(s.lights[0].name, "sun");
+    EXPECT_EQ(s.lights[0].color, glm::vec3(1.0f, 0.5f, 0.25f));
+    EXPECT_FLOAT_EQ(s.lights[0].intensity, 3.0f);
+    EXPECT_EQ(s.lights[1].type, Light::Type::Point);
+    EXPECT_FLOAT_EQ(s.lights[1].intensity, 10.0f);
+    EXPECT_FLOAT_EQ(s.lights[1].range, 5.0f);
+    EXPECT_EQ(s.lights[1].color, glm::vec3(1.0f));
+    EXPECT_EQ(s.lights[2].type, Light::Type::Spot);
+    EXPECT_FLOAT_EQ(s.lights[2].inner_cone_angle, 0.2f);
+    EXPECT_FLOAT_EQ(s.lights[2].outer_cone_angle, 0.6f);
+    EXPECT_FLOAT_EQ(s.lights[3].inner_cone_angle, 0.0f);
+    EXPECT_NEAR(s.lights[3].outer_cone_angle, kPi / 4, 1e-6);
+    EXPECT_FLOAT_EQ(s.lights[3].intensity, 1.0f);
+    EXPECT_EQ(s.lights[3].range, 0.0f);
+    EXPECT_EQ(s.nodes[0].light, 2);
+    EXPECT_EQ(s.nodes[1].light, -1);
+    EXPECT_EQ(d.total(), 0u) << all_warnings(d);
+
+    // A node referring to a light that does not exist.
+    doc.j["nodes"][0]["extensions"]["KHR_lights_punctual"]["light"] = 7;
+    EXPECT_EQ(load_error(doc.gltf()).where(), "/nodes/0/extensions/KHR_lights_punctual/light");
+    // Bad cone angles.
+    doc.j["nodes"][0]["extensions"]["KHR_lights_punctual"]["light"] = 2;
+    doc.j["extensions"]["KHR_lights_punctual"]["lights"][2]["spot"]["innerConeAngle"] = 0.9;
+    EXPECT_EQ(load_error(doc.gltf()).where(), "/extensions/KHR_lights_punctual/lights/2/spot");
+}
+
+TEST(GltfMaterials, FactorsModesAndExtensions) {
+    Image8 pixels;
+    auto png = make_png(3, 2, &pixels);
+    Doc doc;
+    doc.j["extensionsUsed"] = {"KHR_materials_emissive_strength", "KHR_materials_unlit"};
+    doc.j["images"] = json::array({{{"uri", "data:image/png;base64," + base64(png)}}});
+    doc.j["samplers"] = json::array({{{"magFilter", 9728}, {"minFilter", 9984}, {"wrapS", 33071}, {"wrapT", 33648}}});
+    doc.j["textures"] = json::array({{{"source", 0}, {"sampler", 0}}, {{"source", 0}}});
+    doc.j["materials"] = json::array({
+        {{"name", "full"},
+         {"pbrMetallicRoughness",
+          {{"baseColorFactor", {0.5, 0.25, 1.0, 0.75}},
+           {"metallicFactor", 0.3},
+           {"roughnessFactor", 0.6},
+           {"baseColorTexture", {{"index", 0}}},
+           {"metallicRoughnessTexture", {{"index", 1}, {"texCoord", 1}}}}},
+         {"normalTexture", {{"index", 0}, {"scale", 0.8}}},
+         {"occlusionTexture", {{"index", 1}, {"strength", 0.4}}},
+         {"emissiveTexture", {{"index", 0}}},
+         {"emissiveFactor", {1.0, 0.5, 0.25}},
+         {"alphaMode", "MASK"},
+         {"alphaCutoff", 0.3},
+         {"doubleSided", true},
+         {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 5.0}}}}}},
+        {{"alphaMode", "BLEND"}, {"extensions", {{"KHR_materials_unlit", json::object()}}}},
+        json::object(),
+    });
+    // A primitive with the normal-mapped material and UVs gets generated tangents.
+    int pos = doc.positions(kQuad);
+    int nrm = doc.normals(4);
+    int uv = doc.attribute(FLOAT, "VEC2", {0, 0, 1, 0, 1, 1, 0, 1});
+    int ind = doc.indices(UNSIGNED_SHORT, {0, 1, 2, 0, 2, 3});
+    doc.mesh(json::array({{{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}, {"TEXCOORD_0", uv}}}, {"indices", ind}, {"material", 0}},
+                          {{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}, {"indices", ind}, {"material", 2}}}));
+    Diagnostics d;
+    Scene s = load(doc.gltf(), d);
+    ASSERT_EQ(s.materials.size(), 3u);
+    const Material& m = s.materials[0];
+    EXPECT_EQ(m.name, "full");
+    EXPECT_EQ(m.base_color_factor, glm::vec4(0.5f, 0.25f, 1.0f, 0.75f));
+    EXPECT_FLOAT_EQ(m.metallic_factor, 0.3f);
+    EXPECT_FLOAT_EQ(m.roughness_factor, 0.6f);
+    EXPECT_EQ(m.base_color.texture, 0);
+    EXPECT_EQ(m.base_color.tex_coord, 0);
+    EXPECT_FALSE(m.base_color.has_transform);
+    EXPECT_EQ(m.metallic_roughness.texture, 1);
+    EXPECT_EQ(m.metallic_roughness.tex_coord, 1);
+    EXPECT_EQ(m.normal.texture, 0);
+    EXPECT_FLOAT_EQ(m.normal_scale, 0.8f);
+    EXPECT_EQ(m.occlusion.texture, 1);
+    EXPECT_FLOAT_EQ(m.occlusion_strength, 0.4f);
+    EXPECT_EQ(m.emissive.texture, 0);
+    EXPECT_EQ(m.emissive_factor, glm::vec3(1.0f, 0.5f, 0.25f));
+    EXPECT_FLOAT_EQ(m.emissive_strength, 5.0f);
+    EXPECT_EQ(m.alpha_mode, AlphaMode::Mask);
+    EXPECT_FLOAT_EQ(m.alpha_cutoff, 0.3f);
+    EXPECT_TRUE(m.double_sided);
+    EXPECT_FALSE(m.unlit);
+
+    const Material& u = s.materials[1];
+    EXPECT_EQ(u.alpha_mode, AlphaMode::Blend);
+    EXPECT_TRUE(u.unlit);
+    EXPECT_FALSE(u.double_sided);
+
+    // Defaults from the specification.
+    const Material& def = s.materials[2];
+    EXPECT_EQ(def.base_color_factor, glm::vec4(1.0f));
+    EXPECT_EQ(def.metallic_factor, 1.0f);
+    EXPECT_EQ(def.roughness_factor, 1.0f);
+    EXPECT_EQ(def.emissive_factor, glm::vec3(0.0f));
+    EXPECT_EQ(def.emissive_strength, 1.0f);
+    EXPECT_EQ(def.alpha_mode, AlphaMode::Opaque);
+    EXPECT_EQ(def.alpha_cutoff, 0.5f);
+    EXPECT_FALSE(def.double_sided);
+    EXPECT_FALSE(def.unlit);
+    EXPECT_FALSE(def.base_color.valid());
+    EXPECT_FALSE(def.normal.valid());
+
+    // Textures, samplers, images.
+    ASSERT_EQ(s.textures.size(), 2u);
+    EXPECT_EQ(s.textures[0].image, 0);
+    EXPECT_EQ(s.textures[0].sampler.mag_filter, 9728);
+    EXPECT_EQ(s.textures[0].sampler.min_filter, 9984);
+    EXPECT_EQ(s.textures[0].sampler.wrap_s, 33071);
+    EXPECT_EQ(s.textures[0].sampler.wrap_t, 33648);
+    EXPECT_EQ(s.textures[1].sampler.mag_filter, 9729);  // defaults
+    EXPECT_EQ(s.textures[1].sampler.wrap_s, 10497);
+    ASSERT_EQ(s.images.size(), 1u);
+    ASSERT_TRUE(s.images[0].valid());
+    EXPECT_EQ(s.images[0].pixels.width, 3);
+    EXPECT_EQ(s.images[0].pixels.height, 2);
+    EXPECT_EQ(s.images[0].pixels.pixels, pixels.pixels);
+
+    // Tangents generated for the normal-mapped primitive only.
+    const Mesh& mesh = s.meshes.at(0);
+    ASSERT_EQ(mesh.primitives.size(), 2u);
+    EXPECT_TRUE(mesh.primitives[0].generated_tangents);
+    EXPECT_EQ(mesh.primitives[0].tangents.size(), mesh.primitives[0].positions.size());
+    for (const auto& t : mesh.primitives[0].tangents) {
+        EXPECT_NEAR(t.x, 1.0f, 1e-5f);  // u increases along +x on this quad
+        EXPECT_TRUE(t.w == 1.0f || t.w == -1.0f);
+    }
+    EXPECT_EQ(mesh.primitives[0].material, 0);
+    EXPECT_FALSE(mesh.primitives[1].generated_tangents);
+    EXPECT_TRUE(mesh.primitives[1].tangents.empty());
+
+    // Invalid alpha mode.
+    doc.j["materials"][1]["alphaMode"] = "TRANSLUCENT";
+    EXPECT_EQ(load_error(doc.gltf()).where(), "/materials/1/alphaMode");
+}
+
+TEST(GltfMaterials, KhrTextureTransform) {
+    Doc doc;
+    doc.j["extensionsUsed"] = {"KHR_texture_transform"};
+    doc.j["images"] = json::array({{{"uri", "data:image/png;base64," + base64(make_png(2, 2))}}});
+    doc.j["textures"] = json::array({{{"source", 0}}});
+    // The specification's example: offset [0, 1], rotation pi/2, scale [0.5, 0.5].
+    doc.j["materials"] = json::parse(R"([
+        {"emissiveTexture": {"index": 0, "extensions": {"KHR_texture_transform":
+            {"offset": [0, 1], "rotation": 1.57079632679, "scale": [0.5, 0.5]}}}},
+        {"emissiveTexture": {"index": 0, "texCoord": 0, "extensions": {"KHR_texture_transform":
+            {"offset": [0.25, -0.5], "texCoord": 1}}}},
+        {"emissiveTexture": {"index": 0, "extensions": {"KHR_texture_transform":
+            {"scale": [2, 3], "rotation": 0.3}}}}
+    ])");
+    Scene s = load(doc.gltf());
+    ASSERT_EQ(s.materials.size(), 3u);
+    const TextureRef& t = s.materials[0].emissive;
+    ASSERT_TRUE(t.has_transform);
+    auto apply = [](const glm::mat3& m, glm::vec2 uv) { return glm::vec2(m * glm::vec3(uv, 1.0f)); };
+    // uv' = T * R * S * uv with, in GLSL column-major order,
+    //   T = mat3(1,0,0, 0,1,0, ox,oy,1), R = mat3(cos,-sin,0, sin,cos,0, 0,0,1), S = mat3(sx,0,0, 0,sy,0, 0,0,1):
+    //   u' = ox + sx*u*cos + sy*v*sin,  v' = oy - sx*u*sin + sy*v*cos.
+    // With rotation pi/2: u' = 0.5 v, v' = 1 - 0.5 u. The unit square maps onto u' in [0, 0.5],
+    // v' in [0.5, 1]: the lower-left quadrant (glTF v points down), rotated as the example says.
+    const std::pair<glm::vec2, glm::vec2> cases[] = {
+        {{1, 0}, {0, 0.5f}}, {{0, 0}, {0, 1}}, {{0, 1}, {0.5f, 1}}, {{1, 1}, {0.5f, 0.5f}}, {{0.5f, 0.5f}, {0.25f, 0.75f}},
+    };
+    for (const auto& [in, want] : cases) {
+        glm::vec2 got = apply(t.transform, in);
+        EXPECT_NEAR(got.x, want.x, 1e-6f) << "uv (" << in.x << ", " << in.y << ")";
+        EXPECT_NEAR(got.y, want.y, 1e-6f) << "uv (" << in.x << ", " << in.y << ")";
+    }
+    // Offset only, with the extension's texCoord overriding the textureInfo's.
+    const TextureRef& o = s.materials[1].emissive;
+    EXPECT_EQ(o.tex_coord, 1);
+    glm::vec2 g = apply(o.transform, glm::vec2(0.5f, 0.5f));
+    EXPECT_NEAR(g.x, 0.75f, 1e-6f);
+    EXPECT_NEAR(g.y, 0.0f, 1e-6f);
+    // General case against the formula above.
+    const TextureRef& r = s.materials[2].emissive;
+    const float c = std::cos(0.3f), sn = std::sin(0.3f);
+    for (glm::vec2 uv : {glm::vec2(0.2f, 0.7f), glm::vec2(1.0f, 0.0f), glm::vec2(-0.5f, 2.0f)}) {
+        glm::vec2 got = apply(r.transform, uv);
+        EXPECT_NEAR(got.x, 2 * uv.x * c + 3 * uv.y * sn, 1e-5f);
+        EXPECT_NEAR(got.y, -2 * uv.x * sn + 3 * uv.y * c, 1e-5f);
+    }
+    // No extension: identity, no transform flag.
+    Doc plain;
+    plain.j["images"] = doc.j["images"];
+    plain.j["textures"] = doc.j["textures"];
+    plain.j["materials"] = json::array({{{"emissiveTexture", {{"index", 0}}}}});
+    const TextureRef p = load(plain.gltf()).materials.at(0).emissive;
+    EXPECT_FALSE(p.has_transform);
+    EXPECT_EQ(p.transform, glm::mat3(1.0f));
+}
+
+TEST(GltfMaterials, BadTextureReferences) {
+    Doc doc;
+    doc.j["images"] = json::array({{{"uri", "data:image/png;base64," + base64(make_png(2, 2))}}});
+    doc.j["textures"] = json::array({{{"source", 0}}});
+    doc.j["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 3}}}}}}});
+    EXPECT_EQ(load_error(doc.gltf()).where(), "/materials/0/pbrMetallicRoughness/baseColorTexture/index");
+    // A corrupt image is a warning and an invalid (fallback) image, not an error.
+    doc.j["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    doc.j["images"] = json::array({{{"uri", "data:image/png;base64," + base64({1, 2, 3, 4, 5, 6, 7, 8})}}});
+    Diagnostics d;
+    Scene s = load(doc.gltf(), d);
+    ASSERT_EQ(s.images.size(), 1u);
+    EXPECT_FALSE(s.images[0].valid());
+    EXPECT_TRUE(has_warning(d, "/images/0", "neutral texture")) << all_warnings(d);
+}
+
+// =============================================================================================
+// GLB
+
+TEST(GltfGlb, BinChunkWithGeometryAndImage) {
+    Image8 pixels;
+    auto png = make_png(4, 3, &pixels);
+    Doc doc;
+    int pos = doc.positions(kQuad);
+    int ind = doc.indices(UNSIGNED_SHORT, {0, 1, 2, 0, 2, 3});
+    int img_view = doc.view(png);
+    doc.j["images"] = json::array({{{"bufferView", img_view}, {"mimeType", "image/png"}}});
+    doc.j["textures"] = json::array({{{"source", 0}}});
+    doc.j["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    doc.mesh({{"attributes", {{"POSITION", pos}}}, {"indices", ind}, {"material", 0}});
+    auto glb = doc.glb();
+    ASSERT_EQ(glb.size() % 4, 0u);
+    Diagnostics d;
+    Scene s = load(glb, d);
+    ASSERT_EQ(s.meshes.size(), 1u);
+    const Primitive& p = s.meshes[0].primitives.at(0);
+    EXPECT_EQ(p.source_vertex_count, 4u);
+    EXPECT_EQ(p.triangle_count(), 2u);
+    EXPECT_EQ(p.positions.size(), 6u);  // flat normals
+    EXPECT_EQ(p.positions[4], kQuad[2]);
+    ASSERT_EQ(s.images.size(), 1u);
+    ASSERT_TRUE(s.images[0].valid()) << all_warnings(d);
+    EXPECT_EQ(s.images[0].pixels.width, 4);
+    EXPECT_EQ(s.images[0].pixels.pixels, pixels.pixels);
+    EXPECT_EQ(d.total(), 0u) << all_warnings(d);
+}
+
+TEST(GltfGlb, JsonOnlyGlbAndBadHeaders) {
+    Doc doc;
+    doc.j["nodes"] = json::array({{{"name", "only"}}});
+    Scene s = load(doc.glb());
+    ASSERT_EQ(s.nodes.size(), 1u);
+    EXPECT_EQ(s.nodes[0].name, "only");
+
+    auto glb = doc.glb();
+    auto bad_version = glb;
+    bad_version[4] = 1;
+    EXPECT_EQ(load_error(bad_version).where(), "byte 4");
+    auto long_len = glb;
+    const std::uint32_t longer = std::uint32_t(glb.size() + 4);
+    std::memcpy(&long_len[8], &longer, 4);
+    EXPECT_EQ(load_error(long_len).where(), "byte 8");
+    auto bad_chunk = glb;
+    bad_chunk[16] = 'X';  // first chunk type must be JSON
+    EXPECT_EQ(load_error(bad_chunk).where(), "byte 16");
+}
+
+TEST(GltfGlb, EveryTruncationThrowsError) {
+    Doc doc;
+    int pos = doc.positions(kQuad);
+    int ind = doc.indices(UNSIGNED_SHORT, {0, 1, 2, 0, 2, 3});
+    doc.mesh({{"attributes", {{"POSITION", pos}}}, {"indices", ind}});
+    auto glb = doc.glb();
+    ASSERT_NO_THROW(load(glb));
+    for (std::size_t n = 0; n < glb.size(); ++n) {
+        std::vector<std::uint8_t> cut(glb.begin(), glb.begin() + std::ptrdiff_t(n));
+        Diagnostics d;
+        try {
+            load(cut, d);
+            ADD_FAILURE() << "truncated to " << n << " bytes loaded";
+        } catch (const Error&) {
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << "truncated to " << n << " bytes: non-fresnel exception " << e.what();
+        }
+        // The same with the header's length patched to match: the chunk checks must catch it.
+        if (n >= 12) {
+            std::uint32_t len = std::uint32_t(n);
+            std::memcpy(&cut[8], &len, 4);
+            try {
+                load(cut, d);
+                ADD_FAILURE() << "truncated to " << n << " bytes (length patched) loaded";
+            } catch (const Error&) {
+            } catch (const std::exception& e) {
+                ADD_FAILURE() << "truncated to " << n << " bytes (length patched): non-fresnel exception " << e.what();
+            }
+        }
+    }
+}
+
+// =============================================================================================
+// Errors with JSON pointers
+
+TEST(GltfErrors, AccessorPastItsBufferView) {
+    Doc doc;
+    int v = doc.view(pack(FLOAT, 3, {0, 0, 0, 1, 0, 0}));  // 24 bytes
+    int pos = doc.add_accessor({{"bufferView", v}, {"componentType", FLOAT}, {"count", 3}, {"type", "VEC3"}});
+    doc.mesh({{"attributes", {{"POSITION", pos}}}});
+    Error e = load_error(doc.gltf());
+    EXPECT_EQ(e.where(), "/accessors/0") << e.what();
+    EXPECT_NE(e.reason().find("bufferView"), std::string::npos) << e.what();
+    // Also by byteOffset.
+    doc.j["accessors"][0]["count"] = 2;
+    doc.j["accessors"][0]["byteOffset"] = 4;
+    EXPECT_EQ(load_error(doc.gltf()).where(), "/accessors/0");
+    doc.j["accessors"][0]["byteOffset"] = 0;
+    EXPECT_NO_THROW(load(doc.gltf()));
+}
+
+TEST(GltfErrors, BufferViewPastItsBuffer) {
+    Doc doc;
+    int pos = doc.positions(kTriangle);  // 36 bytes
+    doc.mesh({{"attributes", {{"POSITION", pos}}}});
+    doc.j["bufferViews"][0]["byteOffset"] = 12;
+    Error e = load_error(doc.gltf());
+    EXPECT_EQ(e.where(), "/bufferViews/0") << e.what();
+    EXPECT_NE(e.reason().find("buffer"), std::string::npos) << e.what();
+}
+
+TEST(GltfErrors, IndexOutOfRange) {
+    Doc doc;
+    int pos = doc.positions(kTriangle);
+    int ind = doc.indices(UNSIGNED_SHORT, {0, 1, 3});
+    doc.mesh({{"attributes", {{"POSITION", pos}}}, {"indices", ind}});
+    Error e = load_error(doc.gltf());
+    EXPECT_EQ(e.where(), "/meshes/0/primitives/0/indices") << e.what();
+    EXPECT_NE(e.reason().find("3"), std::string::npos) << e.what();
+}
+
+TEST(GltfErrors, SparseIndexOutOfRange) {
+    Doc doc;
+    int v = doc.view(pack(FLOAT, 3, {0, 0, 0, 1, 0, 0, 0, 1, 0}));
+    int iv = doc.view(pack(UNSIGNED_SHORT, 1, {1, 3}));
+    int vv = doc.view(pack(FLOAT, 3, {5, 5, 5, 6, 6, 6}));
+    int pos = doc.add_accessor({{"bufferView", v},
+                                {"componentType", FLOAT},
+                                {"count", 3},
+                                {"type", "VEC3"},
+                                {"sparse",
+                                 {{"count", 2},
+                                  {"indices", {{"bufferView", iv}, {"componentType", UNSIGNED_SHORT}}},
+                                  {"values", {{"bufferView", vv}}}}}});
+    doc.mesh({{"attributes", {{"POSITION", pos}}}});
+    Error e = load_error(doc.gltf());
+    EXPECT_EQ(e.where(), "/accessors/0/sparse/indices") << e.what();
+    EXPECT_NE(e.reason().find("3"), std::string::npos) << e.what();
+}
+
+TEST(GltfErrors, UnsupportedRequiredExtension) {
+    Doc doc;
+    doc.j["extensionsUsed"] = {"KHR_texture_transform", "EXT_meshopt_compression"};
+    doc.j["extensionsRequired"] = {"KHR_texture_transform", "EXT_meshopt_compression"};
+    Error e = load_error(doc.gltf());
+    EXPECT_EQ(e.where(), "/extensionsRequired/1") << e.what();
+    EXPECT_NE(e.reason().find("EXT_meshopt_compression"), std::string::npos) << e.what();
+    // Merely used (not required): a warning.
+    doc.j["extensionsRequired"] = {"KHR_texture_transform"};
+    Diagnostics d;
+    Scene s = load(doc.gltf(), d);
+    EXPECT_TRUE(has_warning(d, "/extensionsUsed", "EXT_meshopt_compression")) << all_warnings(d);
+    EXPECT_EQ(s.extensions_required, (std::vector<std::string>{"KHR_texture_transform"}));
+}
+
+TEST(GltfErrors, NodeCycle) {
+    Doc doc;
+    doc.j["nodes"] = json::array({{{"children", {1}}}, {{"children", {0}}}});
+    Error e = load_error(doc.gltf());
+    EXPECT_EQ(e.where(), "/nodes/0") << e.what();
+    EXPECT_NE(e.reason().find("cycle"), std::string::npos) << e.what();
+    // A cycle next to a valid root.
+    doc.j["nodes"] = json::array({{{"name", "root"}}, {{"children", {2}}}, {{"children", {1}}}});
+    Error e2 = load_error(doc.gltf());
+    EXPECT_EQ(e2.where(), "/nodes/1") << e2.what();
+    // Its own child.
+    doc.j["nodes"] = json::array({{{"children", {0}}}});
+    EXPECT_EQ(load_error(doc.gltf()).where(), "/nodes/0/children/0");
+}
+
+TEST(GltfErrors, NodeWithTwoParents) {
+    Doc doc;
+    doc.j["nodes"] = json::array({{{"children", {2}}}, {{"children", {2}}}, {{"name", "child"}}});
+    Error e = load_error(doc.gltf());
+    EXPECT_EQ(e.where(), "/nodes/1/children/0") << e.what();
+    EXPECT_NE(e.reason().find("parent"), std::string::npos) << e.what();
+    // A child that does not exist.
+    doc.j["nodes"] = json::array({{{"children", {5}}}});
+    EXPECT_EQ(load_error(doc.gltf()).where(), "/nodes/0/children/0");
+    // A scene root that has a parent.
+    doc.j["nodes"] = json::array({{{"children", {1}}}, {{"name", "child"}}});
+    doc.j["scenes"] = json::array({{{"nodes", {1}}}});
+    EXPECT_EQ(load_error(doc.gltf()).where(), "/scenes/0/nodes/0");
+}
+
+TEST(GltfErrors, InvalidJson) {
+    const std::string texts[] = {"{\"asset\": {\"version\": \"2.0\"},", "", "{\"asset\": {\"version\": \"2.0\"}} x",
+                                 "[1, 2, 3]", "{\"asset\": 5}", "{\"asset\": {\"version\": \"1.0\"}}", "{}"};
+    for (const auto& t : texts) {
+        std::vector<std::uint8_t> bytes(t.begin(), t.end());
+        Error e = load_error(bytes);
+        EXPECT_EQ(e.file(), "test.gltf") << t;
+        EXPECT_FALSE(e.reason().empty()) << t;
+    }
+    std::string truncated = "{\"asset\": {\"version\": \"2.0\"},";
+    Error e = load_error(std::vector<std::uint8_t>(truncated.begin(), truncated.end()));
+    EXPECT_EQ(e.where().rfind("byte ", 0), 0u) << e.where();
+    EXPECT_NE(e.reason().find("JSON"), std::string::npos) << e.what();
+    std::string v1 = "{\"asset\": {\"version\": \"1.0\"}}";
+    EXPECT_EQ(load_error(std::vector<std::uint8_t>(v1.begin(), v1.end())).where(), "/asset/version");
+    std::string noasset = "{}";
+    EXPECT_EQ(load_error(std::vector<std::uint8_t>(noasset.begin(), noasset.end())).where(), "/asset");
+}
+
+TEST(GltfErrors, WrongJsonTypes) {
+    Doc doc;
+    int pos = doc.positions(kTriangle);
+    doc.mesh({{"attributes", {{"POSITION", pos}}}});
+    json bad = doc.with_buffer_uri(doc.data_uri());
+    bad["meshes"][0]["primitives"][0]["mode"] = "triangles";
+    EXPECT_EQ(load_error(bytes_of(bad)).where(), "/meshes/0/primitives/0/mode");
+    bad = doc.with_buffer_uri(doc.data_uri());
+    bad["accessors"][0]["count"] = -1;
+    EXPECT_EQ(load_error(bytes_of(bad)).where(), "/accessors/0/count");
+    bad = doc.with_buffer_uri(doc.data_uri());
+    bad["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 9;
+    EXPECT_EQ(load_error(bytes_of(bad)).where(), "/meshes/0/primitives/0/attributes/POSITION");
+    bad = doc.with_buffer_uri(doc.data_uri());
+    bad["nodes"][0]["matrix"] = {1, 2, 3};
+    EXPECT_EQ(load_error(bytes_of(bad)).where(), "/nodes/0/matrix");
+}
+
+// =============================================================================================
+// URIs
+
+TEST(GltfUris, RefusedUnlessAllowed) {
+    TempDir dir;
+    fs::path model_dir = dir.path() / "model";
+    fs::create_directories(model_dir);
+    Doc doc;
+    int pos = doc.positions(kTriangle);
+    doc.mesh({{"attributes", {{"POSITION", pos}}}});
+    // The same bytes inside the model folder, next to it, and outside it.
+    write_file(model_dir / "tri.bin", doc.bin);
+    write_file(dir.path() / "x.bin", doc.bin);
+
+    // Relative, inside the folder: loads.
+    {
+        Diagnostics d;
+        Scene s = load_gltf_from_memory(bytes_of(doc.with_buffer_uri("tri.bin")), "m.gltf", model_dir, d);
+        EXPECT_EQ(s.meshes.at(0).primitives.at(0).positions, kTriangle);
+    }
+    const std::string refused[] = {"../x.bin", "%2e%2e/x.bin", "/etc/passwd", (dir.path() / "x.bin").string(),
+                                   "http://example.com/a.bin", "file:///etc/passwd"};
+    for (const auto& uri : refused) {
+        Error e = load_error(bytes_of(doc.with_buffer_uri(uri)), {}, model_dir);
+        EXPECT_EQ(e.where(), "/buffers/0/uri") << uri << ": " << e.what();
+        EXPECT_NE(e.reason().find(uri), std::string::npos) << "message should name '" << uri << "': " << e.what();
+    }
+    // With allow_external_files: an absolute path to a real file and a ".." escape load.
+    GltfLoadOptions opt;
+    opt.allow_external_files = true;
+    {
+        Diagnostics d;
+        Scene s = load_gltf_from_memory(bytes_of(doc.with_buffer_uri((dir.path() / "x.bin").string())), "m.gltf",
+                                        model_dir, d, opt);
+        EXPECT_EQ(s.meshes.at(0).primitives.at(0).positions, kTriangle);
+        Scene r = load_gltf_from_memory(bytes_of(doc.with_buffer_uri("../x.bin")), "m.gltf", model_dir, d, opt);
+        EXPECT_EQ(r.meshes.at(0).primitives.at(0).positions, kTriangle);
+    }
+    // ... but never the network.
+    for (const std::string uri : {"http://example.com/a.bin", "https://example.com/a.bin"}) {
+        Error e = load_error(bytes_of(doc.with_buffer_uri(uri)), opt, model_dir);
+        EXPECT_EQ(e.where(), "/buffers/0/uri") << e.what();
+        EXPECT_NE(e.reason().find(uri), std::string::npos) << e.what();
+    }
+    // A missing file is an error naming it.
+    Error missing = load_error(bytes_of(doc.with_buffer_uri("nope.bin")), {}, model_dir);
+    EXPECT_EQ(missing.where(), "/buffers/0/uri");
+    EXPECT_NE(missing.reason().find("nope.bin"), std::string::npos) << missing.what();
+}
+
+TEST(GltfUris, ImageUriPolicy) {
+    TempDir dir;
+    fs::path model_dir = dir.path() / "model";
+    fs::create_directories(model_dir);
+    auto png = make_png(2, 2);
+    write_file(dir.path() / "x.png", png);
+    write_file(model_dir / "ok.png", png);
+    Doc doc;
+    doc.j["images"] = json::array({{{"uri", "ok.png"}}});
+    Diagnostics d;
+    Scene s = load_gltf_from_memory(doc.gltf(), "m.gltf", model_dir, d);
+    ASSERT_EQ(s.images.size(), 1u);
+    EXPECT_TRUE(s.images[0].valid());
+    for (const std::string uri : {"../x.png", "/etc/passwd", "http://example.com/a.png"}) {
+        doc.j["images"] = json::array({{{"uri", uri}}});
+        Error e = load_error(doc.gltf(), {}, model_dir);
+        EXPECT_EQ(e.where(), "/images/0/uri") << e.what();
+        EXPECT_NE(e.reason().find(uri), std::string::npos) << e.what();
+    }
+    // A missing image inside the folder is only a warning.
+    doc.j["images"] = json::array({{{"uri", "missing.png"}}});
+    Diagnostics d2;
+    Scene m = load_gltf_from_memory(doc.gltf(), "m.gltf", model_dir, d2);
+    EXPECT_FALSE(m.images.at(0).valid());
+    EXPECT_TRUE(has_warning(d2, "/images/0/uri", "missing.png")) << all_warnings(d2);
+}
+
+TEST(GltfUris, LoadGltfFromFile) {
+    TempDir dir;
+    Doc doc;
+    int pos = doc.positions(kQuad);
+    int ind = doc.indices(UNSIGNED_BYTE, {0, 1, 2, 0, 2, 3});
+    doc.mesh({{"attributes", {{"POSITION", pos}}}, {"indices", ind}});
+    write_file(dir.path() / "quad.bin", doc.bin);
+    write_file(dir.path() / "quad.gltf", bytes_of(doc.with_buffer_uri("quad.bin")));
+    Diagnostics d;
+    Scene s = load_gltf(dir.path() / "quad.gltf", d);
+    EXPECT_EQ(s.meshes.at(0).primitives.at(0).triangle_count(), 2u);
+    EXPECT_NE(s.source.find("quad.gltf"), std::string::npos);
+}
+
+// =============================================================================================
+// Shared sample models
+
+TEST(GltfSamples, DamagedHelmet) {
+    fs::path p = fs::path(shared_dir()) / "assets/models/DamagedHelmet/DamagedHelmet.glb";
+    if (!fs::exists(p)) GTEST_SKIP() << "shared asset not found: " << p;
+    Diagnostics d;
+    Scene s = load_gltf(p, d);
+    ASSERT_EQ(s.meshes.size(), 1u);
+    ASSERT_EQ(s.meshes[0].primitives.size(), 1u);
+    const Primitive& prim = s.meshes[0].primitives[0];
+    EXPECT_EQ(prim.source_vertex_count, 14556u);
+    EXPECT_EQ(prim.triangle_count(), 15452u);
+    ASSERT_EQ(s.images.size(), 5u);
+    for (std::size_t i = 0; i < s.images.size(); ++i) EXPECT_TRUE(s.images[i].valid()) << "image " << i;
+    EXPECT_TRUE(prim.generated_tangents);
+    EXPECT_EQ(prim.tangents.size(), prim.positions.size());
+    EXPECT_EQ(prim.normals.size(), prim.positions.size());
+    EXPECT_FALSE(prim.generated_normals);
+    ASSERT_GE(prim.material, 0);
+    EXPECT_TRUE(s.materials[std::size_t(prim.material)].normal.valid());
+}
+
+TEST(GltfSamples, SimpleSparseAccessor) {
+    fs::path dir = fs::path(shared_dir()) / "assets/models/SimpleSparseAccessor";
+    if (!fs::exists(dir / "SimpleSparseAccessor.gltf")) GTEST_SKIP() << "shared asset not found: " << dir;
+    Diagnostics d;
+    Scene s = load_gltf(dir / "SimpleSparseAccessor.gltf", d);
+    const Primitive& p = s.meshes.at(0).primitives.at(0);
+    EXPECT_EQ(p.source_vertex_count, 14u);
+
+    // Decode the file independently: indices (view 0), base positions (view 1),
+    // sparse indices (view 2, unsigned short) and values (view 3).
+    auto bin = read_file_bytes(dir / "SimpleSparseAccessor.bin", 1 << 20);
+    ASSERT_EQ(bin.size(), 284u);
+    std::vector<std::uint16_t> idx(36);
+    std::memcpy(idx.data(), bin.data(), 72);
+    std::vector<glm::vec3> base(14), expected(14);
+    std::memcpy(base.data(), bin.data() + 72, 168);
+    expected = base;
+    std::uint16_t sidx[3];
+    std::memcpy(sidx, bin.data() + 240, 6);
+    glm::vec3 svals[3];
+    std::memcpy(svals, bin.data() + 248, 36);
+    for (int i = 0; i < 3; ++i) expected[sidx[i]] = svals[i];
+
+    // No normals in the file: flat shading expands the vertices along the index list.
+    ASSERT_TRUE(p.generated_normals);
+    ASSERT_EQ(p.positions.size(), 36u);
+    for (std::size_t k = 0; k < 36; ++k) EXPECT_EQ(p.positions[k], expected[idx[k]]) << "corner " << k;
+    // The sparse-modified vertices are displaced from the base grid.
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_NE(expected[sidx[i]], base[sidx[i]]);
+        bool found = false;
+        for (std::size_t k = 0; k < 36; ++k) found = found || (idx[k] == sidx[i] && p.positions[k] == svals[i]);
+        EXPECT_TRUE(found) << "sparse vertex " << sidx[i];
+    }
+    EXPECT_FLOAT_EQ(p.bounds_max.y, 4.0f);
+}
+
+TEST(GltfSamples, Cameras) {
+    fs::path p = fs::path(shared_dir()) / "assets/models/Cameras/Cameras.gltf";
+    if (!fs::exists(p)) GTEST_SKIP() << "shared asset not found: " << p;
+    Diagnostics d;
+    Scene s = load_gltf(p, d);
+    ASSERT_EQ(s.cameras.size(), 2u);
+    int persp = 0, ortho = 0;
+    for (const auto& c : s.cameras) (c.type == Camera::Type::Perspective ? persp : ortho)++;
+    EXPECT_EQ(persp, 1);
+    EXPECT_EQ(ortho, 1);
+    EXPECT_EQ(s.cameras[0].type, Camera::Type::Perspective);
+    EXPECT_FLOAT_EQ(s.cameras[0].yfov, 0.7f);
+    EXPECT_EQ(s.cameras[1].type, Camera::Type::Orthographic);
+    EXPECT_FLOAT_EQ(s.cameras[1].xmag, 1.0f);
+    // Both cameras are attached to nodes.
+    int with_camera = 0;
+    for (const auto& n : s.nodes) with_camera += n.camera >= 0;
+    EXPECT_EQ(with_camera, 2);
+}
