@@ -322,7 +322,8 @@ Runner add_render_command(CLI::App& app) {
     cmd->add_option("--msaa", o->msaa, "MSAA samples (1 = off)")->capture_default_str()->check(CLI::Range(1, 16));
     cmd->add_option("--debug", o->debug,
                     "Show a channel instead of shading: basecolor metallic roughness normal geometry-normal tangent "
-                    "bitangent occlusion emissive alpha uv0 uv1 D G F diffuse specular")
+                    "bitangent occlusion emissive alpha uv0 uv1 D G F diffuse specular irradiance prefiltered ibl-diffuse "
+                    "ibl-specular (NaN/Inf show as magenta)")
         ->capture_default_str();
     cmd->add_flag("--json", o->json, "Print timings, camera and counts as one JSON line");
     cmd->add_flag("--allow-external-files", o->allow_external,
