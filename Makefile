@@ -30,6 +30,7 @@ demo: deps
 # then the loader tests and the corpus again under AddressSanitizer + UBSan.
 test: deps
 	@$(MAKE) --no-print-directory build
+	@scripts/install-test-tools.sh $(BUILD)/node-tools
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	@$(MAKE) --no-print-directory asan
 
@@ -39,8 +40,11 @@ test-fast: build
 $(ASAN_BUILD)/CMakeCache.txt:
 	cmake -S . -B $(ASAN_BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFRESNEL_SANITIZE=ON -DFRESNEL_BENCH=OFF
 
+# Only what the sanitizer tests need: the loaders' unit tests, the CLI (corpus and
+# hostile-input tests) and the fuzz-regression replayers.
+ASAN_TARGETS := core_test scene_test fresnel replay_gltf replay_image replay_hdr replay_exr
 asan: $(ASAN_BUILD)/CMakeCache.txt
-	cmake --build $(ASAN_BUILD) -j $(JOBS)
+	cmake --build $(ASAN_BUILD) -j $(JOBS) --target $(ASAN_TARGETS)
 	cd $(ASAN_BUILD) && ctest --output-on-failure -j $(JOBS) -L sanitize
 
 fuzz: deps

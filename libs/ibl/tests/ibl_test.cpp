@@ -117,19 +117,85 @@ TEST(Orientation, OneColourPerAxisLandsOnTheRightFaces) {
     EXPECT_GT(cube_texel_direction(4, 16, 0, 32).y, 0.6f);
 }
 
-TEST(SphericalHarmonics, IrradianceMatchesBruteForce) {
-    ImageF pano = smooth_panorama(512);
-    Cubemap cube = cubemap_from_equirect(pano, 64);
+namespace {
+// A low-frequency panorama (sky gradient, broad warm lobe, dim floor): the kind of
+// lighting 9 SH coefficients represent well.
+ImageF broad_panorama(int width) {
+    ImageF img(width, width / 2);
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            glm::vec3 d = equirect_to_direction({(x + 0.5f) / img.width, (y + 0.5f) / img.height});
+            glm::vec3 sun = glm::normalize(glm::vec3(0.6f, 0.5f, 0.6f));
+            float lobe = std::max(0.0f, glm::dot(d, sun));
+            glm::vec3 c = glm::vec3(0.3f, 0.4f, 0.6f) * (0.6f + 0.4f * d.y) + glm::vec3(2.0f, 1.5f, 1.0f) * lobe * lobe +
+                          glm::vec3(0.1f) * std::max(0.0f, -d.y);
+            float* p = img.at(x, y);
+            p[0] = c.x, p[1] = c.y, p[2] = c.z, p[3] = 1;
+        }
+    return img;
+}
+
+const glm::vec3 kNormals[] = {glm::vec3(0, 1, 0), glm::vec3(0, -1, 0), glm::vec3(1, 0, 0), glm::vec3(0.6f, 0.5f, 0.6f),
+                              glm::vec3(-0.3f, 0.2f, -0.9f), glm::vec3(0.7f, -0.6f, 0.2f)};
+
+glm::dvec3 brute_force_irradiance(const Cubemap& cube, glm::vec3 n) {
+    return integrate_sphere([&](glm::vec3 d) { return cube.sample_level(d, 0) * std::max(0.0f, glm::dot(d, n)) / kPi; }, 96);
+}
+}  // namespace
+
+TEST(SphericalHarmonics, IrradianceMatchesBruteForceOnLowFrequencyLight) {
+    Cubemap cube = cubemap_from_equirect(broad_panorama(512), 64);
     SH9 irr = irradiance_from_radiance(project_radiance(cube));
-    for (glm::vec3 n : {glm::vec3(0, 1, 0), glm::vec3(0, -1, 0), glm::vec3(1, 0, 0), glm::normalize(glm::vec3(0.6f, 0.5f, 0.6f)),
-                        glm::normalize(glm::vec3(-0.3f, 0.2f, -0.9f))}) {
-        glm::dvec3 e = integrate_sphere([&](glm::vec3 d) {
-                           return cube.sample_level(d, 0) * std::max(0.0f, glm::dot(d, n)) / kPi;
-                       }, 96);
+    for (glm::vec3 n : kNormals) {
+        n = glm::normalize(n);
+        glm::dvec3 e = brute_force_irradiance(cube, n);
         glm::vec3 sh = irr.evaluate(n);
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(sh[c], e[c], 0.01 * e[c] + 1e-4) << "n " << n.x << "," << n.y << "," << n.z;
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(sh[c], e[c], 0.01 * e[c]) << "n " << n.x << "," << n.y << "," << n.z;
     }
 }
+
+TEST(Irradiance, ConvolutionMatchesBruteForceWhereShCannot) {
+    // A sharper light (cos^8 lobe): SH9 is off by several percent here (why shading uses a
+    // cube map); the brute-force convolution cube stays within 1 %.
+    ImageF pano = smooth_panorama(512);
+    Cubemap cube = cubemap_from_equirect(pano, 64);
+    build_mip_chain(cube);
+    Cubemap irr = irradiance_convolution(cube, 32, 64);
+    SH9 sh = irradiance_from_radiance(project_radiance(cube));
+    float worst_sh = 0;
+    for (glm::vec3 n : kNormals) {
+        n = glm::normalize(n);
+        glm::dvec3 e = brute_force_irradiance(cube, n);
+        // Compare at a texel centre to keep bilinear interpolation out of it.
+        int face;
+        float s, t;
+        cube_face_uv(n, face, s, t);
+        int x = std::min(31, int(s * 32)), y = std::min(31, int(t * 32));
+        glm::vec3 centre = cube_texel_direction(face, x, y, 32);
+        glm::dvec3 ec = brute_force_irradiance(cube, centre);
+        const float* got = irr.levels[0].texel(face, x, y);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], ec[c], 0.01 * ec[c] + 1e-4);
+        for (int c = 0; c < 3; ++c) worst_sh = std::max(worst_sh, float(std::fabs(sh.evaluate(n)[c] - e[c]) / e[c]));
+    }
+    std::printf("SH9 worst relative error on this panorama: %.1f %%\n", worst_sh * 100);
+    EXPECT_GT(worst_sh, 0.01f);  // the reason the renderer does not shade with SH
+}
+
+TEST(Irradiance, FilteredSamplingIsCloseToBruteForce) {
+    // The default (Khronos-compatible) filtered importance sampling blurs slightly.
+    Cubemap cube = cubemap_from_equirect(broad_panorama(512), 256);
+    build_mip_chain(cube);
+    Cubemap irr = irradiance_filtered(cube, 16, 2048);
+    for (glm::vec3 n : kNormals) {
+        n = glm::normalize(n);
+        glm::dvec3 e = brute_force_irradiance(cube, n);
+        glm::vec3 got = irr.sample_level(n, 0);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], e[c], 0.05 * e[c] + 1e-3);
+    }
+}
+
+namespace {
+}  // namespace
 
 TEST(BrdfLut, MatchesBruteForceIntegration) {
     ImageF lut = compute_brdf_lut(32, 1024);
@@ -155,7 +221,9 @@ TEST(Prefilter, TexelMatchesBruteForceGgxConvolution) {
     ImageF pano = smooth_panorama(512);
     Cubemap source = cubemap_from_equirect(pano, 64);
     build_mip_chain(source);
-    PrefilterOptions o{64, 5, 1024, 0};
+    // lod_bias 0: the filtered-importance-sampling estimator itself (the default bias adds
+    // the Khronos Sample Viewer's extra blur on purpose).
+    PrefilterOptions o{64, 5, 1024, 0, 0.0f};
     Cubemap pf = prefilter_ggx(source, o);
     for (int level : {1, 2, 4}) {
         float roughness = level / 4.0f, alpha = roughness * roughness;
@@ -244,7 +312,7 @@ TEST(Ktx2, ReadByIndependentReader) {
     // The npm package ktx-parse (Khronos-compatible reader) must accept our files. Skips
     // when node or the package is unavailable (it is installed by scripts/install-test-tools.sh).
     const char* tools = std::getenv("FRESNEL_NODE_TOOLS");
-    fs::path tool_dir = tools ? fs::path(tools) : fs::path(FRESNEL_SOURCE_DIR) / "build" / "node-tools";
+    fs::path tool_dir = tools ? fs::path(tools) : fs::path(FRESNEL_NODE_TOOLS_DIR);
     if (!fs::exists(tool_dir / "node_modules" / "ktx-parse")) GTEST_SKIP() << "ktx-parse not installed in " << tool_dir;
     fs::path dir = fs::temp_directory_path() / "fresnel_ktx2_parse";
     fs::create_directories(dir);
