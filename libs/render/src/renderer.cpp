@@ -370,6 +370,20 @@ std::size_t Renderer::program_count() const { return impl_->shaders.size(); }
 
 ImageF Renderer::render(const CameraSetup& cam, const std::vector<LightInstance>& lights,
                         const RenderSettings& settings, FrameStats* stats_out) {
+    draw(cam, lights, settings, stats_out);
+    Impl& r = *impl_;
+    int w = settings.width, h = settings.height;
+    std::vector<float> px = r.device.read_rgba32f(r.output_fb, w, h);
+    ImageF img(w, h);
+    for (int y = 0; y < h; ++y)  // GL rows are bottom to top
+        std::copy_n(&px[std::size_t(h - 1 - y) * std::size_t(w) * 4], std::size_t(w) * 4, img.at(0, y));
+    std::string errors = r.device.take_errors();
+    if (stats_out && !errors.empty()) stats_out->gl_errors += (stats_out->gl_errors.empty() ? "" : ", ") + errors;
+    return img;
+}
+
+void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& lights, const RenderSettings& settings,
+                    FrameStats* stats_out) {
     Impl& r = *impl_;
     FrameStats stats;
     int w = settings.width, h = settings.height;
@@ -424,15 +438,11 @@ ImageF Renderer::render(const CameraSetup& cam, const std::vector<LightInstance>
     prog.set("u_frame", 0);
     prog.set("u_transparent", transparent && settings.straight_alpha ? 1 : 0);
     r.device.draw_fullscreen();
-
-    std::vector<float> px = r.device.read_rgba32f(r.output_fb, w, h);
     stats.gl_errors = r.device.take_errors();
-    ImageF img(w, h);
-    for (int y = 0; y < h; ++y)  // GL rows are bottom to top
-        std::copy_n(&px[std::size_t(h - 1 - y) * std::size_t(w) * 4], std::size_t(w) * 4, img.at(0, y));
     if (stats_out) *stats_out = stats;
-    return img;
 }
+
+void Renderer::finish() { impl_->device.finish(); }
 
 Image8 to_image8(const ImageF& image, bool alpha) {
     Image8 out(image.width, image.height, alpha ? 4 : 3);

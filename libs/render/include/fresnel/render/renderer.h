@@ -76,6 +76,12 @@ public:
     ImageF render(const CameraSetup& camera, const std::vector<LightInstance>& lights, const RenderSettings& settings,
                   FrameStats* stats = nullptr);
 
+    // Draws a frame into the renderer's output target without reading it back (for
+    // timing, and for windows that present it). finish() waits until the GPU is done.
+    void draw(const CameraSetup& camera, const std::vector<LightInstance>& lights, const RenderSettings& settings,
+              FrameStats* stats = nullptr);
+    void finish();
+
     // Number of shader variants compiled so far (they are cached by feature set).
     std::size_t program_count() const;
 
