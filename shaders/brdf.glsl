@@ -4,7 +4,8 @@ const float MIN_ROUGHNESS = 0.0;
 
 float d_ggx(float n_dot_h, float alpha) {
     float a2 = alpha * alpha;
-    float f = max((n_dot_h * n_dot_h) * (a2 - 1.0) + 1.0, 1e-7);  // alpha = 0 must not give 0/0
+    // Precise at the peak of glossy lobes (see brdf.h); the floor keeps alpha = 0 from 0/0.
+    float f = max((1.0 - n_dot_h) * (1.0 + n_dot_h) + n_dot_h * n_dot_h * a2, 1e-7);
     return a2 / (PI * f * f);
 }
 

@@ -4,7 +4,7 @@
 in vec2 v_texcoord;
 out vec4 frag_color;
 uniform sampler2D u_inputs;
-uniform int u_mode;  // 0: BRDF (diffuse+specular)*n.l, 1: D,V,F.r, 2: tone map u_tonemap, 3: encode u_encoding
+uniform int u_mode;  // 0: BRDF diffuse+specular, 1: D,V,F.r, 2: tone map u_tonemap, 3: encode u_encoding
 
 #include "common.glsl"
 #include "color.glsl"

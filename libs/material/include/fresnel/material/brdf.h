@@ -17,8 +17,10 @@ inline constexpr float kPi = 3.14159265358979323846f;
 // Trowbridge-Reitz (GGX) normal distribution D(h).
 inline float d_ggx(float n_dot_h, float alpha) {
     float a2 = alpha * alpha;
-    // f >= a2 > 0 in exact arithmetic; the floor keeps alpha = 0 (a mirror) from giving 0/0.
-    float f = std::max((n_dot_h * n_dot_h) * (a2 - 1.0f) + 1.0f, 1e-7f);
+    // f = 1 - (n.h)^2 (1 - a2), written as (1 - n.h)(1 + n.h) + (n.h)^2 a2 so that it keeps
+    // its precision at the peak of glossy lobes (n.h -> 1), where the naive form cancels.
+    // The floor keeps alpha = 0 (a mirror) from giving 0/0.
+    float f = std::max((1.0f - n_dot_h) * (1.0f + n_dot_h) + n_dot_h * n_dot_h * a2, 1e-7f);
     return a2 / (kPi * f * f);
 }
 
@@ -53,7 +55,9 @@ struct Surface {
     float specular_f0 = 0.04f;  // dielectric reflectance at normal incidence (ior 1.5)
 };
 
-// Smallest perceptual roughness used in shading, to keep D finite for point lights.
+// Smallest perceptual roughness used in shading. 0, as in the glTF spec and the Khronos
+// Sample Viewer: a perfect mirror then reflects nothing from punctual lights (D = 0 away
+// from the exact peak), and everything from image-based light.
 inline constexpr float kMinRoughness = 0.0f;
 
 inline float alpha_from_roughness(float perceptual) {
