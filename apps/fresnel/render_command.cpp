@@ -207,7 +207,11 @@ int run_render(const RenderOptions& o) {
     // GPU.
     auto t_gpu = Clock::now();
     gpu::ContextOptions co;
+#ifndef NDEBUG
+    co.debug = true;  // debug builds always report KHR_debug messages
+#else
     co.debug = o.gl_debug;
+#endif
     co.log = [](const std::string& m) { std::fprintf(stderr, "fresnel: %s\n", m.c_str()); };
     auto context = gpu::create_headless_context(co);
     Renderer renderer(*context);

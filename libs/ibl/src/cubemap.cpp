@@ -25,19 +25,24 @@ glm::vec3 equirect_to_direction(glm::vec2 uv) {
     return {-s * std::sin(phi), std::cos(theta), s * std::cos(phi)};
 }
 
+namespace {
+// The (unnormalised) direction through face coordinates s, t in [-1, 1] (t down the face).
+glm::vec3 face_direction(int face, float s, float t) {
+    switch (face) {
+        case 0: return {1.0f, -t, -s};
+        case 1: return {-1.0f, -t, s};
+        case 2: return {s, 1.0f, t};
+        case 3: return {s, -1.0f, -t};
+        case 4: return {s, -t, 1.0f};
+        default: return {-s, -t, -1.0f};
+    }
+}
+}  // namespace
+
 glm::vec3 cube_texel_direction(int face, int x, int y, int size) {
     float s = 2.0f * (float(x) + 0.5f) / float(size) - 1.0f;
     float t = 2.0f * (float(y) + 0.5f) / float(size) - 1.0f;
-    glm::vec3 d;
-    switch (face) {
-        case 0: d = {1.0f, -t, -s}; break;
-        case 1: d = {-1.0f, -t, s}; break;
-        case 2: d = {s, 1.0f, t}; break;
-        case 3: d = {s, -1.0f, -t}; break;
-        case 4: d = {s, -t, 1.0f}; break;
-        default: d = {-s, -t, -1.0f}; break;
-    }
-    return glm::normalize(d);
+    return glm::normalize(face_direction(face, s, t));
 }
 
 void cube_face_uv(glm::vec3 d, int& face, float& s, float& t) {
@@ -149,16 +154,7 @@ Cubemap cubemap_from_equirect(const ImageF& pano, int size, unsigned threads) {
                     for (int i = 0; i < ss; ++i) {
                         float s = 2.0f * (float(x) + (float(i) + 0.5f) / float(ss)) / float(size) - 1.0f;
                         float t = 2.0f * (float(y) + (float(j) + 0.5f) / float(ss)) / float(size) - 1.0f;
-                        glm::vec3 d;
-                        switch (face) {
-                            case 0: d = {1.0f, -t, -s}; break;
-                            case 1: d = {-1.0f, -t, s}; break;
-                            case 2: d = {s, 1.0f, t}; break;
-                            case 3: d = {s, -1.0f, -t}; break;
-                            case 4: d = {s, -t, 1.0f}; break;
-                            default: d = {-s, -t, -1.0f}; break;
-                        }
-                        sum += sample_equirect(pano, direction_to_equirect(glm::normalize(d)));
+                        sum += sample_equirect(pano, direction_to_equirect(glm::normalize(face_direction(face, s, t))));
                     }
                 sum /= float(ss * ss);
                 float* t = cube.levels[0].texel(face, x, y);

@@ -157,6 +157,60 @@ struct LobeSample {
     float w0, w1;   // weight * (1 - frac), weight * frac
 };
 
+// A lobe sample reading the source mip chain at `lod` (of `levels`). Near a level it reads
+// that level alone; only in between are two levels blended (about half the reads; the
+// lod is a heuristic anyway).
+LobeSample make_sample(glm::vec3 dir, float weight, float lod, int levels) {
+    int level0 = std::min(int(lod), levels - 1);
+    float frac = level0 + 1 < levels ? lod - float(level0) : 0.0f;
+    if (frac < 0.2f) frac = 0.0f;
+    if (frac > 0.8f) level0 += 1, frac = 0.0f;
+    return {dir, weight, lod, level0, weight * (1.0f - frac), weight * frac};
+}
+
+// Visit samples mip by mip and around the lobe in order, so consecutive reads touch
+// nearby texels of the same level (the sum does not depend on the order).
+void sort_for_locality(std::vector<LobeSample>& lobe) {
+    std::sort(lobe.begin(), lobe.end(), [](const LobeSample& a, const LobeSample& b) {
+        if (a.level0 != b.level0) return a.level0 < b.level0;
+        return std::atan2(a.dir.y, a.dir.x) < std::atan2(b.dir.y, b.dir.x);
+    });
+}
+
+std::vector<LevelView> level_views(const Cubemap& cube) {
+    std::vector<LevelView> views;
+    for (const auto& lv : cube.levels) {
+        LevelView v;
+        for (int f = 0; f < 6; ++f) v.faces[f] = lv.faces[std::size_t(f)].data();
+        v.size = lv.size;
+        v.fsize = float(lv.size);
+        views.push_back(v);
+    }
+    return views;
+}
+
+// The weighted mean of the source over `lobe` (defined around +Z) turned to normal n.
+glm::vec3 filter_direction(const std::vector<LevelView>& views, const std::vector<LobeSample>& lobe, glm::vec3 n) {
+    glm::vec3 t, b;
+    sampling::basis(n, t, b);
+    float acc[4] = {0, 0, 0, 0};
+    float wsum = 0.0f;
+    for (const LobeSample& s : lobe) {
+        float dx = t.x * s.dir.x + b.x * s.dir.y + n.x * s.dir.z;
+        float dy = t.y * s.dir.x + b.y * s.dir.y + n.y * s.dir.z;
+        float dz = t.z * s.dir.x + b.z * s.dir.y + n.z * s.dir.z;
+        int face;
+        float fs, ft;
+        face_coords(dx, dy, dz, face, fs, ft);
+        accumulate_bilinear(views[std::size_t(s.level0)], face, fs, ft, s.w0, acc);
+        if (s.w1 > 0.0f) accumulate_bilinear(views[std::size_t(s.level0 + 1)], face, fs, ft, s.w1, acc);
+        wsum += s.weight;
+    }
+    return glm::vec3(acc[0], acc[1], acc[2]) / std::max(wsum, 1e-8f);
+}
+
+void store(float* px, glm::vec3 c) { px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = 1.0f; }
+
 std::vector<LobeSample> lobe_samples(float roughness, int count, int source_size, int source_levels, float lod_bias) {
     std::vector<LobeSample> out;
     float alpha = roughness * roughness;
@@ -171,14 +225,9 @@ std::vector<LobeSample> lobe_samples(float roughness, int count, int source_size
         float sample_solid_angle = 1.0f / (float(count) * std::max(pdf, 1e-8f));
         float lod = std::clamp(0.5f * std::log2(sample_solid_angle / texel_solid_angle) + lod_bias, 0.0f,
                                float(source_levels - 1));
-        int level0 = std::min(int(lod), source_levels - 1);
-        float frac = level0 + 1 < source_levels ? lod - float(level0) : 0.0f;
-        // Blend two mips only where the lod is really between them: near a level, read
-        // that level alone (saves about half of the reads; the lod is a heuristic anyway).
-        if (frac < 0.2f) frac = 0.0f;
-        if (frac > 0.8f) level0 += 1, frac = 0.0f;
-        out.push_back({l, l.z, lod, level0, l.z * (1.0f - frac), l.z * frac});
+        out.push_back(make_sample(l, l.z, lod, source_levels));
     }
+    sort_for_locality(out);
     return out;
 }
 }  // namespace
@@ -216,14 +265,7 @@ Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& o, const Pr
             for (int y = 0; y < size; ++y) rows.push_back({l, f, y});
         total_cost += double(size) * size * 6 * double(lobes[std::size_t(l)].size());
     }
-    std::vector<LevelView> views;
-    for (const auto& lv : source.levels) {
-        LevelView v;
-        for (int f = 0; f < 6; ++f) v.faces[f] = lv.faces[std::size_t(f)].data();
-        v.size = lv.size;
-        v.fsize = float(lv.size);
-        views.push_back(v);
-    }
+    std::vector<LevelView> views = level_views(source);
     std::atomic<double> done_cost{0};
     parallel_for(
         rows.size(),
@@ -231,27 +273,8 @@ Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& o, const Pr
             const Row& row = rows[i];
             CubeLevel& lv = out.levels[std::size_t(row.level)];
             const auto& lobe = lobes[std::size_t(row.level)];
-            for (int x = 0; x < lv.size; ++x) {
-                glm::vec3 n = cube_texel_direction(row.face, x, row.y, lv.size);
-                glm::vec3 t, b;
-                sampling::basis(n, t, b);
-                float acc[4] = {0, 0, 0, 0};
-                float wsum = 0.0f;
-                for (const LobeSample& s : lobe) {
-                    float dx = t.x * s.dir.x + b.x * s.dir.y + n.x * s.dir.z;
-                    float dy = t.y * s.dir.x + b.y * s.dir.y + n.y * s.dir.z;
-                    float dz = t.z * s.dir.x + b.z * s.dir.y + n.z * s.dir.z;
-                    int face;
-                    float fs, ft;
-                    face_coords(dx, dy, dz, face, fs, ft);
-                    accumulate_bilinear(views[std::size_t(s.level0)], face, fs, ft, s.w0, acc);
-                    if (s.w1 > 0.0f) accumulate_bilinear(views[std::size_t(s.level0 + 1)], face, fs, ft, s.w1, acc);
-                    wsum += s.weight;
-                }
-                glm::vec3 sum = glm::vec3(acc[0], acc[1], acc[2]) / std::max(wsum, 1e-8f);
-                float* px = lv.texel(row.face, x, row.y);
-                px[0] = sum.x, px[1] = sum.y, px[2] = sum.z, px[3] = 1.0f;
-            }
+            for (int x = 0; x < lv.size; ++x)
+                store(lv.texel(row.face, x, row.y), filter_direction(views, lobe, cube_texel_direction(row.face, x, row.y, lv.size)));
             if (progress) {
                 double c = double(lv.size) * double(lobe.size());
                 double now = done_cost.fetch_add(c) + c;
@@ -272,43 +295,18 @@ Cubemap irradiance_filtered(const Cubemap& source, int size, int samples, float 
         float pdf = l.z / kPi;
         float lod = std::clamp(0.5f * std::log2(1.0f / (float(samples) * pdf) / texel_solid_angle) + lod_bias, 0.0f,
                                float(levels - 1));
-        int level0 = std::min(int(lod), levels - 1);
-        float frac = level0 + 1 < levels ? lod - float(level0) : 0.0f;
         // Cosine-distributed samples: each counts once (the cosine is in the pdf).
-        lobe.push_back({l, 1.0f, lod, level0, 1.0f - frac, frac});
+        lobe.push_back(make_sample(l, 1.0f, lod, levels));
     }
-    std::vector<LevelView> views;
-    for (const auto& lv : source.levels) {
-        LevelView v;
-        for (int f = 0; f < 6; ++f) v.faces[f] = lv.faces[std::size_t(f)].data();
-        v.size = lv.size;
-        v.fsize = float(lv.size);
-        views.push_back(v);
-    }
+    sort_for_locality(lobe);
+    std::vector<LevelView> views = level_views(source);
     Cubemap out = make_cubemap(size, 1);
     parallel_for(
         std::size_t(6 * size),
         [&](std::size_t row) {
             int f = int(row / std::size_t(size)), y = int(row % std::size_t(size));
-            for (int x = 0; x < size; ++x) {
-                glm::vec3 n = cube_texel_direction(f, x, y, size);
-                glm::vec3 t, b;
-                sampling::basis(n, t, b);
-                float acc[4] = {0, 0, 0, 0};
-                for (const LobeSample& s : lobe) {
-                    float dx = t.x * s.dir.x + b.x * s.dir.y + n.x * s.dir.z;
-                    float dy = t.y * s.dir.x + b.y * s.dir.y + n.y * s.dir.z;
-                    float dz = t.z * s.dir.x + b.z * s.dir.y + n.z * s.dir.z;
-                    int face;
-                    float fs, ft;
-                    face_coords(dx, dy, dz, face, fs, ft);
-                    accumulate_bilinear(views[std::size_t(s.level0)], face, fs, ft, s.w0, acc);
-                    if (s.w1 > 0.0f) accumulate_bilinear(views[std::size_t(s.level0 + 1)], face, fs, ft, s.w1, acc);
-                }
-                float inv = lobe.empty() ? 0.0f : 1.0f / float(lobe.size());
-                float* px = out.levels[0].texel(f, x, y);
-                px[0] = acc[0] * inv, px[1] = acc[1] * inv, px[2] = acc[2] * inv, px[3] = 1.0f;
-            }
+            for (int x = 0; x < size; ++x)
+                store(out.levels[0].texel(f, x, y), filter_direction(views, lobe, cube_texel_direction(f, x, y, size)));
         },
         threads);
     return out;
