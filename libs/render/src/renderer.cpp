@@ -409,8 +409,9 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
             const Node& node = r.scene->nodes[std::size_t(inst.node)];
             if (node.mesh < 0) continue;
             for (const auto& p : r.meshes[std::size_t(node.mesh)]) {
-                glm::vec4 c = cam.view * inst.world * glm::vec4(p.center, 1.0f);
-                Draw d{&p, inst.world, -c.z};
+                glm::mat4 model = node.world_space_mesh ? glm::mat4(1.0f) : inst.world;
+                glm::vec4 c = cam.view * model * glm::vec4(p.center, 1.0f);
+                Draw d{&p, model, -c.z};
                 const Material* m = p.material >= 0 ? &r.scene->materials[std::size_t(p.material)] : nullptr;
                 if (m && m->alpha_mode == AlphaMode::Blend) blended.push_back(d);
                 else opaque.push_back(d);

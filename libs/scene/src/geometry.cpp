@@ -32,6 +32,8 @@ void remap_all(Primitive& p, const std::vector<std::uint32_t>& remap) {
     remap_array(p.uv0, remap);
     remap_array(p.uv1, remap);
     remap_array(p.colors, remap);
+    remap_array(p.joints, remap);
+    remap_array(p.weights, remap);
 }
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -40,7 +42,8 @@ bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && st
 
 std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, const std::string& ptr,
                                          const AccessorDecoder& accessors, const std::vector<Material>& materials,
-                                         std::size_t max_vertices, bool mesh_quantization, Diagnostics& diag) {
+                                         std::size_t max_vertices, bool mesh_quantization,
+                                         const std::vector<float>& morph_weights, Diagnostics& diag) {
     auto warn = [&](const std::string& where, const std::string& what) { diag.warn(r.file(), where, what); };
     if (!prim.is_object()) r.fail(ptr, "must be an object");
     Primitive p;
@@ -107,6 +110,38 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
     if (auto t = attribute("TEXCOORD_0", {2}, true)) p.uv0 = to_vectors<glm::vec2>(*t);
     if (auto t = attribute("TEXCOORD_1", {2}, true)) p.uv1 = to_vectors<glm::vec2>(*t);
     if (auto c = attribute("COLOR_0", {3, 4}, true)) p.colors = to_vectors<glm::vec4>(*c);
+    if (auto j = attribute("JOINTS_0", {4}, false)) {
+        if (j->component_type != 5121 && j->component_type != 5123)
+            r.fail(ap + "/JOINTS_0", "must be UNSIGNED_BYTE or UNSIGNED_SHORT");
+        p.joints.resize(j->count);
+        for (std::size_t i = 0; i < j->count; ++i)
+            for (int c = 0; c < 4; ++c) p.joints[i][c] = std::uint32_t(j->values[i * 4 + std::size_t(c)]);
+    }
+    if (auto w = attribute("WEIGHTS_0", {4}, true)) p.weights = to_vectors<glm::vec4>(*w);
+    if (p.joints.empty() != p.weights.empty()) {
+        warn(ap, "JOINTS_0 and WEIGHTS_0 must come together; skinning ignored");
+        p.joints.clear();
+        p.weights.clear();
+    }
+
+    // Morph targets at the mesh's default weights (the rest pose).
+    const json& targets = r.array(prim, "targets", ptr);
+    for (std::size_t k = 0; k < targets.size() && k < morph_weights.size(); ++k) {
+        float wk = morph_weights[k];
+        if (wk == 0.0f) continue;
+        std::string tp = ptr + "/targets/" + std::to_string(k);
+        auto apply = [&](const char* name, auto& data) {
+            int idx = r.index(targets[k], name, tp, accessors.accessor_count(), "accessor");
+            if (idx < 0 || data.empty()) return;
+            AccessorData d = accessors.read(idx);
+            if (d.count != vertex_count || d.components < 3) r.fail(tp + "/" + name, "does not match the primitive's vertices");
+            for (std::size_t i = 0; i < d.count; ++i)
+                for (int c = 0; c < 3; ++c) data[i][c] += wk * float(d.values[i * std::size_t(d.components) + std::size_t(c)]);
+        };
+        apply("POSITION", p.positions);
+        apply("NORMAL", p.normals);
+        apply("TANGENT", p.tangents);
+    }
 
     if (!std::all_of(p.positions.begin(), p.positions.end(), finite)) {
         warn(ap + "/POSITION", "non-finite vertex positions; primitive skipped");

@@ -15,6 +15,7 @@ namespace fresnel::gltf {
 // the file uses KHR_mesh_quantization (integer TEXCOORD/NORMAL/TANGENT allowed).
 std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, const std::string& ptr,
                                          const AccessorDecoder& accessors, const std::vector<Material>& materials,
-                                         std::size_t max_vertices, bool mesh_quantization, Diagnostics& diag);
+                                         std::size_t max_vertices, bool mesh_quantization,
+                                         const std::vector<float>& morph_weights, Diagnostics& diag);
 
 }  // namespace fresnel::gltf

@@ -121,6 +121,7 @@ public:
         load_lights();
         load_nodes();
         load_scenes();
+        pose_skins(accessors);
         return std::move(scene_);
     }
 
@@ -434,10 +435,16 @@ private:
             mesh.name = r_.string(m, "name", ptr);
             const json& prims = r_.array(m, "primitives", ptr);
             if (prims.empty()) r_.fail(ptr + "/primitives", "a mesh needs at least one primitive");
+            std::vector<float> weights;  // default morph weights: the rest pose
+            const json& wj = r_.array(m, "weights", ptr);
+            for (std::size_t k = 0; k < wj.size(); ++k) {
+                if (!wj[k].is_number()) r_.fail(ptr + "/weights/" + std::to_string(k), "must be a number");
+                weights.push_back(wj[k].get<float>());
+            }
             for (std::size_t p = 0; p < prims.size(); ++p) {
                 std::string pptr = ptr + "/primitives/" + std::to_string(p);
                 auto prim = gltf::build_primitive(r_, prims[p], pptr, accessors, scene_.materials, opt_.max_vertices,
-                                                  uses("KHR_mesh_quantization"), diag_);
+                                                  uses("KHR_mesh_quantization"), weights, diag_);
                 if (prim) mesh.primitives.push_back(std::move(*prim));
             }
             scene_.meshes.push_back(std::move(mesh));
@@ -545,6 +552,7 @@ private:
             node.name = r_.string(n, "name", ptr);
             node.mesh = r_.index(n, "mesh", ptr, scene_.meshes.size(), "mesh");
             node.camera = r_.index(n, "camera", ptr, scene_.cameras.size(), "camera");
+            node.skin = r_.index(n, "skin", ptr, r_.array(doc_, "skins", "").size(), "skin");
             const json& ext = r_.object(n, "extensions", ptr);
             if (const json* l = r_.find(ext, "KHR_lights_punctual"))
                 node.light = r_.index(*l, "light", ptr + "/extensions/KHR_lights_punctual", scene_.lights.size(), "light", true);
@@ -599,6 +607,94 @@ private:
         roots_parents_ = std::move(parents);
     }
     std::vector<int> roots_parents_;
+
+    // Skinned meshes are drawn at the rest pose: each vertex moved by its joints' world
+    // matrices times their inverse bind matrices (glTF 2.0 skinning, no animation). The
+    // posed copy lives in world space; the node keeps its matrix for the camera bounds.
+    void pose_skins(const gltf::AccessorDecoder& accessors) {
+        const json& skins = r_.array(doc_, "skins", "");
+        if (skins.empty()) return;
+        // World matrices of every node (the hierarchy is a forest, checked in load_nodes).
+        std::vector<glm::mat4> world(scene_.nodes.size(), glm::mat4(1.0f));
+        std::vector<int> stack;
+        for (std::size_t i = 0; i < scene_.nodes.size(); ++i)
+            if (roots_parents_[i] == 0) {
+                world[i] = scene_.nodes[i].local;
+                stack.push_back(int(i));
+            }
+        while (!stack.empty()) {
+            int n = stack.back();
+            stack.pop_back();
+            for (int c : scene_.nodes[std::size_t(n)].children) {
+                world[std::size_t(c)] = world[std::size_t(n)] * scene_.nodes[std::size_t(c)].local;
+                stack.push_back(c);
+            }
+        }
+        std::vector<std::vector<glm::mat4>> joint_matrices(skins.size());
+        for (std::size_t k = 0; k < skins.size(); ++k) {
+            std::string ptr = "/skins/" + std::to_string(k);
+            const json& skin = skins[k];
+            if (!skin.is_object()) r_.fail(ptr, "must be an object");
+            const json& joints = r_.array(skin, "joints", ptr);
+            if (joints.empty()) r_.fail(ptr + "/joints", "a skin needs at least one joint");
+            std::vector<glm::mat4> ibm(joints.size(), glm::mat4(1.0f));
+            int ibm_index = r_.index(skin, "inverseBindMatrices", ptr, accessors.accessor_count(), "accessor");
+            if (ibm_index >= 0) {
+                gltf::AccessorData d = accessors.read(ibm_index);
+                if (d.components != 16 || d.count < joints.size())
+                    r_.fail(ptr + "/inverseBindMatrices", "must be MAT4 with one matrix per joint");
+                for (std::size_t j = 0; j < joints.size(); ++j)
+                    for (int c = 0; c < 16; ++c) ibm[j][c / 4][c % 4] = float(d.values[j * 16 + std::size_t(c)]);
+            }
+            for (std::size_t j = 0; j < joints.size(); ++j) {
+                int node = r_.index_value(joints[j], ptr + "/joints/" + std::to_string(j), scene_.nodes.size(), "node");
+                joint_matrices[k].push_back(world[std::size_t(node)] * ibm[j]);
+            }
+        }
+        for (std::size_t i = 0; i < scene_.nodes.size(); ++i) {
+            Node& node = scene_.nodes[i];
+            if (node.skin < 0 || node.mesh < 0) continue;
+            const auto& mats = joint_matrices[std::size_t(node.skin)];
+            Mesh posed = scene_.meshes[std::size_t(node.mesh)];
+            bool any = false;
+            for (auto& p : posed.primitives) {
+                if (p.joints.empty()) {
+                    // Not skinned: bring it to world space with the node's matrix instead.
+                    for (auto& v : p.positions) v = glm::vec3(world[i] * glm::vec4(v, 1.0f));
+                    glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(world[i])));
+                    for (auto& n : p.normals) n = glm::normalize(nm * n);
+                    for (auto& t : p.tangents) t = glm::vec4(glm::normalize(glm::mat3(world[i]) * glm::vec3(t)), t.w);
+                    continue;
+                }
+                any = true;
+                for (std::size_t v = 0; v < p.positions.size(); ++v) {
+                    glm::mat4 m(0.0f);
+                    float wsum = 0.0f;
+                    for (int c = 0; c < 4; ++c) {
+                        float w = p.weights[v][c];
+                        std::uint32_t j = p.joints[v][c];
+                        if (w == 0.0f) continue;
+                        if (j >= mats.size())
+                            r_.fail("/nodes/" + std::to_string(i), "vertex " + std::to_string(v) + " uses joint " +
+                                                                       std::to_string(j) + " of a skin with " +
+                                                                       std::to_string(mats.size()));
+                        m += w * mats[j];
+                        wsum += w;
+                    }
+                    if (wsum <= 0.0f) m = world[i];  // unweighted vertices follow the node
+                    p.positions[v] = glm::vec3(m * glm::vec4(p.positions[v], 1.0f));
+                    glm::mat3 m3(m);
+                    if (v < p.normals.size()) p.normals[v] = glm::normalize(glm::transpose(glm::inverse(m3)) * p.normals[v]);
+                    if (v < p.tangents.size())
+                        p.tangents[v] = glm::vec4(glm::normalize(m3 * glm::vec3(p.tangents[v])), p.tangents[v].w);
+                }
+            }
+            if (!any) continue;
+            scene_.meshes.push_back(std::move(posed));
+            node.mesh = int(scene_.meshes.size()) - 1;
+            node.world_space_mesh = true;
+        }
+    }
 
     void load_scenes() {
         const json& arr = r_.array(doc_, "scenes", "");

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include <glm/mat3x3.hpp>
+#include <glm/vec4.hpp>
+#include <glm/ext/vector_uint4.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -80,6 +82,9 @@ struct Primitive {
     std::vector<glm::vec2> uv0, uv1;
     std::vector<glm::vec4> colors;     // COLOR_0 as RGBA (alpha 1 for vec3)
     std::vector<std::uint32_t> indices;  // empty = non-indexed
+    // Skinning inputs (JOINTS_0 / WEIGHTS_0); the loader poses skinned meshes at rest.
+    std::vector<glm::uvec4> joints;
+    std::vector<glm::vec4> weights;
     int material = -1;                   // -1 = the glTF default material
     // The POSITION accessor's min/max (used by the camera convention); falls back to the data.
     glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
@@ -120,7 +125,12 @@ struct Node {
     std::string name;
     glm::mat4 local{1.0f};
     int mesh = -1, camera = -1, light = -1;
+    int skin = -1;
     std::vector<int> children;
+    // The node's mesh is skinned and already posed in world space (rest pose): draw it with
+    // the identity, not the node's world matrix (which still places its bounds, as the
+    // camera convention uses the POSITION accessor's box).
+    bool world_space_mesh = false;
 };
 
 struct Scene {
