@@ -39,12 +39,14 @@ struct BrdfTerms {
     vec3 f;
     vec3 diffuse;
     vec3 specular;             // specular_dielectric + specular_metal
-    float specular_dielectric; // (1 - metallic) F_dielectric V D
+    vec3 specular_dielectric;  // (1 - metallic) F_dielectric V D
     vec3 specular_metal;       // metallic F_metal V D
 };
 
-BrdfTerms brdf_terms(vec3 base_color, float metallic, float perceptual_roughness, float specular_f0,
-                     vec3 n, vec3 v, vec3 l) {
+// f0_dielectric: the dielectric F0 colour (0.04 by default); specular_weight scales the
+// dielectric lobe's F0 and F90 (KHR_materials_specular; 1 by default).
+BrdfTerms brdf_terms(vec3 base_color, float metallic, float perceptual_roughness, vec3 f0_dielectric,
+                     float specular_weight, vec3 n, vec3 v, vec3 l) {
     BrdfTerms t;
     vec3 h = l + v;
     float hl = length(h);
@@ -58,8 +60,8 @@ BrdfTerms brdf_terms(vec3 base_color, float metallic, float perceptual_roughness
     t.v = v_smith_ggx_correlated(n_dot_l, n_dot_v, alpha);
     float spec = t.v * t.d;
     vec3 f_metal = f_schlick(base_color, vec3(1.0), v_dot_h);
-    float f_dielectric = f_schlick(specular_f0, 1.0, v_dot_h);
-    t.f = mix(vec3(f_dielectric), f_metal, metallic);
+    vec3 f_dielectric = f_schlick(f0_dielectric * specular_weight, vec3(specular_weight), v_dot_h);
+    t.f = mix(f_dielectric, f_metal, metallic);
     t.diffuse = (1.0 - metallic) * (1.0 - f_dielectric) * base_color / PI;
     t.specular_dielectric = (1.0 - metallic) * f_dielectric * spec;
     t.specular_metal = metallic * f_metal * spec;

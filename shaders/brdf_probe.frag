@@ -19,7 +19,7 @@ void main() {
     if (u_mode == 0 || u_mode == 1) {
         // a = (base rgb, metallic), b = (l.xyz, roughness), c = (v.xyz, unused); n = +Z
         vec3 n = vec3(0.0, 0.0, 1.0);
-        BrdfTerms t = brdf_terms(a.rgb, a.a, b.a, 0.04, n, normalize(c.xyz), normalize(b.xyz));
+        BrdfTerms t = brdf_terms(a.rgb, a.a, b.a, vec3(0.04), 1.0, n, normalize(c.xyz), normalize(b.xyz));
         if (u_mode == 0) frag_color = vec4(t.diffuse + t.specular, 1.0);
         else frag_color = vec4(t.d, t.v, t.f.r, 1.0);
     } else if (u_mode == 2) {

@@ -18,7 +18,7 @@ vec3 debug_value(int channel, MaterialInputs m, vec3 n, vec3 ng, vec3 t, vec3 b,
     if (channel == 12) return vec3(fract(v_uv1), 0.0);
     vec3 l = v;
     if (u_light_count > 0) light_incident(0, v_position, l);
-    BrdfTerms bt = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, 0.04, n, v, l);
+    BrdfTerms bt = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight, n, v, l);
     float n_dot_l = clamped_dot(n, l), n_dot_v = clamped_dot(n, v);
     if (channel == 13) return vec3(clamp(bt.d, 0.0, 1.0));
     if (channel == 14) return vec3(clamp(bt.v * 4.0 * n_dot_l * n_dot_v, 0.0, 1.0));
@@ -30,13 +30,13 @@ vec3 debug_value(int channel, MaterialInputs m, vec3 n, vec3 ng, vec3 t, vec3 b,
     if (channel == 18) return linear_to_srgb(tone_map_neutral(ibl_irradiance(n)));
     if (channel == 19) return linear_to_srgb(tone_map_neutral(ibl_radiance(reflect(-v, n), m.roughness)));
     if (channel == 20) {
-        vec3 fd = ibl_ggx_fresnel(n_dot_v, m.roughness, vec3(0.04));
+        vec3 fd = ibl_ggx_fresnel(n_dot_v, m.roughness, m.f0_dielectric, m.specular_weight);
         return linear_to_srgb(tone_map_neutral(ibl_irradiance(n) * m.base_color.rgb * (1.0 - fd) * (1.0 - m.metallic) * m.occlusion));
     }
     if (channel == 21) {
         vec3 spec = ibl_radiance(reflect(-v, n), m.roughness);
-        vec3 fd = ibl_ggx_fresnel(n_dot_v, m.roughness, vec3(0.04));
-        vec3 fm = ibl_ggx_fresnel(n_dot_v, m.roughness, m.base_color.rgb);
+        vec3 fd = ibl_ggx_fresnel(n_dot_v, m.roughness, m.f0_dielectric, m.specular_weight);
+        vec3 fm = ibl_ggx_fresnel(n_dot_v, m.roughness, m.base_color.rgb, 1.0);
         return linear_to_srgb(tone_map_neutral(spec * mix(fd, fm, m.metallic)));
     }
 #else

@@ -20,13 +20,13 @@ vec3 energy_compensation(vec3 f0, float e) { return 1.0 + f0 * (1.0 / max(e, 1e-
 
 // Fdez-Aguera's single + multiple scattering Fresnel-weighted albedo with the
 // roughness-dependent Fresnel term (what the Khronos Sample Viewer uses).
-vec3 ibl_ggx_fresnel(float n_dot_v, float roughness, vec3 f0) {
+vec3 ibl_ggx_fresnel(float n_dot_v, float roughness, vec3 f0, float specular_weight) {
     vec2 ab = brdf_lut(n_dot_v, roughness).rg;
     vec3 fr = max(vec3(1.0 - roughness), f0) - f0;
     vec3 k_s = f0 + fr * pow(1.0 - n_dot_v, 5.0);
-    vec3 fss_ess = k_s * ab.x + ab.y;
+    vec3 fss_ess = specular_weight * (k_s * ab.x + ab.y);
     float ems = 1.0 - (ab.x + ab.y);
-    vec3 f_avg = f0 + (1.0 - f0) / 21.0;
+    vec3 f_avg = specular_weight * (f0 + (1.0 - f0) / 21.0);
     vec3 fms_ems = ems * fss_ess * f_avg / (1.0 - f_avg * ems);
     return fss_ess + fms_ems;
 }

@@ -7,6 +7,9 @@ uniform float u_normal_scale;
 uniform float u_occlusion_strength;
 uniform vec3 u_emissive;          // emissiveFactor * emissive_strength
 uniform float u_alpha_cutoff;
+uniform vec3 u_f0_dielectric;       // ((ior-1)/(ior+1))^2 * specularColorFactor, or specular-glossiness F0
+uniform float u_specular_weight;    // KHR_materials_specular specularFactor (1 otherwise)
+uniform float u_glossiness_factor;  // specular-glossiness only
 
 // Per map: sampler, UV set (0/1) and the KHR_texture_transform matrix.
 #define DECLARE_MAP(name) uniform sampler2D u_##name##_map; uniform int u_##name##_uv; uniform mat3 u_##name##_transform;
@@ -25,6 +28,12 @@ DECLARE_MAP(occlusion)
 #ifdef HAS_EMISSIVE_MAP
 DECLARE_MAP(emissive)
 #endif
+#ifdef HAS_SPECULAR_MAP
+DECLARE_MAP(specular)
+#endif
+#ifdef HAS_SPECULAR_COLOR_MAP
+DECLARE_MAP(specular_color)
+#endif
 
 vec2 map_uv(int set, mat3 transform) {
     vec2 uv = set == 1 ? v_uv1 : v_uv0;
@@ -38,6 +47,8 @@ struct MaterialInputs {
     float roughness;      // perceptual
     float occlusion;
     vec3 emissive;
+    vec3 f0_dielectric;     // dielectric F0 colour
+    float specular_weight;  // dielectric specular weight (F0 and F90)
 };
 
 MaterialInputs read_material() {
@@ -53,6 +64,28 @@ MaterialInputs read_material() {
     m.metallic *= mr.b;
     m.roughness *= mr.g;
 #endif
+    m.f0_dielectric = u_f0_dielectric;
+    m.specular_weight = u_specular_weight;
+#ifdef SPECULAR_GLOSSINESS
+    // KHR_materials_pbrSpecularGlossiness: base colour is the diffuse colour, the specular
+    // map (sRGB RGB, linear A) gives F0 and glossiness; no metal.
+    m.metallic = 0.0;
+    m.roughness = u_glossiness_factor;
+#ifdef HAS_SPECULAR_COLOR_MAP
+    vec4 sg = SAMPLE_MAP(specular_color);
+    m.f0_dielectric *= sg.rgb;
+    m.roughness *= sg.a;
+#endif
+    m.roughness = 1.0 - m.roughness;
+#else
+#ifdef HAS_SPECULAR_MAP
+    m.specular_weight *= SAMPLE_MAP(specular).a;
+#endif
+#ifdef HAS_SPECULAR_COLOR_MAP
+    m.f0_dielectric *= SAMPLE_MAP(specular_color).rgb;
+#endif
+#endif
+    m.f0_dielectric = min(m.f0_dielectric, vec3(1.0));
     m.metallic = clamp(m.metallic, 0.0, 1.0);
     m.roughness = clamp(m.roughness, 0.0, 1.0);
     m.occlusion = 1.0;

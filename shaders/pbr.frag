@@ -79,7 +79,7 @@ void main() {
     float n_dot_v = clamped_dot(f.n, v);
     // Directional albedo E of the GGX lobe, for energy compensation of punctual specular.
     float e = brdf_lut(n_dot_v, m.roughness).b;
-    float comp_dielectric = u_energy_compensation == 1 ? energy_compensation(vec3(0.04), e).x : 1.0;
+    vec3 comp_dielectric = u_energy_compensation == 1 ? energy_compensation(m.f0_dielectric * m.specular_weight, e) : vec3(1.0);
     vec3 comp_metal = u_energy_compensation == 1 ? energy_compensation(m.base_color.rgb, e) : vec3(1.0);
     for (int i = 0; i < MAX_LIGHTS; ++i) {
         if (i >= u_light_count) break;
@@ -87,7 +87,7 @@ void main() {
         vec3 radiance = light_incident(i, v_position, l);
         float n_dot_l = clamped_dot(f.n, l);
         if (n_dot_l <= 0.0) continue;
-        BrdfTerms t = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, 0.04, f.n, v, l);
+        BrdfTerms t = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight, f.n, v, l);
         vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;
         color += radiance * n_dot_l * (t.diffuse + specular);
     }
@@ -97,8 +97,8 @@ void main() {
         vec3 r = reflect(-v, f.n);
         vec3 diffuse = ibl_irradiance(f.n) * m.base_color.rgb;
         vec3 specular = ibl_radiance(r, m.roughness);
-        vec3 fresnel_dielectric = ibl_ggx_fresnel(n_dot_v, m.roughness, vec3(0.04));
-        vec3 fresnel_metal = ibl_ggx_fresnel(n_dot_v, m.roughness, m.base_color.rgb);
+        vec3 fresnel_dielectric = ibl_ggx_fresnel(n_dot_v, m.roughness, m.f0_dielectric, m.specular_weight);
+        vec3 fresnel_metal = ibl_ggx_fresnel(n_dot_v, m.roughness, m.base_color.rgb, 1.0);
         float so = specular_occlusion(n_dot_v, m.occlusion, m.roughness);
         vec3 dielectric = diffuse * (1.0 - fresnel_dielectric) * m.occlusion + specular * fresnel_dielectric * so;
         vec3 metal = specular * fresnel_metal * so;

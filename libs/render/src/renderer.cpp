@@ -253,6 +253,7 @@ struct Renderer::Impl {
         if (p.has_uv1) defines.push_back("HAS_UV1");
         if (p.has_color) defines.push_back("HAS_COLOR");
         if (m.unlit) defines.push_back("UNLIT");
+        if (m.specular_glossiness) defines.push_back("SPECULAR_GLOSSINESS");
         if (m.alpha_mode == AlphaMode::Mask) defines.push_back("ALPHA_MASK");
         if (m.alpha_mode == AlphaMode::Blend) defines.push_back("ALPHA_BLEND");
         if (settings.debug != DebugChannel::None) defines.push_back("DEBUG_VIEW");
@@ -271,10 +272,13 @@ struct Renderer::Impl {
             {"normal", "HAS_NORMAL_MAP", &m.normal, false},
             {"occlusion", "HAS_OCCLUSION_MAP", &m.occlusion, false},
             {"emissive", "HAS_EMISSIVE_MAP", &m.emissive, true},
+            {"specular", "HAS_SPECULAR_MAP", &m.specular_texture, false},
+            {"specular_color", "HAS_SPECULAR_COLOR_MAP", &m.specular_color_texture, true},
         };
-        const gpu::Texture* bound[5] = {};
+        constexpr int kMaps = 7;
+        const gpu::Texture* bound[kMaps] = {};
         bool has_uv = p.has_uv0;
-        for (int i = 0; i < 5; ++i) {
+        for (int i = 0; i < kMaps; ++i) {
             const TextureRef& ref = *maps[i].ref;
             if (!ref.valid() || !has_uv) continue;
             if (ref.tex_coord == 1 && !p.has_uv1) continue;
@@ -298,16 +302,16 @@ struct Renderer::Impl {
         prog.set("u_exposure", exposure_scale(settings.exposure_ev));
         prog.set("u_tonemap", int(settings.tone_mapper));
         prog.set("u_encoding", settings.encoding ? int(*settings.encoding) : -1);
-        // Units 5 and 6: the split-sum table and the prefiltered environment.
+        // Units 8, 9, 10: the split-sum table, the prefiltered environment, the irradiance.
         bool have_lut = lut_texture && uploaded_lut;
-        if (have_lut) device.bind_texture(5, lut_texture);
-        prog.set("u_brdf_lut", 5);
+        if (have_lut) device.bind_texture(8, lut_texture);
+        prog.set("u_brdf_lut", 8);
         prog.set("u_energy_compensation", settings.energy_compensation && have_lut ? 1 : 0);
         if (settings.environment) {
-            device.bind_texture(6, env_specular);
-            prog.set("u_specular_env", 6);
-            device.bind_texture(7, env_irradiance);
-            prog.set("u_irradiance_env", 7);
+            device.bind_texture(9, env_specular);
+            prog.set("u_specular_env", 9);
+            device.bind_texture(10, env_irradiance);
+            prog.set("u_irradiance_env", 10);
             set_ibl_uniforms(prog, settings);
         }
         prog.set("u_base_color_factor", m.base_color_factor);
@@ -317,7 +321,12 @@ struct Renderer::Impl {
         prog.set("u_occlusion_strength", m.occlusion_strength);
         prog.set("u_emissive", m.emissive_factor * m.emissive_strength);
         prog.set("u_alpha_cutoff", m.alpha_cutoff);
-        for (int i = 0; i < 5; ++i) {
+        // Specular-glossiness F0 is the specular colour itself; otherwise the ior's F0 tinted.
+        glm::vec3 f0 = m.specular_glossiness ? m.specular_color_factor : m.dielectric_f0() * m.specular_color_factor;
+        prog.set("u_f0_dielectric", f0);
+        prog.set("u_specular_weight", m.specular_glossiness ? 1.0f : m.specular_factor);
+        prog.set("u_glossiness_factor", m.glossiness_factor);
+        for (int i = 0; i < kMaps; ++i) {
             if (!bound[i]) continue;
             std::string base = std::string("u_") + maps[i].name;
             device.bind_texture(i, *bound[i]);

@@ -26,7 +26,8 @@ using gltf::JsonReader;
 const std::vector<std::string>& supported_gltf_extensions() {
     static const std::vector<std::string> list = {
         "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform",
-        "KHR_materials_unlit", "KHR_mesh_quantization",
+        "KHR_materials_unlit", "KHR_mesh_quantization", "KHR_materials_ior", "KHR_materials_specular",
+        "KHR_materials_pbrSpecularGlossiness",
     };
     return list;
 }
@@ -421,6 +422,35 @@ private:
             if (const json* es = r_.find(ext, "KHR_materials_emissive_strength"))
                 out.emissive_strength = std::max(0.0f, float(r_.number(*es, "emissiveStrength", ptr + "/extensions/KHR_materials_emissive_strength", 1.0)));
             out.unlit = r_.has(ext, "KHR_materials_unlit");
+            if (const json* ior = r_.find(ext, "KHR_materials_ior")) {
+                std::string ip = ptr + "/extensions/KHR_materials_ior";
+                out.ior = float(r_.number(*ior, "ior", ip, 1.5));
+                if (out.ior != 0.0f && out.ior < 1.0f) {
+                    warn(ip + "/ior", "ior below 1; using 1.5");
+                    out.ior = 1.5f;
+                }
+            }
+            if (const json* sp = r_.find(ext, "KHR_materials_specular")) {
+                std::string sptr = ptr + "/extensions/KHR_materials_specular";
+                out.specular_factor = std::max(0.0f, float(r_.number(*sp, "specularFactor", sptr, 1.0)));
+                out.specular_texture = texture_ref(*sp, "specularTexture", sptr);
+                auto c = r_.numbers<3>(*sp, "specularColorFactor", sptr, {1, 1, 1});
+                out.specular_color_factor = glm::max(glm::vec3(c[0], c[1], c[2]), 0.0f);
+                out.specular_color_texture = texture_ref(*sp, "specularColorTexture", sptr);
+            }
+            if (const json* sg = r_.find(ext, "KHR_materials_pbrSpecularGlossiness")) {
+                std::string gp = ptr + "/extensions/KHR_materials_pbrSpecularGlossiness";
+                out.specular_glossiness = true;
+                auto d = r_.numbers<4>(*sg, "diffuseFactor", gp, {1, 1, 1, 1});
+                out.base_color_factor = glm::clamp(glm::vec4(d[0], d[1], d[2], d[3]), 0.0f, 1.0f);
+                out.base_color = texture_ref(*sg, "diffuseTexture", gp);
+                auto c = r_.numbers<3>(*sg, "specularFactor", gp, {1, 1, 1});
+                out.specular_color_factor = glm::clamp(glm::vec3(c[0], c[1], c[2]), 0.0f, 1.0f);
+                out.glossiness_factor = std::clamp(float(r_.number(*sg, "glossinessFactor", gp, 1.0)), 0.0f, 1.0f);
+                out.specular_color_texture = texture_ref(*sg, "specularGlossinessTexture", gp);
+                out.metallic_factor = 0.0f;
+                out.metallic_roughness = TextureRef{};
+            }
             scene_.materials.push_back(std::move(out));
         }
     }

@@ -52,7 +52,12 @@ struct Surface {
     glm::vec3 base_color{1.0f};
     float metallic = 0.0f;
     float perceptual_roughness = 1.0f;
-    float specular_f0 = 0.04f;  // dielectric reflectance at normal incidence (ior 1.5)
+    float specular_f0 = 0.04f;  // dielectric reflectance at normal incidence: ((ior-1)/(ior+1))^2, 0.04 at ior 1.5
+    // KHR_materials_specular (and specular-glossiness): the dielectric F0 colour and a weight
+    // that scales the dielectric specular lobe (F0 and F90).
+    glm::vec3 specular_color{1.0f};
+    float specular_weight = 1.0f;
+    glm::vec3 dielectric_f0() const { return glm::min(glm::vec3(specular_f0) * specular_color, glm::vec3(1.0f)); }
 };
 
 // Smallest perceptual roughness used in shading. 0, as in the glTF spec and the Khronos
@@ -71,12 +76,13 @@ struct Terms {
     glm::vec3 f{0.0f};        // the metal/dielectric-mixed Fresnel
     glm::vec3 diffuse{0.0f};  // f_diffuse (already weighted by 1 - F_dielectric and 1 - metallic)
     glm::vec3 specular{0.0f}; // f_specular = specular_dielectric + specular_metal
-    float specular_dielectric = 0;      // (1 - metallic) F_dielectric V D
+    glm::vec3 specular_dielectric{0.0f};  // (1 - metallic) F_dielectric V D
     glm::vec3 specular_metal{0.0f};     // metallic F_metal V D
 };
 
 // Evaluates f(l, v) following Appendix B:
-//   dielectric = mix(lambert(base), V*D, F_schlick(0.04, 1, v·h))   (fresnel_mix)
+//   dielectric = mix(lambert(base), V*D, F_schlick(f0 w, w, v·h))  (fresnel_mix; f0 = 0.04 and the
+//                specular weight w = 1 unless KHR_materials_ior / _specular say otherwise)
 //   metal      = F_schlick(base, 1, v·h) * V*D                      (conductor_fresnel)
 //   f          = mix(dielectric, metal, metallic)
 inline Terms evaluate_terms(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l) {
@@ -93,12 +99,12 @@ inline Terms evaluate_terms(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec
     t.v = v_smith_ggx_correlated(n_dot_l, n_dot_v, alpha);
     float spec = t.v * t.d;
     glm::vec3 f_metal = f_schlick(s.base_color, glm::vec3(1.0f), v_dot_h);
-    float f_dielectric = f_schlick(s.specular_f0, 1.0f, v_dot_h);
-    t.f = glm::mix(glm::vec3(f_dielectric), f_metal, s.metallic);
+    glm::vec3 f_dielectric = f_schlick(s.dielectric_f0() * s.specular_weight, glm::vec3(s.specular_weight), v_dot_h);
+    t.f = glm::mix(f_dielectric, f_metal, s.metallic);
     t.diffuse = (1.0f - s.metallic) * (1.0f - f_dielectric) * lambert(s.base_color);
     t.specular_dielectric = (1.0f - s.metallic) * f_dielectric * spec;
     t.specular_metal = s.metallic * f_metal * spec;
-    t.specular = glm::vec3(t.specular_dielectric) + t.specular_metal;
+    t.specular = t.specular_dielectric + t.specular_metal;
     return t;
 }
 

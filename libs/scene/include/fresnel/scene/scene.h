@@ -51,6 +51,18 @@ struct Material {
     float alpha_cutoff = 0.5f;
     bool double_sided = false;
     bool unlit = false;               // KHR_materials_unlit
+    float ior = 1.5f;                 // KHR_materials_ior: dielectric F0 = ((ior-1)/(ior+1))^2
+    // KHR_materials_specular: weight of the dielectric lobe (A of specular_texture) and F0 colour (sRGB texture).
+    float specular_factor = 1.0f;
+    TextureRef specular_texture;
+    glm::vec3 specular_color_factor{1.0f};
+    TextureRef specular_color_texture;
+    // KHR_materials_pbrSpecularGlossiness: base_color* hold the diffuse factor/texture,
+    // specular_color_factor the specular factor, specular_color_texture the
+    // specularGlossinessTexture (RGB specular, A glossiness).
+    bool specular_glossiness = false;
+    float glossiness_factor = 1.0f;
+    float dielectric_f0() const { float r = (ior - 1.0f) / (ior + 1.0f); return r * r; }
 };
 
 // Sampler state with glTF / OpenGL enum values.
