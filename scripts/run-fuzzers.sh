@@ -24,5 +24,5 @@ for t in "${targets[@]}"; do
   bin="$build/bin/fuzz_$t"
   [[ -x $bin ]] || { echo "missing $bin (build with make fuzz)"; exit 1; }
   "$bin" "$work" "${seeds[@]}" -max_total_time="$seconds" -max_len=1048576 -rss_limit_mb=3072 \
-      -timeout=10 -artifact_prefix="$findings/" -print_final_stats=1 2>&1 | tail -25 || echo "fuzz_$t stopped with a finding (see $findings)"
+      -timeout=60 -artifact_prefix="$findings/" -print_final_stats=1 2>&1 | tail -25 || echo "fuzz_$t stopped with a finding (see $findings)"
 done

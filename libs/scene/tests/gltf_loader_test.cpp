@@ -1612,3 +1612,52 @@ TEST(GltfSamples, Cameras) {
     for (const auto& n : s.nodes) with_camera += n.camera >= 0;
     EXPECT_EQ(with_camera, 2);
 }
+
+TEST(GltfSkinning, RestPoseMovesVerticesByJointWorldTimesInverseBind) {
+    // Joint node translated by (2,0,0) with an identity inverse bind matrix: a vertex fully
+    // weighted to it moves by (2,0,0); the mesh node's own transform no longer applies.
+    Doc doc;
+    int pos = doc.positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    int joints = doc.attribute(UNSIGNED_BYTE, "VEC4", {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
+    int weights = doc.attribute(FLOAT, "VEC4", {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0});
+    doc.mesh({{"attributes", {{"POSITION", pos}, {"JOINTS_0", joints}, {"WEIGHTS_0", weights}}}});
+    doc.j["nodes"][0]["skin"] = 0;
+    doc.j["nodes"][0]["translation"] = {100, 0, 0};  // ignored for skinned meshes
+    doc.j["nodes"].push_back({{"translation", {2, 0, 0}}});
+    doc.j["scenes"][0]["nodes"].push_back(1);
+    doc.j["skins"] = json::array({{{"joints", {1}}}});
+    Scene s = load(doc.gltf());
+    const Node& node = s.nodes.at(0);
+    ASSERT_TRUE(node.world_space_mesh);
+    const Primitive& p = s.meshes.at(std::size_t(node.mesh)).primitives.at(0);
+    EXPECT_FLOAT_EQ(p.positions[0].x, 2.0f);
+    EXPECT_FLOAT_EQ(p.positions[1].x, 3.0f);
+    EXPECT_FLOAT_EQ(p.positions[2].y, 1.0f);
+    // The accessor's box is unchanged (the camera convention uses it with the node's matrix).
+    EXPECT_FLOAT_EQ(p.bounds_max.x, 1.0f);
+}
+
+TEST(GltfSkinning, JointIndexOutOfRangeIsAnError) {
+    Doc doc;
+    int pos = doc.positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    int joints = doc.attribute(UNSIGNED_BYTE, "VEC4", {5, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
+    int weights = doc.attribute(FLOAT, "VEC4", {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0});
+    doc.mesh({{"attributes", {{"POSITION", pos}, {"JOINTS_0", joints}, {"WEIGHTS_0", weights}}}});
+    doc.j["nodes"][0]["skin"] = 0;
+    doc.j["nodes"].push_back(json::object());
+    doc.j["scenes"][0]["nodes"].push_back(1);
+    doc.j["skins"] = json::array({{{"joints", {1}}}});
+    Diagnostics d;
+    EXPECT_THROW(load(doc.gltf(), d), Error);
+}
+
+TEST(GltfMorphTargets, DefaultWeightsApplied) {
+    Doc doc;
+    int pos = doc.positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    int delta = doc.positions({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
+    doc.mesh({{"attributes", {{"POSITION", pos}}}, {"targets", json::array({{{"POSITION", delta}}})}});
+    doc.j["meshes"][0]["weights"] = {0.5};
+    Scene s = load(doc.gltf());
+    const Primitive& p = s.meshes.at(0).primitives.at(0);
+    EXPECT_FLOAT_EQ(p.positions[1].z, 0.5f);
+}
