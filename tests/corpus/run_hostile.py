@@ -89,12 +89,12 @@ def main():
         for label, uri in (("dot-dot", "../../../../etc/passwd"), ("absolute", outside),
                            ("http", "http://example.com/texture.png")):
             path = write_model(label + ".gltf", triangle_gltf(uri)[0])
-            for cmd in (["info", path], ["render", path, "-o", out_png, "--size", "32x32"]):
+            for cmd in (["info", path], ["render", path, "-o", out_png, "--size", "32x32", "--no-ibl"]):
                 rc, err, _ = fresnel(binary, *cmd)
                 expect(f"{label} URI refused by {cmd[0]}", rc == 1 and uri in err and "fresnel: error:" in err,
                        f"exit {rc}, stderr {err[-300:]!r}")
         path = os.path.join(model_dir, "absolute.gltf")
-        rc, err, _ = fresnel(binary, "render", path, "-o", out_png, "--size", "32x32", "--allow-external-files")
+        rc, err, _ = fresnel(binary, "render", path, "-o", out_png, "--size", "32x32", "--allow-external-files", "--no-ibl")
         expect("absolute URI loads with --allow-external-files", rc == 0, f"exit {rc}: {err[-300:]!r}")
         path = os.path.join(model_dir, "http.gltf")
         rc, err, _ = fresnel(binary, "info", path, "--allow-external-files")
@@ -104,7 +104,7 @@ def main():
         with open(os.path.join(model_dir, "huge.png"), "wb") as f:
             f.write(png_bytes(100000, 100000, with_data=False))
         path = write_model("huge.gltf", triangle_gltf("huge.png")[0])
-        rc, err, secs = fresnel(binary, "render", path, "-o", out_png, "--size", "32x32")
+        rc, err, secs = fresnel(binary, "render", path, "-o", out_png, "--size", "32x32", "--no-ibl")
         expect("100000x100000 PNG: clear message naming the limit, within seconds",
                rc in (0, 1) and "limit" in err and "100000" in err and secs < 10,
                f"exit {rc} in {secs:.1f} s: {err[-300:]!r}")

