@@ -39,6 +39,7 @@ struct RenderOptions {
     bool json = false;
     bool allow_external = false;
     bool gl_debug = false;
+    bool pose_skins = false;
     std::string env;
     bool env_given = false;
     float env_rotation = 0;
@@ -145,6 +146,7 @@ int run_render(const RenderOptions& o) {
     } else {
         GltfLoadOptions lo;
         lo.allow_external_files = o.allow_external;
+        lo.pose_skins = o.pose_skins;
         scene = load_gltf(o.model, diag, lo);
     }
     double load_ms = ms_since(t_load);
@@ -333,6 +335,9 @@ Runner add_render_command(CLI::App& app) {
     cmd->add_flag("--allow-external-files", o->allow_external,
                   "Let URIs point outside the model's folder (absolute paths, ..); never the network");
     cmd->add_flag("--gl-debug", o->gl_debug, "Request a debug GL context and print KHR_debug messages");
+    cmd->add_flag("--pose-skins", o->pose_skins,
+                  "Pose skinned meshes by their joints' rest transforms (default: the bind pose, as the Khronos "
+                  "Sample Renderer's reference images show)");
     return [o] { return run_render(*o); };
 }
 

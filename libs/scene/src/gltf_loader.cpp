@@ -643,7 +643,7 @@ private:
     // posed copy lives in world space; the node keeps its matrix for the camera bounds.
     void pose_skins(const gltf::AccessorDecoder& accessors) {
         const json& skins = r_.array(doc_, "skins", "");
-        if (skins.empty()) return;
+        if (skins.empty() || !opt_.pose_skins) return;
         // World matrices of every node (the hierarchy is a forest, checked in load_nodes).
         std::vector<glm::mat4> world(scene_.nodes.size(), glm::mat4(1.0f));
         std::vector<int> stack;

@@ -20,6 +20,10 @@ struct GltfLoadOptions {
     int max_node_depth = 1024;
     ImageLimits image_limits{};
     bool decode_images = true;  // false: skip texture decoding (fresnel info)
+    // Pose skinned meshes by their joints' rest transforms (joint world x inverse bind).
+    // Off by default: skinned meshes are drawn in their bind pose with the node's matrix,
+    // which is what the Khronos Sample Renderer's reference images show.
+    bool pose_skins = false;
     unsigned threads = 0;       // image decoding threads, 0 = hardware concurrency
 };
 
