@@ -16,7 +16,7 @@ for t in "${targets[@]}"; do
     case $t in
       gltf) seeds+=("$shared/corpus" "$shared/assets/models");;
       image) mkdir -p "$work.seeds"; find "$shared/assets/models" -name '*.png' -size -200k -exec cp -n {} "$work.seeds/" \; ; find "$shared/assets/models" -name '*.jpg' -size -200k -exec cp -n {} "$work.seeds/" \; ; seeds+=("$work.seeds");;
-      hdr) mkdir -p "$work.seeds"; for f in "$shared"/assets/env/*.hdr; do tail -c +3 "$f" | head -c 200000 > "$work.seeds/$(basename "$f")"; done; seeds+=("$work.seeds");;
+      hdr) mkdir -p "$work.seeds"; for f in "$shared"/assets/env/*.hdr; do dd if="$f" of="$work.seeds/$(basename "$f")" bs=1 skip=2 count=200000 status=none || true; done; seeds+=("$work.seeds");;
       exr) mkdir -p "$work.seeds"; for f in "$shared"/assets/env/*.exr; do tail -c +5 "$f" > "$work.seeds/$(basename "$f")"; done; seeds+=("$work.seeds");;
     esac
   fi
