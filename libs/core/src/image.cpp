@@ -16,6 +16,7 @@
 #include <fstream>
 
 #include "fresnel/core/error.h"
+#include "radiance_hdr.h"
 
 namespace fresnel {
 namespace fs = std::filesystem;
@@ -92,16 +93,7 @@ Image8 read_image8(const fs::path& path, const ImageLimits& limits) {
 
 namespace {
 ImageF decode_hdr(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits) {
-    int w = 0, h = 0, comp = 0;
-    if (bytes.size() > std::size_t(INT32_MAX) || !stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &comp))
-        throw Error(name, "", "not a Radiance .hdr file");
-    check_size(name, w, h, 16, limits);
-    float* px = stbi_loadf_from_memory(bytes.data(), int(bytes.size()), &w, &h, &comp, 4);
-    if (!px) throw Error(name, "", std::string("cannot decode: ") + (stbi_failure_reason() ? stbi_failure_reason() : "?"));
-    ImageF img(w, h);
-    std::memcpy(img.pixels.data(), px, img.pixels.size() * sizeof(float));
-    stbi_image_free(px);
-    return img;
+    return detail::decode_radiance(bytes, name, limits);
 }
 
 // OpenEXR reads through this stream so that EXR data in memory is never written to disk.
@@ -127,7 +119,55 @@ private:
     std::uint64_t pos_ = 0;
 };
 
+// Walks the EXR header attributes (name, type, int32 size, value) and checks that every
+// declared size fits in the file, before OpenEXR sees it: OpenEXR 3.1 resizes a string
+// attribute to its declared size (up to 2 GiB) before reading it, so a 1 KiB file could
+// make it allocate and clear gigabytes (found by fuzz_exr; kept in fuzz/regressions/exr).
+void check_exr_header(std::span<const std::uint8_t> b, const std::string& name) {
+    if (b.size() < 8) throw Error(name, "", "file too short for an OpenEXR header");
+    const std::uint32_t flags = std::uint32_t(b[5]) | (std::uint32_t(b[6]) << 8) | (std::uint32_t(b[7]) << 16);
+    const bool multipart = flags & 0x1000;
+    const std::size_t max_name = (flags & 0x400) ? 255 : 31;
+    std::size_t pos = 8;
+    auto read_name = [&](const char* what) {
+        const std::size_t start = pos;
+        while (pos < b.size() && b[pos] != 0) {
+            if (pos - start >= max_name)
+                throw Error(name, "byte " + std::to_string(start), std::string(what) + " name is longer than " +
+                                                                       std::to_string(max_name) + " characters");
+            ++pos;
+        }
+        if (pos >= b.size()) throw Error(name, "byte " + std::to_string(start), "file ends inside the header");
+        return std::string(reinterpret_cast<const char*>(b.data()) + start, pos++ - start);
+    };
+    for (int part = 0;; ++part) {
+        if (part > 0) {  // multi-part files end the header list with an empty header
+            if (pos >= b.size()) throw Error(name, "byte " + std::to_string(pos), "file ends inside the header");
+            if (b[pos] == 0) break;
+        }
+        for (int attributes = 0;; ++attributes) {
+            if (attributes > 10000) throw Error(name, "byte " + std::to_string(pos), "more than 10000 header attributes");
+            const std::size_t at = pos;
+            std::string attr = read_name("attribute");
+            if (attr.empty()) break;
+            read_name("attribute type");
+            if (b.size() - pos < 4) throw Error(name, "byte " + std::to_string(pos), "file ends inside the header");
+            const std::int32_t size = std::int32_t(std::uint32_t(b[pos]) | (std::uint32_t(b[pos + 1]) << 8) |
+                                                   (std::uint32_t(b[pos + 2]) << 16) | (std::uint32_t(b[pos + 3]) << 24));
+            pos += 4;
+            if (size < 0 || std::size_t(size) > b.size() - pos)
+                throw Error(name, "byte " + std::to_string(at),
+                            "header attribute '" + attr + "' claims " + std::to_string(size) + " bytes, but " +
+                                std::to_string(b.size() - pos) + " remain in the file");
+            pos += std::size_t(size);
+        }
+        if (!multipart) break;
+        if (part > 1000) throw Error(name, "byte " + std::to_string(pos), "more than 1000 parts");
+    }
+}
+
 ImageF decode_exr(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits) {
+    check_exr_header(bytes, name);
     try {
         MemoryStream stream(bytes, name);
         Imf::InputFile file(stream);

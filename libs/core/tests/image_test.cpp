@@ -467,3 +467,24 @@ TEST(Metrics, SizeMismatchThrows) {
     EXPECT_NE(e.reason().find("4x4"), std::string::npos) << e.what();
     EXPECT_NE(e.reason().find("4x5"), std::string::npos) << e.what();
 }
+
+TEST(ImageDecode, ExrAttributeClaimingMoreThanTheFileIsRefusedBeforeOpenExr) {
+    // OpenEXR would resize a string to the declared attribute size (up to 2 GiB) before
+    // reading it; the header walk refuses such a size first, naming the attribute.
+    TempDir dir;
+    write_exr(dir / "ok.exr", pattern_float(4, 4));
+    auto bytes = read_file_bytes(dir / "ok.exr", 1 << 20);
+    // The first attribute starts at byte 8: "channels\0chlist\0" then its int32 size.
+    ASSERT_EQ(std::string(reinterpret_cast<const char*>(bytes.data()) + 8), "channels");
+    const std::size_t size_at = 8 + 9 + 7;
+    for (std::uint32_t claimed : {0x7FFFFFF0u, 0x80000000u, std::uint32_t(bytes.size())}) {
+        auto bad = bytes;
+        for (int k = 0; k < 4; ++k) bad[size_at + k] = std::uint8_t(claimed >> (8 * k));
+        const auto start = std::chrono::steady_clock::now();
+        Error e = capture_error([&] { decode_image_float(bad, "big-attr.exr"); });
+        EXPECT_NE(e.reason().find("'channels' claims"), std::string::npos) << e.what();
+        EXPECT_EQ(e.where(), "byte 8");
+        EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+    }
+    EXPECT_NO_THROW(decode_image_float(bytes, "ok.exr"));
+}
