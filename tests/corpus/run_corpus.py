@@ -8,7 +8,8 @@ usage: run_corpus.py FRESNEL_BINARY CORPUS_DIR [--timeout S] [--jobs N] [--no-re
 """
 import argparse, concurrent.futures, json, os, subprocess, sys, tempfile, time
 
-SANITIZER_MARKERS = ("ERROR: AddressSanitizer", "ERROR: LeakSanitizer", "runtime error:", "UndefinedBehaviorSanitizer")
+import sanitizer_report
+
 
 
 def validator_errors(path):
@@ -22,24 +23,23 @@ def validator_errors(path):
     return None
 
 
-# LeakSanitizer's stop-the-world tracer itself sometimes dies ("Tracer caught signal 11")
-# while threads are being torn down at exit: a known intermittent fault of the tool
-# (google/sanitizers#1353), not a finding. Such a run is repeated, at most twice; a real
-# report (ERROR: LeakSanitizer / AddressSanitizer / runtime error) is never retried.
-LSAN_TRACER_FAULT = "LeakSanitizer has encountered a fatal error"
-tracer_retries = []
+tracer_retries, driver_leaks = [], []
 
 
 def run(cmd, timeout):
+    # A step whose LeakSanitizer tracer faulted is repeated, at most twice (see
+    # sanitizer_report.py); real reports are never retried.
     for attempt in range(3):
         start = time.monotonic()
         try:
             p = subprocess.run(cmd, capture_output=True, text=True, errors="replace", timeout=timeout)
         except subprocess.TimeoutExpired:
             return "timeout", "", time.monotonic() - start
-        if LSAN_TRACER_FAULT in p.stderr and not any(m in p.stderr for m in SANITIZER_MARKERS) and attempt < 2:
+        if sanitizer_report.tracer_fault(p.stderr) and attempt < 2:
             tracer_retries.append(" ".join(cmd[1:3]))
             continue
+        if sanitizer_report.driver_leak(p.stderr):
+            driver_leaks.append(" ".join(cmd[1:3]))
         return p.returncode, p.stderr, time.monotonic() - start
 
 
@@ -86,7 +86,7 @@ def main():
                     failures.append(f"HANG    {step} {rel} (> {a.timeout} s)")
                 elif rc not in (0, 1):
                     failures.append(f"CRASH   {step} {rel} exit {rc}: {err.strip()[-300:]}")
-                elif any(m in err for m in SANITIZER_MARKERS):
+                elif sanitizer_report.finding(err):
                     failures.append(f"SANITIZER {step} {rel}: {err.strip()[-600:]}")
                 elif rc == 1 and nerr == 0:
                     failures.append(f"REJECTED {step} {rel} (validator: 0 errors): {err.strip()[-300:]}")
@@ -101,6 +101,8 @@ def main():
     for k, v in rows.items():
         print(f"  {k:<22} {v:5d}")
     print(f"  slowest step: {slowest[1]} ({slowest[0]:.2f} s)")
+    if driver_leaks:
+        print(f"  GL-driver leaks from unmapped code, not counted: {len(driver_leaks)} ({', '.join(driver_leaks)})")
     if tracer_retries:
         print(f"  reruns after a LeakSanitizer tracer fault: {len(tracer_retries)} ({', '.join(tracer_retries)})")
     for f in failures:

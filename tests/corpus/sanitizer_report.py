@@ -1,0 +1,59 @@
+"""Reading sanitizer output for the corpus and hostile-input runners.
+
+Two things in a sanitizer build's stderr are not findings in fresnel's code:
+- LeakSanitizer's own stop-the-world tracer dying at exit ("Tracer caught signal 11",
+  "LeakSanitizer has encountered a fatal error"), a known intermittent fault of the tool
+  (google/sanitizers#1353). The caller reruns the step.
+- Leaks whose every stack frame above the allocator is "<unknown module>": memory the GL
+  driver allocated from code that is no longer mapped when the leak check runs (Mesa's
+  driver is unloaded by eglTerminate; llvmpipe's JIT code has no module). fresnel's own
+  code is linked into the executable and always symbolises, so such a leak cannot be
+  ours; tests/lsan.supp covers the driver frames that still have a name.
+Everything else (ASan errors, UBSan runtime errors, any leak with a named frame) is a
+finding.
+"""
+import re
+
+MARKERS = ("ERROR: AddressSanitizer", "ERROR: LeakSanitizer", "runtime error:", "UndefinedBehaviorSanitizer")
+LSAN_TRACER_FAULT = "LeakSanitizer has encountered a fatal error"
+_ALLOCATOR = re.compile(r"in (__interceptor_|__asan_|operator new|malloc|calloc|realloc)")
+
+
+def tracer_fault(stderr):
+    """True when LeakSanitizer itself failed and nothing else was reported."""
+    return LSAN_TRACER_FAULT in stderr and not any(m in stderr for m in MARKERS)
+
+
+def _leak_only_in_unknown_modules(stderr):
+    if "ERROR: LeakSanitizer: detected memory leaks" not in stderr:
+        return False
+    if any(m in stderr for m in ("ERROR: AddressSanitizer", "runtime error:")):
+        return False
+    blocks = re.split(r"\n(?=(?:Direct|Indirect) leak of )", stderr)
+    leaks = [b for b in blocks if re.match(r"(?:Direct|Indirect) leak of ", b)]
+    if not leaks:
+        return False
+    for block in leaks:
+        for line in block.splitlines():
+            m = re.match(r"\s*#\d+ 0x[0-9a-f]+ (.*)", line)
+            if not m:
+                continue
+            frame = m.group(1)
+            if frame.strip() == "(<unknown module>)" or _ALLOCATOR.search(frame):
+                continue
+            return False
+    return True
+
+
+def finding(stderr):
+    """The sanitizer report in stderr that counts as a finding, or None."""
+    if not any(m in stderr for m in MARKERS):
+        return None
+    if _leak_only_in_unknown_modules(stderr):
+        return None
+    return stderr
+
+
+def driver_leak(stderr):
+    """True when the only report is a leak from unmapped driver code (see above)."""
+    return _leak_only_in_unknown_modules(stderr)
