@@ -68,3 +68,14 @@ BrdfTerms brdf_terms(vec3 base_color, float metallic, float perceptual_roughness
     t.specular = t.specular_dielectric + t.specular_metal;
     return t;
 }
+
+// KHR_materials_clearcoat: the coat's specular lobe times n.l (no Fresnel: the layering
+// weight carries it). The same as brdf::clearcoat_specular in brdf.h.
+float clearcoat_specular(vec3 nc, vec3 v, vec3 l, float alpha) {
+    float n_dot_l = clamped_dot(nc, l);
+    if (n_dot_l <= 0.0) return 0.0;
+    vec3 h = l + v;
+    float hl = length(h);
+    h = hl > 0.0 ? h / hl : nc;
+    return n_dot_l * d_ggx(clamped_dot(nc, h), alpha) * v_smith_ggx_correlated(n_dot_l, clamped_dot(nc, v), alpha);
+}

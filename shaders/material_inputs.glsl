@@ -10,6 +10,12 @@ uniform float u_alpha_cutoff;
 uniform vec3 u_f0_dielectric;       // ((ior-1)/(ior+1))^2 * specularColorFactor, or specular-glossiness F0
 uniform float u_specular_weight;    // KHR_materials_specular specularFactor (1 otherwise)
 uniform float u_glossiness_factor;  // specular-glossiness only
+#ifdef MATERIAL_CLEARCOAT
+uniform float u_clearcoat_factor;
+uniform float u_clearcoat_roughness_factor;
+uniform float u_clearcoat_normal_scale;
+uniform float u_clearcoat_f0;       // ((ior-1)/(ior+1))^2 of the material's ior
+#endif
 
 // Per map: sampler, UV set (0/1) and the KHR_texture_transform matrix.
 #define DECLARE_MAP(name) uniform sampler2D u_##name##_map; uniform int u_##name##_uv; uniform mat3 u_##name##_transform;
@@ -34,6 +40,15 @@ DECLARE_MAP(specular)
 #ifdef HAS_SPECULAR_COLOR_MAP
 DECLARE_MAP(specular_color)
 #endif
+#ifdef HAS_CLEARCOAT_MAP
+DECLARE_MAP(clearcoat)
+#endif
+#ifdef HAS_CLEARCOAT_ROUGHNESS_MAP
+DECLARE_MAP(clearcoat_roughness)
+#endif
+#ifdef HAS_CLEARCOAT_NORMAL_MAP
+DECLARE_MAP(clearcoat_normal)
+#endif
 
 vec2 map_uv(int set, mat3 transform) {
     vec2 uv = set == 1 ? v_uv1 : v_uv0;
@@ -49,6 +64,8 @@ struct MaterialInputs {
     vec3 emissive;
     vec3 f0_dielectric;     // dielectric F0 colour
     float specular_weight;  // dielectric specular weight (F0 and F90)
+    float clearcoat;            // KHR_materials_clearcoat strength (0 = no coat)
+    float clearcoat_roughness;  // perceptual
 };
 
 MaterialInputs read_material() {
@@ -88,6 +105,20 @@ MaterialInputs read_material() {
     m.f0_dielectric = min(m.f0_dielectric, vec3(1.0));
     m.metallic = clamp(m.metallic, 0.0, 1.0);
     m.roughness = clamp(m.roughness, 0.0, 1.0);
+    m.clearcoat = 0.0;
+    m.clearcoat_roughness = 0.0;
+#ifdef MATERIAL_CLEARCOAT
+    m.clearcoat = u_clearcoat_factor;
+    m.clearcoat_roughness = u_clearcoat_roughness_factor;
+#ifdef HAS_CLEARCOAT_MAP
+    m.clearcoat *= SAMPLE_MAP(clearcoat).r;
+#endif
+#ifdef HAS_CLEARCOAT_ROUGHNESS_MAP
+    m.clearcoat_roughness *= SAMPLE_MAP(clearcoat_roughness).g;
+#endif
+    m.clearcoat = clamp(m.clearcoat, 0.0, 1.0);
+    m.clearcoat_roughness = clamp(m.clearcoat_roughness, 0.0, 1.0);
+#endif
     m.occlusion = 1.0;
 #ifdef HAS_OCCLUSION_MAP
     m.occlusion = 1.0 + u_occlusion_strength * (SAMPLE_MAP(occlusion).r - 1.0);

@@ -31,6 +31,7 @@ struct Frame {
     vec3 ng;   // geometric normal (interpolated vertex normal, flipped for back faces)
     vec3 t;
     vec3 b;
+    vec3 nc;   // clearcoat normal: its own normal map, else the geometric normal
 };
 
 Frame shading_frame() {
@@ -57,6 +58,12 @@ Frame shading_frame() {
     tn.xy *= u_normal_scale;
     f.n = normalize(mat3(f.t, f.b, f.ng) * tn);
 #endif
+    f.nc = f.ng;
+#ifdef HAS_CLEARCOAT_NORMAL_MAP
+    vec3 tc = SAMPLE_MAP(clearcoat_normal).rgb * 2.0 - 1.0;
+    tc.xy *= u_clearcoat_normal_scale;
+    f.nc = normalize(mat3(f.t, f.b, f.ng) * tc);
+#endif
     return f;
 }
 
@@ -81,15 +88,29 @@ void main() {
     float e = brdf_lut(n_dot_v, m.roughness).b;
     vec3 comp_dielectric = u_energy_compensation == 1 ? energy_compensation(m.f0_dielectric * m.specular_weight, e) : vec3(1.0);
     vec3 comp_metal = u_energy_compensation == 1 ? energy_compensation(m.base_color.rgb, e) : vec3(1.0);
+#ifdef MATERIAL_CLEARCOAT
+    // KHR_materials_clearcoat layering: mix(base, coat, clearcoat * Fc), Fc the Schlick
+    // Fresnel of the coat at its normal and the view (the extension's fresnel_coat).
+    float cc_n_dot_v = clamped_dot(f.nc, v);
+    float cc_mix = m.clearcoat * f_schlick(u_clearcoat_f0, 1.0, cc_n_dot_v);  // brdf::clearcoat_mix
+    float cc_alpha = alpha_from_roughness(m.clearcoat_roughness);
+#endif
     for (int i = 0; i < MAX_LIGHTS; ++i) {
         if (i >= u_light_count) break;
         vec3 l;
         vec3 radiance = light_incident(i, v_position, l);
         float n_dot_l = clamped_dot(f.n, l);
-        if (n_dot_l <= 0.0) continue;
-        BrdfTerms t = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight, f.n, v, l);
-        vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;
-        color += radiance * n_dot_l * (t.diffuse + specular);
+        vec3 lit = vec3(0.0);
+        if (n_dot_l > 0.0) {
+            BrdfTerms t = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight, f.n, v, l);
+            vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;
+            lit = radiance * n_dot_l * (t.diffuse + specular);
+        }
+#ifdef MATERIAL_CLEARCOAT
+        vec3 coat = radiance * clearcoat_specular(f.nc, v, l, cc_alpha);
+        lit = mix(lit, coat, cc_mix);
+#endif
+        color += lit;
     }
 #ifdef USE_IBL
     {
@@ -102,12 +123,23 @@ void main() {
         float so = specular_occlusion(n_dot_v, m.occlusion, m.roughness);
         vec3 dielectric = diffuse * (1.0 - fresnel_dielectric) * m.occlusion + specular * fresnel_dielectric * so;
         vec3 metal = specular * fresnel_metal * so;
-        color += mix(dielectric, metal, m.metallic);
+        vec3 ibl = mix(dielectric, metal, m.metallic);
+#ifdef MATERIAL_CLEARCOAT
+        // The coat reflects the prefiltered environment at its roughness; its Fresnel is cc_mix.
+        vec3 coat = ibl_radiance(reflect(-v, f.nc), m.clearcoat_roughness) *
+                    specular_occlusion(cc_n_dot_v, m.occlusion, m.clearcoat_roughness);
+        ibl = mix(ibl, coat, cc_mix);
+#endif
+        color += ibl;
     }
 #endif
     // Occlusion applies to indirect light only.
     color += u_ambient * m.base_color.rgb * (1.0 - m.metallic) * m.occlusion;
+#ifdef MATERIAL_CLEARCOAT
+    color += m.emissive * (1.0 - cc_mix);  // emission passes through the coat
+#else
     color += m.emissive;
+#endif
 #endif
 
 #ifdef DEBUG_VIEW

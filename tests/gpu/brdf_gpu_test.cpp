@@ -35,7 +35,7 @@ using fresnel::brdf::Surface;
 using fresnel::brdf::Terms;
 
 // brdf_probe.frag's u_mode values.
-enum ProbeMode { kModeBrdf = 0, kModeDvf = 1, kModeToneMap = 2, kModeEncode = 3 };
+enum ProbeMode { kModeBrdf = 0, kModeDvf = 1, kModeToneMap = 2, kModeEncode = 3, kModeClearcoat = 4 };
 
 constexpr int kGrid = 64;                  // cases per side: kGrid x kGrid per draw
 constexpr float kRelTol = 1e-3f;           // BRDF values, D, V, F: relative error ...
@@ -452,3 +452,47 @@ TEST_F(BrdfProbe, DisplayEncodingsMatchCpp) {
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------------------
+// KHR_materials_clearcoat: the coat lobe and the layering weight, GLSL against C++.
+
+TEST_F(BrdfProbe, ClearcoatMatchesCpp) {
+    std::mt19937 rng(2024);
+    std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+    const float two_pi = 2.0f * fresnel::brdf::kPi;
+    struct CoatCase {
+        glm::vec3 nc, v, l;
+        float roughness, clearcoat, f0;
+    };
+    std::vector<CoatCase> cases;
+    std::vector<Case> inputs;
+    for (int i = 0; i < kGrid * 32; ++i) {
+        CoatCase c;
+        c.nc = direction(0.7f + 0.3f * u01(rng), two_pi * u01(rng));  // a coat normal map tilts it
+        c.v = direction(i % 17 == 0 ? 0.0f : u01(rng), two_pi * u01(rng));
+        c.l = i % 11 == 0 ? glm::normalize(glm::vec3(-c.v.x, -c.v.y, c.v.z)) : direction(u01(rng) * 1.2f - 0.2f, two_pi * u01(rng));
+        c.roughness = i % 9 == 0 ? 1.0f : 0.05f + 0.95f * u01(rng);
+        c.clearcoat = i % 7 == 0 ? 1.0f : u01(rng);
+        c.f0 = i % 5 == 0 ? 0.04f : 0.1f * u01(rng);
+        cases.push_back(c);
+        inputs.push_back({glm::vec4(c.l, c.roughness), glm::vec4(c.v, c.clearcoat), glm::vec4(c.nc, c.f0)});
+    }
+    std::vector<glm::vec4> gpu = probe(kModeClearcoat, inputs);
+    ASSERT_EQ(gpu.size(), cases.size());
+    Mismatches bad;
+    int lit = 0;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        const CoatCase& c = cases[i];
+        glm::vec3 nc = glm::normalize(c.nc), v = glm::normalize(c.v), l = glm::normalize(c.l);
+        float spec = fresnel::brdf::clearcoat_specular(nc, v, l, fresnel::brdf::alpha_from_roughness(c.roughness));
+        float mix = fresnel::brdf::clearcoat_mix(c.clearcoat, c.f0, nc, v);
+        ASSERT_GE(spec, 0.0f);
+        ASSERT_LE(mix, c.clearcoat + 1e-6f);  // the coat never takes more than its weight
+        lit += spec > 0.0f;
+        std::string ctx = "case " + std::to_string(i) + ", roughness " + std::to_string(c.roughness);
+        if (!close_rel(gpu[i].x, spec)) bad.add("coat specular", gpu[i].x, spec, ctx);
+        if (!close_rel(gpu[i].y, mix)) bad.add("coat weight", gpu[i].y, mix, ctx);
+    }
+    EXPECT_GT(lit, int(cases.size()) / 2) << "most cases should light the coat";
+    EXPECT_EQ(bad.count, 0) << bad.report();
+}

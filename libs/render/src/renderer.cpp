@@ -254,6 +254,7 @@ struct Renderer::Impl {
         if (p.has_color) defines.push_back("HAS_COLOR");
         if (m.unlit) defines.push_back("UNLIT");
         if (m.specular_glossiness) defines.push_back("SPECULAR_GLOSSINESS");
+        if (m.has_clearcoat()) defines.push_back("MATERIAL_CLEARCOAT");
         if (m.alpha_mode == AlphaMode::Mask) defines.push_back("ALPHA_MASK");
         if (m.alpha_mode == AlphaMode::Blend) defines.push_back("ALPHA_BLEND");
         if (settings.debug != DebugChannel::None) defines.push_back("DEBUG_VIEW");
@@ -274,15 +275,21 @@ struct Renderer::Impl {
             {"emissive", "HAS_EMISSIVE_MAP", &m.emissive, true},
             {"specular", "HAS_SPECULAR_MAP", &m.specular_texture, false},
             {"specular_color", "HAS_SPECULAR_COLOR_MAP", &m.specular_color_texture, true},
+            {"clearcoat", "HAS_CLEARCOAT_MAP", &m.clearcoat_texture, false},
+            {"clearcoat_roughness", "HAS_CLEARCOAT_ROUGHNESS_MAP", &m.clearcoat_roughness_texture, false},
+            {"clearcoat_normal", "HAS_CLEARCOAT_NORMAL_MAP", &m.clearcoat_normal, false},
         };
-        constexpr int kMaps = 7;
+        // Maps take texture units 0..kMaps-1; the image-based light uses kLutUnit and up.
+        constexpr int kMaps = 10;
+        constexpr int kLutUnit = 13, kSpecularUnit = 14, kIrradianceUnit = 15;  // GLES 3.0 guarantees 16
         const gpu::Texture* bound[kMaps] = {};
         bool has_uv = p.has_uv0;
         for (int i = 0; i < kMaps; ++i) {
             const TextureRef& ref = *maps[i].ref;
             if (!ref.valid() || !has_uv) continue;
             if (ref.tex_coord == 1 && !p.has_uv1) continue;
-            if (i == 2 && !p.has_tangent) continue;  // a normal map needs a tangent frame
+            if ((i == 2 || i == 9) && !p.has_tangent) continue;  // normal maps need a tangent frame
+            if (i >= 7 && !m.has_clearcoat()) continue;
             bound[i] = texture_for(ref, maps[i].srgb);
             if (bound[i]) defines.push_back(maps[i].define);
         }
@@ -302,16 +309,16 @@ struct Renderer::Impl {
         prog.set("u_exposure", exposure_scale(settings.exposure_ev));
         prog.set("u_tonemap", int(settings.tone_mapper));
         prog.set("u_encoding", settings.encoding ? int(*settings.encoding) : -1);
-        // Units 8, 9, 10: the split-sum table, the prefiltered environment, the irradiance.
+        // The split-sum table, the prefiltered environment, the irradiance.
         bool have_lut = lut_texture && uploaded_lut;
-        if (have_lut) device.bind_texture(8, lut_texture);
-        prog.set("u_brdf_lut", 8);
+        if (have_lut) device.bind_texture(kLutUnit, lut_texture);
+        prog.set("u_brdf_lut", kLutUnit);
         prog.set("u_energy_compensation", settings.energy_compensation && have_lut ? 1 : 0);
         if (settings.environment) {
-            device.bind_texture(9, env_specular);
-            prog.set("u_specular_env", 9);
-            device.bind_texture(10, env_irradiance);
-            prog.set("u_irradiance_env", 10);
+            device.bind_texture(kSpecularUnit, env_specular);
+            prog.set("u_specular_env", kSpecularUnit);
+            device.bind_texture(kIrradianceUnit, env_irradiance);
+            prog.set("u_irradiance_env", kIrradianceUnit);
             set_ibl_uniforms(prog, settings);
         }
         prog.set("u_base_color_factor", m.base_color_factor);
@@ -326,6 +333,12 @@ struct Renderer::Impl {
         prog.set("u_f0_dielectric", f0);
         prog.set("u_specular_weight", m.specular_glossiness ? 1.0f : m.specular_factor);
         prog.set("u_glossiness_factor", m.glossiness_factor);
+        if (m.has_clearcoat()) {
+            prog.set("u_clearcoat_factor", m.clearcoat_factor);
+            prog.set("u_clearcoat_roughness_factor", m.clearcoat_roughness_factor);
+            prog.set("u_clearcoat_normal_scale", m.clearcoat_normal_scale);
+            prog.set("u_clearcoat_f0", m.dielectric_f0());
+        }
         for (int i = 0; i < kMaps; ++i) {
             if (!bound[i]) continue;
             std::string base = std::string("u_") + maps[i].name;

@@ -245,8 +245,9 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
 
     // Tangents when a normal map needs them and the file has none (MikkTSpace).
     const Material* mat = p.material >= 0 ? &materials[std::size_t(p.material)] : nullptr;
-    if (mat && mat->normal.valid() && p.tangents.empty() && p.topology == Topology::Triangles) {
-        const auto& uv = mat->normal.tex_coord == 1 ? p.uv1 : p.uv0;
+    if (mat && (mat->normal.valid() || mat->clearcoat_normal.valid()) && p.tangents.empty() && p.topology == Topology::Triangles) {
+        const TextureRef& map = mat->normal.valid() ? mat->normal : mat->clearcoat_normal;
+        const auto& uv = map.tex_coord == 1 ? p.uv1 : p.uv0;
         if (uv.empty()) {
             warn(ptr, "normal map without texture coordinates; normal map ignored");
         } else {

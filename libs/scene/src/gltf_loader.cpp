@@ -27,7 +27,7 @@ const std::vector<std::string>& supported_gltf_extensions() {
     static const std::vector<std::string> list = {
         "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform",
         "KHR_materials_unlit", "KHR_mesh_quantization", "KHR_materials_ior", "KHR_materials_specular",
-        "KHR_materials_pbrSpecularGlossiness",
+        "KHR_materials_pbrSpecularGlossiness", "KHR_materials_clearcoat",
     };
     return list;
 }
@@ -437,6 +437,15 @@ private:
                 auto c = r_.numbers<3>(*sp, "specularColorFactor", sptr, {1, 1, 1});
                 out.specular_color_factor = glm::max(glm::vec3(c[0], c[1], c[2]), 0.0f);
                 out.specular_color_texture = texture_ref(*sp, "specularColorTexture", sptr);
+            }
+            if (const json* cc = r_.find(ext, "KHR_materials_clearcoat")) {
+                std::string cp = ptr + "/extensions/KHR_materials_clearcoat";
+                out.clearcoat_factor = std::clamp(float(r_.number(*cc, "clearcoatFactor", cp, 0.0)), 0.0f, 1.0f);
+                out.clearcoat_texture = texture_ref(*cc, "clearcoatTexture", cp);
+                out.clearcoat_roughness_factor =
+                    std::clamp(float(r_.number(*cc, "clearcoatRoughnessFactor", cp, 0.0)), 0.0f, 1.0f);
+                out.clearcoat_roughness_texture = texture_ref(*cc, "clearcoatRoughnessTexture", cp);
+                out.clearcoat_normal = texture_ref(*cc, "clearcoatNormalTexture", cp, &out.clearcoat_normal_scale, "scale");
             }
             if (const json* sg = r_.find(ext, "KHR_materials_pbrSpecularGlossiness")) {
                 std::string gp = ptr + "/extensions/KHR_materials_pbrSpecularGlossiness";

@@ -1147,6 +1147,47 @@ TEST(GltfMaterials, FactorsModesAndExtensions) {
     EXPECT_EQ(load_error(doc.gltf()).where(), "/materials/1/alphaMode");
 }
 
+TEST(GltfMaterials, KhrMaterialsClearcoat) {
+    auto png = make_png(2, 2, nullptr);
+    Doc doc;
+    doc.j["extensionsUsed"] = {"KHR_materials_clearcoat"};
+    doc.j["extensionsRequired"] = {"KHR_materials_clearcoat"};  // supported, so not an error
+    doc.j["images"] = json::array({{{"uri", "data:image/png;base64," + base64(png)}}});
+    doc.j["textures"] = json::array({{{"source", 0}}});
+    doc.j["materials"] = json::array({
+        {{"extensions",
+          {{"KHR_materials_clearcoat",
+            {{"clearcoatFactor", 0.7},
+             {"clearcoatTexture", {{"index", 0}}},
+             {"clearcoatRoughnessFactor", 2.0},  // clamped to 1
+             {"clearcoatRoughnessTexture", {{"index", 0}, {"texCoord", 1}}},
+             {"clearcoatNormalTexture", {{"index", 0}, {"scale", 0.5}}}}}}}},
+        {{"extensions", {{"KHR_materials_clearcoat", json::object()}}}},
+    });
+    // Only a clearcoat normal map: the primitive still needs (generated) tangents.
+    int pos = doc.positions(kQuad);
+    int nrm = doc.normals(4);
+    int uv = doc.attribute(FLOAT, "VEC2", {0, 0, 1, 0, 1, 1, 0, 1});
+    int ind = doc.indices(UNSIGNED_SHORT, {0, 1, 2, 0, 2, 3});
+    doc.mesh(json::array({{{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}, {"TEXCOORD_0", uv}}}, {"indices", ind}, {"material", 0}}}));
+    Diagnostics d;
+    Scene s = load(doc.gltf(), d);
+    ASSERT_EQ(s.materials.size(), 2u);
+    const Material& m = s.materials[0];
+    EXPECT_TRUE(m.has_clearcoat());
+    EXPECT_FLOAT_EQ(m.clearcoat_factor, 0.7f);
+    EXPECT_EQ(m.clearcoat_texture.texture, 0);
+    EXPECT_FLOAT_EQ(m.clearcoat_roughness_factor, 1.0f);
+    EXPECT_EQ(m.clearcoat_roughness_texture.tex_coord, 1);
+    EXPECT_EQ(m.clearcoat_normal.texture, 0);
+    EXPECT_FLOAT_EQ(m.clearcoat_normal_scale, 0.5f);
+    EXPECT_TRUE(s.meshes.at(0).primitives[0].generated_tangents);
+    // Defaults: factor 0 turns the coat off.
+    EXPECT_FALSE(s.materials[1].has_clearcoat());
+    EXPECT_FLOAT_EQ(s.materials[1].clearcoat_roughness_factor, 0.0f);
+    EXPECT_EQ(d.total(), 0u);
+}
+
 TEST(GltfMaterials, KhrTextureTransform) {
     Doc doc;
     doc.j["extensionsUsed"] = {"KHR_texture_transform"};

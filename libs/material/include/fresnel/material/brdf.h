@@ -113,6 +113,25 @@ inline glm::vec3 evaluate(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 
     return t.diffuse + t.specular;
 }
 
+// KHR_materials_clearcoat. The coat's lobe times n.l, at the coat normal nc (no Fresnel:
+// the layering weight carries it). The same as clearcoat_specular in shaders/brdf.glsl.
+inline float clearcoat_specular(glm::vec3 nc, glm::vec3 v, glm::vec3 l, float alpha) {
+    float n_dot_l = std::clamp(glm::dot(nc, l), 0.0f, 1.0f);
+    if (n_dot_l <= 0.0f) return 0.0f;
+    glm::vec3 h = l + v;
+    float hl = glm::length(h);
+    h = hl > 0.0f ? h / hl : nc;
+    float n_dot_v = std::clamp(glm::dot(nc, v), 0.0f, 1.0f);
+    return n_dot_l * d_ggx(std::clamp(glm::dot(nc, h), 0.0f, 1.0f), alpha) * v_smith_ggx_correlated(n_dot_l, n_dot_v, alpha);
+}
+
+// The extension's layering, fresnel_coat: mix(base, coat, weight * Fc), where Fc is the
+// Schlick Fresnel of the coat (F0 from the ior, 0.04 at 1.5) at its normal and the view.
+// Returns the weight given to the coat; the base keeps 1 minus it.
+inline float clearcoat_mix(float clearcoat, float coat_f0, glm::vec3 nc, glm::vec3 v) {
+    return clearcoat * f_schlick(coat_f0, 1.0f, std::clamp(glm::dot(nc, v), 0.0f, 1.0f));
+}
+
 // Directional albedo: the integral of f(l, v) cos(theta_l) over the hemisphere,
 // by a stratified quadrature with `samples_per_axis`^2 points. Used by tests
 // (energy conservation) and the IBL precomputation.

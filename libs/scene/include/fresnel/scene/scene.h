@@ -62,6 +62,17 @@ struct Material {
     // specularGlossinessTexture (RGB specular, A glossiness).
     bool specular_glossiness = false;
     float glossiness_factor = 1.0f;
+    // KHR_materials_clearcoat: a dielectric GGX layer (F0 from ior) over the material.
+    // Strength = clearcoat_factor * R of clearcoat_texture; roughness = factor * G of
+    // clearcoat_roughness_texture; clearcoat_normal is its own normal map (the geometric
+    // normal without one). All linear.
+    float clearcoat_factor = 0.0f;
+    TextureRef clearcoat_texture;
+    float clearcoat_roughness_factor = 0.0f;
+    TextureRef clearcoat_roughness_texture;
+    TextureRef clearcoat_normal;
+    float clearcoat_normal_scale = 1.0f;
+    bool has_clearcoat() const { return clearcoat_factor > 0.0f; }
     float dielectric_f0() const { float r = (ior - 1.0f) / (ior + 1.0f); return r * r; }
 };
 
