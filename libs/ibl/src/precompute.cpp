@@ -207,6 +207,112 @@ glm::vec3 filter_direction(const std::vector<LevelView>& views, const std::vecto
     return glm::vec3(acc[0], acc[1], acc[2]) / std::max(wsum, 1e-8f);
 }
 
+// The same sum as filter_direction, eight samples at a time: the lobe is stored as
+// batches of 8 that share a mip level (padded with zero weights), and the rotation,
+// the cube-face selection and the bilinear weights and addresses are computed with
+// vector extensions (SSE/AVX, whatever the target has); only the texel reads are per
+// lane. About twice as fast as the scalar loop; results agree to float rounding.
+// Declared 4-byte aligned: loads and stores are then unaligned ones, so no container
+// has to honour a 32-byte alignment (std::vector does not, in every configuration).
+typedef float V8 __attribute__((vector_size(32), aligned(4)));
+typedef std::int32_t I8 __attribute__((vector_size(32), aligned(4)));
+constexpr int kLanes = 8;
+
+struct LobeBatch {
+    V8 x, y, z;   // directions around +Z
+    V8 w0, w1;    // weights at level0 and level0 + 1
+    float weight_sum;
+    int level0;
+    bool has_w1;
+};
+
+std::vector<LobeBatch> make_batches(const std::vector<LobeSample>& lobe) {
+    std::vector<LobeBatch> out;
+    std::size_t i = 0;
+    while (i < lobe.size()) {
+        LobeBatch b{};
+        b.level0 = lobe[i].level0;
+        for (int k = 0; k < kLanes; ++k) b.z[k] = 1.0f;  // padding: +Z with zero weight
+        int lane = 0;
+        for (; lane < kLanes && i < lobe.size() && lobe[i].level0 == b.level0; ++lane, ++i) {
+            const LobeSample& s = lobe[i];
+            b.x[lane] = s.dir.x, b.y[lane] = s.dir.y, b.z[lane] = s.dir.z;
+            b.w0[lane] = s.w0, b.w1[lane] = s.w1;
+            b.weight_sum += s.weight;
+            b.has_w1 = b.has_w1 || s.w1 > 0.0f;
+        }
+        out.push_back(b);
+    }
+    return out;
+}
+
+__attribute__((always_inline)) inline void accumulate_bilinear8(const LevelView& L, const I8& face, const V8& s, const V8& t, const V8& w,
+                                 float acc[4]) {
+    const V8 zero = V8{} + 0.0f, maxc = zero + (L.fsize - 1.0f);
+    V8 fx = s * L.fsize - 0.5f, fy = t * L.fsize - 0.5f;
+    fx = fx < zero ? zero : (fx > maxc ? maxc : fx);
+    fy = fy < zero ? zero : (fy > maxc ? maxc : fy);
+    const I8 x0 = __builtin_convertvector(fx, I8), y0 = __builtin_convertvector(fy, I8);
+    const I8 last = I8{} + (L.size - 1);
+    // x0 + 1 and y0 + 1, clamped to the edge (a true comparison is -1).
+    const I8 x1 = x0 - (x0 < last), y1 = y0 - (y0 < last);
+    const V8 ax = fx - __builtin_convertvector(x0, V8), ay = fy - __builtin_convertvector(y0, V8);
+    const V8 w00 = (1.0f - ax) * (1.0f - ay) * w, w10 = ax * (1.0f - ay) * w;
+    const V8 w01 = (1.0f - ax) * ay * w, w11 = ax * ay * w;
+    const I8 r0 = y0 * L.size, r1 = y1 * L.size;
+    const I8 i00 = (r0 + x0) * 4, i10 = (r0 + x1) * 4, i01 = (r1 + x0) * 4, i11 = (r1 + x1) * 4;
+    float a0 = 0, a1 = 0, a2 = 0;
+    for (int k = 0; k < kLanes; ++k) {
+        const float* f = L.faces[face[k]];
+        const float* p00 = f + i00[k];
+        const float* p10 = f + i10[k];
+        const float* p01 = f + i01[k];
+        const float* p11 = f + i11[k];
+        a0 += p00[0] * w00[k] + p10[0] * w10[k] + p01[0] * w01[k] + p11[0] * w11[k];
+        a1 += p00[1] * w00[k] + p10[1] * w10[k] + p01[1] * w01[k] + p11[1] * w11[k];
+        a2 += p00[2] * w00[k] + p10[2] * w10[k] + p01[2] * w01[k] + p11[2] * w11[k];
+    }
+    acc[0] += a0, acc[1] += a1, acc[2] += a2;
+}
+
+// On x86-64 this is compiled twice, for Haswell-class CPUs (AVX2, FMA: the eight lanes
+// in one register) and for the baseline, and the loader picks one at run time; the
+// helper is always inlined, so it is compiled into each version.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(FRESNEL_NO_TARGET_CLONES)
+#define FRESNEL_KERNEL __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define FRESNEL_KERNEL
+#endif
+
+FRESNEL_KERNEL
+glm::vec3 filter_direction8(const std::vector<LevelView>& views, const std::vector<LobeBatch>& batches, glm::vec3 n) {
+    glm::vec3 t, b;
+    sampling::basis(n, t, b);
+    float acc[4] = {0, 0, 0, 0};
+    float wsum = 0.0f;
+    const V8 zero = V8{} + 0.0f;
+    for (const LobeBatch& B : batches) {
+        const V8 dx = t.x * B.x + b.x * B.y + n.x * B.z;
+        const V8 dy = t.y * B.x + b.y * B.y + n.y * B.z;
+        const V8 dz = t.z * B.x + b.z * B.y + n.z * B.z;
+        const V8 ax = dx < zero ? -dx : dx, ay = dy < zero ? -dy : dy, az = dz < zero ? -dz : dz;
+        // The same face rules as face_coords (ties go to x, then y).
+        const I8 xm = (ax >= ay) & (ax >= az);
+        const I8 ym = ~xm & (ay >= az);
+        const V8 ma = xm ? ax : (ym ? ay : az);
+        const V8 sc = xm ? (dx > zero ? -dz : dz) : (ym ? dx : (dz > zero ? dx : -dx));
+        const V8 tc = ym ? (dy > zero ? dz : -dz) : -dy;
+        const I8 face = xm ? (dx > zero ? I8{} + 0 : I8{} + 1)
+                           : (ym ? (dy > zero ? I8{} + 2 : I8{} + 3) : (dz > zero ? I8{} + 4 : I8{} + 5));
+        const V8 inv = 0.5f / ma;
+        const V8 s = sc * inv + 0.5f, tt = tc * inv + 0.5f;
+        accumulate_bilinear8(views[std::size_t(B.level0)], face, s, tt, B.w0, acc);
+        if (B.has_w1) accumulate_bilinear8(views[std::size_t(B.level0 + 1)], face, s, tt, B.w1, acc);
+        wsum += B.weight_sum;
+    }
+    return glm::vec3(acc[0], acc[1], acc[2]) / std::max(wsum, 1e-8f);
+}
+
 void store(float* px, glm::vec3 c) { px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = 1.0f; }
 
 std::vector<LobeSample> lobe_samples(float roughness, int count, int source_size, int source_levels, float lod_bias) {
@@ -264,6 +370,9 @@ Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& o, const Pr
         total_cost += double(size) * size * 6 * double(lobes[std::size_t(l)].size());
     }
     std::vector<LevelView> views = level_views(source);
+    std::vector<std::vector<LobeBatch>> batches;
+    for (const auto& lobe : lobes) batches.push_back(make_batches(lobe));
+    const bool kScalar = !o.vectorized;
     std::atomic<double> done_cost{0};
     parallel_for(
         rows.size(),
@@ -271,8 +380,11 @@ Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& o, const Pr
             const Row& row = rows[i];
             CubeLevel& lv = out.levels[std::size_t(row.level)];
             const auto& lobe = lobes[std::size_t(row.level)];
-            for (int x = 0; x < lv.size; ++x)
-                store(lv.texel(row.face, x, row.y), filter_direction(views, lobe, cube_texel_direction(row.face, x, row.y, lv.size)));
+            const auto& batch = batches[std::size_t(row.level)];
+            for (int x = 0; x < lv.size; ++x) {
+                glm::vec3 n = cube_texel_direction(row.face, x, row.y, lv.size);
+                store(lv.texel(row.face, x, row.y), kScalar ? filter_direction(views, lobe, n) : filter_direction8(views, batch, n));
+            }
             if (progress) {
                 double c = double(lv.size) * double(lobe.size());
                 double now = done_cost.fetch_add(c) + c;
@@ -298,13 +410,14 @@ Cubemap irradiance_filtered(const Cubemap& source, int size, int samples, float 
     }
     sort_for_locality(lobe);
     std::vector<LevelView> views = level_views(source);
+    std::vector<LobeBatch> batches = make_batches(lobe);
     Cubemap out = make_cubemap(size, 1);
     parallel_for(
         std::size_t(6 * size),
         [&](std::size_t row) {
             int f = int(row / std::size_t(size)), y = int(row % std::size_t(size));
             for (int x = 0; x < size; ++x)
-                store(out.levels[0].texel(f, x, y), filter_direction(views, lobe, cube_texel_direction(f, x, y, size)));
+                store(out.levels[0].texel(f, x, y), filter_direction8(views, batches, cube_texel_direction(f, x, y, size)));
         },
         threads);
     return out;

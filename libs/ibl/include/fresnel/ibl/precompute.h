@@ -56,6 +56,10 @@ struct PrefilterOptions {
     // is what the Khronos Sample Viewer's filter effectively uses (its ratio omits 4 pi),
     // so that the same panorama gives the same blur.
     float lod_bias = 1.8257f;
+    // true: the loop that filters eight samples at a time (SIMD); false: the scalar
+    // reference loop. Same sum up to float rounding; the switch exists for tests and
+    // benchmarks.
+    bool vectorized = true;
 };
 
 // `source` must hold a full mip chain (build_mip_chain) at the output's level-0 size or larger.
