@@ -6,6 +6,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -165,3 +167,118 @@ TEST_F(Cli, OtherUsageErrorsExitTwo) {
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------------------
+// White furnace through the CLI, as a user measures it: a UV sphere in a uniform white
+// environment, `--tonemap none` into a float image. With energy compensation a white
+// sphere renders 1.0 at every roughness, metal or not; a grey (0.5) rough dielectric
+// renders 0.5 (plus the few percent its Fresnel reflection adds at smoother settings).
+
+namespace {
+
+std::string base64(const std::string& bytes) {
+    static const char* tbl = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    std::size_t i = 0;
+    for (; i + 2 < bytes.size(); i += 3) {
+        unsigned v = (unsigned(std::uint8_t(bytes[i])) << 16) | (unsigned(std::uint8_t(bytes[i + 1])) << 8) | std::uint8_t(bytes[i + 2]);
+        for (int k = 3; k >= 0; --k) out += tbl[(v >> (6 * k)) & 63];
+    }
+    if (i < bytes.size()) {
+        unsigned v = unsigned(std::uint8_t(bytes[i])) << 16;
+        if (i + 1 < bytes.size()) v |= unsigned(std::uint8_t(bytes[i + 1])) << 8;
+        out += tbl[(v >> 18) & 63];
+        out += tbl[(v >> 12) & 63];
+        out += i + 1 < bytes.size() ? tbl[(v >> 6) & 63] : '=';
+        out += '=';
+    }
+    return out;
+}
+
+// A unit UV sphere with one metallic-roughness material, buffer embedded as a data URI.
+void write_sphere(const fs::path& path, float base, float metallic, float roughness) {
+    const int seg = 96, rings = 48;
+    std::vector<float> pos;
+    std::vector<std::uint32_t> idx;
+    for (int i = 0; i <= rings; ++i)
+        for (int j = 0; j <= seg; ++j) {
+            double th = M_PI * i / rings, ph = 2 * M_PI * j / seg;
+            pos.insert(pos.end(), {float(std::sin(th) * std::sin(ph)), float(std::cos(th)), float(std::sin(th) * std::cos(ph))});
+        }
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < seg; ++j) {
+            std::uint32_t a = std::uint32_t(i * (seg + 1) + j), b = a + seg + 1;
+            idx.insert(idx.end(), {a, b, a + 1, a + 1, b, b + 1});
+        }
+    std::string buf(reinterpret_cast<const char*>(pos.data()), pos.size() * 4);
+    const std::size_t pos_bytes = buf.size();
+    buf.append(reinterpret_cast<const char*>(pos.data()), pos.size() * 4);  // normals = positions
+    buf.append(reinterpret_cast<const char*>(idx.data()), idx.size() * 4);
+    const std::size_t count = pos.size() / 3;
+    nlohmann::json j = {
+        {"asset", {{"version", "2.0"}}},
+        {"scene", 0},
+        {"scenes", {{{"nodes", {0}}}}},
+        {"nodes", {{{"mesh", 0}}}},
+        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}}}, {"indices", 2}, {"material", 0}}}}}}},
+        {"materials", {{{"pbrMetallicRoughness", {{"baseColorFactor", {base, base, base, 1.0}}, {"metallicFactor", metallic}, {"roughnessFactor", roughness}}}}}},
+        {"buffers", {{{"byteLength", buf.size()}, {"uri", "data:application/octet-stream;base64," + base64(buf)}}}},
+        {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", pos_bytes}},
+                         {{"buffer", 0}, {"byteOffset", pos_bytes}, {"byteLength", pos_bytes}},
+                         {{"buffer", 0}, {"byteOffset", 2 * pos_bytes}, {"byteLength", idx.size() * 4}}}},
+        {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", count}, {"type", "VEC3"}, {"min", {-1, -1, -1}}, {"max", {1, 1, 1}}},
+                       {{"bufferView", 1}, {"componentType", 5126}, {"count", count}, {"type", "VEC3"}},
+                       {{"bufferView", 2}, {"componentType", 5125}, {"count", idx.size()}, {"type", "SCALAR"}}}},
+    };
+    std::ofstream(path) << j.dump();
+}
+
+// Mean of the sphere's pixels within 60 % of its radius from its centre (where the
+// normal faces the camera within ~37 degrees), and how many there were.
+std::pair<double, int> interior_mean(const fresnel::ImageF& img) {
+    double cx = 0, cy = 0;
+    int n = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            if (img.at(x, y)[1] > 0.02f) cx += x, cy += y, ++n;
+    if (n == 0) return {0.0, 0};
+    cx /= n, cy /= n;
+    const double r = std::sqrt(n / M_PI) * 0.6;
+    double sum = 0;
+    int m = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            if ((x - cx) * (x - cx) + (y - cy) * (y - cy) < r * r) {
+                const float* p = img.at(x, y);
+                sum += (p[0] + p[1] + p[2]) / 3.0;
+                ++m;
+            }
+    return {m ? sum / m : 0.0, m};
+}
+
+}  // namespace
+
+TEST_F(Cli, WhiteFurnaceThroughRender) {
+    struct Case {
+        float base, metallic, roughness, expected, tolerance;
+    };
+    const Case cases[] = {
+        {1, 0, 0, 1.0f, 0.01f}, {1, 0, 0.5f, 1.0f, 0.01f}, {1, 0, 1, 1.0f, 0.01f},
+        {1, 1, 0, 1.0f, 0.01f}, {1, 1, 0.5f, 1.0f, 0.01f}, {1, 1, 1, 1.0f, 0.01f},
+        {0.5f, 0, 1, 0.5f, 0.01f},
+        // Smoother: the dielectric's Fresnel reflection adds to the diffuse 0.5 (glTF's
+        // fresnel_mix), about 3 % at roughness 0.5.
+        {0.5f, 0, 0.5f, 0.515f, 0.015f},
+    };
+    for (const Case& c : cases) {
+        fs::path model = dir_ / "sphere.gltf", out = dir_ / "furnace.hdr";
+        write_sphere(model, c.base, c.metallic, c.roughness);
+        Result r = run({"render", model.string(), "-o", out.string(), "--env", "color:1,1,1", "--tonemap", "none",
+                        "--size", "128x128", "--background", "0,0,0"});
+        ASSERT_EQ(r.exit_code, 0) << show(r);
+        auto [mean, pixels] = interior_mean(fresnel::read_image_float(out));
+        ASSERT_GT(pixels, 500);
+        EXPECT_NEAR(mean, c.expected, c.expected * c.tolerance)
+            << "base " << c.base << " metallic " << c.metallic << " roughness " << c.roughness;
+    }
+}
