@@ -23,12 +23,14 @@ def validator_errors(path):
     return None
 
 
-tracer_retries, driver_leaks = [], []
+tracer_retries, driver_leaks, unconfirmed_leaks = [], [], []
 
 
 def run(cmd, timeout):
-    # A step whose LeakSanitizer tracer faulted is repeated, at most twice (see
-    # sanitizer_report.py); real reports are never retried.
+    # A step whose LeakSanitizer tracer faulted is repeated, at most twice, and a report of
+    # leaks alone is confirmed by one rerun (see sanitizer_report.py); ASan and UBSan
+    # reports are never retried.
+    leak_report = None
     for attempt in range(3):
         start = time.monotonic()
         try:
@@ -40,6 +42,11 @@ def run(cmd, timeout):
             continue
         if sanitizer_report.driver_leak(p.stderr):
             driver_leaks.append(" ".join(cmd[1:3]))
+        elif sanitizer_report.finding(p.stderr) and sanitizer_report.leak_only(p.stderr) and leak_report is None and attempt < 2:
+            leak_report = p.stderr
+            continue
+        elif leak_report is not None and not sanitizer_report.finding(p.stderr):
+            unconfirmed_leaks.append((" ".join(cmd[1:3]), leak_report[-1500:]))
         return p.returncode, p.stderr, time.monotonic() - start
 
 
@@ -103,6 +110,8 @@ def main():
     print(f"  slowest step: {slowest[1]} ({slowest[0]:.2f} s)")
     if driver_leaks:
         print(f"  GL-driver leaks from unmapped code, not counted: {len(driver_leaks)} ({', '.join(driver_leaks)})")
+    for what, report in unconfirmed_leaks:
+        print(f"  leak report that a rerun did not reproduce, not counted: {what}\n{report}")
     if tracer_retries:
         print(f"  reruns after a LeakSanitizer tracer fault: {len(tracer_retries)} ({', '.join(tracer_retries)})")
     for f in failures:

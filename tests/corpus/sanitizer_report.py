@@ -10,7 +10,9 @@ Two things in a sanitizer build's stderr are not findings in fresnel's code:
   code is linked into the executable and always symbolises, so such a leak cannot be
   ours; tests/lsan.supp covers the driver frames that still have a name.
 Everything else (ASan errors, UBSan runtime errors, any leak with a named frame) is a
-finding.
+finding, except that a report of leaks alone is confirmed by running the step again:
+the driver's threads make LeakSanitizer's view of exit timing-dependent, while a leak in
+fresnel's code is deterministic and shows up again.
 """
 import re
 
@@ -57,3 +59,9 @@ def finding(stderr):
 def driver_leak(stderr):
     """True when the only report is a leak from unmapped driver code (see above)."""
     return _leak_only_in_unknown_modules(stderr)
+
+
+def leak_only(stderr):
+    """True when the report is LeakSanitizer's alone (no ASan error, no UBSan error)."""
+    return ("ERROR: LeakSanitizer" in stderr and "ERROR: AddressSanitizer" not in stderr
+            and "runtime error:" not in stderr)
