@@ -38,14 +38,15 @@ std::vector<std::uint8_t> read_file_bytes(const fs::path& path, std::size_t max_
 }
 
 namespace {
-void check_size(const std::string& name, long long w, long long h, int bytes_per_pixel, const ImageLimits& limits) {
-    if (w <= 0 || h <= 0) throw Error(name, "", "image has no pixels");
+void check_size(const std::string& name, long long w, long long h, int bytes_per_pixel, const ImageLimits& limits,
+                const std::string& where = "") {
+    if (w <= 0 || h <= 0) throw Error(name, where, "image has no pixels");
     if (w > limits.max_dimension || h > limits.max_dimension)
-        throw Error(name, "", "image is " + std::to_string(w) + "x" + std::to_string(h) +
+        throw Error(name, where, "image is " + std::to_string(w) + "x" + std::to_string(h) +
                                   ", over the size limit of " + std::to_string(limits.max_dimension) + " pixels per side");
     unsigned long long bytes = static_cast<unsigned long long>(w) * h * bytes_per_pixel;
     if (bytes > limits.max_decoded_bytes)
-        throw Error(name, "", "image would decode to " + std::to_string(bytes) + " bytes, over the limit of " +
+        throw Error(name, where, "image would decode to " + std::to_string(bytes) + " bytes, over the limit of " +
                                   std::to_string(limits.max_decoded_bytes));
 }
 }  // namespace
@@ -123,7 +124,7 @@ private:
 // declared size fits in the file, before OpenEXR sees it: OpenEXR 3.1 resizes a string
 // attribute to its declared size (up to 2 GiB) before reading it, so a 1 KiB file could
 // make it allocate and clear gigabytes (found by fuzz_exr; kept in fuzz/regressions/exr).
-void check_exr_header(std::span<const std::uint8_t> b, const std::string& name) {
+void check_exr_header(std::span<const std::uint8_t> b, const std::string& name, const ImageLimits& limits) {
     if (b.size() < 8) throw Error(name, "", "file too short for an OpenEXR header");
     const std::uint32_t flags = std::uint32_t(b[5]) | (std::uint32_t(b[6]) << 8) | (std::uint32_t(b[7]) << 16);
     const bool multipart = flags & 0x1000;
@@ -150,7 +151,7 @@ void check_exr_header(std::span<const std::uint8_t> b, const std::string& name) 
             const std::size_t at = pos;
             std::string attr = read_name("attribute");
             if (attr.empty()) break;
-            read_name("attribute type");
+            std::string type = read_name("attribute type");
             if (b.size() - pos < 4) throw Error(name, "byte " + std::to_string(pos), "file ends inside the header");
             const std::int32_t size = std::int32_t(std::uint32_t(b[pos]) | (std::uint32_t(b[pos + 1]) << 8) |
                                                    (std::uint32_t(b[pos + 2]) << 16) | (std::uint32_t(b[pos + 3]) << 24));
@@ -159,6 +160,16 @@ void check_exr_header(std::span<const std::uint8_t> b, const std::string& name) 
                 throw Error(name, "byte " + std::to_string(at),
                             "header attribute '" + attr + "' claims " + std::to_string(size) + " bytes, but " +
                                 std::to_string(b.size() - pos) + " remain in the file");
+            // The data window decides the size of OpenEXR's own tables and buffers: check it
+            // against our limits before OpenEXR allocates them.
+            if (attr == "dataWindow" && type == "box2i" && size == 16) {
+                auto i32 = [&](std::size_t at) {
+                    return std::int32_t(std::uint32_t(b[at]) | (std::uint32_t(b[at + 1]) << 8) |
+                                        (std::uint32_t(b[at + 2]) << 16) | (std::uint32_t(b[at + 3]) << 24));
+                };
+                long long w = (long long)i32(pos + 8) - i32(pos) + 1, h = (long long)i32(pos + 12) - i32(pos + 4) + 1;
+                check_size(name, w, h, 16, limits, "byte " + std::to_string(at) + " (dataWindow)");
+            }
             pos += std::size_t(size);
         }
         if (!multipart) break;
@@ -167,7 +178,7 @@ void check_exr_header(std::span<const std::uint8_t> b, const std::string& name) 
 }
 
 ImageF decode_exr(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits) {
-    check_exr_header(bytes, name);
+    check_exr_header(bytes, name, limits);
     try {
         MemoryStream stream(bytes, name);
         Imf::InputFile file(stream);

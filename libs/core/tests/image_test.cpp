@@ -2,6 +2,7 @@
 // decoders, read_file_bytes' size cap, and the comparison metrics.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -487,4 +488,20 @@ TEST(ImageDecode, ExrAttributeClaimingMoreThanTheFileIsRefusedBeforeOpenExr) {
         EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
     }
     EXPECT_NO_THROW(decode_image_float(bytes, "ok.exr"));
+}
+
+TEST(ImageDecode, ExrHugeDataWindowIsRefusedBeforeOpenExrAllocates) {
+    TempDir dir;
+    write_exr(dir / "ok.exr", pattern_float(4, 4));
+    auto bytes = read_file_bytes(dir / "ok.exr", 1 << 20);
+    // Find the dataWindow attribute's value and make it 2^30 lines tall.
+    const std::string key("dataWindow");
+    auto it = std::search(bytes.begin(), bytes.end(), key.begin(), key.end());
+    ASSERT_NE(it, bytes.end());
+    std::size_t value = std::size_t(it - bytes.begin()) + key.size() + 1 + 6 + 4;  // name\0 "box2i\0" size
+    const std::int32_t ymax = 1 << 30;
+    for (int k = 0; k < 4; ++k) bytes[value + 12 + k] = std::uint8_t(std::uint32_t(ymax) >> (8 * k));
+    Error e = capture_error([&] { decode_image_float(bytes, "tall.exr"); });
+    EXPECT_NE(e.reason().find("limit"), std::string::npos) << e.what();
+    EXPECT_NE(e.where().find("dataWindow"), std::string::npos) << "refused by the header walk: " << e.what();
 }
