@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <glm/geometric.hpp>
 
 #include "fresnel/core/parallel.h"
@@ -35,8 +36,10 @@ glm::vec3 SH9::evaluate(glm::vec3 n) const {
     return r;
 }
 
-SH9 project_radiance(const Cubemap& cube) {
-    const CubeLevel& lv = cube.levels[0];
+SH9 project_radiance(const Cubemap& cube, int max_size) {
+    std::size_t level = 0;
+    while (level + 1 < cube.levels.size() && cube.levels[level].size > max_size) ++level;
+    const CubeLevel& lv = cube.levels[level];
     std::array<glm::dvec3, 9> acc{};
     for (int f = 0; f < 6; ++f)
         for (int y = 0; y < lv.size; ++y)
@@ -216,6 +219,7 @@ glm::vec3 filter_direction(const std::vector<LevelView>& views, const std::vecto
 // has to honour a 32-byte alignment (std::vector does not, in every configuration).
 typedef float V8 __attribute__((vector_size(32), aligned(4)));
 typedef std::int32_t I8 __attribute__((vector_size(32), aligned(4)));
+typedef float V4 __attribute__((vector_size(16), aligned(4)));
 constexpr int kLanes = 8;
 
 struct LobeBatch {
@@ -261,18 +265,18 @@ __attribute__((always_inline)) inline void accumulate_bilinear8(const LevelView&
     const V8 w01 = (1.0f - ax) * ay * w, w11 = ax * ay * w;
     const I8 r0 = y0 * L.size, r1 = y1 * L.size;
     const I8 i00 = (r0 + x0) * 4, i10 = (r0 + x1) * 4, i01 = (r1 + x0) * 4, i11 = (r1 + x1) * 4;
-    float a0 = 0, a1 = 0, a2 = 0;
+    // Texels are RGBA floats: one 4-wide load and multiply-add per texel.
+    V4 sum = V4{} + 0.0f;
     for (int k = 0; k < kLanes; ++k) {
         const float* f = L.faces[face[k]];
-        const float* p00 = f + i00[k];
-        const float* p10 = f + i10[k];
-        const float* p01 = f + i01[k];
-        const float* p11 = f + i11[k];
-        a0 += p00[0] * w00[k] + p10[0] * w10[k] + p01[0] * w01[k] + p11[0] * w11[k];
-        a1 += p00[1] * w00[k] + p10[1] * w10[k] + p01[1] * w01[k] + p11[1] * w11[k];
-        a2 += p00[2] * w00[k] + p10[2] * w10[k] + p01[2] * w01[k] + p11[2] * w11[k];
+        V4 p00, p10, p01, p11;
+        std::memcpy(&p00, f + i00[k], sizeof(V4));
+        std::memcpy(&p10, f + i10[k], sizeof(V4));
+        std::memcpy(&p01, f + i01[k], sizeof(V4));
+        std::memcpy(&p11, f + i11[k], sizeof(V4));
+        sum += p00 * w00[k] + p10 * w10[k] + p01 * w01[k] + p11 * w11[k];
     }
-    acc[0] += a0, acc[1] += a1, acc[2] += a2;
+    acc[0] += sum[0], acc[1] += sum[1], acc[2] += sum[2];
 }
 
 // On x86-64 this is compiled twice, for Haswell-class CPUs (AVX2, FMA: the eight lanes
