@@ -124,6 +124,55 @@ private:
 // declared size fits in the file, before OpenEXR sees it: OpenEXR 3.1 resizes a string
 // attribute to its declared size (up to 2 GiB) before reading it, so a 1 KiB file could
 // make it allocate and clear gigabytes (found by fuzz_exr; kept in fuzz/regressions/exr).
+// Whether an attribute value of OpenEXR type `type` has exactly the structure its
+// declared bytes allow. Types of fixed size must match it; variable ones are walked.
+// Unknown types are read by OpenEXR as opaque bytes (declared size), which is safe.
+bool exr_attribute_fits(const std::string& type, std::span<const std::uint8_t> v, std::size_t max_name) {
+    static const std::pair<const char*, std::size_t> fixed[] = {
+        {"box2i", 16}, {"box2f", 16}, {"v2i", 8}, {"v2f", 8}, {"v2d", 16}, {"v3i", 12}, {"v3f", 12}, {"v3d", 24},
+        {"int", 4}, {"float", 4}, {"double", 8}, {"compression", 1}, {"lineOrder", 1}, {"envmap", 1},
+        {"deepImageState", 1}, {"tiledesc", 9}, {"rational", 8}, {"timecode", 8}, {"keycode", 28},
+        {"chromaticities", 32}, {"m33f", 36}, {"m44f", 64}, {"m33d", 72}, {"m44d", 128}};
+    for (const auto& [t, n] : fixed)
+        if (type == t) return v.size() == n;
+    auto i32 = [&](std::size_t at) {
+        return std::int32_t(std::uint32_t(v[at]) | (std::uint32_t(v[at + 1]) << 8) | (std::uint32_t(v[at + 2]) << 16) |
+                            (std::uint32_t(v[at + 3]) << 24));
+    };
+    if (type == "chlist") {  // (name\0, 16 bytes)* then \0
+        std::size_t p = 0;
+        for (;;) {
+            std::size_t start = p;
+            while (p < v.size() && v[p] != 0) {
+                if (p - start >= max_name) return false;
+                ++p;
+            }
+            if (p >= v.size()) return false;
+            if (p++ == start) return p == v.size();
+            if (v.size() - p < 16) return false;
+            p += 16;
+        }
+    }
+    if (type == "stringvector") {  // (int32 length, bytes)* filling the value exactly
+        std::size_t p = 0;
+        while (p < v.size()) {
+            if (v.size() - p < 4) return false;
+            std::int32_t n = i32(p);
+            p += 4;
+            if (n < 0 || std::size_t(n) > v.size() - p) return false;
+            p += std::size_t(n);
+        }
+        return true;
+    }
+    if (type == "floatvector") return v.size() % 4 == 0;
+    if (type == "preview") {  // uint32 width, height, then RGBA8 pixels
+        if (v.size() < 8) return false;
+        unsigned long long w = std::uint32_t(i32(0)), h = std::uint32_t(i32(4));
+        return 8 + 4 * w * h == v.size();
+    }
+    return true;  // string (read by size), idmanifest (sized), unknown types (opaque)
+}
+
 void check_exr_header(std::span<const std::uint8_t> b, const std::string& name, const ImageLimits& limits) {
     if (b.size() < 8) throw Error(name, "", "file too short for an OpenEXR header");
     const std::uint32_t flags = std::uint32_t(b[5]) | (std::uint32_t(b[6]) << 8) | (std::uint32_t(b[7]) << 16);
@@ -160,6 +209,13 @@ void check_exr_header(std::span<const std::uint8_t> b, const std::string& name, 
                 throw Error(name, "byte " + std::to_string(at),
                             "header attribute '" + attr + "' claims " + std::to_string(size) + " bytes, but " +
                                 std::to_string(b.size() - pos) + " remain in the file");
+            // OpenEXR reads attributes of known types by their structure, not by the declared
+            // size, and sizes some buffers from values inside them: the structure has to fill
+            // exactly the declared bytes, or the two readings of the header part ways.
+            if (!exr_attribute_fits(type, b.subspan(pos, std::size_t(size)), max_name))
+                throw Error(name, "byte " + std::to_string(at),
+                            "header attribute '" + attr + "' of type " + type + " does not fit its " +
+                                std::to_string(size) + " bytes");
             // The data window decides the size of OpenEXR's own tables and buffers: check it
             // against our limits before OpenEXR allocates them.
             if (attr == "dataWindow" && type == "box2i" && size == 16) {

@@ -505,3 +505,17 @@ TEST(ImageDecode, ExrHugeDataWindowIsRefusedBeforeOpenExrAllocates) {
     EXPECT_NE(e.reason().find("limit"), std::string::npos) << e.what();
     EXPECT_NE(e.where().find("dataWindow"), std::string::npos) << "refused by the header walk: " << e.what();
 }
+
+TEST(ImageDecode, ExrAttributeWhoseStructureDoesNotFitItsSizeIsRefused) {
+    // OpenEXR reads a channel list by its structure; if that disagrees with the declared
+    // size, the rest of the header is read from the wrong place (fuzz_exr found a 1.7 GB
+    // allocation that way). The header walk refuses such a file first.
+    TempDir dir;
+    write_exr(dir / "ok.exr", pattern_float(4, 4));
+    auto bytes = read_file_bytes(dir / "ok.exr", 1 << 20);
+    const std::size_t size_at = 8 + 9 + 7;  // "channels\0chlist\0" then the int32 size
+    bytes[size_at] = std::uint8_t(bytes[size_at] - 1);  // one byte less than the list takes
+    Error e = capture_error([&] { decode_image_float(bytes, "chlist.exr"); });
+    EXPECT_NE(e.reason().find("does not fit"), std::string::npos) << e.what();
+    EXPECT_EQ(e.where(), "byte 8");
+}
