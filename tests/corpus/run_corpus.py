@@ -23,31 +23,13 @@ def validator_errors(path):
     return None
 
 
-tracer_retries, driver_leaks, unconfirmed_leaks = [], [], []
+notes = []
 
 
 def run(cmd, timeout):
-    # A step whose LeakSanitizer tracer faulted is repeated, at most twice, and a report of
-    # leaks alone is confirmed by one rerun (see sanitizer_report.py); ASan and UBSan
-    # reports are never retried.
-    leak_report = None
-    for attempt in range(3):
-        start = time.monotonic()
-        try:
-            p = subprocess.run(cmd, capture_output=True, text=True, errors="replace", timeout=timeout)
-        except subprocess.TimeoutExpired:
-            return "timeout", "", time.monotonic() - start
-        if sanitizer_report.tracer_fault(p.stderr) and attempt < 2:
-            tracer_retries.append(" ".join(cmd[1:3]))
-            continue
-        if sanitizer_report.driver_leak(p.stderr):
-            driver_leaks.append(" ".join(cmd[1:3]))
-        elif sanitizer_report.finding(p.stderr) and sanitizer_report.leak_only(p.stderr) and leak_report is None and attempt < 2:
-            leak_report = p.stderr
-            continue
-        elif leak_report is not None and not sanitizer_report.finding(p.stderr):
-            unconfirmed_leaks.append((" ".join(cmd[1:3]), leak_report[-1500:]))
-        return p.returncode, p.stderr, time.monotonic() - start
+    rc, err, secs, step_notes = sanitizer_report.run_step(cmd, timeout)
+    notes.extend(step_notes)  # list.extend is atomic under the GIL
+    return rc, err, secs
 
 
 def check(binary, path, timeout, render, outdir):
@@ -108,12 +90,8 @@ def main():
     for k, v in rows.items():
         print(f"  {k:<22} {v:5d}")
     print(f"  slowest step: {slowest[1]} ({slowest[0]:.2f} s)")
-    if driver_leaks:
-        print(f"  GL-driver leaks from unmapped code, not counted: {len(driver_leaks)} ({', '.join(driver_leaks)})")
-    for what, report in unconfirmed_leaks:
-        print(f"  leak report that a rerun did not reproduce, not counted: {what}\n{report}")
-    if tracer_retries:
-        print(f"  reruns after a LeakSanitizer tracer fault: {len(tracer_retries)} ({', '.join(tracer_retries)})")
+    for note in notes:
+        print(f"  note: {note}")
     for f in failures:
         print(f)
     print(f"{len(failures)} failure(s)")

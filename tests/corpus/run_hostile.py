@@ -12,29 +12,12 @@ failures = []
 
 
 def fresnel(binary, *args, timeout=20):
-    # A run whose LeakSanitizer tracer faulted is repeated, at most twice; a leak only in
-    # unmapped GL-driver code is not ours (see sanitizer_report.py).
-    leak_report = None
-    for attempt in range(3):
-        start = time.monotonic()
-        try:
-            p = subprocess.run([binary, *args], capture_output=True, text=True, errors="replace", timeout=timeout)
-        except subprocess.TimeoutExpired:
-            return "timeout", "", timeout
-        if sanitizer_report.tracer_fault(p.stderr) and attempt < 2:
-            print(f"note: rerun after a LeakSanitizer tracer fault: fresnel {' '.join(args[:2])}")
-            continue
-        if (sanitizer_report.finding(p.stderr) and sanitizer_report.leak_only(p.stderr)
-                and leak_report is None and attempt < 2):
-            leak_report = p.stderr  # confirmed by a rerun, or printed and not counted
-            continue
-        if leak_report is not None and not sanitizer_report.finding(p.stderr):
-            print(f"note: leak report that a rerun did not reproduce: fresnel {' '.join(args[:2])}\n{leak_report[-1500:]}")
-        if sanitizer_report.driver_leak(p.stderr):
-            print(f"note: GL-driver leak from unmapped code, not counted: fresnel {' '.join(args[:2])}")
-        elif sanitizer_report.finding(p.stderr):
-            expect(f"no sanitizer report from fresnel {' '.join(args)}", False, p.stderr[-1500:])
-        return p.returncode, p.stderr, time.monotonic() - start
+    rc, err, secs, notes = sanitizer_report.run_step([binary, *args], timeout)
+    for note in notes:
+        print(f"note: {note}")
+    if sanitizer_report.finding(err):
+        expect(f"no sanitizer report from fresnel {' '.join(args)}", False, err[-1500:])
+    return rc, err, (timeout if rc == "timeout" else secs)
 
 
 def expect(name, cond, detail=""):

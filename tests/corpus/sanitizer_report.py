@@ -15,6 +15,8 @@ the driver's threads make LeakSanitizer's view of exit timing-dependent, while a
 fresnel's code is deterministic and shows up again.
 """
 import re
+import subprocess
+import time
 
 MARKERS = ("ERROR: AddressSanitizer", "ERROR: LeakSanitizer", "runtime error:", "UndefinedBehaviorSanitizer")
 LSAN_TRACER_FAULT = "LeakSanitizer has encountered a fatal error"
@@ -65,3 +67,29 @@ def leak_only(stderr):
     """True when the report is LeakSanitizer's alone (no ASan error, no UBSan error)."""
     return ("ERROR: LeakSanitizer" in stderr and "ERROR: AddressSanitizer" not in stderr
             and "runtime error:" not in stderr)
+
+
+def run_step(cmd, timeout):
+    """Runs cmd, rerunning it when LeakSanitizer's tracer faulted (at most twice) and once
+    to confirm a report of leaks alone. Returns (returncode or "timeout", stderr, seconds,
+    notes): notes say what was rerun or not counted, for the runner to print. ASan and
+    UBSan reports are never retried; finding(stderr) tells whether one remains."""
+    notes, leak_report = [], None
+    what = " ".join(str(c) for c in cmd[1:3])
+    for attempt in range(3):
+        start = time.monotonic()
+        try:
+            p = subprocess.run(cmd, capture_output=True, text=True, errors="replace", timeout=timeout)
+        except subprocess.TimeoutExpired:
+            return "timeout", "", time.monotonic() - start, notes
+        if tracer_fault(p.stderr) and attempt < 2:
+            notes.append(f"rerun after a LeakSanitizer tracer fault: {what}")
+            continue
+        if finding(p.stderr) and leak_only(p.stderr) and leak_report is None and attempt < 2:
+            leak_report = p.stderr
+            continue
+        if leak_report is not None and not finding(p.stderr):
+            notes.append(f"leak report that a rerun did not reproduce, not counted: {what}\n{leak_report[-1500:]}")
+        if driver_leak(p.stderr):
+            notes.append(f"GL-driver leak from unmapped code, not counted: {what}")
+        return p.returncode, p.stderr, time.monotonic() - start, notes

@@ -124,6 +124,12 @@ private:
 // declared size fits in the file, before OpenEXR sees it: OpenEXR 3.1 resizes a string
 // attribute to its declared size (up to 2 GiB) before reading it, so a 1 KiB file could
 // make it allocate and clear gigabytes (found by fuzz_exr; kept in fuzz/regressions/exr).
+// Little-endian int32 at `at` (the caller has checked that 4 bytes are there).
+std::int32_t le_i32(std::span<const std::uint8_t> b, std::size_t at) {
+    return std::int32_t(std::uint32_t(b[at]) | (std::uint32_t(b[at + 1]) << 8) | (std::uint32_t(b[at + 2]) << 16) |
+                        (std::uint32_t(b[at + 3]) << 24));
+}
+
 // Whether an attribute value of OpenEXR type `type` has exactly the structure its
 // declared bytes allow. Types of fixed size must match it; variable ones are walked.
 // Unknown types are read by OpenEXR as opaque bytes (declared size), which is safe.
@@ -135,10 +141,6 @@ bool exr_attribute_fits(const std::string& type, std::span<const std::uint8_t> v
         {"chromaticities", 32}, {"m33f", 36}, {"m44f", 64}, {"m33d", 72}, {"m44d", 128}};
     for (const auto& [t, n] : fixed)
         if (type == t) return v.size() == n;
-    auto i32 = [&](std::size_t at) {
-        return std::int32_t(std::uint32_t(v[at]) | (std::uint32_t(v[at + 1]) << 8) | (std::uint32_t(v[at + 2]) << 16) |
-                            (std::uint32_t(v[at + 3]) << 24));
-    };
     if (type == "chlist") {  // (name\0, 16 bytes)* then \0
         std::size_t p = 0;
         for (;;) {
@@ -157,7 +159,7 @@ bool exr_attribute_fits(const std::string& type, std::span<const std::uint8_t> v
         std::size_t p = 0;
         while (p < v.size()) {
             if (v.size() - p < 4) return false;
-            std::int32_t n = i32(p);
+            std::int32_t n = le_i32(v, p);
             p += 4;
             if (n < 0 || std::size_t(n) > v.size() - p) return false;
             p += std::size_t(n);
@@ -167,7 +169,7 @@ bool exr_attribute_fits(const std::string& type, std::span<const std::uint8_t> v
     if (type == "floatvector") return v.size() % 4 == 0;
     if (type == "preview") {  // uint32 width, height, then RGBA8 pixels
         if (v.size() < 8) return false;
-        unsigned long long w = std::uint32_t(i32(0)), h = std::uint32_t(i32(4));
+        unsigned long long w = std::uint32_t(le_i32(v, 0)), h = std::uint32_t(le_i32(v, 4));
         return 8 + 4 * w * h == v.size();
     }
     return true;  // string (read by size), idmanifest (sized), unknown types (opaque)
@@ -202,8 +204,7 @@ void check_exr_header(std::span<const std::uint8_t> b, const std::string& name, 
             if (attr.empty()) break;
             std::string type = read_name("attribute type");
             if (b.size() - pos < 4) throw Error(name, "byte " + std::to_string(pos), "file ends inside the header");
-            const std::int32_t size = std::int32_t(std::uint32_t(b[pos]) | (std::uint32_t(b[pos + 1]) << 8) |
-                                                   (std::uint32_t(b[pos + 2]) << 16) | (std::uint32_t(b[pos + 3]) << 24));
+            const std::int32_t size = le_i32(b, pos);
             pos += 4;
             if (size < 0 || std::size_t(size) > b.size() - pos)
                 throw Error(name, "byte " + std::to_string(at),
@@ -219,11 +220,7 @@ void check_exr_header(std::span<const std::uint8_t> b, const std::string& name, 
             // The data window decides the size of OpenEXR's own tables and buffers: check it
             // against our limits before OpenEXR allocates them.
             if (attr == "dataWindow" && type == "box2i" && size == 16) {
-                auto i32 = [&](std::size_t at) {
-                    return std::int32_t(std::uint32_t(b[at]) | (std::uint32_t(b[at + 1]) << 8) |
-                                        (std::uint32_t(b[at + 2]) << 16) | (std::uint32_t(b[at + 3]) << 24));
-                };
-                long long w = (long long)i32(pos + 8) - i32(pos) + 1, h = (long long)i32(pos + 12) - i32(pos + 4) + 1;
+                long long w = (long long)le_i32(b, pos + 8) - le_i32(b, pos) + 1, h = (long long)le_i32(b, pos + 12) - le_i32(b, pos + 4) + 1;
                 check_size(name, w, h, 16, limits, "byte " + std::to_string(at) + " (dataWindow)");
             }
             pos += std::size_t(size);
