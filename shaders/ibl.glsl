@@ -1,7 +1,7 @@
 // Image-based lighting: the irradiance cube map, the GGX-prefiltered cube map and
 // the split-sum table (libs/ibl bakes all three). Roughness k/(levels-1) lives at
 // level k, so lod = roughness * (levels - 1).
-uniform sampler2D u_brdf_lut;  // R = A, G = B, B = A + B (directional albedo E)
+uniform sampler2D u_brdf_lut;  // R = A, G = B, B = A + B (directional albedo E); column 0 = grazing (ibl/precompute.h)
 #ifdef USE_IBL
 uniform samplerCube u_specular_env;
 uniform samplerCube u_irradiance_env;  // irradiance / pi

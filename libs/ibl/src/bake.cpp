@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-constexpr int kFormatVersion = 2;  // bump when the bake's output changes, to invalidate caches
+constexpr int kFormatVersion = 3;  // bump when the bake's output changes, to invalidate caches
 
 double ms_since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();

@@ -450,6 +450,10 @@ glm::vec2 integrate_split_sum(float n_dot_v, float roughness, int samples) {
     return {float(a / samples), float(b / samples)};
 }
 
+float brdf_lut_n_dot_v(int column, int size) {
+    return column == 0 ? kBrdfLutGrazingNdotV : (float(column) + 0.5f) / float(size);
+}
+
 ImageF compute_brdf_lut(int size, int samples, unsigned threads) {
     ImageF lut(size, size);
     parallel_for(
@@ -457,7 +461,7 @@ ImageF compute_brdf_lut(int size, int samples, unsigned threads) {
         [&](std::size_t j) {
             float roughness = (float(j) + 0.5f) / float(size);
             for (int i = 0; i < size; ++i) {
-                float n_dot_v = (float(i) + 0.5f) / float(size);
+                float n_dot_v = brdf_lut_n_dot_v(i, size);
                 glm::vec2 ab = integrate_split_sum(n_dot_v, roughness, samples);
                 float* p = lut.at(i, int(j));
                 p[0] = ab.x, p[1] = ab.y, p[2] = ab.x + ab.y, p[3] = 1.0f;

@@ -203,7 +203,7 @@ TEST(BrdfLut, MatchesBruteForceIntegration) {
     // Roughness below ~0.05 is checked analytically below (float quadrature cannot resolve it).
     for (int j : {2, 8, 16, 31})
         for (int i : {0, 4, 16, 31}) {
-            float n_dot_v = (i + 0.5f) / 32, roughness = (j + 0.5f) / 32;
+            float n_dot_v = brdf_lut_n_dot_v(i, 32), roughness = (j + 0.5f) / 32;
             brdf::Surface s1{glm::vec3(1.0f), 1.0f, roughness, 0.04f};  // metal, base 1: F = 1 -> A + B
             brdf::Surface s0{glm::vec3(0.0f), 1.0f, roughness, 0.04f};  // metal, base 0: F = Fc -> B
             float e = brdf::directional_albedo(s1, n_dot_v, 400).x;
@@ -213,8 +213,15 @@ TEST(BrdfLut, MatchesBruteForceIntegration) {
             EXPECT_NEAR(p[1], b, 2e-3) << "n.v " << n_dot_v << " roughness " << roughness;
             EXPECT_NEAR(p[2], p[0] + p[1], 1e-6);
         }
-    // A near-mirror reflects everything: A + B = 1 for any n.v.
-    for (int i : {0, 10, 31}) EXPECT_NEAR(lut.at(i, 0)[0] + lut.at(i, 0)[1], 1.0f, 2e-3);
+    // A near-mirror reflects everything: A + B = 1 for any n.v off grazing...
+    for (int i : {1, 10, 31}) EXPECT_NEAR(lut.at(i, 0)[0] + lut.at(i, 0)[1], 1.0f, 2e-3);
+    // ...and column 0 holds the grazing limit, where masking takes a visible share even of
+    // a near-mirror (the clamped n.v of back-facing shading normals reads it).
+    EXPECT_FLOAT_EQ(brdf_lut_n_dot_v(0, 32), kBrdfLutGrazingNdotV);
+    EXPECT_FLOAT_EQ(brdf_lut_n_dot_v(3, 32), 3.5f / 32);
+    float grazing = lut.at(0, 0)[0] + lut.at(0, 0)[1];
+    EXPECT_LT(grazing, 0.98f);
+    EXPECT_GT(grazing, 0.5f);
 }
 
 TEST(Prefilter, TexelMatchesBruteForceGgxConvolution) {

@@ -68,8 +68,20 @@ struct PrefilterOptions {
 // `source` must hold a full mip chain (build_mip_chain) at the output's level-0 size or larger.
 Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& options, const Progress& progress = {});
 
-// Split-sum table, `size` x `size`: x = n.v, y = perceptual roughness (texel centres).
+// Split-sum table, `size` x `size`: x = n.v, y = perceptual roughness, at texel centres,
+// except that column 0 holds the grazing limit n.v = kBrdfLutGrazingNdotV. Why: a normal
+// map can turn the shading normal away from the viewer; n.v is then clamped to 0 and the
+// lookup reads column 0. At the first texel centre of a 128-wide table (n.v = 0.004) a
+// smooth lobe is still a perfect mirror (A + B = 1, so F = 1 and no diffuse), which paints
+// such texels black, while at n.v -> 0 masking takes over and E falls towards 0. The value
+// 1/2048 is the first texel centre of the Khronos Sample Viewer's 1024-wide table, so the
+// same normal-mapped model shades the same (NormalTangentTest's bowls, 29.9 -> 31.6 dB).
+// The shader reads the table with plain bilinear filtering at u = n.v.
+inline constexpr float kBrdfLutGrazingNdotV = 0.5f / 1024.0f;
 ImageF compute_brdf_lut(int size = 128, int samples = 1024, unsigned threads = 0);
+
+// The n.v that column `column` of a `size`-wide table holds (see above).
+float brdf_lut_n_dot_v(int column, int size);
 
 // The same integrals for one (n.v, roughness), by importance sampling with `samples` samples.
 glm::vec2 integrate_split_sum(float n_dot_v, float roughness, int samples);
