@@ -149,16 +149,21 @@ RenderSettings settings_of_size(int w, int h) {
 }
 
 // Renders like the CLI: orbit camera around the scene bounds, the scene's lights,
-// the default pair when it has none.
-Frame render(gpu::Context& context, const Scene& scene, View view, const RenderSettings& settings) {
+// the default pair when it has none; with `punctual_lights` false, none at all (as
+// `--env X --no-scene-lights`: the environment in settings lights the scene alone).
+Frame render(gpu::Context& context, const Scene& scene, View view, const RenderSettings& settings,
+             bool punctual_lights = true) {
     auto instances = flatten(scene);
     OrbitParams op;
     op.yaw_deg = view.yaw;
     op.pitch_deg = view.pitch;
     Frame f;
     f.camera = orbit_camera(scene_bounds(scene, instances), op, settings.width, settings.height);
-    std::vector<LightInstance> lights = scene_lights(scene, instances);
-    if (lights.empty()) lights = default_lights();
+    std::vector<LightInstance> lights;
+    if (punctual_lights) {
+        lights = scene_lights(scene, instances);
+        if (lights.empty()) lights = default_lights();
+    }
     Renderer renderer(context);
     renderer.set_scene(scene);
     f.image = renderer.render(f.camera, lights, settings, &f.stats);
@@ -680,24 +685,16 @@ TEST(KhronosReferences, ImageBasedLight) {
             SCOPED_TRACE(std::string(ref_folder) + "/" + stem);
             View view = view_name == "q" ? View{45, 20} : View{0, 0};
             Scene scene = load_model(file);
-            auto instances = flatten(scene);
-            OrbitParams op;
-            op.yaw_deg = view.yaw;
-            op.pitch_deg = view.pitch;
-            CameraSetup camera = orbit_camera(scene_bounds(scene, instances), op, 512, 512);
             RenderSettings s = settings_of_size(512, 512);
             s.tone_mapper = ToneMapper::Neutral;
             s.encoding = Encoding::Gamma22;
             s.background = glm::vec4(0, 0, 0, 1);
             s.environment = &baked;
-            Renderer renderer(*context);
-            renderer.set_scene(scene);
-            FrameStats stats;
-            ImageF image = renderer.render(camera, {}, s, &stats);  // no punctual lights
-            maybe_save(image, std::string("ibl_") + ref_folder + "_" + stem);
-            EXPECT_EQ(stats.gl_errors, "");
+            Frame f = render(*context, scene, view, s, /*punctual_lights=*/false);
+            maybe_save(f.image, std::string("ibl_") + ref_folder + "_" + stem);
+            EXPECT_EQ(f.stats.gl_errors, "");
             Image8 ref = read_image8(ref_file);
-            ImageMetrics m = compare_images(to_image8(image, false), ref);
+            ImageMetrics m = compare_images(to_image8(f.image, false), ref);
             std::printf("%s/%s: PSNR %.2f dB, MAD %.2f over %zu pixels\n", ref_folder, stem.c_str(), m.psnr_db, m.mad,
                         m.pixels);
             ++compared;
