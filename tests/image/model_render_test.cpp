@@ -620,6 +620,25 @@ struct RefView {
     View view;
 };
 
+// What the Khronos references were rendered with, in our terms: 512^2, the neutral tone
+// mapper, pow(1/2.2) encoding, black background (`--tonemap neutral --encoding gamma2.2
+// --background 0,0,0`).
+RenderSettings khronos_reference_settings() {
+    RenderSettings s = settings_of_size(512, 512);
+    s.tone_mapper = ToneMapper::Neutral;
+    s.encoding = Encoding::Gamma22;
+    s.background = glm::vec4(0, 0, 0, 1);
+    return s;
+}
+
+// Metrics of a display-encoded render against a reference image, printed under `label`.
+ImageMetrics compare_to_reference(const ImageF& image, const Image8& ref, const std::string& label) {
+    ImageMetrics m = compare_images(to_image8(image, false), ref);
+    std::printf("%s: PSNR %.2f dB, MAD %.2f, p99 %.0f over %zu pixels\n", label.c_str(), m.psnr_db, m.mad, m.p99,
+                m.pixels);
+    return m;
+}
+
 TEST(DamagedHelmetLights, MatchesKhronosReference) {
     REQUIRE_SHARED_MODELS();
     fs::path file = model_path("DamagedHelmetLights");
@@ -633,21 +652,14 @@ TEST(DamagedHelmetLights, MatchesKhronosReference) {
         Image8 ref = read_image8(refs / rv.ref);
         ASSERT_EQ(ref.width, 512);
         ASSERT_EQ(ref.height, 512);
-        RenderSettings s = settings_of_size(512, 512);
-        s.tone_mapper = ToneMapper::Neutral;
-        s.encoding = Encoding::Gamma22;
-        s.background = glm::vec4(0, 0, 0, 1);
-        Frame f = render(*context, scene, rv.view, s);
+        Frame f = render(*context, scene, rv.view, khronos_reference_settings());
         maybe_save(f.image, std::string("DamagedHelmetLights_") + rv.ref);
         EXPECT_EQ(f.stats.gl_errors, "");
-        ImageMetrics m = compare_images(to_image8(f.image, false), ref);
-        std::printf("DamagedHelmetLights %s: PSNR %.2f dB, MAD %.2f, p99 %.0f over %zu pixels\n", rv.ref, m.psnr_db,
-                    m.mad, m.p99, m.pixels);
+        ImageMetrics m = compare_to_reference(f.image, ref, std::string("DamagedHelmetLights ") + rv.ref);
         EXPECT_GT(m.pixels, 512u * 512u / 10u);
         EXPECT_GE(m.psnr_db, 32.0);
     }
 }
-
 
 // ---------------------------------------------------------------------------
 // Image-based light against the Khronos Sample Viewer's renders of the shared models
@@ -685,18 +697,12 @@ TEST(KhronosReferences, ImageBasedLight) {
             SCOPED_TRACE(std::string(ref_folder) + "/" + stem);
             View view = view_name == "q" ? View{45, 20} : View{0, 0};
             Scene scene = load_model(file);
-            RenderSettings s = settings_of_size(512, 512);
-            s.tone_mapper = ToneMapper::Neutral;
-            s.encoding = Encoding::Gamma22;
-            s.background = glm::vec4(0, 0, 0, 1);
+            RenderSettings s = khronos_reference_settings();
             s.environment = &baked;
             Frame f = render(*context, scene, view, s, /*punctual_lights=*/false);
             maybe_save(f.image, std::string("ibl_") + ref_folder + "_" + stem);
             EXPECT_EQ(f.stats.gl_errors, "");
-            Image8 ref = read_image8(ref_file);
-            ImageMetrics m = compare_images(to_image8(f.image, false), ref);
-            std::printf("%s/%s: PSNR %.2f dB, MAD %.2f over %zu pixels\n", ref_folder, stem.c_str(), m.psnr_db, m.mad,
-                        m.pixels);
+            ImageMetrics m = compare_to_reference(f.image, read_image8(ref_file), std::string(ref_folder) + "/" + stem);
             ++compared;
             if (m.pixels == 0) continue;  // the model is edge-on (TwoSidedPlane from the front): both black
             EXPECT_GE(m.psnr_db, 30.0);
