@@ -10,11 +10,10 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "fresnel/gpu/context.h"
-#include "fresnel/ibl/bake.h"
-#include "progress.h"
+#include "fresnel/ibl/environment.h"
+#include "fresnel/render/job.h"
 #include "fresnel/render/renderer.h"
-#include "fresnel/scene/gltf_loader.h"
-#include "fresnel/scene/procedural.h"
+#include "progress.h"
 
 namespace fresnel::cli {
 namespace {
@@ -76,135 +75,121 @@ std::string lower_extension(const std::string& path) {
     return e;
 }
 
-int run_render(const RenderOptions& o) {
-    auto t_start = Clock::now();
-    // Usage checks first (exit 2), before touching files.
-    int width = 0, height = 0;
+// The job the flags describe. Usage errors are printed and give nullopt (exit 2), before
+// any file is touched; a malformed --env throws fresnel::Error (exit 1).
+std::optional<Job> job_from_options(const RenderOptions& o) {
+    Job job;
+    Job::Output& out = job.output;
     {
         char x = 0;
         std::stringstream ss(o.size);
-        if (!(ss >> width >> x >> height) || x != 'x' || !ss.eof() || width < 1 || height < 1 || width > 16384 ||
-            height > 16384) {
+        if (!(ss >> out.width >> x >> out.height) || x != 'x' || !ss.eof() || out.width < 1 || out.height < 1 ||
+            out.width > 16384 || out.height > 16384) {
             print_error("--size: expected WxH with 1..16384 pixels per side, got '" + o.size + "'");
-            return kExitUsage;
+            return std::nullopt;
         }
     }
     auto tone = parse_tone_mapper(o.tonemap);
     if (!tone) {
         print_error("--tonemap: unknown tone mapper '" + o.tonemap + "' (neutral, aces, aces-hill, reinhard, agx, none)");
-        return kExitUsage;
+        return std::nullopt;
     }
     auto encoding = parse_encoding(o.encoding);
     if (!encoding) {
         print_error("--encoding: expected srgb or gamma2.2, got '" + o.encoding + "'");
-        return kExitUsage;
+        return std::nullopt;
     }
     auto debug = parse_debug_channel(o.debug);
     if (!debug) {
         print_error("--debug: unknown channel '" + o.debug + "'");
-        return kExitUsage;
+        return std::nullopt;
     }
     std::string ext = lower_extension(o.output);
-    bool float_output = ext == ".exr" || ext == ".hdr";
-    if (!float_output && ext != ".png") {
+    out.float_output = ext == ".exr" || ext == ".hdr";
+    if (!out.float_output && ext != ".png") {
         print_error("-o: output must end in .png, .exr or .hdr: '" + o.output + "'");
-        return kExitUsage;
+        return std::nullopt;
     }
-    glm::vec4 background(0, 0, 0, 1);
-    auto background_mode = RenderSettings::Background::Color;
-    bool background_given = !o.background.empty();
+    using Mode = Job::Background::Mode;
     if (o.background == "env") {
-        background_mode = RenderSettings::Background::Environment;
-    } else if (o.background == "blur" || o.background.empty()) {
-        background_mode = RenderSettings::Background::Blurred;  // the default when there is an environment
+        job.background.mode = Mode::Environment;
+    } else if (o.background == "blur") {
+        job.background.mode = Mode::Blurred;
     } else if (o.background == "transparent") {
-        background = glm::vec4(0.0f);
-    } else {
+        job.background.mode = Mode::Transparent;
+    } else if (!o.background.empty()) {
         auto v = parse_floats(o.background, "--background");
         if (v.size() != 3) {
             print_error("--background: expected env, blur, R,G,B (0..1, display-encoded) or transparent");
-            return kExitUsage;
+            return std::nullopt;
         }
-        background = glm::vec4(v[0], v[1], v[2], 1.0f);
+        job.background.mode = Mode::Color;
+        job.background.color = glm::vec3(v[0], v[1], v[2]);
     }
-    std::vector<LightInstance> cli_lights;
     for (const auto& spec : o.lights) {
         try {
-            cli_lights.push_back(parse_light(spec));
+            job.lights.extra.push_back(parse_light(spec));
         } catch (const Error& e) {
             print_error(e);
-            return kExitUsage;
+            return std::nullopt;
         }
     }
+    job.lights.scene_lights = !o.no_scene_lights;
+    out.tone_mapper = *tone;
+    out.encoding = *encoding;
+    out.debug = *debug;
+    out.msaa = o.msaa;
+    out.exposure_ev = o.exposure;
+    out.energy_compensation = !o.no_energy_compensation;
 
-    // Scene.
-    Diagnostics diag;
-    Scene scene;
-    auto t_load = Clock::now();
-    if (o.model.empty()) {
-        scene = make_demo_scene();
-    } else {
-        GltfLoadOptions lo;
-        lo.allow_external_files = o.allow_external;
-        lo.pose_skins = o.pose_skins;
-        scene = load_gltf(o.model, diag, lo);
+    job.source.model = o.model;
+    job.source.scene = o.scene;
+    job.source.allow_external_files = o.allow_external;
+    job.source.pose_skins = o.pose_skins;
+
+    job.camera.scene_camera = o.camera;
+    job.camera.yaw_deg = o.yaw;
+    job.camera.pitch_deg = o.pitch;
+    job.camera.distance_k = o.distance;
+    job.camera.yfov_deg = o.fov;
+
+    Job::Environment& env = job.environment;
+    using Kind = Job::Environment::Kind;
+    if (o.no_ibl) {
+        env.kind = Kind::None;
+    } else if (o.env_given) {
+        ibl::EnvironmentSource source = ibl::parse_environment(o.env);
+        switch (source.kind) {
+            case ibl::EnvironmentSource::Kind::File: env.kind = Kind::File; env.path = source.path.string(); break;
+            case ibl::EnvironmentSource::Kind::Uniform: env.kind = Kind::Color; env.color = source.color; break;
+            case ibl::EnvironmentSource::Kind::Studio: env.kind = Kind::Studio; break;
+        }
     }
+    env.rotation_deg = o.env_rotation;
+    env.intensity = o.env_intensity;
+    env.bake_samples = o.env_samples;
+    env.bake_size = o.env_size;
+    env.use_cache = !o.no_cache;
+    return job;
+}
+
+int run_render(const RenderOptions& o) {
+    auto t_start = Clock::now();
+    std::optional<Job> parsed = job_from_options(o);  // usage checks first (exit 2), before touching files
+    if (!parsed) return kExitUsage;
+    const Job& job = *parsed;
+
+    // Scene, then the rules of README.md's "Lighting rules" (libs/render/job.h).
+    Diagnostics diag;
+    auto t_load = Clock::now();
+    Scene scene = load_scene(job, diag);
     double load_ms = ms_since(t_load);
     print_warnings(diag);
-    if (o.scene >= int(scene.scenes.size())) {
-        print_error(o.model + ": --scene " + std::to_string(o.scene) + ": the file has " +
-                    std::to_string(scene.scenes.size()) + " scenes");
-        return kExitBadInput;
-    }
-    auto instances = flatten(scene, o.scene);
-    Bounds bounds = scene_bounds(scene, instances);
-
-    // Camera.
-    CameraSetup camera;
-    if (o.camera) {
-        auto c = scene_camera(scene, instances, *o.camera, width, height);
-        if (!c) {
-            print_error((o.model.empty() ? std::string("demo") : o.model) + ": --camera " + std::to_string(*o.camera) +
-                        ": no node of the scene uses camera " + std::to_string(*o.camera) + " (the file has " +
-                        std::to_string(scene.cameras.size()) + ")");
-            return kExitBadInput;
-        }
-        camera = *c;
-    } else {
-        OrbitParams op;
-        op.yaw_deg = o.yaw;
-        op.pitch_deg = o.pitch;
-        op.distance_k = o.distance;
-        op.yfov_deg = o.fov;
-        camera = orbit_camera(bounds, op, width, height);
-    }
-
-    // Lights: the scene's, then the command line's.
-    std::vector<LightInstance> lights;
-    if (!o.no_scene_lights) lights = scene_lights(scene, instances);
-    lights.insert(lights.end(), cli_lights.begin(), cli_lights.end());
-
-    // Image-based light: --env, else the built-in studio unless the scene or the command
-    // line brings its own lights. --no-ibl turns it off.
-    ibl::BakeOptions bake_options;
-    bake_options.samples = o.env_samples;
-    bake_options.size = o.env_size;
-    std::optional<ibl::BakedIbl> environment;
-    double env_ms = 0;
-    bool use_ibl = !o.no_ibl && (o.env_given || lights.empty());
-    if (use_ibl) {
-        auto t_env = Clock::now();
-        ibl::EnvironmentSource source = ibl::parse_environment(o.env_given ? o.env : "studio");
-        ProgressBar bar("baking " + source.describe());
-        environment = ibl::load_or_bake(source, bake_options, [&](double f) { bar.update(f); }, !o.no_cache);
-        bar.finish();
-        env_ms = ms_since(t_env);
-    }
-    // The default pair of directional lights only when nothing else lights the scene.
-    bool default_lighting = lights.empty() && !environment;
-    if (default_lighting) lights = default_lights();
-    ImageF lut;
-    if (!environment && !o.no_energy_compensation) lut = ibl::load_or_bake_lut(bake_options, !o.no_cache);
+    ResolvedJob resolved = resolve(job, scene);
+    std::string label = "baking " + (resolved.environment ? resolved.environment->describe() : std::string());
+    ProgressBar bar(label);
+    JobLighting lighting = load_lighting(resolved, [&](double f) { bar.update(f); });
+    bar.finish();
 
     // GPU.
     auto t_gpu = Clock::now();
@@ -217,48 +202,29 @@ int run_render(const RenderOptions& o) {
     co.log = [](const std::string& m) { std::fprintf(stderr, "fresnel: %s\n", m.c_str()); };
     auto context = gpu::create_headless_context(co);
     Renderer renderer(*context);
-    renderer.set_scene(scene, o.scene);
+    renderer.set_scene(scene, resolved.scene_index);
     double upload_ms = ms_since(t_gpu);
 
-    RenderSettings rs;
-    rs.width = width;
-    rs.height = height;
-    rs.msaa = o.msaa;
-    rs.exposure_ev = o.exposure;
-    rs.tone_mapper = *tone;
-    rs.debug = *debug;
-    rs.background = background;
-    rs.background_mode = environment && !(background_given && background_mode == RenderSettings::Background::Color)
-                             ? background_mode
-                             : RenderSettings::Background::Color;
-    if (!environment || background_mode == RenderSettings::Background::Color) rs.background_mode = RenderSettings::Background::Color;
-    rs.environment = environment ? &*environment : nullptr;
-    rs.env_intensity = o.env_intensity;
-    rs.env_rotation_deg = o.env_rotation;
-    rs.brdf_lut = lut.width > 0 ? &lut : nullptr;
-    rs.energy_compensation = !o.no_energy_compensation;
-    if (float_output) {
-        rs.encoding.reset();
-        rs.straight_alpha = false;  // EXR convention: premultiplied alpha
-    } else {
-        rs.encoding = *encoding;
-    }
+    RenderSettings rs = lighting.settings(resolved);
     auto t_frame = Clock::now();
     FrameStats stats;
-    ImageF image = renderer.render(camera, lights, rs, &stats);
+    ImageF image = renderer.render(resolved.camera, resolved.lights, rs, &stats);
     double frame_ms = ms_since(t_frame);
     if (!stats.gl_errors.empty()) throw Error("OpenGL", "", "the frame raised " + stats.gl_errors);
 
-    if (ext == ".png") write_png(o.output, to_image8(image, background.w == 0.0f));
+    std::string ext = lower_extension(o.output);
+    if (ext == ".png") write_png(o.output, to_image8(image, resolved.transparent()));
     else if (ext == ".exr") write_exr(o.output, image);
     else write_hdr(o.output, image);
 
     if (o.json) {
+        const CameraSetup& camera = resolved.camera;
+        const auto& environment = lighting.environment;
         nlohmann::json j;
         j["output"] = o.output;
         j["model"] = o.model.empty() ? "(demo)" : o.model;
-        j["width"] = width;
-        j["height"] = height;
+        j["width"] = rs.width;
+        j["height"] = rs.height;
         j["renderer"] = context->renderer();
         j["gl_version"] = context->version();
         j["load_ms"] = load_ms;
@@ -268,10 +234,10 @@ int run_render(const RenderOptions& o) {
         j["draw_calls"] = stats.draw_calls;
         j["triangles"] = stats.triangles;
         j["programs"] = renderer.program_count();
-        j["lights"] = lights.size();
-        j["default_lights"] = default_lighting;
+        j["lights"] = resolved.lights.size();
+        j["default_lights"] = resolved.default_lights;
         j["environment"] = environment ? environment->source : "none";
-        j["environment_ms"] = env_ms;
+        j["environment_ms"] = lighting.environment_ms;
         j["environment_cached"] = environment ? environment->from_cache : false;
         j["camera"] = {{"eye", {camera.eye.x, camera.eye.y, camera.eye.z}},
                        {"target", {camera.target.x, camera.target.y, camera.target.z}},

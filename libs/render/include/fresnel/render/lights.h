@@ -17,6 +17,7 @@ struct LightInstance {
     glm::vec3 radiance{1.0f};                // colour * intensity (lux or candela)
     float range = 0.0f;                      // 0 = infinite
     float inner_cone = 0.0f, outer_cone = 0.7853982f;
+    bool operator==(const LightInstance&) const = default;
 };
 
 // Every KHR_lights_punctual light attached to a node of the flattened scene.

@@ -1,0 +1,125 @@
+#include "fresnel/render/job.h"
+
+#include <chrono>
+
+#include "fresnel/scene/gltf_loader.h"
+#include "fresnel/scene/procedural.h"
+
+namespace fresnel {
+
+namespace {
+std::string model_name(const Job& job) { return job.source.model.empty() ? std::string("demo") : job.source.model; }
+}  // namespace
+
+Scene load_scene(const Job& job, Diagnostics& diag) {
+    if (job.source.model.empty()) return make_demo_scene();
+    GltfLoadOptions lo;
+    lo.allow_external_files = job.source.allow_external_files;
+    lo.pose_skins = job.source.pose_skins;
+    return load_gltf(job.source.model, diag, lo);
+}
+
+ResolvedJob resolve(const Job& job, const Scene& scene) {
+    ResolvedJob r;
+    const Job::Output& out = job.output;
+    if (job.source.scene >= int(scene.scenes.size()))
+        throw Error(model_name(job), "--scene " + std::to_string(job.source.scene),
+                    "the file has " + std::to_string(scene.scenes.size()) + " scenes");
+    r.scene_index = job.source.scene;
+    r.instances = flatten(scene, job.source.scene);
+    r.bounds = scene_bounds(scene, r.instances);
+
+    // Camera.
+    if (job.camera.scene_camera) {
+        int n = *job.camera.scene_camera;
+        auto c = scene_camera(scene, r.instances, n, out.width, out.height);
+        if (!c)
+            throw Error(model_name(job), "--camera " + std::to_string(n),
+                        "no node of the scene uses camera " + std::to_string(n) + " (the file has " +
+                            std::to_string(scene.cameras.size()) + ")");
+        r.camera = *c;
+    } else {
+        OrbitParams op;
+        op.yaw_deg = job.camera.yaw_deg;
+        op.pitch_deg = job.camera.pitch_deg;
+        op.distance_k = job.camera.distance_k;
+        op.yfov_deg = job.camera.yfov_deg;
+        r.camera = orbit_camera(r.bounds, op, out.width, out.height);
+    }
+
+    // Lights: the scene's, then the job's.
+    if (job.lights.scene_lights) r.lights = scene_lights(scene, r.instances);
+    r.lights.insert(r.lights.end(), job.lights.extra.begin(), job.lights.extra.end());
+
+    // Image-based light: the job's, else the studio unless something else lights the scene.
+    using Kind = Job::Environment::Kind;
+    const Job::Environment& env = job.environment;
+    if (env.kind == Kind::File) {
+        r.environment = ibl::EnvironmentSource{};
+        r.environment->kind = ibl::EnvironmentSource::Kind::File;
+        r.environment->path = env.path;
+    } else if (env.kind == Kind::Color) {
+        r.environment = ibl::EnvironmentSource{};
+        r.environment->kind = ibl::EnvironmentSource::Kind::Uniform;
+        r.environment->color = env.color;
+    } else if (env.kind == Kind::Studio || (env.kind == Kind::Automatic && r.lights.empty())) {
+        r.environment = ibl::EnvironmentSource{};  // the studio
+    }
+    r.bake_options.samples = env.bake_samples;
+    r.bake_options.size = env.bake_size;
+    r.use_cache = env.use_cache;
+
+    // The default pair of directional lights only when nothing else lights the scene.
+    r.default_lights = r.lights.empty() && !r.environment;
+    if (r.default_lights) r.lights = default_lights();
+    r.needs_brdf_lut = !r.environment && out.energy_compensation;
+
+    RenderSettings& rs = r.settings;
+    rs.width = out.width;
+    rs.height = out.height;
+    rs.msaa = out.msaa;
+    rs.exposure_ev = out.exposure_ev;
+    rs.tone_mapper = out.tone_mapper;
+    rs.debug = out.debug;
+    rs.env_intensity = env.intensity;
+    rs.env_rotation_deg = env.rotation_deg;
+    rs.energy_compensation = out.energy_compensation;
+    if (out.float_output) {
+        rs.encoding.reset();
+        rs.straight_alpha = false;  // EXR convention: premultiplied alpha
+    } else {
+        rs.encoding = out.encoding;
+    }
+
+    // Background: the environment (blurred by default) when there is one, else a colour.
+    using Mode = Job::Background::Mode;
+    const Job::Background& bg = job.background;
+    rs.background = bg.mode == Mode::Transparent ? glm::vec4(0.0f) : glm::vec4(bg.color, 1.0f);
+    rs.background_mode = RenderSettings::Background::Color;
+    if (r.environment) {
+        if (bg.mode == Mode::Environment) rs.background_mode = RenderSettings::Background::Environment;
+        if (bg.mode == Mode::Automatic || bg.mode == Mode::Blurred)
+            rs.background_mode = RenderSettings::Background::Blurred;
+    }
+    return r;
+}
+
+RenderSettings JobLighting::settings(const ResolvedJob& resolved) const {
+    RenderSettings rs = resolved.settings;
+    rs.environment = environment ? &*environment : nullptr;
+    rs.brdf_lut = brdf_lut.width > 0 ? &brdf_lut : nullptr;
+    return rs;
+}
+
+JobLighting load_lighting(const ResolvedJob& resolved, const ibl::Progress& progress) {
+    JobLighting l;
+    if (resolved.environment) {
+        auto t = std::chrono::steady_clock::now();
+        l.environment = ibl::load_or_bake(*resolved.environment, resolved.bake_options, progress, resolved.use_cache);
+        l.environment_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+    }
+    if (resolved.needs_brdf_lut) l.brdf_lut = ibl::load_or_bake_lut(resolved.bake_options, resolved.use_cache);
+    return l;
+}
+
+}  // namespace fresnel
