@@ -11,6 +11,7 @@
 #include <OpenEXR/ImfRgbaFile.h>
 #include <stb_image.h>
 #include <stb_image_write.h>
+#include <turbojpeg.h>
 
 #include <cstring>
 #include <fstream>
@@ -71,9 +72,40 @@ bool peek_image_size(std::span<const std::uint8_t> bytes, int& width, int& heigh
     return stbi_info_from_memory(bytes.data(), int(bytes.size()), &width, &height, &comp) != 0;
 }
 
+namespace {
+// Baseline and progressive 8-bit JPEG (YCbCr or greyscale) through libjpeg-turbo, about
+// three times faster than stb_image: the header is read and the size checked first,
+// then the pixels are decoded straight into the image. Returns false for what this
+// path does not take (CMYK, 12-bit, damaged headers...), which stb_image then reads
+// or rejects with its own message.
+bool decode_jpeg_turbo(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits,
+                       Image8& out) {
+    if (bytes.size() < 3 || bytes[0] != 0xFF || bytes[1] != 0xD8 || bytes[2] != 0xFF) return false;
+    tjhandle tj = tjInitDecompress();
+    if (!tj) return false;
+    struct Close {
+        tjhandle h;
+        ~Close() { tjDestroy(h); }
+    } close{tj};
+    int w = 0, h = 0, subsampling = 0, colorspace = 0;
+    if (tjDecompressHeader3(tj, bytes.data(), static_cast<unsigned long>(bytes.size()), &w, &h, &subsampling,
+                            &colorspace) != 0)
+        return false;
+    if (colorspace != TJCS_YCbCr && colorspace != TJCS_GRAY && colorspace != TJCS_RGB) return false;
+    check_size(name, w, h, 4, limits);
+    Image8 img(w, h, 4);
+    if (tjDecompress2(tj, bytes.data(), static_cast<unsigned long>(bytes.size()), img.pixels.data(), w, w * 4, h,
+                      TJPF_RGBA, 0) != 0)
+        return false;  // errors and warnings (a truncated stream...) go to stb_image, as before
+    out = std::move(img);
+    return true;
+}
+}  // namespace
+
 Image8 decode_image8(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits) {
     if (bytes.empty()) throw Error(name, "", "image data is empty");
     if (bytes.size() > std::size_t(INT32_MAX)) throw Error(name, "", "image data is too large");
+    if (Image8 jpeg; decode_jpeg_turbo(bytes, name, limits, jpeg)) return jpeg;
     int w = 0, h = 0;
     if (!peek_image_size(bytes, w, h))
         throw Error(name, "", std::string("not a decodable image: ") + (stbi_failure_reason() ? stbi_failure_reason() : "unknown format"));
