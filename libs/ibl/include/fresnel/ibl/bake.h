@@ -4,7 +4,7 @@
 // A baked folder holds:
 //   manifest.json      parameters, source, content hash, SH coefficients, timings, file list
 //   specular.ktx2      GGX-prefiltered cube map, RGBA16F, all faces and levels
-//   irradiance.ktx2    irradiance / pi as a small cube map (brute-force convolution), RGBA16F
+//   irradiance.ktx2    irradiance / pi as a small cube map (see BakeOptions::irradiance_samples), RGBA16F
 //   irradiance_sh.json the 9 SH coefficients of irradiance / pi (RGB)
 //   brdf_lut.ktx2      split-sum table, RGBA16F: R = A, G = B, B = A + B (directional albedo)
 //   preview/           OpenEXR previews: specular_level<k>.exr and irradiance.exr (faces side by side), brdf_lut.exr
@@ -27,9 +27,6 @@ struct BakeOptions {
     int lut_size = 128;
     int lut_samples = 1024;
     int irradiance_size = 16;  // face size of the irradiance cube (irradiance is smooth; sampled bilinearly)
-    // Face size of the source mip the irradiance is convolved from. The convolution is
-    // exact for that mip; 8 reproduces the blur of the Khronos Sample Viewer's sampled
-    // irradiance (its filtering reads mip ~4.6 of a 256 cube), 32 or more is sharper.
     // Irradiance: filtered importance sampling with this many cosine samples (the Khronos
     // Sample Viewer's method and blur), or 0 for the exact brute-force convolution of the
     // 32x32 mip (sharper near small bright sources).
