@@ -309,8 +309,8 @@ TEST(SamplingChi2, CatchesAWrongSampler) {
     for (const auto& c : cases) {
         Distribution mixed{c.pdf_of.name + " sampled as " + c.sampler_of.name, c.pdf_of.pdf, c.sampler_of.sample};
         Chi2Result r = chi2_test(mixed, kSamples, 12345);
-        EXPECT_TRUE(r.message.empty() || r.p_value == 0.0) << mixed.name << ": " << r.message;
         std::printf("%-60s chi2 %8.1f  dof %3d  p-value %.3g\n", mixed.name.c_str(), r.chi2, r.dof, r.p_value);
+        // Rejected either by the chi-squared statistic or outright (samples where the pdf is 0).
         EXPECT_LT(r.p_value, 1e-6) << mixed.name << ": chi2 " << r.chi2 << " with " << r.dof << " dof";
     }
 }
