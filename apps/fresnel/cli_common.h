@@ -1,5 +1,5 @@
 #pragma once
-// Helpers shared by the subcommands: error printing, warnings, JSON output.
+// Helpers shared by the subcommands: exit codes, error and warning printing.
 #include <string>
 
 #include "fresnel/core/error.h"

@@ -284,7 +284,7 @@ Runner add_render_command(CLI::App& app) {
         ->check(CLI::Range(1, 65536));
     cmd->add_option("--env-size", o->env_size, "Specular cube face size when baking (power of two)")
         ->capture_default_str();
-    cmd->add_flag("--no-cache", o->no_cache, "Bake the environment again instead of using $XDG_CACHE_HOME/fresnel");
+    cmd->add_flag("--no-cache", o->no_cache, "Neither read nor write $XDG_CACHE_HOME/fresnel: bake the environment and the BRDF table again");
     cmd->add_flag("--no-energy-compensation", o->no_energy_compensation,
                   "Single-scattering specular only (no multiple-scattering compensation of punctual lights)");
     cmd->add_option("--light", o->lights,

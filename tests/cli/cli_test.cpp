@@ -57,9 +57,11 @@ protected:
         fs::remove_all(dir_, ec);
     }
 
-    // Runs the program with `args`, capturing stdout, stderr and the exit status.
-    Result run(const std::vector<std::string>& args) {
-        std::string cmd = quote(FRESNEL_EXE);
+    // Runs the program with `args`, capturing stdout, stderr and the exit status;
+    // `cache`, when given, becomes its XDG_CACHE_HOME.
+    Result run(const std::vector<std::string>& args, const fs::path& cache = {}) {
+        std::string cmd = cache.empty() ? std::string() : "XDG_CACHE_HOME=" + quote(cache.string()) + " ";
+        cmd += quote(FRESNEL_EXE);
         for (const auto& a : args) {
             cmd.append(" ");
             cmd.append(quote(a));
@@ -164,6 +166,49 @@ TEST_F(Cli, OtherUsageErrorsExitTwo) {
     Result r = run({"render", "-o", (dir_ / "x.png").string(), "--tonemap", "sepia"});
     EXPECT_EQ(r.exit_code, 2) << show(r);
     EXPECT_EQ(r.err.rfind("fresnel: error:", 0), 0u) << show(r);
+}
+
+// The files under `dir` (recursively), as paths relative to it.
+std::vector<std::string> files_under(const fs::path& dir) {
+    std::vector<std::string> out;
+    std::error_code ec;
+    if (!fs::exists(dir, ec)) return out;
+    for (const auto& e : fs::recursive_directory_iterator(dir, ec))
+        if (e.is_regular_file()) out.push_back(fs::relative(e.path(), dir).string());
+    return out;
+}
+
+// --no-cache neither reads nor writes $XDG_CACHE_HOME/fresnel: not the baked environment
+// and not the BRDF table (the environment's, or the one energy compensation bakes alone
+// under --no-ibl). Without it both land in the cache, so the check can fail.
+TEST_F(Cli, NoCacheTouchesNoCache) {
+    fs::path png = dir_ / "out.png";
+    const std::vector<std::string> env = {"--env", "color:0.5,0.5,0.5", "--env-size", "16"};
+    const std::vector<std::string> lut_only = {"--no-ibl"};
+    for (const auto* extra : {&env, &lut_only}) {
+        fs::path cache = dir_ / ("cache" + std::to_string(extra == &env));
+        std::vector<std::string> args = {"render", "-o", png.string(), "--size", "16x16", "--msaa", "1"};
+        args.insert(args.end(), extra->begin(), extra->end());
+        std::vector<std::string> no_cache = args;
+        no_cache.push_back("--no-cache");
+        Result r = run(no_cache, cache);
+        ASSERT_EQ(r.exit_code, 0) << show(r);
+        // (The folder itself may hold Mesa's shader cache, which follows XDG_CACHE_HOME too.)
+        EXPECT_FALSE(fs::exists(cache / "fresnel"))
+            << "--no-cache created " << (cache / "fresnel").string() << " (" << files_under(cache / "fresnel").size()
+            << " files)";
+
+        r = run(args, cache);
+        ASSERT_EQ(r.exit_code, 0) << show(r);
+        std::vector<std::string> files = files_under(cache / "fresnel");
+        bool lut = false, baked = false;
+        for (const auto& f : files) {
+            lut |= f.rfind("brdf_lut-", 0) == 0;
+            baked |= f.rfind("env/", 0) == 0 && f.find("manifest.json") != std::string::npos;
+        }
+        EXPECT_TRUE(lut) << "no BRDF table cached without --no-cache";
+        EXPECT_EQ(baked, extra == &env) << "environment cached: " << baked;
+    }
 }
 
 }  // namespace

@@ -152,10 +152,6 @@ private:
     std::uint64_t pos_ = 0;
 };
 
-// Walks the EXR header attributes (name, type, int32 size, value) and checks that every
-// declared size fits in the file, before OpenEXR sees it: OpenEXR 3.1 resizes a string
-// attribute to its declared size (up to 2 GiB) before reading it, so a 1 KiB file could
-// make it allocate and clear gigabytes (found by fuzz_exr; kept in fuzz/regressions/exr).
 // Little-endian int32 at `at` (the caller has checked that 4 bytes are there).
 std::int32_t le_i32(std::span<const std::uint8_t> b, std::size_t at) {
     return std::int32_t(std::uint32_t(b[at]) | (std::uint32_t(b[at + 1]) << 8) | (std::uint32_t(b[at + 2]) << 16) |
@@ -207,6 +203,10 @@ bool exr_attribute_fits(const std::string& type, std::span<const std::uint8_t> v
     return true;  // string (read by size), idmanifest (sized), unknown types (opaque)
 }
 
+// Walks the EXR header attributes (name, type, int32 size, value) and checks that every
+// declared size fits in the file, before OpenEXR sees it: OpenEXR 3.1 resizes a string
+// attribute to its declared size (up to 2 GiB) before reading it, so a 1 KiB file could
+// make it allocate and clear gigabytes (found by fuzz_exr; kept in fuzz/regressions/exr).
 void check_exr_header(std::span<const std::uint8_t> b, const std::string& name, const ImageLimits& limits) {
     if (b.size() < 8) throw Error(name, "", "file too short for an OpenEXR header");
     const std::uint32_t flags = std::uint32_t(b[5]) | (std::uint32_t(b[6]) << 8) | (std::uint32_t(b[7]) << 16);

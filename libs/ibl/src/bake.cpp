@@ -222,6 +222,9 @@ ImageF load_or_bake_lut(const BakeOptions& o, bool use_cache) {
 BakedIbl load_or_bake(const EnvironmentSource& source, const BakeOptions& options, const Progress& progress,
                       bool use_cache) {
     if (source.kind == EnvironmentSource::Kind::File && is_baked_dir(source.path)) return load_baked(source.path);
+    // Without the cache the BRDF table is baked too: use_cache = false neither reads nor writes cache_root().
+    BakeOptions o = options;
+    if (!use_cache) o.use_lut_cache = false;
     std::uint64_t h = content_hash({reinterpret_cast<const std::uint8_t*>(options.key().data()), options.key().size()});
     if (source.kind == EnvironmentSource::Kind::File) {
         auto bytes = read_file_bytes(source.path, std::size_t(2) << 30);
@@ -240,7 +243,7 @@ BakedIbl load_or_bake(const EnvironmentSource& source, const BakeOptions& option
             // A damaged cache entry is rebuilt below.
         }
     }
-    BakedIbl ibl = bake(load_panorama(source), options, progress);
+    BakedIbl ibl = bake(load_panorama(source), o, progress);
     ibl.source = source.describe();
     if (use_cache) {
         // Write to a temporary folder and rename, so a concurrent reader never sees half a bake.

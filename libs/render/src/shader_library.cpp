@@ -10,12 +10,12 @@
 namespace fresnel {
 namespace {
 
-void expand(const std::string& file, std::set<std::string>& included, std::vector<std::string>& stack,
-            std::string& out) {
+void expand(const std::string& file, const ShaderFiles& files, std::set<std::string>& included,
+            std::vector<std::string>& stack, std::string& out) {
     if (std::find(stack.begin(), stack.end(), file) != stack.end())
         throw Error(file, "#include", "include cycle");
     if (included.count(file)) return;  // each file once (include guards for free)
-    std::string_view src = shaders::find(file);
+    std::string_view src = files(file);
     if (src.empty()) throw Error(file, "", "no such embedded shader file");
     included.insert(file);
     stack.push_back(file);
@@ -28,7 +28,7 @@ void expand(const std::string& file, std::set<std::string>& included, std::vecto
         if (first != std::string::npos && line.compare(first, 8, "#include") == 0) {
             auto a = line.find('"'), b = line.rfind('"');
             if (a == std::string::npos || b <= a) throw Error(file, "line " + std::to_string(number), "malformed #include");
-            expand(line.substr(a + 1, b - a - 1), included, stack, out);
+            expand(line.substr(a + 1, b - a - 1), files, included, stack, out);
             continue;
         }
         out += line;
@@ -40,12 +40,17 @@ void expand(const std::string& file, std::set<std::string>& included, std::vecto
 }  // namespace
 
 std::string assemble_shader(const std::string& file, const std::vector<std::string>& defines, GlslTarget target) {
+    return assemble_shader(file, defines, target, [](const std::string& name) { return shaders::find(name); });
+}
+
+std::string assemble_shader(const std::string& file, const std::vector<std::string>& defines, GlslTarget target,
+                            const ShaderFiles& files) {
     std::string out = target == GlslTarget::Gl33 ? "#version 330 core\n"
                                                  : "#version 300 es\nprecision highp float;\nprecision highp int;\n";
     for (const auto& d : defines) out += "#define " + d + "\n";
     std::set<std::string> included;
     std::vector<std::string> stack;
-    expand(file, included, stack, out);
+    expand(file, files, included, stack, out);
     return out;
 }
 

@@ -647,9 +647,10 @@ private:
     }
     std::vector<int> roots_parents_;
 
-    // Skinned meshes are drawn at the rest pose: each vertex moved by its joints' world
-    // matrices times their inverse bind matrices (glTF 2.0 skinning, no animation). The
-    // posed copy lives in world space; the node keeps its matrix for the camera bounds.
+    // With GltfLoadOptions::pose_skins, skinned meshes are posed at rest: each vertex moved
+    // by its joints' world matrices times their inverse bind matrices (glTF 2.0 skinning, no
+    // animation). The posed copy lives in world space; the node keeps its matrix for the
+    // camera bounds. Without it (the default) they stay in their bind pose.
     void pose_skins(const gltf::AccessorDecoder& accessors) {
         const json& skins = r_.array(doc_, "skins", "");
         if (skins.empty() || !opt_.pose_skins) return;

@@ -45,10 +45,12 @@ bool peek_image_size(std::span<const std::uint8_t> bytes, int& width, int& heigh
 
 // Reads an 8-bit image file (PNG, JPEG, ...) into RGBA.
 Image8 read_image8(const std::filesystem::path& path, const ImageLimits& limits = {});
-// Reads a float image: Radiance .hdr or OpenEXR .exr (RGB(A), any compression OpenEXR supports).
+// Reads a float image: Radiance .hdr or OpenEXR .exr (RGB(A), any compression OpenEXR
+// supports); any other file is decoded as an 8-bit image, values / 255 (no transfer curve).
 ImageF read_image_float(const std::filesystem::path& path, const ImageLimits& limits = {});
 
-// Decodes a float image from memory, by its magic bytes: OpenEXR or Radiance .hdr.
+// Decodes a float image from memory, by its magic bytes: OpenEXR, Radiance .hdr, else 8-bit
+// formats as decode_image8, values / 255.
 ImageF decode_image_float(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits = {});
 
 void write_png(const std::filesystem::path& path, const Image8& image);

@@ -1,6 +1,6 @@
 #pragma once
-// A minimal parallel loop over std::thread, for CPU work such as image decoding
-// and tangent generation. No global pool: threads live for the call.
+// A minimal parallel loop over std::thread, for CPU work such as decoding a model's
+// textures and the IBL precomputation. No global pool: threads live for the call.
 #include <algorithm>
 #include <atomic>
 #include <cstddef>

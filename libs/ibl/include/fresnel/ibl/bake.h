@@ -4,7 +4,7 @@
 // A baked folder holds:
 //   manifest.json      parameters, source, content hash, SH coefficients, timings, file list
 //   specular.ktx2      GGX-prefiltered cube map, RGBA16F, all faces and levels
-//   irradiance.ktx2    irradiance / pi as a small cube map (brute-force convolution), RGBA16F
+//   irradiance.ktx2    irradiance / pi as a small cube map (see BakeOptions::irradiance_samples), RGBA16F
 //   irradiance_sh.json the 9 SH coefficients of irradiance / pi (RGB)
 //   brdf_lut.ktx2      split-sum table, RGBA16F: R = A, G = B, B = A + B (directional albedo)
 //   preview/           OpenEXR previews: specular_level<k>.exr and irradiance.exr (faces side by side), brdf_lut.exr
@@ -27,16 +27,13 @@ struct BakeOptions {
     int lut_size = 128;
     int lut_samples = 1024;
     int irradiance_size = 16;  // face size of the irradiance cube (irradiance is smooth; sampled bilinearly)
-    // Face size of the source mip the irradiance is convolved from. The convolution is
-    // exact for that mip; 8 reproduces the blur of the Khronos Sample Viewer's sampled
-    // irradiance (its filtering reads mip ~4.6 of a 256 cube), 32 or more is sharper.
     // Irradiance: filtered importance sampling with this many cosine samples (the Khronos
     // Sample Viewer's method and blur), or 0 for the exact brute-force convolution of the
     // 32x32 mip (sharper near small bright sources).
     int irradiance_samples = 2048;
     float lod_bias = 1.8257f;  // see PrefilterOptions::lod_bias
     unsigned threads = 0;
-    bool use_lut_cache = true;  // take the BRDF table from cache_root() when it is there
+    bool use_lut_cache = true;  // bake(): the BRDF table through load_or_bake_lut (read from / written to cache_root())
     std::string key() const;  // the parameters as a string (cache key, manifest)
 };
 
@@ -64,17 +61,19 @@ void save_baked(const BakedIbl& ibl, const std::filesystem::path& dir, const Bak
 BakedIbl load_baked(const std::filesystem::path& dir);
 bool is_baked_dir(const std::filesystem::path& dir);
 
-// The BRDF table alone, cached under cache_root() by its parameters.
+// The BRDF table alone, cached under cache_root() by its parameters; use_cache = false bakes
+// it without reading or writing the cache.
 ImageF load_or_bake_lut(const BakeOptions& options, bool use_cache = true);
 
 // 64-bit FNV-1a of a byte range (cache keys).
 std::uint64_t content_hash(std::span<const std::uint8_t> bytes, std::uint64_t seed = 1469598103934665603ull);
 
-// The cache folder: $XDG_CACHE_HOME/fresnel (or ~/.cache/fresnel).
+// The cache folder: $XDG_CACHE_HOME/fresnel, else $HOME/.cache/fresnel, else <temp>/fresnel-cache.
 std::filesystem::path cache_root();
 
 // The environment of `source` baked with `options`: a baked folder is loaded as is; a
 // panorama is baked once and cached under cache_root() by content hash and parameters.
+// use_cache = false touches no cache at all (neither the environment nor the BRDF table).
 BakedIbl load_or_bake(const EnvironmentSource& source, const BakeOptions& options, const Progress& progress = {},
                       bool use_cache = true);
 

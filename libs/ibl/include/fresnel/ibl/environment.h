@@ -13,7 +13,7 @@ struct EnvironmentSource {
     enum class Kind { File, Uniform, Studio } kind = Kind::Studio;
     std::filesystem::path path;  // Kind::File
     glm::vec3 color{1.0f};       // Kind::Uniform, linear
-    // A stable description used in cache keys and manifests ("studio-v1", "color:1,1,1", the path).
+    // A stable description used in cache keys and manifests ("studio-v2", "color:1,1,1", the path).
     std::string describe() const;
 };
 
@@ -21,8 +21,9 @@ struct EnvironmentSource {
 EnvironmentSource parse_environment(const std::string& arg);
 
 // The procedural studio: a dark-grey room with a soft overhead box light, two
-// rectangular side soft boxes (warm key at +X+Z, cool fill at -X), a horizon
-// band and a floor gradient. Values are linear radiance; 2:1 equirectangular.
+// rectangular side soft boxes (warm key at +X+Z, cool fill at -X), a narrow rim
+// light behind (-Z), a horizon band and a floor gradient. Values are linear
+// radiance; 2:1 equirectangular.
 ImageF make_studio_panorama(int width = 1024);
 
 // A panorama of one colour.

@@ -4,9 +4,10 @@
 //    level 0 = the mirror image, by importance sampling with filtered importance
 //    sampling (Krivanek & Colbert 2008: each sample reads the source mip whose texel
 //    solid angle matches the sample's share of the lobe);
-//  - diffuse: irradiance as a small cube map by brute-force cosine convolution (what we
-//    shade with), and as 9 spherical-harmonic coefficients (Ramamoorthi & Hanrahan 2001)
-//    for clients that want them;
+//  - diffuse: irradiance as a small cube map (what we shade with), by filtered importance
+//    sampling as the Khronos Sample Viewer does (the bake's default) or by brute-force
+//    cosine convolution, and as 9 spherical-harmonic coefficients (Ramamoorthi & Hanrahan
+//    2001) for clients that want them;
 //  - the split-sum BRDF table (Karis 2013) for the same GGX / height-correlated Smith
 //    model as direct lighting; R = scale A, G = bias B of F0; A + B is the directional
 //    albedo E used for multiple-scattering compensation (Fdez-Aguera 2019).

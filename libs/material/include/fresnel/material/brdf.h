@@ -132,9 +132,9 @@ inline float clearcoat_mix(float clearcoat, float coat_f0, glm::vec3 nc, glm::ve
     return clearcoat * f_schlick(coat_f0, 1.0f, std::clamp(glm::dot(nc, v), 0.0f, 1.0f));
 }
 
-// Directional albedo: the integral of f(l, v) cos(theta_l) over the hemisphere,
-// by a stratified quadrature with `samples_per_axis`^2 points. Used by tests
-// (energy conservation) and the IBL precomputation.
+// Directional albedo: the integral of f(l, v) cos(theta_l) over the hemisphere, by a
+// deterministic quadrature with `samples_per_axis`^2 points per lobe (see brdf.cpp).
+// Used by tests (energy conservation; ibl_test's check of the split-sum table).
 glm::vec3 directional_albedo(const Surface& s, float n_dot_v, int samples_per_axis = 256);
 
 }  // namespace fresnel::brdf

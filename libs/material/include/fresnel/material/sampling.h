@@ -1,6 +1,7 @@
 #pragma once
-// Sampling routines shared by the IBL precomputation and the path tracer.
-// Every sampler here has its pdf next to it; tests check one against the other.
+// Sampling routines used by the IBL precomputation and the BRDF quadratures.
+// Every sampler here has its pdf next to it; tests/sampling_test.cpp checks one
+// against the other (chi-squared) and each pdf's normalisation.
 #include <cmath>
 #include <cstdint>
 #include <glm/geometric.hpp>

@@ -32,8 +32,9 @@ struct OrbitParams {
 
 CameraSetup orbit_camera(const Bounds& bounds, const OrbitParams& params, int width, int height);
 
-// The scene's `index`-th camera (in node order of the flattened scene); nullopt when
-// no node of the scene instantiates it.
+// The file's camera `index` (Scene::cameras) as placed by the first node of the flattened
+// scene that uses it (scale removed; the image's aspect replaces the camera's aspectRatio);
+// nullopt when no node of the scene uses it.
 std::optional<CameraSetup> scene_camera(const Scene& scene, const std::vector<NodeInstance>& instances, int index,
                                         int width, int height);
 

@@ -1,7 +1,8 @@
 #pragma once
-// The forward renderer: uploads a Scene to the GPU once, then renders frames
-// into a linear HDR target (MSAA), resolves, and runs the output pass
-// (exposure, tone map, encoding, background).
+// The forward renderer: uploads a Scene to the GPU once, then renders frames into a
+// multisampled target, each sample already exposed, tone mapped and display-encoded
+// (pbr.frag, sky.frag; the background colour is cleared as given), resolves it, and runs
+// the output pass (un-premultiplied alpha for transparent PNGs, NaN / Inf as magenta).
 #include <memory>
 #include <optional>
 #include <string>

@@ -2,9 +2,11 @@
 // Assembles shader sources from the embedded files in shaders/: resolves
 // #include "file", prepends the GLSL version line for the target API and the
 // feature #defines, and caches compiled programs by (files, defines).
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "fresnel/gpu/resources.h"
@@ -13,10 +15,18 @@ namespace fresnel {
 
 enum class GlslTarget { Gl33, Es30 };
 
-// The source of `file` with includes resolved and `defines` ("NAME" or "NAME VALUE") added.
-// Throws fresnel::Error for a missing file or an include cycle.
+// The source of `file` with includes resolved and `defines` ("NAME" or "NAME VALUE") added:
+// the version line (and, for ES, default precisions), one #define line per define, then the
+// file with each `#include "name"` line replaced by that file, each file at most once.
+// Throws fresnel::Error for a missing file, an include cycle or a malformed #include.
 std::string assemble_shader(const std::string& file, const std::vector<std::string>& defines,
                             GlslTarget target = GlslTarget::Gl33);
+
+// Where assemble_shader reads a file's text; an empty view means there is no such file.
+using ShaderFiles = std::function<std::string_view(const std::string& name)>;
+// The same, reading the files from `files` instead of the embedded shaders/ (tests).
+std::string assemble_shader(const std::string& file, const std::vector<std::string>& defines, GlslTarget target,
+                            const ShaderFiles& files);
 
 class ShaderLibrary {
 public:

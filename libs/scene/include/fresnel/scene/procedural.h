@@ -8,7 +8,7 @@ namespace fresnel {
 Primitive make_uv_sphere(int segments = 64, int rings = 32);
 
 // The built-in demo: a 7x7 grid of spheres, metallic rising by row (bottom 0 to top 1),
-// roughness rising by column (left 0 to right 1), base colour a warm gold-ish tint.
+// roughness rising by column (left 0 to right 1), base colour a warm copper-like tint.
 Scene make_demo_scene();
 
 }  // namespace fresnel

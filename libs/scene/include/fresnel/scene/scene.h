@@ -105,7 +105,8 @@ struct Primitive {
     std::vector<glm::vec2> uv0, uv1;
     std::vector<glm::vec4> colors;     // COLOR_0 as RGBA (alpha 1 for vec3)
     std::vector<std::uint32_t> indices;  // empty = non-indexed
-    // Skinning inputs (JOINTS_0 / WEIGHTS_0); the loader poses skinned meshes at rest.
+    // Skinning inputs (JOINTS_0 / WEIGHTS_0); the loader poses skinned meshes at rest only
+    // with GltfLoadOptions::pose_skins (default: the bind pose).
     std::vector<glm::uvec4> joints;
     std::vector<glm::vec4> weights;
     int material = -1;                   // -1 = the glTF default material
