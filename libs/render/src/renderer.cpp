@@ -117,7 +117,7 @@ struct Renderer::Impl {
         if (lut && lut != uploaded_lut) {
             lut_texture = gpu::Texture::create_2d(lut->width, lut->height, gpu::TextureFormat::RGBA32F,
                                                   lut->pixels.data(), false);
-            lut_texture.set_sampler({0x2601, 0x2601, 0x812F, 0x812F, 0x812F});  // LINEAR, CLAMP_TO_EDGE
+            lut_texture.set_sampler(gpu::SamplerState::clamped(Filter::Linear));
             uploaded_lut = lut;
         }
     }
@@ -203,18 +203,19 @@ struct Renderer::Impl {
         auto it = textures.find(key);
         if (it != textures.end()) return &it->second;
         const Image8& img = scene->images[std::size_t(tex.image)].pixels;
-        bool mip = tex.sampler.min_filter >= 0x2700 && tex.sampler.min_filter <= 0x2703;
+        bool mip = tex.sampler.uses_mipmaps();
         gpu::Texture t = gpu::Texture::create_2d(img.width, img.height,
                                                  srgb ? gpu::TextureFormat::SRGB8_ALPHA8 : gpu::TextureFormat::RGBA8,
                                                  img.pixels.data(), mip);
         gpu::SamplerState ss;
         ss.min_filter = tex.sampler.min_filter;
+        ss.mipmap = tex.sampler.mipmap;
         ss.mag_filter = tex.sampler.mag_filter;
         ss.wrap_s = tex.sampler.wrap_s;
         ss.wrap_t = tex.sampler.wrap_t;
         // Trilinear samplers get 16x anisotropic filtering, as the Khronos Sample Viewer does.
-        bool trilinear = tex.sampler.min_filter == 0x2703 || tex.sampler.min_filter == 0x2702;
-        if (trilinear && tex.sampler.mag_filter != 0x2600) ss.max_anisotropy = 16.0f;
+        bool trilinear = tex.sampler.mipmap == MipmapMode::Linear;
+        if (trilinear && tex.sampler.mag_filter != Filter::Nearest) ss.max_anisotropy = 16.0f;
         t.set_sampler(ss);
         return &textures.emplace(key, std::move(t)).first->second;
     }
@@ -231,7 +232,7 @@ struct Renderer::Impl {
         msaa_fb.attach_depth(msaa_depth);
         msaa_fb.check();
         resolved = gpu::Texture::create_2d(w, h, gpu::TextureFormat::RGBA16F, nullptr, false);
-        resolved.set_sampler({0x2600, 0x2600, 0x812F, 0x812F, 0x812F});  // NEAREST, CLAMP_TO_EDGE
+        resolved.set_sampler(gpu::SamplerState::clamped(Filter::Nearest));
         resolved_fb = gpu::Framebuffer();
         resolved_fb.attach_color(resolved);
         resolved_fb.check();
