@@ -1,5 +1,6 @@
 #include "geometry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 
@@ -148,8 +149,7 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
         }
         indexed = true;
     } else {
-        indices.resize(vertex_count);
-        for (std::size_t i = 0; i < vertex_count; ++i) indices[i] = std::uint32_t(i);
+        indices = index_list(p);
     }
 
     switch (mode) {
@@ -175,7 +175,7 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
 
     if (std::size_t bad = repair_normals(p))
         warn(ap + "/NORMAL", std::to_string(bad) + " invalid normals replaced by computed ones");
-    if (p.normals.empty()) generate_flat_normals(p);
+    if (p.normals.empty()) generate_flat_normals(p);  // only triangles get them
 
     // Tangents when a normal map needs them and the file has none (MikkTSpace).
     const Material* mat = p.material >= 0 ? &materials[std::size_t(p.material)] : nullptr;
