@@ -92,8 +92,9 @@ std::vector<std::uint32_t> compact_vertices(Primitive& p);
 
 // World matrix of every node: the product of the local matrices from its root down
 // (world = parent's world * local). The nodes are expected to form a forest (one parent at
-// most, no cycles); children out of range are ignored and a node reachable only through a
-// cycle keeps its local matrix, so bad input cannot make this loop.
+// most, no cycles). Bad input cannot make it loop: children out of range are ignored, a
+// node with several parents takes the first one reached, and a node reachable only
+// through a cycle keeps its local matrix.
 std::vector<glm::mat4> world_matrices(std::span<const Node> nodes);
 
 // A skin's joint matrices: world[joints[j]] * inverse_bind[j] (identity where inverse_bind
