@@ -335,7 +335,7 @@ TEST(TextureSettingsTest, MetricSeesRedWhenSettingsAreWrong) {
     if (file.empty()) GTEST_SKIP() << "TextureSettingsTest not in the shared models";
     REQUIRE_CONTEXT();
     Scene scene = load_model(file);
-    for (auto& t : scene.textures) t.sampler.wrap_s = t.sampler.wrap_t = 0x812F;  // CLAMP_TO_EDGE
+    for (auto& t : scene.textures) t.sampler.wrap_s = t.sampler.wrap_t = Wrap::ClampToEdge;
     for (auto& m : scene.materials) m.double_sided = true;
     Frame f = render(*context, scene, View{0, 0}, settings_of_size(256, 256));
     maybe_save(f.image, "TextureSettingsTest_broken");

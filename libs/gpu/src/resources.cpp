@@ -124,14 +124,34 @@ void Texture::upload_cube_face(int face, int level, int size, const float* rgba)
     glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
 }
 
+namespace {
+GLint gl_filter(Filter f) { return f == Filter::Nearest ? GL_NEAREST : GL_LINEAR; }
+GLint gl_min_filter(Filter f, MipmapMode m) {
+    switch (m) {
+        case MipmapMode::None: return gl_filter(f);
+        case MipmapMode::Nearest: return f == Filter::Nearest ? GL_NEAREST_MIPMAP_NEAREST : GL_LINEAR_MIPMAP_NEAREST;
+        case MipmapMode::Linear: break;
+    }
+    return f == Filter::Nearest ? GL_NEAREST_MIPMAP_LINEAR : GL_LINEAR_MIPMAP_LINEAR;
+}
+GLint gl_wrap(Wrap w) {
+    switch (w) {
+        case Wrap::ClampToEdge: return GL_CLAMP_TO_EDGE;
+        case Wrap::MirroredRepeat: return GL_MIRRORED_REPEAT;
+        case Wrap::Repeat: break;
+    }
+    return GL_REPEAT;
+}
+}  // namespace
+
 void Texture::set_sampler(const SamplerState& s) {
     GLenum target = kind_ == Kind::Cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
     glBindTexture(target, id_);
-    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, s.min_filter);
-    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, s.mag_filter);
-    glTexParameteri(target, GL_TEXTURE_WRAP_S, s.wrap_s);
-    glTexParameteri(target, GL_TEXTURE_WRAP_T, s.wrap_t);
-    if (kind_ == Kind::Cube) glTexParameteri(target, GL_TEXTURE_WRAP_R, s.wrap_r);
+    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, gl_min_filter(s.min_filter, s.mipmap));
+    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, gl_filter(s.mag_filter));
+    glTexParameteri(target, GL_TEXTURE_WRAP_S, gl_wrap(s.wrap_s));
+    glTexParameteri(target, GL_TEXTURE_WRAP_T, gl_wrap(s.wrap_t));
+    if (kind_ == Kind::Cube) glTexParameteri(target, GL_TEXTURE_WRAP_R, gl_wrap(s.wrap_r));
     if (s.max_anisotropy > 1.0f && (epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic") ||
                                     epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic"))) {
         GLfloat max = 1.0f;

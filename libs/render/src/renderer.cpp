@@ -119,7 +119,7 @@ struct Renderer::Impl {
         if (lut && lut != uploaded_lut) {
             lut_texture = gpu::Texture::create_2d(lut->width, lut->height, gpu::TextureFormat::RGBA32F,
                                                   lut->pixels.data(), false);
-            lut_texture.set_sampler({0x2601, 0x2601, 0x812F, 0x812F, 0x812F});  // LINEAR, CLAMP_TO_EDGE
+            lut_texture.set_sampler(gpu::SamplerState::clamped(Filter::Linear));
             uploaded_lut = lut;
         }
     }
@@ -239,7 +239,7 @@ struct Renderer::Impl {
         return tex.image >= 0 && std::size_t(tex.image) < scene->images.size() &&
                scene->images[std::size_t(tex.image)].valid();
     }
-    static bool wants_mipmaps(const Sampler& s) { return s.min_filter >= 0x2700 && s.min_filter <= 0x2703; }
+    static bool wants_mipmaps(const Sampler& s) { return s.uses_mipmaps(); }
 
     // Creates the GL texture for `key` from the image and its CPU-built mip chain.
     GpuTexture make_texture(const TextureKey& key, const std::vector<Image8>* chain) {
@@ -290,11 +290,12 @@ struct Renderer::Impl {
         if (it == textures.end()) it = textures.emplace(key, make_texture(key, nullptr)).first;
         GpuTexture& g = it->second;
         const Sampler& sampler = scene->textures[std::size_t(ref.texture)].sampler;
-        bool trilinear = sampler.min_filter == 0x2703 || sampler.min_filter == 0x2702;
-        float want = anisotropic && trilinear && sampler.mag_filter != 0x2600 ? std::max(1.0f, anisotropy) : 1.0f;
+        bool trilinear = sampler.mipmap == MipmapMode::Linear;
+        float want = anisotropic && trilinear && sampler.mag_filter != Filter::Nearest ? std::max(1.0f, anisotropy) : 1.0f;
         if (g.anisotropy != want) {
             gpu::SamplerState ss;
             ss.min_filter = sampler.min_filter;
+            ss.mipmap = sampler.mipmap;
             ss.mag_filter = sampler.mag_filter;
             ss.wrap_s = sampler.wrap_s;
             ss.wrap_t = sampler.wrap_t;
@@ -317,7 +318,7 @@ struct Renderer::Impl {
         msaa_fb.attach_depth(msaa_depth);
         msaa_fb.check();
         resolved = gpu::Texture::create_2d(w, h, gpu::TextureFormat::RGBA16F, nullptr, false);
-        resolved.set_sampler({0x2600, 0x2600, 0x812F, 0x812F, 0x812F});  // NEAREST, CLAMP_TO_EDGE
+        resolved.set_sampler(gpu::SamplerState::clamped(Filter::Nearest));
         resolved_fb = gpu::Framebuffer();
         resolved_fb.attach_color(resolved);
         resolved_fb.check();

@@ -1,9 +1,10 @@
 #include "geometry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 
-#include "fresnel/scene/tangents.h"
+#include "fresnel/scene/mesh_ops.h"
 
 namespace fresnel::gltf {
 namespace {
@@ -15,25 +16,6 @@ std::vector<V> to_vectors(const AccessorData& d) {
     for (std::size_t i = 0; i < d.count; ++i)
         for (int c = 0; c < n; ++c) out[i][c] = c < d.components ? float(d.values[i * std::size_t(d.components) + std::size_t(c)]) : 1.0f;
     return out;
-}
-
-// Expands every per-vertex array through `remap` (output vertex -> input vertex).
-template <class T>
-void remap_array(std::vector<T>& a, const std::vector<std::uint32_t>& remap) {
-    if (a.empty()) return;
-    std::vector<T> out(remap.size());
-    for (std::size_t i = 0; i < remap.size(); ++i) out[i] = a[remap[i]];
-    a.swap(out);
-}
-void remap_all(Primitive& p, const std::vector<std::uint32_t>& remap) {
-    remap_array(p.positions, remap);
-    remap_array(p.normals, remap);
-    remap_array(p.tangents, remap);
-    remap_array(p.uv0, remap);
-    remap_array(p.uv1, remap);
-    remap_array(p.colors, remap);
-    remap_array(p.joints, remap);
-    remap_array(p.weights, remap);
 }
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -167,8 +149,7 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
         }
         indexed = true;
     } else {
-        indices.resize(vertex_count);
-        for (std::size_t i = 0; i < vertex_count; ++i) indices[i] = std::uint32_t(i);
+        indices = index_list(p);
     }
 
     switch (mode) {
@@ -176,20 +157,10 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
         case 1: p.topology = Topology::Lines; break;
         case 2: p.topology = Topology::LineLoop; break;
         case 3: p.topology = Topology::LineStrip; break;
-        default: p.topology = Topology::Triangles; break;
+        default: p.topology = Topology::Triangles; break;  // 4 list, 5 strip, 6 fan
     }
-    if (mode == 5 || mode == 6) {  // strips and fans become lists
-        std::vector<std::uint32_t> list;
-        for (std::size_t i = 2; i < indices.size(); ++i) {
-            if (mode == 5) {
-                if (i % 2 == 0) list.insert(list.end(), {indices[i - 2], indices[i - 1], indices[i]});
-                else list.insert(list.end(), {indices[i - 1], indices[i - 2], indices[i]});
-            } else {
-                list.insert(list.end(), {indices[0], indices[i - 1], indices[i]});
-            }
-        }
-        indices.swap(list);
-    }
+    if (mode == 5) indices = strip_to_triangles(indices);
+    if (mode == 6) indices = fan_to_triangles(indices);
     if (p.topology == Topology::Triangles) {
         if (indices.size() % 3 != 0) {
             warn(indexed ? ptr + "/indices" : ap, "triangle count is not a whole number; extra indices ignored");
@@ -200,78 +171,21 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
             return std::nullopt;
         }
     }
+    p.indices = std::move(indices);
 
-    // Sanitise normals: non-finite or zero-length normals get the (area-weighted) smooth normal.
-    if (!p.normals.empty() && p.topology == Topology::Triangles) {
-        std::vector<glm::vec3> smooth;
-        std::size_t bad = 0;
-        for (auto& n : p.normals) {
-            float len = finite(n) ? glm::length(n) : 0.0f;
-            if (!(len > 1e-20f) || !std::isfinite(len)) {
-                if (smooth.empty()) {
-                    smooth.assign(p.positions.size(), glm::vec3(0.0f));
-                    for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
-                        glm::vec3 fn = glm::cross(p.positions[indices[t + 1]] - p.positions[indices[t]],
-                                                  p.positions[indices[t + 2]] - p.positions[indices[t]]);
-                        if (!finite(fn)) continue;
-                        for (int k = 0; k < 3; ++k) smooth[indices[t + std::size_t(k)]] += fn;
-                    }
-                }
-                std::size_t v = std::size_t(&n - p.normals.data());
-                float sl = glm::length(smooth[v]);
-                n = sl > 0 && std::isfinite(sl) ? smooth[v] / sl : glm::vec3(0, 0, 1);
-                ++bad;
-            } else {
-                n /= len;
-            }
-        }
-        if (bad) warn(ap + "/NORMAL", std::to_string(bad) + " invalid normals replaced by computed ones");
-    }
-
-    // Flat normals when absent: each triangle gets its own three vertices.
-    if (p.normals.empty() && p.topology == Topology::Triangles) {
-        std::vector<std::uint32_t> remap(indices.begin(), indices.end());
-        remap_all(p, remap);
-        p.normals.resize(p.positions.size());
-        for (std::size_t t = 0; t < p.positions.size(); t += 3) {
-            glm::vec3 n = glm::cross(p.positions[t + 1] - p.positions[t], p.positions[t + 2] - p.positions[t]);
-            float len = glm::length(n);
-            n = len > 0 && std::isfinite(len) ? n / len : glm::vec3(0, 0, 1);
-            p.normals[t] = p.normals[t + 1] = p.normals[t + 2] = n;
-        }
-        for (std::size_t i = 0; i < indices.size(); ++i) indices[i] = std::uint32_t(i);
-        p.generated_normals = true;
-    }
+    if (std::size_t bad = repair_normals(p))
+        warn(ap + "/NORMAL", std::to_string(bad) + " invalid normals replaced by computed ones");
+    if (p.normals.empty()) generate_flat_normals(p);  // only triangles get them
 
     // Tangents when a normal map needs them and the file has none (MikkTSpace).
     const Material* mat = p.material >= 0 ? &materials[std::size_t(p.material)] : nullptr;
     if (mat && (mat->normal.valid() || mat->clearcoat_normal.valid()) && p.tangents.empty() && p.topology == Topology::Triangles) {
         const TextureRef& map = mat->normal.valid() ? mat->normal : mat->clearcoat_normal;
-        const auto& uv = map.tex_coord == 1 ? p.uv1 : p.uv0;
-        if (uv.empty()) {
+        if (!generate_tangents(p, map.tex_coord))
             warn(ptr, "normal map without texture coordinates; normal map ignored");
-        } else {
-            TangentMesh tm = generate_tangents(p.positions, p.normals, uv, indices);
-            remap_all(p, tm.remap);
-            p.tangents = std::move(tm.tangents);
-            indices = std::move(tm.indices);
-            p.generated_tangents = true;
-        }
     }
-    if (!p.tangents.empty()) {
-        for (auto& t : p.tangents) {
-            glm::vec3 v(t);
-            float len = finite(v) ? glm::length(v) : 0.0f;
-            if (!(len > 0) || !std::isfinite(len)) t = glm::vec4(1, 0, 0, 1);
-            else t = glm::vec4(v / len, t.w < 0 ? -1.0f : 1.0f);
-        }
-    }
-
-    // Drop the index buffer when it is the identity.
-    bool identity = indices.size() == p.positions.size();
-    for (std::size_t i = 0; identity && i < indices.size(); ++i) identity = indices[i] == i;
-    if (!identity) p.indices = std::move(indices);
-
+    repair_tangents(p.tangents);
+    drop_identity_indices(p);
     return p;
 }
 

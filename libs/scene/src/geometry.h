@@ -1,7 +1,7 @@
 #pragma once
-// Turns a glTF mesh primitive into a fresnel::Primitive: decodes attributes,
-// checks indices, converts strips and fans to lists, and generates flat
-// normals and MikkTSpace tangents where the file has none.
+// Turns a glTF mesh primitive into a fresnel::Primitive: decodes and checks the
+// attributes, indices and morph targets; the processing after that (strips and fans
+// to lists, normal repair, flat normals, MikkTSpace tangents) is fresnel/scene/mesh_ops.h.
 #include <optional>
 #include <vector>
 

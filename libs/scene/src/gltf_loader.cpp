@@ -14,6 +14,7 @@
 
 #include "accessor.h"
 #include "fresnel/core/parallel.h"
+#include "fresnel/scene/mesh_ops.h"
 #include "geometry.h"
 #include "json_reader.h"
 #include "uri_policy.h"
@@ -319,26 +320,31 @@ private:
             std::string ptr = "/samplers/" + std::to_string(i);
             const json& s = sarr[i];
             if (!s.is_object()) r_.fail(ptr, "must be an object");
+            // glTF's sampler numbers (the values its specification lists for each field).
+            enum : int { kNearest = 9728, kLinear = 9729, kNearestMipmapNearest = 9984, kLinearMipmapNearest = 9985,
+                         kNearestMipmapLinear = 9986, kLinearMipmapLinear = 9987, kClampToEdge = 33071,
+                         kMirroredRepeat = 33648, kRepeat = 10497 };
             Sampler out;
-            auto filter = [&](const char* key, int fallback, bool min) {
-                int v = int(r_.integer(s, key, ptr, fallback, 0, 1 << 20));
-                bool ok = v == 9728 || v == 9729 || (min && v >= 9984 && v <= 9987);
-                if (!ok) {
-                    warn(ptr + "/" + key, "invalid filter " + std::to_string(v) + "; using LINEAR");
-                    return min ? 9987 : 9729;
-                }
-                return v;
-            };
+            int mag = int(r_.integer(s, "magFilter", ptr, kLinear, 0, 1 << 20));
+            if (mag == kNearest) out.mag_filter = Filter::Nearest;
+            else if (mag != kLinear) warn(ptr + "/magFilter", "invalid filter " + std::to_string(mag) + "; using LINEAR");
+            int min = int(r_.integer(s, "minFilter", ptr, kLinearMipmapLinear, 0, 1 << 20));
+            switch (min) {
+                case kNearest: out.min_filter = Filter::Nearest; out.mipmap = MipmapMode::None; break;
+                case kLinear: out.min_filter = Filter::Linear; out.mipmap = MipmapMode::None; break;
+                case kNearestMipmapNearest: out.min_filter = Filter::Nearest; out.mipmap = MipmapMode::Nearest; break;
+                case kLinearMipmapNearest: out.min_filter = Filter::Linear; out.mipmap = MipmapMode::Nearest; break;
+                case kNearestMipmapLinear: out.min_filter = Filter::Nearest; out.mipmap = MipmapMode::Linear; break;
+                case kLinearMipmapLinear: break;  // the default
+                default: warn(ptr + "/minFilter", "invalid filter " + std::to_string(min) + "; using LINEAR"); break;
+            }
             auto wrap = [&](const char* key) {
-                int v = int(r_.integer(s, key, ptr, 10497, 0, 1 << 20));
-                if (v != 33071 && v != 33648 && v != 10497) {
-                    warn(ptr + "/" + key, "invalid wrap mode " + std::to_string(v) + "; using REPEAT");
-                    return 10497;
-                }
-                return v;
+                int v = int(r_.integer(s, key, ptr, kRepeat, 0, 1 << 20));
+                if (v == kClampToEdge) return Wrap::ClampToEdge;
+                if (v == kMirroredRepeat) return Wrap::MirroredRepeat;
+                if (v != kRepeat) warn(ptr + "/" + key, "invalid wrap mode " + std::to_string(v) + "; using REPEAT");
+                return Wrap::Repeat;
             };
-            out.mag_filter = filter("magFilter", 9729, false);
-            out.min_filter = filter("minFilter", 9987, true);
             out.wrap_s = wrap("wrapS");
             out.wrap_t = wrap("wrapT");
             samplers_.push_back(out);
@@ -654,23 +660,9 @@ private:
     void pose_skins(const gltf::AccessorDecoder& accessors) {
         const json& skins = r_.array(doc_, "skins", "");
         if (skins.empty() || !opt_.pose_skins) return;
-        // World matrices of every node (the hierarchy is a forest, checked in load_nodes).
-        std::vector<glm::mat4> world(scene_.nodes.size(), glm::mat4(1.0f));
-        std::vector<int> stack;
-        for (std::size_t i = 0; i < scene_.nodes.size(); ++i)
-            if (roots_parents_[i] == 0) {
-                world[i] = scene_.nodes[i].local;
-                stack.push_back(int(i));
-            }
-        while (!stack.empty()) {
-            int n = stack.back();
-            stack.pop_back();
-            for (int c : scene_.nodes[std::size_t(n)].children) {
-                world[std::size_t(c)] = world[std::size_t(n)] * scene_.nodes[std::size_t(c)].local;
-                stack.push_back(c);
-            }
-        }
-        std::vector<std::vector<glm::mat4>> joint_matrices(skins.size());
+        // The hierarchy is a forest (checked in load_nodes).
+        std::vector<glm::mat4> world = world_matrices(scene_.nodes);
+        std::vector<std::vector<glm::mat4>> skin_matrices(skins.size());
         for (std::size_t k = 0; k < skins.size(); ++k) {
             std::string ptr = "/skins/" + std::to_string(k);
             const json& skin = skins[k];
@@ -686,48 +678,24 @@ private:
                 for (std::size_t j = 0; j < joints.size(); ++j)
                     for (int c = 0; c < 16; ++c) ibm[j][c / 4][c % 4] = float(d.values[j * 16 + std::size_t(c)]);
             }
-            for (std::size_t j = 0; j < joints.size(); ++j) {
-                int node = r_.index_value(joints[j], ptr + "/joints/" + std::to_string(j), scene_.nodes.size(), "node");
-                joint_matrices[k].push_back(world[std::size_t(node)] * ibm[j]);
-            }
+            std::vector<int> joint_nodes;
+            for (std::size_t j = 0; j < joints.size(); ++j)
+                joint_nodes.push_back(int(r_.index_value(joints[j], ptr + "/joints/" + std::to_string(j), scene_.nodes.size(), "node")));
+            skin_matrices[k] = joint_matrices(world, joint_nodes, ibm);
         }
         for (std::size_t i = 0; i < scene_.nodes.size(); ++i) {
             Node& node = scene_.nodes[i];
             if (node.skin < 0 || node.mesh < 0) continue;
-            const auto& mats = joint_matrices[std::size_t(node.skin)];
+            const auto& mats = skin_matrices[std::size_t(node.skin)];
             Mesh posed = scene_.meshes[std::size_t(node.mesh)];
             bool any = false;
             for (auto& p : posed.primitives) {
-                if (p.joints.empty()) {
-                    // Not skinned: bring it to world space with the node's matrix instead.
-                    for (auto& v : p.positions) v = glm::vec3(world[i] * glm::vec4(v, 1.0f));
-                    glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(world[i])));
-                    for (auto& n : p.normals) n = glm::normalize(nm * n);
-                    for (auto& t : p.tangents) t = glm::vec4(glm::normalize(glm::mat3(world[i]) * glm::vec3(t)), t.w);
-                    continue;
-                }
-                any = true;
-                for (std::size_t v = 0; v < p.positions.size(); ++v) {
-                    glm::mat4 m(0.0f);
-                    float wsum = 0.0f;
-                    for (int c = 0; c < 4; ++c) {
-                        float w = p.weights[v][c];
-                        std::uint32_t j = p.joints[v][c];
-                        if (w == 0.0f) continue;
-                        if (j >= mats.size())
-                            r_.fail("/nodes/" + std::to_string(i), "vertex " + std::to_string(v) + " uses joint " +
-                                                                       std::to_string(j) + " of a skin with " +
-                                                                       std::to_string(mats.size()));
-                        m += w * mats[j];
-                        wsum += w;
-                    }
-                    if (wsum <= 0.0f) m = world[i];  // unweighted vertices follow the node
-                    p.positions[v] = glm::vec3(m * glm::vec4(p.positions[v], 1.0f));
-                    glm::mat3 m3(m);
-                    if (v < p.normals.size()) p.normals[v] = glm::normalize(glm::transpose(glm::inverse(m3)) * p.normals[v]);
-                    if (v < p.tangents.size())
-                        p.tangents[v] = glm::vec4(glm::normalize(m3 * glm::vec3(p.tangents[v])), p.tangents[v].w);
-                }
+                if (auto bad = find_invalid_joint(p, mats.size()))
+                    r_.fail("/nodes/" + std::to_string(i), "vertex " + std::to_string(bad->vertex) + " uses joint " +
+                                                               std::to_string(bad->joint) + " of a skin with " +
+                                                               std::to_string(mats.size()));
+                any = any || !p.joints.empty();
+                pose_skinned(p, mats, world[i]);  // a primitive without joints follows the node
             }
             if (!any) continue;
             scene_.meshes.push_back(std::move(posed));

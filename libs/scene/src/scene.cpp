@@ -2,6 +2,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "fresnel/scene/mesh_ops.h"
+
 namespace fresnel {
 
 std::size_t Primitive::triangle_count() const {
@@ -14,16 +16,14 @@ std::vector<NodeInstance> flatten(const Scene& scene, int index) {
     if (index < 0) index = scene.default_scene;
     if (index < 0 || std::size_t(index) >= scene.scenes.size()) return out;
     // The loader guarantees a forest (no cycles, one parent each), so this terminates.
-    std::vector<NodeInstance> stack;
-    for (auto it = scene.scenes[std::size_t(index)].rbegin(); it != scene.scenes[std::size_t(index)].rend(); ++it)
-        stack.push_back({*it, scene.nodes[std::size_t(*it)].local});
+    const std::vector<glm::mat4> world = world_matrices(scene.nodes);
+    std::vector<int> stack(scene.scenes[std::size_t(index)].rbegin(), scene.scenes[std::size_t(index)].rend());
     while (!stack.empty()) {
-        NodeInstance inst = stack.back();
+        int n = stack.back();
         stack.pop_back();
-        out.push_back(inst);
-        const Node& node = scene.nodes[std::size_t(inst.node)];
-        for (auto it = node.children.rbegin(); it != node.children.rend(); ++it)
-            stack.push_back({*it, inst.world * scene.nodes[std::size_t(*it)].local});
+        out.push_back({n, world[std::size_t(n)]});
+        const Node& node = scene.nodes[std::size_t(n)];
+        stack.insert(stack.end(), node.children.rbegin(), node.children.rend());
     }
     return out;
 }

@@ -1117,12 +1117,13 @@ TEST(GltfMaterials, FactorsModesAndExtensions) {
     // Textures, samplers, images.
     ASSERT_EQ(s.textures.size(), 2u);
     EXPECT_EQ(s.textures[0].image, 0);
-    EXPECT_EQ(s.textures[0].sampler.mag_filter, 9728);
-    EXPECT_EQ(s.textures[0].sampler.min_filter, 9984);
-    EXPECT_EQ(s.textures[0].sampler.wrap_s, 33071);
-    EXPECT_EQ(s.textures[0].sampler.wrap_t, 33648);
-    EXPECT_EQ(s.textures[1].sampler.mag_filter, 9729);  // defaults
-    EXPECT_EQ(s.textures[1].sampler.wrap_s, 10497);
+    EXPECT_EQ(s.textures[0].sampler.mag_filter, Filter::Nearest);
+    EXPECT_EQ(s.textures[0].sampler.min_filter, Filter::Nearest);
+    EXPECT_EQ(s.textures[0].sampler.mipmap, MipmapMode::Nearest);
+    EXPECT_EQ(s.textures[0].sampler.wrap_s, Wrap::ClampToEdge);
+    EXPECT_EQ(s.textures[0].sampler.wrap_t, Wrap::MirroredRepeat);
+    EXPECT_EQ(s.textures[1].sampler.mag_filter, Filter::Linear);  // defaults
+    EXPECT_EQ(s.textures[1].sampler.wrap_s, Wrap::Repeat);
     ASSERT_EQ(s.images.size(), 1u);
     ASSERT_TRUE(s.images[0].valid());
     EXPECT_EQ(s.images[0].pixels.width, 3);

@@ -14,6 +14,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "fresnel/core/sampler.h"
+
 namespace fresnel::gpu {
 
 class Handle {
@@ -62,13 +64,24 @@ public:
 
 enum class TextureFormat { RGBA8, SRGB8_ALPHA8, RGBA16F, RGBA32F, RG16F, R8 };
 
+// Sampling of a texture (translated to GL in set_sampler). Default: trilinear, repeating
+// in s and t, clamped in r (cube maps).
 struct SamplerState {
-    int min_filter = 0x2703;  // GL enum values (glTF uses the same)
-    int mag_filter = 0x2601;
-    int wrap_s = 0x2901, wrap_t = 0x2901, wrap_r = 0x812F;
+    Filter min_filter = Filter::Linear;      // within a mip level
+    MipmapMode mipmap = MipmapMode::Linear;  // across mip levels (None: level 0 only)
+    Filter mag_filter = Filter::Linear;
+    Wrap wrap_s = Wrap::Repeat, wrap_t = Wrap::Repeat, wrap_r = Wrap::ClampToEdge;
     // Anisotropic filtering (EXT_texture_filter_anisotropic, applied only where the
     // driver has it), clamped to the driver's maximum. 1 = off.
     float max_anisotropy = 1.0f;
+    // `filter` both ways, no mip levels, clamped to the edge (LUTs, render targets).
+    static SamplerState clamped(Filter filter) {
+        SamplerState s;
+        s.min_filter = s.mag_filter = filter;
+        s.mipmap = MipmapMode::None;
+        s.wrap_s = s.wrap_t = s.wrap_r = Wrap::ClampToEdge;
+        return s;
+    }
 };
 
 // One level of a mip chain for Texture::create_2d_levels (tightly packed texels).

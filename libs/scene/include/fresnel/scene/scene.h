@@ -18,6 +18,7 @@
 #include <glm/vec4.hpp>
 
 #include "fresnel/core/image.h"
+#include "fresnel/core/sampler.h"
 
 namespace fresnel {
 
@@ -76,12 +77,15 @@ struct Material {
     float dielectric_f0() const { float r = (ior - 1.0f) / (ior + 1.0f); return r * r; }
 };
 
-// Sampler state with glTF / OpenGL enum values.
+// How a texture is sampled. The default is glTF's when a texture has no sampler:
+// trilinear (linear filters, linear between mip levels), repeating.
 struct Sampler {
-    int mag_filter = 0x2601;  // LINEAR
-    int min_filter = 0x2703;  // LINEAR_MIPMAP_LINEAR
-    int wrap_s = 0x2901;      // REPEAT
-    int wrap_t = 0x2901;
+    Filter mag_filter = Filter::Linear;
+    Filter min_filter = Filter::Linear;        // within a mip level
+    MipmapMode mipmap = MipmapMode::Linear;    // minification across mip levels
+    Wrap wrap_s = Wrap::Repeat;
+    Wrap wrap_t = Wrap::Repeat;
+    bool uses_mipmaps() const { return mipmap != MipmapMode::None; }
 };
 
 struct Texture {
