@@ -67,10 +67,11 @@ int wrap_index(int i, int size, TextureWrap w) {
 }
 }  // namespace
 
-SampledTexture::SampledTexture(const Image8& image, const TextureSampler& sampler, bool srgb)
+SampledTexture::SampledTexture(const Image8& image, const TextureSampler& sampler, bool srgb, const float* srgb_curve)
     : sampler_(sampler), srgb_(srgb) {
     if (image.width <= 0 || image.height <= 0) throw Error("texture", "", "empty image");
-    for (int i = 0; i < 256; ++i) decode_[i] = srgb ? srgb_to_linear(float(i) / 255.0f) : float(i) / 255.0f;
+    for (int i = 0; i < 256; ++i)
+        decode_[i] = !srgb ? float(i) / 255.0f : srgb_curve ? srgb_curve[i] : srgb_to_linear(float(i) / 255.0f);
     levels_.push_back(to_rgba(image));
     if (sampler.mip_filter == MipFilter::None) return;
     // glGenerateMipmap: each level halves (at least 1), 2x2 box average of the level above.

@@ -38,7 +38,9 @@ struct TextureSampler {
 class SampledTexture {
 public:
     // `image` has 1..4 channels (expanded to RGBA as GL does: grey, grey+alpha, RGB, RGBA).
-    SampledTexture(const Image8& image, const TextureSampler& sampler, bool srgb);
+    // `srgb_curve` (256 values) replaces the exact sRGB decode, for tests that compare with
+    // a driver whose decode approximates the curve (llvmpipe's is a polynomial).
+    SampledTexture(const Image8& image, const TextureSampler& sampler, bool srgb, const float* srgb_curve = nullptr);
     // Filtered, decoded RGBA at uv for the level of detail `lod` (λ, any bias included).
     glm::vec4 sample(glm::vec2 uv, float lod) const;
     // One decoded texel of `level` (indices wrapped by the sampler).
