@@ -106,8 +106,9 @@ EvaluatedMaterial evaluate(const Material& material, const TextureSource& textur
 //   base colour = diffuse (RGBA), metallic = 0, roughness = 1 - glossiness,
 //   dielectric F0 colour = specular, specular weight = 1.
 // It is exact: the specular-glossiness BRDF is the dielectric branch of the glTF BRDF with
-// F0 = specular, which metallic-roughness + KHR_materials_specular can state. (The diffuse
-// is not reduced by max(specular), as the Khronos Sample Viewer does not either.)
+// F0 = specular, which metallic-roughness + KHR_materials_specular can state. The diffuse
+// is weighted only by the BRDF's own (1 - F), not by 1 - max(specular) as the extension's
+// reference code does; this is how fresnel has always shaded it, and the image tests hold it.
 struct MetallicRoughnessPoint {
     glm::vec4 base_color{1.0f};
     float metallic = 0.0f;
