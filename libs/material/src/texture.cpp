@@ -67,11 +67,14 @@ int wrap_index(int i, int size, TextureWrap w) {
 }
 }  // namespace
 
-SampledTexture::SampledTexture(const Image8& image, const TextureSampler& sampler, bool srgb, const float* srgb_curve)
+SampledTexture::SampledTexture(const Image8& image, const TextureSampler& sampler, bool srgb, const TexelDecode* decode)
     : sampler_(sampler), srgb_(srgb) {
     if (image.width <= 0 || image.height <= 0) throw Error("texture", "", "empty image");
-    for (int i = 0; i < 256; ++i)
-        decode_[i] = !srgb ? float(i) / 255.0f : srgb_curve ? srgb_curve[i] : srgb_to_linear(float(i) / 255.0f);
+    for (int i = 0; i < 256; ++i) {
+        float unorm = float(i) / 255.0f;
+        decode_[i] = decode ? decode->rgb[i] : srgb ? srgb_to_linear(unorm) : unorm;
+        alpha_[i] = decode ? decode->alpha[i] : unorm;
+    }
     levels_.push_back(to_rgba(image));
     if (sampler.mip_filter == MipFilter::None) return;
     // glGenerateMipmap: each level halves (at least 1), 2x2 box average of the level above.
@@ -85,7 +88,8 @@ SampledTexture::SampledTexture(const Image8& image, const TextureSampler& sample
                 const std::uint8_t* p[4] = {src.at(x0, y0), src.at(x1, y0), src.at(x0, y1), src.at(x1, y1)};
                 for (int c = 0; c < 4; ++c) {
                     float sum = 0.0f;
-                    for (auto* q : p) sum += c < 3 ? decode_[q[c]] : float(q[c]) / 255.0f;
+                    // The box filter of the driver's blit: exact decode, average, encode.
+                    for (auto* q : p) sum += c < 3 && srgb ? srgb_to_linear(float(q[c]) / 255.0f) : float(q[c]) / 255.0f;
                     float avg = sum * 0.25f;
                     dst.at(x, y)[c] = to_byte(c < 3 && srgb ? linear_to_srgb(avg) : avg);
                 }
@@ -99,7 +103,7 @@ glm::vec4 SampledTexture::texel(int level, int x, int y) const {
     x = wrap_index(x, img.width, sampler_.wrap_s);
     y = wrap_index(y, img.height, sampler_.wrap_t);
     const std::uint8_t* p = img.at(x, y);
-    return glm::vec4(decode_[p[0]], decode_[p[1]], decode_[p[2]], float(p[3]) / 255.0f);
+    return glm::vec4(decode_[p[0]], decode_[p[1]], decode_[p[2]], alpha_[p[3]]);
 }
 
 glm::vec4 SampledTexture::filter(int level, glm::vec2 uv, TextureFilter f) const {

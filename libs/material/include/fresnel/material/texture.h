@@ -34,13 +34,20 @@ struct TextureSampler {
     static TextureSampler from_gl(int mag_filter, int min_filter, int wrap_s, int wrap_t);
 };
 
+// How texel bytes become values: by default byte / 255, and the exact sRGB curve for the
+// colour channels of sRGB textures. Tests that compare with a driver pass its measured
+// response instead (llvmpipe decodes sRGB with a polynomial, 1.2e-3 off the curve), so
+// that they compare the rules alone.
+struct TexelDecode {
+    float rgb[256];
+    float alpha[256];
+};
+
 // A texture as the GPU holds it: RGBA8 levels, sRGB or linear, with its sampler.
 class SampledTexture {
 public:
     // `image` has 1..4 channels (expanded to RGBA as GL does: grey, grey+alpha, RGB, RGBA).
-    // `srgb_curve` (256 values) replaces the exact sRGB decode, for tests that compare with
-    // a driver whose decode approximates the curve (llvmpipe's is a polynomial).
-    SampledTexture(const Image8& image, const TextureSampler& sampler, bool srgb, const float* srgb_curve = nullptr);
+    SampledTexture(const Image8& image, const TextureSampler& sampler, bool srgb, const TexelDecode* decode = nullptr);
     // Filtered, decoded RGBA at uv for the level of detail `lod` (λ, any bias included).
     glm::vec4 sample(glm::vec2 uv, float lod) const;
     // One decoded texel of `level` (indices wrapped by the sampler).
@@ -57,7 +64,8 @@ private:
     std::vector<Image8> levels_;  // RGBA8
     TextureSampler sampler_;
     bool srgb_ = false;
-    float decode_[256];  // sRGB byte -> linear
+    float decode_[256];   // colour byte -> value
+    float alpha_[256];    // alpha byte -> value
 };
 
 // Where evaluate finds textures: by the material's texture index and colour space (the
