@@ -1,20 +1,27 @@
-// Material parameters and texture lookups. Which maps exist is decided per
-// material by defines (HAS_BASE_COLOR_MAP, ...), so absent maps cost nothing.
-uniform vec4 u_base_color_factor;
+// Material parameters and texture lookups: read_material is the GLSL twin of
+// fresnel::evaluate (libs/material/src/evaluate.cpp); same structure, same rules, and
+// tests/gpu/material_gpu_test.cpp keeps the two equal. The uniforms are the material's
+// raw factors, packed by libs/render/src/material_uniforms.cpp. Which maps exist is
+// decided per material by defines (HAS_BASE_COLOR_MAP, ...), so absent maps cost nothing.
+uniform vec4 u_base_color_factor;   // baseColorFactor, or diffuseFactor (specular-glossiness)
 uniform float u_metallic_factor;
 uniform float u_roughness_factor;
 uniform float u_normal_scale;
 uniform float u_occlusion_strength;
-uniform vec3 u_emissive;          // emissiveFactor * emissive_strength
+uniform vec3 u_emissive_factor;
+uniform float u_emissive_strength;  // KHR_materials_emissive_strength (1 without)
 uniform float u_alpha_cutoff;
-uniform vec3 u_f0_dielectric;       // ((ior-1)/(ior+1))^2 * specularColorFactor, or specular-glossiness F0
-uniform float u_specular_weight;    // KHR_materials_specular specularFactor (1 otherwise)
-uniform float u_glossiness_factor;  // specular-glossiness only
+uniform float u_ior;                    // KHR_materials_ior (1.5 without)
+uniform float u_specular_factor;        // KHR_materials_specular (1 without)
+uniform vec3 u_specular_color_factor;   // KHR_materials_specular (1 without)
+#ifdef SPECULAR_GLOSSINESS
+uniform vec3 u_sg_specular_factor;      // KHR_materials_pbrSpecularGlossiness specularFactor
+uniform float u_glossiness_factor;
+#endif
 #ifdef MATERIAL_CLEARCOAT
 uniform float u_clearcoat_factor;
 uniform float u_clearcoat_roughness_factor;
 uniform float u_clearcoat_normal_scale;
-uniform float u_clearcoat_f0;       // ((ior-1)/(ior+1))^2 of the material's ior
 #endif
 
 // Per map: sampler, UV set (0/1) and the KHR_texture_transform matrix.
@@ -40,6 +47,9 @@ DECLARE_MAP(specular)
 #ifdef HAS_SPECULAR_COLOR_MAP
 DECLARE_MAP(specular_color)
 #endif
+#ifdef HAS_SPECULAR_GLOSSINESS_MAP
+DECLARE_MAP(specular_glossiness)
+#endif
 #ifdef HAS_CLEARCOAT_MAP
 DECLARE_MAP(clearcoat)
 #endif
@@ -54,34 +64,69 @@ vec2 map_uv(int set, mat3 transform) {
     vec2 uv = set == 1 ? v_uv1 : v_uv0;
     return (transform * vec3(uv, 1.0)).xy;
 }
-#define SAMPLE_MAP(name) texture(u_##name##_map, map_uv(u_##name##_uv, u_##name##_transform))
 // Normal maps are read one mip level sharper than the other maps. Why: the Khronos Sample
 // Viewer's images (its reference renderer, WebGL on SwiftShader) resolve normal-map detail
 // that much more sharply than llvmpipe's filtering of the same mip chain, and reflections
 // amplify the difference; with the bias our images agree with them better in every one of
 // 20 normal-mapped views over four environments (+0.6 dB mean, up to +2.2 dB), with no
 // change elsewhere. Colour maps stay unbiased: biasing them lowers the agreement.
+// kNormalMapLodBias in libs/material/include/fresnel/material/evaluate.h is the same.
 const float NORMAL_MAP_LOD_BIAS = -1.0;
+#ifdef MATERIAL_EXPLICIT_LOD
+// Tests: every map at one given level of detail (SurfacePoint::lod on the C++ side).
+uniform float u_material_lod;
+#define SAMPLE_MAP(name) textureLod(u_##name##_map, map_uv(u_##name##_uv, u_##name##_transform), u_material_lod)
+#define SAMPLE_NORMAL_MAP(name) textureLod(u_##name##_map, map_uv(u_##name##_uv, u_##name##_transform), u_material_lod + NORMAL_MAP_LOD_BIAS)
+#else
+#define SAMPLE_MAP(name) texture(u_##name##_map, map_uv(u_##name##_uv, u_##name##_transform))
 #define SAMPLE_NORMAL_MAP(name) texture(u_##name##_map, map_uv(u_##name##_uv, u_##name##_transform), NORMAL_MAP_LOD_BIAS)
+#endif
+
+// ((ior-1)/(ior+1))^2: fresnel::ior_to_f0 in material.h.
+float ior_to_f0(float ior) {
+    float r = (ior - 1.0) / (ior + 1.0);
+    return r * r;
+}
 
 struct MaterialInputs {
-    vec4 base_color;      // linear, alpha in .a
+    vec4 base_color;      // linear, alpha in .a (after the alpha mode)
+    bool discard_fragment;  // ALPHA_MASK below the cutoff
     float metallic;
     float roughness;      // perceptual
     float occlusion;
     vec3 emissive;
     vec3 f0_dielectric;     // dielectric F0 colour
     float specular_weight;  // dielectric specular weight (F0 and F90)
+    vec3 normal;            // shading normal
     float clearcoat;            // KHR_materials_clearcoat strength (0 = no coat)
     float clearcoat_roughness;  // perceptual
+    float clearcoat_f0;
+    vec3 clearcoat_normal;
 };
 
-MaterialInputs read_material() {
+// t, b, ng: the geometric frame (unit, flipped for back faces), as evaluate's SurfacePoint.
+MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     MaterialInputs m;
     m.base_color = u_base_color_factor * v_color;
 #ifdef HAS_BASE_COLOR_MAP
     m.base_color *= SAMPLE_MAP(base_color);  // an SRGB8_ALPHA8 texture: decoded by the sampler
 #endif
+#ifdef SPECULAR_GLOSSINESS
+    // KHR_materials_pbrSpecularGlossiness: base colour is the diffuse colour, the specular
+    // map (sRGB RGB, linear A) gives F0 and glossiness; the conversion of
+    // specular_glossiness_to_metallic_roughness (evaluate.h).
+    vec3 sg_specular = u_sg_specular_factor;
+    float glossiness = u_glossiness_factor;
+#ifdef HAS_SPECULAR_GLOSSINESS_MAP
+    vec4 sg = SAMPLE_MAP(specular_glossiness);
+    sg_specular *= sg.rgb;
+    glossiness *= sg.a;
+#endif
+    m.metallic = 0.0;
+    m.roughness = 1.0 - glossiness;
+    m.f0_dielectric = sg_specular;
+    m.specular_weight = 1.0;
+#else
     m.metallic = u_metallic_factor;
     m.roughness = u_roughness_factor;
 #ifdef HAS_METALLIC_ROUGHNESS_MAP
@@ -89,25 +134,14 @@ MaterialInputs read_material() {
     m.metallic *= mr.b;
     m.roughness *= mr.g;
 #endif
-    m.f0_dielectric = u_f0_dielectric;
-    m.specular_weight = u_specular_weight;
-#ifdef SPECULAR_GLOSSINESS
-    // KHR_materials_pbrSpecularGlossiness: base colour is the diffuse colour, the specular
-    // map (sRGB RGB, linear A) gives F0 and glossiness; no metal.
-    m.metallic = 0.0;
-    m.roughness = u_glossiness_factor;
+    vec3 specular_color = u_specular_color_factor;
 #ifdef HAS_SPECULAR_COLOR_MAP
-    vec4 sg = SAMPLE_MAP(specular_color);
-    m.f0_dielectric *= sg.rgb;
-    m.roughness *= sg.a;
+    specular_color *= SAMPLE_MAP(specular_color).rgb;
 #endif
-    m.roughness = 1.0 - m.roughness;
-#else
+    m.f0_dielectric = ior_to_f0(u_ior) * specular_color;
+    m.specular_weight = u_specular_factor;
 #ifdef HAS_SPECULAR_MAP
     m.specular_weight *= SAMPLE_MAP(specular).a;
-#endif
-#ifdef HAS_SPECULAR_COLOR_MAP
-    m.f0_dielectric *= SAMPLE_MAP(specular_color).rgb;
 #endif
 #endif
     m.f0_dielectric = min(m.f0_dielectric, vec3(1.0));
@@ -115,6 +149,7 @@ MaterialInputs read_material() {
     m.roughness = clamp(m.roughness, 0.0, 1.0);
     m.clearcoat = 0.0;
     m.clearcoat_roughness = 0.0;
+    m.clearcoat_f0 = ior_to_f0(u_ior);
 #ifdef MATERIAL_CLEARCOAT
     m.clearcoat = u_clearcoat_factor;
     m.clearcoat_roughness = u_clearcoat_roughness_factor;
@@ -131,9 +166,49 @@ MaterialInputs read_material() {
 #ifdef HAS_OCCLUSION_MAP
     m.occlusion = 1.0 + u_occlusion_strength * (SAMPLE_MAP(occlusion).r - 1.0);
 #endif
-    m.emissive = u_emissive;
+    m.emissive = u_emissive_factor * u_emissive_strength;
 #ifdef HAS_EMISSIVE_MAP
     m.emissive *= SAMPLE_MAP(emissive).rgb;
 #endif
+    m.discard_fragment = false;
+#ifdef ALPHA_MASK
+    m.discard_fragment = m.base_color.a < u_alpha_cutoff;
+    m.base_color.a = 1.0;
+#endif
+#if !defined(ALPHA_BLEND) && !defined(ALPHA_MASK)
+    m.base_color.a = 1.0;
+#endif
+    m.normal = ng;
+#ifdef HAS_NORMAL_MAP
+    vec3 tn = SAMPLE_NORMAL_MAP(normal).rgb * 2.0 - 1.0;
+    tn.xy *= u_normal_scale;
+    m.normal = normalize(mat3(t, b, ng) * tn);
+#endif
+    m.clearcoat_normal = ng;
+#ifdef HAS_CLEARCOAT_NORMAL_MAP
+    vec3 tc = SAMPLE_NORMAL_MAP(clearcoat_normal).rgb * 2.0 - 1.0;
+    tc.xy *= u_clearcoat_normal_scale;
+    m.clearcoat_normal = normalize(mat3(t, b, ng) * tc);
+#endif
     return m;
+}
+
+// One punctual light on the material, with KHR_materials_clearcoat layering: the twin of
+// fresnel::shade_light (evaluate.h). comp_*: energy compensation of the specular lobes.
+vec3 shade_light(MaterialInputs m, vec3 v, vec3 l, vec3 radiance, vec3 comp_dielectric, vec3 comp_metal) {
+    float n_dot_l = clamped_dot(m.normal, l);
+    vec3 lit = vec3(0.0);
+    if (n_dot_l > 0.0) {
+        BrdfTerms t = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight, m.normal, v, l);
+        vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;
+        lit = radiance * n_dot_l * (t.diffuse + specular);
+    }
+#ifdef MATERIAL_CLEARCOAT
+    // mix(base, coat, clearcoat * Fc), Fc the Schlick Fresnel of the coat at its normal
+    // and the view (the extension's fresnel_coat; brdf::clearcoat_mix).
+    float cc_mix = m.clearcoat * f_schlick(m.clearcoat_f0, 1.0, clamped_dot(m.clearcoat_normal, v));
+    vec3 coat = radiance * clearcoat_specular(m.clearcoat_normal, v, l, alpha_from_roughness(m.clearcoat_roughness));
+    lit = mix(lit, coat, cc_mix);
+#endif
+    return lit;
 }

@@ -27,13 +27,14 @@ uniform int u_encoding;    // -1 = none (linear output), 0 = sRGB, 1 = gamma 2.2
 #include "debug.glsl"
 
 struct Frame {
-    vec3 n;    // shading normal
+    vec3 n;    // shading normal (read_material's, from the normal map)
     vec3 ng;   // geometric normal (interpolated vertex normal, flipped for back faces)
     vec3 t;
     vec3 b;
     vec3 nc;   // clearcoat normal: its own normal map, else the geometric normal
 };
 
+// The geometric frame; read_material applies the normal maps to it.
 Frame shading_frame() {
     Frame f;
     f.ng = normalize(v_normal);
@@ -53,30 +54,18 @@ Frame shading_frame() {
     f.ng = normalize(u_camera_position - v_position);
 #endif
     f.n = f.ng;
-#ifdef HAS_NORMAL_MAP
-    vec3 tn = SAMPLE_NORMAL_MAP(normal).rgb * 2.0 - 1.0;
-    tn.xy *= u_normal_scale;
-    f.n = normalize(mat3(f.t, f.b, f.ng) * tn);
-#endif
     f.nc = f.ng;
-#ifdef HAS_CLEARCOAT_NORMAL_MAP
-    vec3 tc = SAMPLE_NORMAL_MAP(clearcoat_normal).rgb * 2.0 - 1.0;
-    tc.xy *= u_clearcoat_normal_scale;
-    f.nc = normalize(mat3(f.t, f.b, f.ng) * tc);
-#endif
     return f;
 }
 
 void main() {
-    MaterialInputs m = read_material();
-#ifdef ALPHA_MASK
-    if (m.base_color.a < u_alpha_cutoff) discard;
-    m.base_color.a = 1.0;
-#endif
-#if !defined(ALPHA_BLEND) && !defined(ALPHA_MASK)
-    m.base_color.a = 1.0;
-#endif
     Frame f = shading_frame();
+    MaterialInputs m = read_material(f.t, f.b, f.ng);
+#ifdef ALPHA_MASK
+    if (m.discard_fragment) discard;
+#endif
+    f.n = m.normal;
+    f.nc = m.clearcoat_normal;
     vec3 v = normalize(u_camera_position - v_position);
 
     vec3 color = vec3(0.0);
@@ -92,24 +81,13 @@ void main() {
     // KHR_materials_clearcoat layering: mix(base, coat, clearcoat * Fc), Fc the Schlick
     // Fresnel of the coat at its normal and the view (the extension's fresnel_coat).
     float cc_n_dot_v = clamped_dot(f.nc, v);
-    float cc_mix = m.clearcoat * f_schlick(u_clearcoat_f0, 1.0, cc_n_dot_v);  // brdf::clearcoat_mix
-    float cc_alpha = alpha_from_roughness(m.clearcoat_roughness);
+    float cc_mix = m.clearcoat * f_schlick(m.clearcoat_f0, 1.0, cc_n_dot_v);  // brdf::clearcoat_mix
 #endif
     for (int i = 0; i < MAX_LIGHTS; ++i) {
         if (i >= u_light_count) break;
         vec3 l;
         vec3 radiance = light_incident(i, v_position, l);
-        float n_dot_l = clamped_dot(f.n, l);
-        vec3 lit = vec3(0.0);
-        if (n_dot_l > 0.0) {
-            BrdfTerms t = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight, f.n, v, l);
-            vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;
-            lit = radiance * n_dot_l * (t.diffuse + specular);
-        }
-#ifdef MATERIAL_CLEARCOAT
-        vec3 coat = radiance * clearcoat_specular(f.nc, v, l, cc_alpha);
-        lit = mix(lit, coat, cc_mix);
-#endif
+        vec3 lit = shade_light(m, v, l, radiance, comp_dielectric, comp_metal);  // fresnel::shade_light
         color += lit;
     }
 #ifdef USE_IBL

@@ -12,6 +12,7 @@
 #include "fresnel/gpu/context.h"
 #include "fresnel/gpu/device.h"
 #include "fresnel/gpu/resources.h"
+#include "fresnel/render/material_uniforms.h"
 #include "fresnel/render/shader_library.h"
 
 namespace fresnel {
@@ -196,33 +197,21 @@ struct Renderer::Impl {
         }
     }
 
-    // The texture slots of a material, in texture-unit order, with how each is sampled.
-    // Anisotropic filtering is a slot property: it is what agrees with the Khronos
+    // Anisotropic filtering is a property of the map: it is what agrees with the Khronos
     // Sample Viewer's texture filtering on the detail maps, and on llvmpipe each
     // anisotropic lookup costs about as much as the rest of the shading, so the
     // low-frequency maps (occlusion, emissive, the scalar extension maps) go without:
     // measured over the Khronos reference views, that moves agreement by <= 0.16 dB.
-    struct MapUse {
-        const char* name;
-        const char* define;
-        const TextureRef* ref;
-        bool srgb;
-        bool anisotropic;
-    };
-    static constexpr int kMaps = 10;
-    static std::array<MapUse, kMaps> map_uses(const Material& m) {
-        return {{
-            {"base_color", "HAS_BASE_COLOR_MAP", &m.base_color, true, true},
-            {"metallic_roughness", "HAS_METALLIC_ROUGHNESS_MAP", &m.metallic_roughness, false, true},
-            {"normal", "HAS_NORMAL_MAP", &m.normal, false, true},
-            {"occlusion", "HAS_OCCLUSION_MAP", &m.occlusion, false, false},
-            {"emissive", "HAS_EMISSIVE_MAP", &m.emissive, true, false},
-            {"specular", "HAS_SPECULAR_MAP", &m.specular_texture, false, false},
-            {"specular_color", "HAS_SPECULAR_COLOR_MAP", &m.specular_color_texture, true, true},
-            {"clearcoat", "HAS_CLEARCOAT_MAP", &m.clearcoat_texture, false, false},
-            {"clearcoat_roughness", "HAS_CLEARCOAT_ROUGHNESS_MAP", &m.clearcoat_roughness_texture, false, false},
-            {"clearcoat_normal", "HAS_CLEARCOAT_NORMAL_MAP", &m.clearcoat_normal, false, true},
-        }};
+    static bool anisotropic_map(MaterialMap map) {
+        switch (map) {
+            case MaterialMap::BaseColor:
+            case MaterialMap::MetallicRoughness:
+            case MaterialMap::Normal:
+            case MaterialMap::SpecularColor:
+            case MaterialMap::SpecularGlossiness:
+            case MaterialMap::ClearcoatNormal: return true;
+            default: return false;
+        }
     }
 
     using TextureKey = std::pair<int, bool>;  // (texture index, sRGB)
@@ -233,7 +222,7 @@ struct Renderer::Impl {
     };
     std::map<TextureKey, GpuTexture> textures;
 
-    bool usable(const TextureRef& ref) const {
+    bool usable(const TextureSlot& ref) const {
         if (!ref.valid() || !scene || std::size_t(ref.texture) >= scene->textures.size()) return false;
         const Texture& tex = scene->textures[std::size_t(ref.texture)];
         return tex.image >= 0 && std::size_t(tex.image) < scene->images.size() &&
@@ -265,8 +254,10 @@ struct Renderer::Impl {
     void upload_textures() {
         std::vector<TextureKey> keys;
         for (const auto& m : scene->materials)
-            for (const auto& use : map_uses(m))
-                if (usable(*use.ref)) keys.emplace_back(use.ref->texture, use.srgb);
+            for (int i = 0; i < kMaterialMapCount; ++i) {
+                const TextureSlot* slot = material_map(m, MaterialMap(i));
+                if (slot && usable(*slot)) keys.emplace_back(slot->texture, material_map_info(MaterialMap(i)).srgb);
+            }
         std::sort(keys.begin(), keys.end());
         keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
         std::vector<std::vector<Image8>> chains(keys.size());
@@ -283,7 +274,7 @@ struct Renderer::Impl {
 
     // The GL texture for a material's slot with its sampler state, or nullptr when it has
     // no usable image. `anisotropy` applies to trilinear samplers of anisotropic slots.
-    const gpu::Texture* texture_for(const TextureRef& ref, bool srgb, bool anisotropic, float anisotropy) {
+    const gpu::Texture* texture_for(const TextureSlot& ref, bool srgb, bool anisotropic, float anisotropy) {
         if (!usable(ref)) return nullptr;
         TextureKey key{ref.texture, srgb};
         auto it = textures.find(key);
@@ -339,28 +330,24 @@ struct Renderer::Impl {
         if (p.has_uv0) defines.push_back("HAS_UV0");
         if (p.has_uv1) defines.push_back("HAS_UV1");
         if (p.has_color) defines.push_back("HAS_COLOR");
-        if (m.unlit) defines.push_back("UNLIT");
-        if (m.specular_glossiness) defines.push_back("SPECULAR_GLOSSINESS");
-        if (m.has_clearcoat()) defines.push_back("MATERIAL_CLEARCOAT");
-        if (m.alpha_mode == AlphaMode::Mask) defines.push_back("ALPHA_MASK");
-        if (m.alpha_mode == AlphaMode::Blend) defines.push_back("ALPHA_BLEND");
+        const MaterialUniforms mu = material_uniforms(m);
+        defines.insert(defines.end(), mu.defines.begin(), mu.defines.end());
         if (settings.debug != DebugChannel::None) defines.push_back("DEBUG_VIEW");
         if (settings.environment) defines.push_back("USE_IBL");
         defines.push_back("MAX_LIGHTS " + std::to_string(kMaxLights));
 
-        const auto maps = map_uses(m);
-        // Maps take texture units 0..kMaps-1; the image-based light uses kLutUnit and up.
+        // Map i takes texture unit i; the image-based light uses kLutUnit and up.
         constexpr int kLutUnit = 13, kSpecularUnit = 14, kIrradianceUnit = 15;  // GLES 3.0 guarantees 16
-        const gpu::Texture* bound[kMaps] = {};
-        bool has_uv = p.has_uv0;
-        for (int i = 0; i < kMaps; ++i) {
-            const TextureRef& ref = *maps[i].ref;
-            if (!ref.valid() || !has_uv) continue;
-            if (ref.tex_coord == 1 && !p.has_uv1) continue;
-            if ((i == 2 || i == 9) && !p.has_tangent) continue;  // normal maps need a tangent frame
-            if (i >= 7 && !m.has_clearcoat()) continue;
-            bound[i] = texture_for(ref, maps[i].srgb, maps[i].anisotropic, settings.anisotropy);
-            if (bound[i]) defines.push_back(maps[i].define);
+        static_assert(kMaterialMapCount <= kLutUnit);
+        const gpu::Texture* bound[kMaterialMapCount] = {};
+        std::array<bool, kMaterialMapCount> is_bound{};
+        const VertexInputs vertex{p.has_uv0, p.has_uv1, p.has_tangent};
+        for (int i = 0; i < kMaterialMapCount; ++i) {
+            const TextureSlot* slot = mu.maps[std::size_t(i)];
+            if (!slot || !map_usable(*slot, MaterialMap(i), vertex)) continue;
+            const MaterialMapInfo& info = material_map_info(MaterialMap(i));
+            bound[i] = texture_for(*slot, info.srgb, anisotropic_map(MaterialMap(i)), settings.anisotropy);
+            if ((is_bound[std::size_t(i)] = bound[i] != nullptr)) defines.push_back(info.define);
         }
 
         const gpu::Program& prog = shaders.get("pbr.vert", "pbr.frag", defines);
@@ -390,32 +377,9 @@ struct Renderer::Impl {
             prog.set("u_irradiance_env", kIrradianceUnit);
             set_ibl_uniforms(prog, settings);
         }
-        prog.set("u_base_color_factor", m.base_color_factor);
-        prog.set("u_metallic_factor", m.metallic_factor);
-        prog.set("u_roughness_factor", m.roughness_factor);
-        prog.set("u_normal_scale", m.normal_scale);
-        prog.set("u_occlusion_strength", m.occlusion_strength);
-        prog.set("u_emissive", m.emissive_factor * m.emissive_strength);
-        prog.set("u_alpha_cutoff", m.alpha_cutoff);
-        // Specular-glossiness F0 is the specular colour itself; otherwise the ior's F0 tinted.
-        glm::vec3 f0 = m.specular_glossiness ? m.specular_color_factor : m.dielectric_f0() * m.specular_color_factor;
-        prog.set("u_f0_dielectric", f0);
-        prog.set("u_specular_weight", m.specular_glossiness ? 1.0f : m.specular_factor);
-        prog.set("u_glossiness_factor", m.glossiness_factor);
-        if (m.has_clearcoat()) {
-            prog.set("u_clearcoat_factor", m.clearcoat_factor);
-            prog.set("u_clearcoat_roughness_factor", m.clearcoat_roughness_factor);
-            prog.set("u_clearcoat_normal_scale", m.clearcoat_normal_scale);
-            prog.set("u_clearcoat_f0", m.dielectric_f0());
-        }
-        for (int i = 0; i < kMaps; ++i) {
-            if (!bound[i]) continue;
-            std::string base = std::string("u_") + maps[i].name;
-            device.bind_texture(i, *bound[i]);
-            prog.set(base + "_map", i);
-            prog.set(base + "_uv", maps[i].ref->tex_coord);
-            prog.set(base + "_transform", maps[i].ref->transform);
-        }
+        for (int i = 0; i < kMaterialMapCount; ++i)
+            if (bound[i]) device.bind_texture(i, *bound[i]);
+        set_material_uniforms(prog, mu, is_bound);
         // Lights.
         int count = std::min<int>(int(lights.size()), kMaxLights);
         std::vector<glm::vec4> pos_type(kMaxLights), dir_range(kMaxLights), color(kMaxLights), cone(kMaxLights);

@@ -179,8 +179,10 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
 
     // Tangents when a normal map needs them and the file has none (MikkTSpace).
     const Material* mat = p.material >= 0 ? &materials[std::size_t(p.material)] : nullptr;
-    if (mat && (mat->normal.valid() || mat->clearcoat_normal.valid()) && p.tangents.empty() && p.topology == Topology::Triangles) {
-        const TextureRef& map = mat->normal.valid() ? mat->normal : mat->clearcoat_normal;
+    const TextureSlot* coat_normal = mat && mat->clearcoat ? &mat->clearcoat->clearcoat_normal_texture : nullptr;
+    bool coat_normal_map = coat_normal && coat_normal->valid();
+    if (mat && (mat->normal.valid() || coat_normal_map) && p.tangents.empty() && p.topology == Topology::Triangles) {
+        const TextureSlot& map = mat->normal.valid() ? mat->normal : *coat_normal;
         if (!generate_tangents(p, map.tex_coord))
             warn(ptr, "normal map without texture coordinates; normal map ignored");
     }

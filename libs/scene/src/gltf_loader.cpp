@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -380,19 +381,138 @@ private:
             double rotation = r_.number(*tt, "rotation", tp, 0.0);
             auto sc = r_.numbers<2>(*tt, "scale", tp, {1.0, 1.0});
             ref.tex_coord = int(r_.integer(*tt, "texCoord", tp, ref.tex_coord, 0, 1 << 20));
-            float c = float(std::cos(rotation)), s = float(std::sin(rotation));
-            // uv' = T * R * S * uv, with R rotating the UVs counter-clockwise (the extension's definition).
-            glm::mat3 t(1, 0, 0, 0, 1, 0, float(offset[0]), float(offset[1]), 1);
-            glm::mat3 r(c, -s, 0, s, c, 0, 0, 0, 1);
-            glm::mat3 m(float(sc[0]), 0, 0, 0, float(sc[1]), 0, 0, 0, 1);
-            ref.transform = t * r * m;
-            ref.has_transform = true;
+            TextureTransform t;
+            t.offset = glm::vec2(float(offset[0]), float(offset[1]));
+            t.rotation = float(rotation);
+            t.scale = glm::vec2(float(sc[0]), float(sc[1]));
+            ref.set_transform(t);
         }
         if (ref.tex_coord > 1) {
             warn(ptr + "/texCoord", "TEXCOORD_" + std::to_string(ref.tex_coord) + " is not supported; texture ignored");
             ref.texture = -1;
         }
         return ref;
+    }
+
+    // The material extensions, each into its block as written (the specification's
+    // defaults where absent). Only validation happens here (ranges, ior < 1); the rules
+    // that turn the values into shading inputs are fresnel::evaluate's.
+    void load_material_extensions(const json& ext, const std::string& ptr, Material& out) {
+        auto at = [&](const char* name) { return ptr + "/extensions/" + name; };
+        auto vec3_of = [&](const json& j, const char* key, const std::string& p, std::array<double, 3> def) {
+            auto c = r_.numbers<3>(j, key, p, def);
+            return glm::vec3(float(c[0]), float(c[1]), float(c[2]));
+        };
+        auto num = [&](const json& j, const char* key, const std::string& p, double def) {
+            return float(r_.number(j, key, p, def));
+        };
+        if (const json* es = r_.find(ext, "KHR_materials_emissive_strength"))
+            out.emissive_strength = EmissiveStrengthExt{
+                std::max(0.0f, num(*es, "emissiveStrength", at("KHR_materials_emissive_strength"), 1.0))};
+        if (r_.has(ext, "KHR_materials_unlit")) out.unlit = UnlitExt{};
+        if (const json* ior = r_.find(ext, "KHR_materials_ior")) {
+            std::string ip = at("KHR_materials_ior");
+            IorExt b;
+            b.ior = num(*ior, "ior", ip, 1.5);
+            if (b.ior != 0.0f && b.ior < 1.0f) {
+                warn(ip + "/ior", "ior below 1; using 1.5");
+                b.ior = 1.5f;
+            }
+            out.ior = b;
+        }
+        if (const json* sp = r_.find(ext, "KHR_materials_specular")) {
+            std::string sptr = at("KHR_materials_specular");
+            SpecularExt b;
+            b.specular_factor = std::max(0.0f, num(*sp, "specularFactor", sptr, 1.0));
+            b.specular_texture = texture_ref(*sp, "specularTexture", sptr);
+            b.specular_color_factor = glm::max(vec3_of(*sp, "specularColorFactor", sptr, {1, 1, 1}), 0.0f);
+            b.specular_color_texture = texture_ref(*sp, "specularColorTexture", sptr);
+            out.specular = b;
+        }
+        if (const json* cc = r_.find(ext, "KHR_materials_clearcoat")) {
+            std::string cp = at("KHR_materials_clearcoat");
+            ClearcoatExt b;
+            b.clearcoat_factor = std::clamp(num(*cc, "clearcoatFactor", cp, 0.0), 0.0f, 1.0f);
+            b.clearcoat_texture = texture_ref(*cc, "clearcoatTexture", cp);
+            b.clearcoat_roughness_factor = std::clamp(num(*cc, "clearcoatRoughnessFactor", cp, 0.0), 0.0f, 1.0f);
+            b.clearcoat_roughness_texture = texture_ref(*cc, "clearcoatRoughnessTexture", cp);
+            b.clearcoat_normal_texture =
+                texture_ref(*cc, "clearcoatNormalTexture", cp, &b.clearcoat_normal_scale, "scale");
+            out.clearcoat = b;
+        }
+        if (const json* sg = r_.find(ext, "KHR_materials_pbrSpecularGlossiness")) {
+            std::string gp = at("KHR_materials_pbrSpecularGlossiness");
+            SpecularGlossinessExt b;
+            auto d = r_.numbers<4>(*sg, "diffuseFactor", gp, {1, 1, 1, 1});
+            b.diffuse_factor = glm::clamp(glm::vec4(d[0], d[1], d[2], d[3]), 0.0f, 1.0f);
+            b.diffuse_texture = texture_ref(*sg, "diffuseTexture", gp);
+            b.specular_factor = glm::clamp(vec3_of(*sg, "specularFactor", gp, {1, 1, 1}), 0.0f, 1.0f);
+            b.glossiness_factor = std::clamp(num(*sg, "glossinessFactor", gp, 1.0), 0.0f, 1.0f);
+            b.specular_glossiness_texture = texture_ref(*sg, "specularGlossinessTexture", gp);
+            out.specular_glossiness = b;
+        }
+        // Kept, not shaded (yet): parsed with the specification's defaults.
+        if (const json* e = r_.find(ext, "KHR_materials_sheen")) {
+            std::string p = at("KHR_materials_sheen");
+            SheenExt b;
+            b.sheen_color_factor = glm::max(vec3_of(*e, "sheenColorFactor", p, {0, 0, 0}), 0.0f);
+            b.sheen_color_texture = texture_ref(*e, "sheenColorTexture", p);
+            b.sheen_roughness_factor = std::clamp(num(*e, "sheenRoughnessFactor", p, 0.0), 0.0f, 1.0f);
+            b.sheen_roughness_texture = texture_ref(*e, "sheenRoughnessTexture", p);
+            out.sheen = b;
+        }
+        if (const json* e = r_.find(ext, "KHR_materials_transmission")) {
+            std::string p = at("KHR_materials_transmission");
+            TransmissionExt b;
+            b.transmission_factor = std::clamp(num(*e, "transmissionFactor", p, 0.0), 0.0f, 1.0f);
+            b.transmission_texture = texture_ref(*e, "transmissionTexture", p);
+            out.transmission = b;
+        }
+        if (const json* e = r_.find(ext, "KHR_materials_volume")) {
+            std::string p = at("KHR_materials_volume");
+            VolumeExt b;
+            b.thickness_factor = std::max(0.0f, num(*e, "thicknessFactor", p, 0.0));
+            b.thickness_texture = texture_ref(*e, "thicknessTexture", p);
+            if (r_.find(*e, "attenuationDistance"))
+                b.attenuation_distance = num(*e, "attenuationDistance", p, 0.0);
+            if (!(b.attenuation_distance > 0.0f)) {
+                warn(p + "/attenuationDistance", "must be positive; using infinity");
+                b.attenuation_distance = std::numeric_limits<float>::infinity();
+            }
+            b.attenuation_color = glm::max(vec3_of(*e, "attenuationColor", p, {1, 1, 1}), 0.0f);
+            out.volume = b;
+        }
+        if (const json* e = r_.find(ext, "KHR_materials_iridescence")) {
+            std::string p = at("KHR_materials_iridescence");
+            IridescenceExt b;
+            b.iridescence_factor = std::clamp(num(*e, "iridescenceFactor", p, 0.0), 0.0f, 1.0f);
+            b.iridescence_texture = texture_ref(*e, "iridescenceTexture", p);
+            b.iridescence_ior = num(*e, "iridescenceIor", p, 1.3);
+            b.iridescence_thickness_minimum = std::max(0.0f, num(*e, "iridescenceThicknessMinimum", p, 100.0));
+            b.iridescence_thickness_maximum = std::max(0.0f, num(*e, "iridescenceThicknessMaximum", p, 400.0));
+            b.iridescence_thickness_texture = texture_ref(*e, "iridescenceThicknessTexture", p);
+            out.iridescence = b;
+        }
+        if (const json* e = r_.find(ext, "KHR_materials_anisotropy")) {
+            std::string p = at("KHR_materials_anisotropy");
+            AnisotropyExt b;
+            b.anisotropy_strength = std::clamp(num(*e, "anisotropyStrength", p, 0.0), 0.0f, 1.0f);
+            b.anisotropy_rotation = num(*e, "anisotropyRotation", p, 0.0);
+            b.anisotropy_texture = texture_ref(*e, "anisotropyTexture", p);
+            out.anisotropy = b;
+        }
+        if (const json* e = r_.find(ext, "KHR_materials_dispersion"))
+            out.dispersion = DispersionExt{std::max(0.0f, num(*e, "dispersion", at("KHR_materials_dispersion"), 0.0))};
+        if (const json* e = r_.find(ext, "KHR_materials_diffuse_transmission")) {
+            std::string p = at("KHR_materials_diffuse_transmission");
+            DiffuseTransmissionExt b;
+            b.diffuse_transmission_factor = std::clamp(num(*e, "diffuseTransmissionFactor", p, 0.0), 0.0f, 1.0f);
+            b.diffuse_transmission_texture = texture_ref(*e, "diffuseTransmissionTexture", p);
+            b.diffuse_transmission_color_factor =
+                glm::max(vec3_of(*e, "diffuseTransmissionColorFactor", p, {1, 1, 1}), 0.0f);
+            b.diffuse_transmission_color_texture = texture_ref(*e, "diffuseTransmissionColorTexture", p);
+            out.diffuse_transmission = b;
+        }
     }
 
     void load_materials() {
@@ -425,47 +545,7 @@ private:
             out.alpha_cutoff = std::max(0.0f, float(r_.number(m, "alphaCutoff", ptr, 0.5)));
             out.double_sided = r_.boolean(m, "doubleSided", ptr, false);
             const json& ext = r_.object(m, "extensions", ptr);
-            if (const json* es = r_.find(ext, "KHR_materials_emissive_strength"))
-                out.emissive_strength = std::max(0.0f, float(r_.number(*es, "emissiveStrength", ptr + "/extensions/KHR_materials_emissive_strength", 1.0)));
-            out.unlit = r_.has(ext, "KHR_materials_unlit");
-            if (const json* ior = r_.find(ext, "KHR_materials_ior")) {
-                std::string ip = ptr + "/extensions/KHR_materials_ior";
-                out.ior = float(r_.number(*ior, "ior", ip, 1.5));
-                if (out.ior != 0.0f && out.ior < 1.0f) {
-                    warn(ip + "/ior", "ior below 1; using 1.5");
-                    out.ior = 1.5f;
-                }
-            }
-            if (const json* sp = r_.find(ext, "KHR_materials_specular")) {
-                std::string sptr = ptr + "/extensions/KHR_materials_specular";
-                out.specular_factor = std::max(0.0f, float(r_.number(*sp, "specularFactor", sptr, 1.0)));
-                out.specular_texture = texture_ref(*sp, "specularTexture", sptr);
-                auto c = r_.numbers<3>(*sp, "specularColorFactor", sptr, {1, 1, 1});
-                out.specular_color_factor = glm::max(glm::vec3(c[0], c[1], c[2]), 0.0f);
-                out.specular_color_texture = texture_ref(*sp, "specularColorTexture", sptr);
-            }
-            if (const json* cc = r_.find(ext, "KHR_materials_clearcoat")) {
-                std::string cp = ptr + "/extensions/KHR_materials_clearcoat";
-                out.clearcoat_factor = std::clamp(float(r_.number(*cc, "clearcoatFactor", cp, 0.0)), 0.0f, 1.0f);
-                out.clearcoat_texture = texture_ref(*cc, "clearcoatTexture", cp);
-                out.clearcoat_roughness_factor =
-                    std::clamp(float(r_.number(*cc, "clearcoatRoughnessFactor", cp, 0.0)), 0.0f, 1.0f);
-                out.clearcoat_roughness_texture = texture_ref(*cc, "clearcoatRoughnessTexture", cp);
-                out.clearcoat_normal = texture_ref(*cc, "clearcoatNormalTexture", cp, &out.clearcoat_normal_scale, "scale");
-            }
-            if (const json* sg = r_.find(ext, "KHR_materials_pbrSpecularGlossiness")) {
-                std::string gp = ptr + "/extensions/KHR_materials_pbrSpecularGlossiness";
-                out.specular_glossiness = true;
-                auto d = r_.numbers<4>(*sg, "diffuseFactor", gp, {1, 1, 1, 1});
-                out.base_color_factor = glm::clamp(glm::vec4(d[0], d[1], d[2], d[3]), 0.0f, 1.0f);
-                out.base_color = texture_ref(*sg, "diffuseTexture", gp);
-                auto c = r_.numbers<3>(*sg, "specularFactor", gp, {1, 1, 1});
-                out.specular_color_factor = glm::clamp(glm::vec3(c[0], c[1], c[2]), 0.0f, 1.0f);
-                out.glossiness_factor = std::clamp(float(r_.number(*sg, "glossinessFactor", gp, 1.0)), 0.0f, 1.0f);
-                out.specular_color_texture = texture_ref(*sg, "specularGlossinessTexture", gp);
-                out.metallic_factor = 0.0f;
-                out.metallic_roughness = TextureRef{};
-            }
+            load_material_extensions(ext, ptr, out);
             scene_.materials.push_back(std::move(out));
         }
     }

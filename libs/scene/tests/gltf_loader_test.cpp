@@ -1089,7 +1089,7 @@ TEST(GltfMaterials, FactorsModesAndExtensions) {
     EXPECT_FLOAT_EQ(m.occlusion_strength, 0.4f);
     EXPECT_EQ(m.emissive.texture, 0);
     EXPECT_EQ(m.emissive_factor, glm::vec3(1.0f, 0.5f, 0.25f));
-    EXPECT_FLOAT_EQ(m.emissive_strength, 5.0f);
+    EXPECT_FLOAT_EQ(m.emissive_strength_value(), 5.0f);
     EXPECT_EQ(m.alpha_mode, AlphaMode::Mask);
     EXPECT_FLOAT_EQ(m.alpha_cutoff, 0.3f);
     EXPECT_TRUE(m.double_sided);
@@ -1106,7 +1106,7 @@ TEST(GltfMaterials, FactorsModesAndExtensions) {
     EXPECT_EQ(def.metallic_factor, 1.0f);
     EXPECT_EQ(def.roughness_factor, 1.0f);
     EXPECT_EQ(def.emissive_factor, glm::vec3(0.0f));
-    EXPECT_EQ(def.emissive_strength, 1.0f);
+    EXPECT_EQ(def.emissive_strength_value(), 1.0f);
     EXPECT_EQ(def.alpha_mode, AlphaMode::Opaque);
     EXPECT_EQ(def.alpha_cutoff, 0.5f);
     EXPECT_FALSE(def.double_sided);
@@ -1176,17 +1176,115 @@ TEST(GltfMaterials, KhrMaterialsClearcoat) {
     ASSERT_EQ(s.materials.size(), 2u);
     const Material& m = s.materials[0];
     EXPECT_TRUE(m.has_clearcoat());
-    EXPECT_FLOAT_EQ(m.clearcoat_factor, 0.7f);
-    EXPECT_EQ(m.clearcoat_texture.texture, 0);
-    EXPECT_FLOAT_EQ(m.clearcoat_roughness_factor, 1.0f);
-    EXPECT_EQ(m.clearcoat_roughness_texture.tex_coord, 1);
-    EXPECT_EQ(m.clearcoat_normal.texture, 0);
-    EXPECT_FLOAT_EQ(m.clearcoat_normal_scale, 0.5f);
+    EXPECT_FLOAT_EQ(m.clearcoat->clearcoat_factor, 0.7f);
+    EXPECT_EQ(m.clearcoat->clearcoat_texture.texture, 0);
+    EXPECT_FLOAT_EQ(m.clearcoat->clearcoat_roughness_factor, 1.0f);
+    EXPECT_EQ(m.clearcoat->clearcoat_roughness_texture.tex_coord, 1);
+    EXPECT_EQ(m.clearcoat->clearcoat_normal_texture.texture, 0);
+    EXPECT_FLOAT_EQ(m.clearcoat->clearcoat_normal_scale, 0.5f);
     EXPECT_TRUE(s.meshes.at(0).primitives[0].generated_tangents);
     // Defaults: factor 0 turns the coat off.
     EXPECT_FALSE(s.materials[1].has_clearcoat());
-    EXPECT_FLOAT_EQ(s.materials[1].clearcoat_roughness_factor, 0.0f);
+    ASSERT_TRUE(s.materials[1].clearcoat);
+    EXPECT_FLOAT_EQ(s.materials[1].clearcoat->clearcoat_roughness_factor, 0.0f);
     EXPECT_EQ(d.total(), 0u);
+}
+
+// Extensions land in their blocks as written: the loader does not rewrite factors
+// (specular-glossiness stays its own block; evaluate converts it).
+TEST(GltfMaterials, ExtensionBlocksAsWritten) {
+    Doc doc;
+    doc.j["images"] = json::array({{{"uri", "data:image/png;base64," + base64(make_png(2, 2))}}});
+    doc.j["textures"] = json::array({{{"source", 0}}});
+    doc.j["materials"] = json::parse(R"([
+        {"extensions": {
+            "KHR_materials_ior": {"ior": 1.33},
+            "KHR_materials_specular": {"specularFactor": 0.5, "specularColorFactor": [2, 1, 0.5],
+                                       "specularColorTexture": {"index": 0}},
+            "KHR_materials_pbrSpecularGlossiness": {"diffuseFactor": [0.5, 0.4, 0.3, 0.9],
+                "specularFactor": [0.2, 0.3, 0.4], "glossinessFactor": 0.7,
+                "diffuseTexture": {"index": 0}, "specularGlossinessTexture": {"index": 0, "texCoord": 1}}}},
+        {"extensions": {
+            "KHR_materials_sheen": {}, "KHR_materials_transmission": {}, "KHR_materials_volume": {},
+            "KHR_materials_iridescence": {}, "KHR_materials_anisotropy": {}, "KHR_materials_dispersion": {},
+            "KHR_materials_diffuse_transmission": {}, "KHR_materials_specular": {}}},
+        {"extensions": {
+            "KHR_materials_sheen": {"sheenColorFactor": [1, 0.5, 0.25], "sheenRoughnessFactor": 0.3},
+            "KHR_materials_transmission": {"transmissionFactor": 0.8, "transmissionTexture": {"index": 0}},
+            "KHR_materials_volume": {"thicknessFactor": 2, "attenuationDistance": 0.5, "attenuationColor": [0.9, 0.8, 0.7]},
+            "KHR_materials_iridescence": {"iridescenceFactor": 1, "iridescenceIor": 1.8,
+                                          "iridescenceThicknessMinimum": 200, "iridescenceThicknessMaximum": 800},
+            "KHR_materials_anisotropy": {"anisotropyStrength": 0.6, "anisotropyRotation": 1.5},
+            "KHR_materials_dispersion": {"dispersion": 0.1},
+            "KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 0.25,
+                                                   "diffuseTransmissionColorFactor": [0.1, 0.2, 0.3]}}},
+        {}
+    ])");
+    int pos = doc.positions(kQuad);
+    int ind = doc.indices(UNSIGNED_SHORT, {0, 1, 2, 0, 2, 3});
+    doc.mesh(json::array({{{"attributes", {{"POSITION", pos}}}, {"indices", ind}, {"material", 0}}}));
+    Diagnostics d;
+    Scene s = load(doc.gltf(), d);
+    ASSERT_EQ(s.materials.size(), 4u);
+    const Material& a = s.materials[0];
+    ASSERT_TRUE(a.ior && a.specular && a.specular_glossiness);
+    EXPECT_FLOAT_EQ(a.ior->ior, 1.33f);
+    EXPECT_FLOAT_EQ(a.specular->specular_factor, 0.5f);
+    EXPECT_EQ(a.specular->specular_color_factor, glm::vec3(2.0f, 1.0f, 0.5f));  // not clamped: the extension allows > 1
+    EXPECT_EQ(a.specular->specular_color_texture.texture, 0);
+    const SpecularGlossinessExt& sg = *a.specular_glossiness;
+    EXPECT_EQ(sg.diffuse_factor, glm::vec4(0.5f, 0.4f, 0.3f, 0.9f));
+    EXPECT_EQ(sg.specular_factor, glm::vec3(0.2f, 0.3f, 0.4f));
+    EXPECT_FLOAT_EQ(sg.glossiness_factor, 0.7f);
+    EXPECT_EQ(sg.diffuse_texture.texture, 0);
+    EXPECT_EQ(sg.specular_glossiness_texture.tex_coord, 1);
+    // The core stays as the file has it (absent pbrMetallicRoughness: defaults).
+    EXPECT_EQ(a.base_color_factor, glm::vec4(1.0f));
+    EXPECT_FALSE(a.base_color.valid());
+    EXPECT_EQ(a.metallic_factor, 1.0f);
+
+    const Material& b = s.materials[1];  // the specification's defaults
+    ASSERT_TRUE(b.sheen && b.transmission && b.volume && b.iridescence && b.anisotropy && b.dispersion &&
+                b.diffuse_transmission && b.specular);
+    EXPECT_EQ(b.sheen->sheen_color_factor, glm::vec3(0.0f));
+    EXPECT_EQ(b.sheen->sheen_roughness_factor, 0.0f);
+    EXPECT_EQ(b.transmission->transmission_factor, 0.0f);
+    EXPECT_EQ(b.volume->thickness_factor, 0.0f);
+    EXPECT_TRUE(std::isinf(b.volume->attenuation_distance));
+    EXPECT_EQ(b.volume->attenuation_color, glm::vec3(1.0f));
+    EXPECT_EQ(b.iridescence->iridescence_factor, 0.0f);
+    EXPECT_FLOAT_EQ(b.iridescence->iridescence_ior, 1.3f);
+    EXPECT_EQ(b.iridescence->iridescence_thickness_minimum, 100.0f);
+    EXPECT_EQ(b.iridescence->iridescence_thickness_maximum, 400.0f);
+    EXPECT_EQ(b.anisotropy->anisotropy_strength, 0.0f);
+    EXPECT_EQ(b.anisotropy->anisotropy_rotation, 0.0f);
+    EXPECT_EQ(b.dispersion->dispersion, 0.0f);
+    EXPECT_EQ(b.diffuse_transmission->diffuse_transmission_factor, 0.0f);
+    EXPECT_EQ(b.diffuse_transmission->diffuse_transmission_color_factor, glm::vec3(1.0f));
+    EXPECT_EQ(b.specular->specular_factor, 1.0f);
+    EXPECT_EQ(b.specular->specular_color_factor, glm::vec3(1.0f));
+    EXPECT_EQ(b.ior_value(), 1.5f);
+
+    const Material& c = s.materials[2];
+    EXPECT_EQ(c.sheen->sheen_color_factor, glm::vec3(1.0f, 0.5f, 0.25f));
+    EXPECT_FLOAT_EQ(c.sheen->sheen_roughness_factor, 0.3f);
+    EXPECT_FLOAT_EQ(c.transmission->transmission_factor, 0.8f);
+    EXPECT_EQ(c.transmission->transmission_texture.texture, 0);
+    EXPECT_FLOAT_EQ(c.volume->thickness_factor, 2.0f);
+    EXPECT_FLOAT_EQ(c.volume->attenuation_distance, 0.5f);
+    EXPECT_EQ(c.volume->attenuation_color, glm::vec3(0.9f, 0.8f, 0.7f));
+    EXPECT_FLOAT_EQ(c.iridescence->iridescence_ior, 1.8f);
+    EXPECT_FLOAT_EQ(c.iridescence->iridescence_thickness_maximum, 800.0f);
+    EXPECT_FLOAT_EQ(c.anisotropy->anisotropy_strength, 0.6f);
+    EXPECT_FLOAT_EQ(c.anisotropy->anisotropy_rotation, 1.5f);
+    EXPECT_FLOAT_EQ(c.dispersion->dispersion, 0.1f);
+    EXPECT_FLOAT_EQ(c.diffuse_transmission->diffuse_transmission_factor, 0.25f);
+    EXPECT_EQ(c.diffuse_transmission->diffuse_transmission_color_factor, glm::vec3(0.1f, 0.2f, 0.3f));
+
+    const Material& none = s.materials[3];
+    EXPECT_FALSE(none.ior || none.specular || none.clearcoat || none.specular_glossiness || none.sheen ||
+                 none.transmission || none.volume || none.iridescence || none.anisotropy || none.dispersion ||
+                 none.diffuse_transmission || none.unlit || none.emissive_strength);
 }
 
 TEST(GltfMaterials, KhrTextureTransform) {

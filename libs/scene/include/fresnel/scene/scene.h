@@ -19,63 +19,12 @@
 
 #include "fresnel/core/image.h"
 #include "fresnel/core/sampler.h"
+#include "fresnel/material/material.h"
 
 namespace fresnel {
 
-enum class AlphaMode { Opaque, Mask, Blend };
-
-// A material's reference to a texture, with KHR_texture_transform folded into a matrix.
-struct TextureRef {
-    int texture = -1;          // index into Scene::textures, -1 = none
-    int tex_coord = 0;         // 0 or 1 (TEXCOORD_n)
-    bool has_transform = false;
-    glm::mat3 transform{1.0f};  // uv' = (transform * vec3(uv, 1)).xy
-    bool valid() const { return texture >= 0; }
-};
-
-// glTF metallic-roughness material (plus the KHR extensions we support).
-struct Material {
-    std::string name;
-    glm::vec4 base_color_factor{1.0f};
-    TextureRef base_color;            // sRGB
-    float metallic_factor = 1.0f;
-    float roughness_factor = 1.0f;
-    TextureRef metallic_roughness;    // B = metallic, G = roughness, linear
-    TextureRef normal;                // tangent space, linear
-    float normal_scale = 1.0f;
-    TextureRef occlusion;             // R, linear
-    float occlusion_strength = 1.0f;
-    TextureRef emissive;              // sRGB
-    glm::vec3 emissive_factor{0.0f};
-    float emissive_strength = 1.0f;   // KHR_materials_emissive_strength
-    AlphaMode alpha_mode = AlphaMode::Opaque;
-    float alpha_cutoff = 0.5f;
-    bool double_sided = false;
-    bool unlit = false;               // KHR_materials_unlit
-    float ior = 1.5f;                 // KHR_materials_ior: dielectric F0 = ((ior-1)/(ior+1))^2
-    // KHR_materials_specular: weight of the dielectric lobe (A of specular_texture) and F0 colour (sRGB texture).
-    float specular_factor = 1.0f;
-    TextureRef specular_texture;
-    glm::vec3 specular_color_factor{1.0f};
-    TextureRef specular_color_texture;
-    // KHR_materials_pbrSpecularGlossiness: base_color* hold the diffuse factor/texture,
-    // specular_color_factor the specular factor, specular_color_texture the
-    // specularGlossinessTexture (RGB specular, A glossiness).
-    bool specular_glossiness = false;
-    float glossiness_factor = 1.0f;
-    // KHR_materials_clearcoat: a dielectric GGX layer (F0 from ior) over the material.
-    // Strength = clearcoat_factor * R of clearcoat_texture; roughness = factor * G of
-    // clearcoat_roughness_texture; clearcoat_normal is its own normal map (the geometric
-    // normal without one). All linear.
-    float clearcoat_factor = 0.0f;
-    TextureRef clearcoat_texture;
-    float clearcoat_roughness_factor = 0.0f;
-    TextureRef clearcoat_roughness_texture;
-    TextureRef clearcoat_normal;
-    float clearcoat_normal_scale = 1.0f;
-    bool has_clearcoat() const { return clearcoat_factor > 0.0f; }
-    float dielectric_f0() const { float r = (ior - 1.0f) / (ior + 1.0f); return r * r; }
-};
+// Material, TextureSlot (TextureRef) and AlphaMode come from libs/material: the material
+// model is not the scene's; loaders translate files into it.
 
 // How a texture is sampled. The default is glTF's when a texture has no sampler:
 // trilinear (linear filters, linear between mip levels), repeating.

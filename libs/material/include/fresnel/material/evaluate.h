@@ -1,0 +1,140 @@
+#pragma once
+// fresnel::evaluate: a Material, its textures and a surface point -> the BRDF's inputs.
+// Every material rule lives here and, line for line, in its GLSL twin read_material
+// (shaders/material_inputs.glsl); tests/gpu/material_gpu_test.cpp keeps them equal.
+// The rules (in evaluation order):
+//   base colour = baseColorFactor * vertex colour * baseColorTexture (sRGB)
+//   metallic, roughness = factors * metallicRoughnessTexture B, G
+//   F0 colour = ior_to_f0(ior) * specularColorFactor * specularColorTexture RGB (sRGB),
+//               clamped to <= 1; specular weight = specularFactor * specularTexture A
+//   specular-glossiness (replaces the above): specular_glossiness_to_metallic_roughness
+//   clearcoat = factor * clearcoatTexture R, roughness = factor * clearcoatRoughnessTexture G,
+//               coat F0 = ior_to_f0(ior); all only when clearcoatFactor > 0
+//   occlusion = 1 + strength * (occlusionTexture R - 1)
+//   emissive = emissiveFactor * emissiveStrength * emissiveTexture RGB (sRGB)
+//   alpha: OPAQUE -> 1; MASK -> discard below the cutoff, else 1; BLEND -> as computed
+//   normal = normalize(TBN * ((map * 2 - 1) * (scale, scale, 1))) when a normal map is read,
+//            else the geometric normal; the same for the clearcoat normal.
+// A map is read only when the primitive can (map_usable); an unreadable map reads as
+// absent, as the renderer leaves it unbound.
+#include <optional>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "fresnel/material/brdf.h"
+#include "fresnel/material/material.h"
+#include "fresnel/material/texture.h"
+
+namespace fresnel {
+
+// Normal maps are sampled one mip level sharper (NORMAL_MAP_LOD_BIAS in
+// shaders/material_inputs.glsl explains why).
+inline constexpr float kNormalMapLodBias = -1.0f;
+
+// The texture maps a material can read, in the shader's order (texture units).
+enum class MaterialMap {
+    BaseColor,           // baseColorTexture, or the diffuseTexture of specular-glossiness
+    MetallicRoughness,
+    Normal,
+    Occlusion,
+    Emissive,
+    Specular,            // KHR_materials_specular specularTexture
+    SpecularColor,       // KHR_materials_specular specularColorTexture
+    SpecularGlossiness,  // KHR_materials_pbrSpecularGlossiness specularGlossinessTexture
+    Clearcoat,
+    ClearcoatRoughness,
+    ClearcoatNormal,
+};
+inline constexpr int kMaterialMapCount = 11;
+
+struct MaterialMapInfo {
+    const char* name;    // GLSL: u_<name>_map, u_<name>_uv, u_<name>_transform
+    const char* define;  // GLSL: HAS_<NAME>_MAP
+    bool srgb;           // colour data, decoded by the sampler
+    bool normal_map;     // needs a tangent frame; sampled with kNormalMapLodBias
+};
+const MaterialMapInfo& material_map_info(MaterialMap map);
+
+// The slot the rules read for `map`, or nullptr when this material has none there
+// (specular-glossiness reads its own maps instead of the metallic-roughness ones;
+// clearcoat maps only with a coat).
+const TextureSlot* material_map(const Material& m, MaterialMap map);
+
+// Which vertex attributes the primitive has.
+struct VertexInputs {
+    bool has_uv0 = true, has_uv1 = true, has_tangent = true;
+};
+// Whether a primitive with `inputs` can read `slot` for `map`: any map needs TEXCOORD_0,
+// a map on TEXCOORD_1 needs it too, normal maps need tangents.
+bool map_usable(const TextureSlot& slot, MaterialMap map, const VertexInputs& inputs);
+
+// The point being shaded, as the fragment shader sees it.
+struct SurfacePoint {
+    glm::vec2 uv0{0.0f}, uv1{0.0f};
+    glm::vec4 color{1.0f};  // COLOR_0 (1 without it)
+    // Geometric frame: unit vectors, already flipped for back faces.
+    glm::vec3 tangent{1, 0, 0}, bitangent{0, 1, 0}, normal{0, 0, 1};
+    VertexInputs inputs;
+    // Level of detail. With `lod`, every map is read at that λ (textureLod); otherwise λ
+    // comes from the screen-space derivatives of each map's transformed UVs, as hardware
+    // computes it (all zero: magnification, level 0).
+    std::optional<float> lod;
+    glm::vec2 duv0_dx{0.0f}, duv0_dy{0.0f}, duv1_dx{0.0f}, duv1_dy{0.0f};
+};
+
+// evaluate's result: the BRDF's inputs plus what the shader does with the rest.
+struct EvaluatedMaterial {
+    brdf::Surface surface;     // base colour, metallic, roughness, F0 (specular_f0 * specular_color), weight
+    float alpha = 1.0f;        // after the alpha mode
+    bool discard = false;      // MASK below the cutoff
+    glm::vec3 emissive{0.0f};
+    float occlusion = 1.0f;
+    glm::vec3 normal{0, 0, 1};            // shading normal
+    float clearcoat = 0.0f;               // coat strength (0 = no coat)
+    float clearcoat_roughness = 0.0f;     // perceptual
+    float clearcoat_f0 = 0.04f;
+    glm::vec3 clearcoat_normal{0, 0, 1};
+    bool unlit = false;
+};
+
+EvaluatedMaterial evaluate(const Material& material, const TextureSource& textures, const SurfacePoint& point);
+
+// KHR_materials_pbrSpecularGlossiness -> metallic-roughness at one point, the documented
+// conversion (the same as in read_material):
+//   base colour = diffuse (RGBA), metallic = 0, roughness = 1 - glossiness,
+//   dielectric F0 colour = specular, specular weight = 1.
+// It is exact: the specular-glossiness BRDF is the dielectric branch of the glTF BRDF with
+// F0 = specular, which metallic-roughness + KHR_materials_specular can state. The diffuse
+// is weighted only by the BRDF's own (1 - F), not by 1 - max(specular) as the extension's
+// reference code does; this is how fresnel has always shaded it, and the image tests hold it.
+struct MetallicRoughnessPoint {
+    glm::vec4 base_color{1.0f};
+    float metallic = 0.0f;
+    float roughness = 1.0f;
+    glm::vec3 f0{0.04f};
+    float specular_weight = 1.0f;
+};
+MetallicRoughnessPoint specular_glossiness_to_metallic_roughness(glm::vec4 diffuse, glm::vec3 specular,
+                                                                 float glossiness);
+
+// The same conversion for a whole material, for converters that must write
+// metallic-roughness (a future OBJ importer). Factors convert exactly: base colour
+// factor/texture = diffuse factor/texture, metallic 0, roughness 1 - glossinessFactor,
+// KHR_materials_specular with specularColorFactor = specularFactor / ior_to_f0(ior) and
+// specularColorTexture = the RGB of specularGlossinessTexture, ior kept. Lost: the
+// glossiness channel (A) of specularGlossinessTexture, as roughness = 1 - g * A has no
+// metallic-roughness form (`lost_glossiness_map` says so). A material without the block
+// is returned unchanged. The renderer keeps the block and converts per point instead.
+Material to_metallic_roughness(const Material& material, bool* lost_glossiness_map = nullptr);
+
+// KHR_materials_clearcoat layering of one punctual light (pbr.frag's light loop):
+//   base = (f_diffuse + f_specular_dielectric * comp_dielectric + f_specular_metal * comp_metal) n.l
+//   result = radiance * mix(base, clearcoat_specular, clearcoat_mix)
+// comp_* are the energy-compensation factors (1 without). The twin of shade_light in
+// shaders/brdf.glsl.
+glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 radiance,
+                      glm::vec3 comp_dielectric = glm::vec3(1.0f), glm::vec3 comp_metal = glm::vec3(1.0f));
+
+}  // namespace fresnel

@@ -1,0 +1,238 @@
+// The material rules, once in C++. The GLSL twin is read_material in
+// shaders/material_inputs.glsl: keep the two in the same order and change them together.
+#include "fresnel/material/evaluate.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+
+namespace fresnel {
+
+namespace {
+constexpr MaterialMapInfo kMaps[kMaterialMapCount] = {
+    {"base_color", "HAS_BASE_COLOR_MAP", true, false},
+    {"metallic_roughness", "HAS_METALLIC_ROUGHNESS_MAP", false, false},
+    {"normal", "HAS_NORMAL_MAP", false, true},
+    {"occlusion", "HAS_OCCLUSION_MAP", false, false},
+    {"emissive", "HAS_EMISSIVE_MAP", true, false},
+    {"specular", "HAS_SPECULAR_MAP", false, false},
+    {"specular_color", "HAS_SPECULAR_COLOR_MAP", true, false},
+    {"specular_glossiness", "HAS_SPECULAR_GLOSSINESS_MAP", true, false},
+    {"clearcoat", "HAS_CLEARCOAT_MAP", false, false},
+    {"clearcoat_roughness", "HAS_CLEARCOAT_ROUGHNESS_MAP", false, false},
+    {"clearcoat_normal", "HAS_CLEARCOAT_NORMAL_MAP", false, true},
+};
+
+// Reads one map at the point, or nullopt when the map is absent or unreadable.
+class MapReader {
+public:
+    MapReader(const Material& m, const TextureSource& t, const SurfacePoint& p) : m_(m), t_(t), p_(p) {}
+    std::optional<glm::vec4> sample(MaterialMap map) const {
+        const TextureSlot* slot = material_map(m_, map);
+        if (!slot || !map_usable(*slot, map, p_.inputs)) return std::nullopt;
+        const MaterialMapInfo& info = material_map_info(map);
+        const SampledTexture* tex = t_.get(slot->texture, info.srgb);
+        if (!tex) return std::nullopt;
+        // map_uv in the shader: the slot's UV set through its KHR_texture_transform.
+        glm::vec2 uv = slot->tex_coord == 1 ? p_.uv1 : p_.uv0;
+        uv = glm::vec2(slot->transform * glm::vec3(uv, 1.0f));
+        float lod;
+        if (p_.lod) {
+            lod = *p_.lod;
+        } else {
+            // λ = log2 of the larger screen-space footprint in texels (the GL spec's ρ).
+            glm::mat2 linear(slot->transform);
+            glm::vec2 dx = linear * (slot->tex_coord == 1 ? p_.duv1_dx : p_.duv0_dx);
+            glm::vec2 dy = linear * (slot->tex_coord == 1 ? p_.duv1_dy : p_.duv0_dy);
+            glm::vec2 size(float(tex->width()), float(tex->height()));
+            float rho = std::max(glm::length(dx * size), glm::length(dy * size));
+            lod = rho > 0.0f ? std::log2(rho) : -INFINITY;
+        }
+        if (info.normal_map) lod += kNormalMapLodBias;
+        return tex->sample(uv, lod);
+    }
+
+private:
+    const Material& m_;
+    const TextureSource& t_;
+    const SurfacePoint& p_;
+};
+
+glm::vec3 perturb(glm::vec4 texel, float scale, const SurfacePoint& p) {
+    glm::vec3 tn = glm::vec3(texel) * 2.0f - 1.0f;
+    tn.x *= scale;
+    tn.y *= scale;
+    return glm::normalize(glm::mat3(p.tangent, p.bitangent, p.normal) * tn);
+}
+}  // namespace
+
+const MaterialMapInfo& material_map_info(MaterialMap map) { return kMaps[int(map)]; }
+
+const TextureSlot* material_map(const Material& m, MaterialMap map) {
+    const auto* sg = m.specular_glossiness ? &*m.specular_glossiness : nullptr;
+    const auto* sp = m.specular ? &*m.specular : nullptr;
+    const auto* cc = m.has_clearcoat() ? &*m.clearcoat : nullptr;
+    const TextureSlot* slot = nullptr;
+    switch (map) {
+        case MaterialMap::BaseColor: slot = sg ? &sg->diffuse_texture : &m.base_color; break;
+        case MaterialMap::MetallicRoughness: slot = sg ? nullptr : &m.metallic_roughness; break;
+        case MaterialMap::Normal: slot = &m.normal; break;
+        case MaterialMap::Occlusion: slot = &m.occlusion; break;
+        case MaterialMap::Emissive: slot = &m.emissive; break;
+        case MaterialMap::Specular: slot = sg || !sp ? nullptr : &sp->specular_texture; break;
+        case MaterialMap::SpecularColor: slot = sg || !sp ? nullptr : &sp->specular_color_texture; break;
+        case MaterialMap::SpecularGlossiness: slot = sg ? &sg->specular_glossiness_texture : nullptr; break;
+        case MaterialMap::Clearcoat: slot = cc ? &cc->clearcoat_texture : nullptr; break;
+        case MaterialMap::ClearcoatRoughness: slot = cc ? &cc->clearcoat_roughness_texture : nullptr; break;
+        case MaterialMap::ClearcoatNormal: slot = cc ? &cc->clearcoat_normal_texture : nullptr; break;
+    }
+    return slot && slot->valid() ? slot : nullptr;
+}
+
+bool map_usable(const TextureSlot& slot, MaterialMap map, const VertexInputs& inputs) {
+    if (!slot.valid() || !inputs.has_uv0) return false;
+    if (slot.tex_coord == 1 && !inputs.has_uv1) return false;
+    if (material_map_info(map).normal_map && !inputs.has_tangent) return false;
+    return true;
+}
+
+MetallicRoughnessPoint specular_glossiness_to_metallic_roughness(glm::vec4 diffuse, glm::vec3 specular,
+                                                                 float glossiness) {
+    MetallicRoughnessPoint p;
+    p.base_color = diffuse;
+    p.metallic = 0.0f;
+    p.roughness = 1.0f - glossiness;
+    p.f0 = specular;
+    p.specular_weight = 1.0f;
+    return p;
+}
+
+Material to_metallic_roughness(const Material& material, bool* lost_glossiness_map) {
+    if (lost_glossiness_map) *lost_glossiness_map = false;
+    if (!material.specular_glossiness) return material;
+    const SpecularGlossinessExt& sg = *material.specular_glossiness;
+    Material out = material;
+    out.specular_glossiness.reset();
+    MetallicRoughnessPoint p = specular_glossiness_to_metallic_roughness(sg.diffuse_factor, sg.specular_factor,
+                                                                         sg.glossiness_factor);
+    out.base_color_factor = p.base_color;
+    out.base_color = sg.diffuse_texture;
+    out.metallic_factor = p.metallic;
+    out.roughness_factor = p.roughness;
+    out.metallic_roughness = TextureSlot{};
+    SpecularExt spec;
+    spec.specular_factor = p.specular_weight;
+    float f0 = ior_to_f0(material.ior_value());
+    // F0 = ior_to_f0(ior) * specularColorFactor must give the specular colour; with F0 = 0
+    // (ior 1) no colour can, and the ior becomes 0 (F0 = 1), which the extension allows.
+    if (f0 > 0.0f) {
+        spec.specular_color_factor = p.f0 / f0;
+    } else {
+        out.ior = IorExt{0.0f};
+        spec.specular_color_factor = p.f0;
+    }
+    spec.specular_color_texture = sg.specular_glossiness_texture;
+    out.specular = spec;
+    if (lost_glossiness_map) *lost_glossiness_map = sg.specular_glossiness_texture.valid();
+    return out;
+}
+
+EvaluatedMaterial evaluate(const Material& material, const TextureSource& textures, const SurfacePoint& point) {
+    const Material& m = material;
+    MapReader maps(m, textures, point);
+    EvaluatedMaterial e;
+    brdf::Surface& s = e.surface;
+    e.unlit = m.unlit.has_value();
+
+    glm::vec4 base_color;
+    float metallic, roughness;
+    glm::vec3 f0;
+    float specular_weight;
+    glm::vec4 diffuse = m.specular_glossiness ? m.specular_glossiness->diffuse_factor : m.base_color_factor;
+    base_color = diffuse * point.color;
+    if (auto t = maps.sample(MaterialMap::BaseColor)) base_color *= *t;
+    if (m.specular_glossiness) {
+        const SpecularGlossinessExt& sg = *m.specular_glossiness;
+        glm::vec3 specular = sg.specular_factor;
+        float glossiness = sg.glossiness_factor;
+        if (auto t = maps.sample(MaterialMap::SpecularGlossiness)) {
+            specular *= glm::vec3(*t);
+            glossiness *= t->w;
+        }
+        MetallicRoughnessPoint p = specular_glossiness_to_metallic_roughness(base_color, specular, glossiness);
+        metallic = p.metallic;
+        roughness = p.roughness;
+        f0 = p.f0;
+        specular_weight = p.specular_weight;
+    } else {
+        metallic = m.metallic_factor;
+        roughness = m.roughness_factor;
+        if (auto t = maps.sample(MaterialMap::MetallicRoughness)) {
+            metallic *= t->z;
+            roughness *= t->y;
+        }
+        glm::vec3 specular_color = m.specular ? m.specular->specular_color_factor : glm::vec3(1.0f);
+        if (auto t = maps.sample(MaterialMap::SpecularColor)) specular_color *= glm::vec3(*t);
+        f0 = ior_to_f0(m.ior_value()) * specular_color;
+        specular_weight = m.specular ? m.specular->specular_factor : 1.0f;
+        if (auto t = maps.sample(MaterialMap::Specular)) specular_weight *= t->w;
+    }
+    f0 = glm::min(f0, glm::vec3(1.0f));
+    s.base_color = glm::vec3(base_color);
+    s.metallic = std::clamp(metallic, 0.0f, 1.0f);
+    s.perceptual_roughness = std::clamp(roughness, 0.0f, 1.0f);
+    // brdf::Surface states F0 as specular_f0 * specular_color: the colour carries it all.
+    s.specular_f0 = 1.0f;
+    s.specular_color = f0;
+    s.specular_weight = specular_weight;
+
+    e.clearcoat_f0 = ior_to_f0(m.ior_value());
+    if (m.has_clearcoat()) {
+        const ClearcoatExt& cc = *m.clearcoat;
+        e.clearcoat = cc.clearcoat_factor;
+        e.clearcoat_roughness = cc.clearcoat_roughness_factor;
+        if (auto t = maps.sample(MaterialMap::Clearcoat)) e.clearcoat *= t->x;
+        if (auto t = maps.sample(MaterialMap::ClearcoatRoughness)) e.clearcoat_roughness *= t->y;
+        e.clearcoat = std::clamp(e.clearcoat, 0.0f, 1.0f);
+        e.clearcoat_roughness = std::clamp(e.clearcoat_roughness, 0.0f, 1.0f);
+    }
+    if (auto t = maps.sample(MaterialMap::Occlusion)) e.occlusion = 1.0f + m.occlusion_strength * (t->x - 1.0f);
+    e.emissive = m.emissive_factor * m.emissive_strength_value();
+    if (auto t = maps.sample(MaterialMap::Emissive)) e.emissive *= glm::vec3(*t);
+
+    e.alpha = base_color.w;
+    if (m.alpha_mode == AlphaMode::Mask) {
+        e.discard = base_color.w < m.alpha_cutoff;
+        e.alpha = 1.0f;
+    } else if (m.alpha_mode == AlphaMode::Opaque) {
+        e.alpha = 1.0f;
+    }
+    e.normal = point.normal;
+    if (auto t = maps.sample(MaterialMap::Normal)) e.normal = perturb(*t, m.normal_scale, point);
+    e.clearcoat_normal = point.normal;
+    if (auto t = maps.sample(MaterialMap::ClearcoatNormal))
+        e.clearcoat_normal = perturb(*t, m.clearcoat->clearcoat_normal_scale, point);
+    return e;
+}
+
+glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 radiance,
+                      glm::vec3 comp_dielectric, glm::vec3 comp_metal) {
+    float n_dot_l = std::clamp(glm::dot(m.normal, l), 0.0f, 1.0f);
+    glm::vec3 lit(0.0f);
+    if (n_dot_l > 0.0f) {
+        brdf::Terms t = brdf::evaluate_terms(m.surface, m.normal, v, l);
+        glm::vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;
+        lit = radiance * n_dot_l * (t.diffuse + specular);
+    }
+    if (m.clearcoat > 0.0f) {
+        float cc_mix = brdf::clearcoat_mix(m.clearcoat, m.clearcoat_f0, m.clearcoat_normal, v);
+        glm::vec3 coat = radiance * brdf::clearcoat_specular(m.clearcoat_normal, v, l,
+                                                             brdf::alpha_from_roughness(m.clearcoat_roughness));
+        lit = glm::mix(lit, coat, cc_mix);
+    }
+    return lit;
+}
+
+}  // namespace fresnel

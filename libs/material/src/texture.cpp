@@ -1,0 +1,143 @@
+#include "fresnel/material/texture.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "fresnel/core/color.h"
+#include "fresnel/core/error.h"
+
+namespace fresnel {
+
+TextureSampler TextureSampler::from_gl(int mag_filter, int min_filter, int wrap_s, int wrap_t) {
+    TextureSampler s;
+    s.mag_filter = mag_filter == 9728 ? TextureFilter::Nearest : TextureFilter::Linear;
+    switch (min_filter) {
+        case 9728: s.min_filter = TextureFilter::Nearest; s.mip_filter = MipFilter::None; break;
+        case 9729: s.min_filter = TextureFilter::Linear; s.mip_filter = MipFilter::None; break;
+        case 9984: s.min_filter = TextureFilter::Nearest; s.mip_filter = MipFilter::Nearest; break;
+        case 9985: s.min_filter = TextureFilter::Linear; s.mip_filter = MipFilter::Nearest; break;
+        case 9986: s.min_filter = TextureFilter::Nearest; s.mip_filter = MipFilter::Linear; break;
+        default: s.min_filter = TextureFilter::Linear; s.mip_filter = MipFilter::Linear; break;
+    }
+    auto wrap = [](int w) {
+        return w == 33071 ? TextureWrap::ClampToEdge : w == 33648 ? TextureWrap::MirroredRepeat : TextureWrap::Repeat;
+    };
+    s.wrap_s = wrap(wrap_s);
+    s.wrap_t = wrap(wrap_t);
+    return s;
+}
+
+namespace {
+Image8 to_rgba(const Image8& in) {
+    if (in.channels == 4) return in;
+    Image8 out(in.width, in.height, 4);
+    for (int y = 0; y < in.height; ++y)
+        for (int x = 0; x < in.width; ++x) {
+            const std::uint8_t* s = in.at(x, y);
+            std::uint8_t* d = out.at(x, y);
+            switch (in.channels) {
+                case 1: d[0] = d[1] = d[2] = s[0]; d[3] = 255; break;
+                case 2: d[0] = d[1] = d[2] = s[0]; d[3] = s[1]; break;
+                default: d[0] = s[0]; d[1] = s[1]; d[2] = s[2]; d[3] = 255; break;
+            }
+        }
+    return out;
+}
+
+std::uint8_t to_byte(float v) { return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
+
+// The GL spec's wrap of an integer texel index (ES 3.0 table 3.20).
+int wrap_index(int i, int size, TextureWrap w) {
+    switch (w) {
+        case TextureWrap::ClampToEdge: return std::clamp(i, 0, size - 1);
+        case TextureWrap::Repeat: {
+            int m = i % size;
+            return m < 0 ? m + size : m;
+        }
+        case TextureWrap::MirroredRepeat: {
+            int period = 2 * size;
+            int m = i % period;
+            if (m < 0) m += period;
+            int a = m - size;
+            int mirror = a >= 0 ? a : -(1 + a);
+            return (size - 1) - mirror;
+        }
+    }
+    return 0;
+}
+}  // namespace
+
+SampledTexture::SampledTexture(const Image8& image, const TextureSampler& sampler, bool srgb, const TexelDecode* decode)
+    : sampler_(sampler), srgb_(srgb) {
+    if (image.width <= 0 || image.height <= 0) throw Error("texture", "", "empty image");
+    for (int i = 0; i < 256; ++i) {
+        float unorm = float(i) / 255.0f;
+        decode_[i] = decode ? decode->rgb[i] : srgb ? srgb_to_linear(unorm) : unorm;
+        alpha_[i] = decode ? decode->alpha[i] : unorm;
+    }
+    levels_.push_back(to_rgba(image));
+    if (sampler.mip_filter == MipFilter::None) return;
+    // glGenerateMipmap: each level halves (at least 1), 2x2 box average of the level above.
+    while (levels_.back().width > 1 || levels_.back().height > 1) {
+        const Image8& src = levels_.back();
+        Image8 dst(std::max(1, src.width / 2), std::max(1, src.height / 2), 4);
+        for (int y = 0; y < dst.height; ++y)
+            for (int x = 0; x < dst.width; ++x) {
+                int x0 = std::min(2 * x, src.width - 1), x1 = std::min(2 * x + 1, src.width - 1);
+                int y0 = std::min(2 * y, src.height - 1), y1 = std::min(2 * y + 1, src.height - 1);
+                const std::uint8_t* p[4] = {src.at(x0, y0), src.at(x1, y0), src.at(x0, y1), src.at(x1, y1)};
+                for (int c = 0; c < 4; ++c) {
+                    float sum = 0.0f;
+                    // The box filter of the driver's blit: exact decode, average, encode.
+                    for (auto* q : p) sum += c < 3 && srgb ? srgb_to_linear(float(q[c]) / 255.0f) : float(q[c]) / 255.0f;
+                    float avg = sum * 0.25f;
+                    dst.at(x, y)[c] = to_byte(c < 3 && srgb ? linear_to_srgb(avg) : avg);
+                }
+            }
+        levels_.push_back(std::move(dst));
+    }
+}
+
+glm::vec4 SampledTexture::texel(int level, int x, int y) const {
+    const Image8& img = levels_[std::size_t(level)];
+    x = wrap_index(x, img.width, sampler_.wrap_s);
+    y = wrap_index(y, img.height, sampler_.wrap_t);
+    const std::uint8_t* p = img.at(x, y);
+    return glm::vec4(decode_[p[0]], decode_[p[1]], decode_[p[2]], alpha_[p[3]]);
+}
+
+glm::vec4 SampledTexture::filter(int level, glm::vec2 uv, TextureFilter f) const {
+    const Image8& img = levels_[std::size_t(level)];
+    // Row 0 of the image is v = 0 (glTF and the renderer's upload agree: top row first).
+    float u = uv.x * float(img.width), v = uv.y * float(img.height);
+    if (f == TextureFilter::Nearest) return texel(level, int(std::floor(u)), int(std::floor(v)));
+    float fu = u - 0.5f, fv = v - 0.5f;
+    int i0 = int(std::floor(fu)), j0 = int(std::floor(fv));
+    float a = fu - std::floor(fu), b = fv - std::floor(fv);
+    glm::vec4 t00 = texel(level, i0, j0), t10 = texel(level, i0 + 1, j0);
+    glm::vec4 t01 = texel(level, i0, j0 + 1), t11 = texel(level, i0 + 1, j0 + 1);
+    return (1 - a) * (1 - b) * t00 + a * (1 - b) * t10 + (1 - a) * b * t01 + a * b * t11;
+}
+
+glm::vec4 SampledTexture::sample(glm::vec2 uv, float lod) const {
+    if (!(lod > 0.0f)) return filter(0, uv, sampler_.mag_filter);  // magnification (also NaN / -inf)
+    int q = level_count() - 1;
+    switch (sampler_.mip_filter) {
+        case MipFilter::None: return filter(0, uv, sampler_.min_filter);
+        case MipFilter::Nearest: {
+            int d = lod <= 0.5f ? 0 : int(std::ceil(lod + 0.5f)) - 1;
+            return filter(std::min(d, q), uv, sampler_.min_filter);
+        }
+        case MipFilter::Linear: {
+            if (lod >= float(q)) return filter(q, uv, sampler_.min_filter);
+            int d1 = int(std::floor(lod));
+            float frac = lod - float(d1);
+            glm::vec4 t1 = filter(d1, uv, sampler_.min_filter);
+            if (frac == 0.0f) return t1;
+            return (1.0f - frac) * t1 + frac * filter(d1 + 1, uv, sampler_.min_filter);
+        }
+    }
+    return glm::vec4(1.0f);
+}
+
+}  // namespace fresnel

@@ -1,0 +1,50 @@
+#pragma once
+// Material -> shader uniforms, in one place. The values are the material's raw factors;
+// the shader (read_material in shaders/material_inputs.glsl) applies the rules, exactly
+// as fresnel::evaluate does on the CPU, so nothing here computes F0 or weights.
+#include <array>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "fresnel/material/evaluate.h"
+#include "fresnel/material/material.h"
+
+namespace fresnel {
+namespace gpu {
+class Program;
+}
+
+// The values one material uploads (uniform names in material_inputs.glsl: u_<field>).
+struct MaterialUniforms {
+    glm::vec4 base_color_factor{1.0f};  // baseColorFactor, or diffuseFactor with specular-glossiness
+    float metallic_factor = 1.0f;
+    float roughness_factor = 1.0f;
+    float normal_scale = 1.0f;
+    float occlusion_strength = 1.0f;
+    glm::vec3 emissive_factor{0.0f};
+    float emissive_strength = 1.0f;
+    float alpha_cutoff = 0.5f;
+    float ior = 1.5f;
+    float specular_factor = 1.0f;
+    glm::vec3 specular_color_factor{1.0f};
+    glm::vec3 sg_specular_factor{1.0f};  // specular-glossiness only
+    float glossiness_factor = 1.0f;      // specular-glossiness only
+    float clearcoat_factor = 0.0f;       // with MATERIAL_CLEARCOAT only
+    float clearcoat_roughness_factor = 0.0f;
+    float clearcoat_normal_scale = 1.0f;
+    // The slot each map reads (material_map), nullptr for none; index = MaterialMap.
+    std::array<const TextureSlot*, kMaterialMapCount> maps{};
+    // Feature defines of the shader variant (UNLIT, SPECULAR_GLOSSINESS, MATERIAL_CLEARCOAT, ALPHA_MASK, ALPHA_BLEND).
+    std::vector<std::string> defines;
+};
+
+MaterialUniforms material_uniforms(const Material& m);
+
+// Sets the values on `program` (in use); bound[i]: map i is bound to texture unit i.
+void set_material_uniforms(const gpu::Program& program, const MaterialUniforms& u,
+                           const std::array<bool, kMaterialMapCount>& bound);
+
+}  // namespace fresnel

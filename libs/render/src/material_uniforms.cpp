@@ -1,0 +1,68 @@
+#include "fresnel/render/material_uniforms.h"
+
+#include "fresnel/gpu/resources.h"
+
+namespace fresnel {
+
+MaterialUniforms material_uniforms(const Material& m) {
+    MaterialUniforms u;
+    u.base_color_factor = m.specular_glossiness ? m.specular_glossiness->diffuse_factor : m.base_color_factor;
+    u.metallic_factor = m.metallic_factor;
+    u.roughness_factor = m.roughness_factor;
+    u.normal_scale = m.normal_scale;
+    u.occlusion_strength = m.occlusion_strength;
+    u.emissive_factor = m.emissive_factor;
+    u.emissive_strength = m.emissive_strength_value();
+    u.alpha_cutoff = m.alpha_cutoff;
+    u.ior = m.ior_value();
+    if (m.specular) {
+        u.specular_factor = m.specular->specular_factor;
+        u.specular_color_factor = m.specular->specular_color_factor;
+    }
+    if (m.specular_glossiness) {
+        u.sg_specular_factor = m.specular_glossiness->specular_factor;
+        u.glossiness_factor = m.specular_glossiness->glossiness_factor;
+    }
+    if (m.has_clearcoat()) {
+        u.clearcoat_factor = m.clearcoat->clearcoat_factor;
+        u.clearcoat_roughness_factor = m.clearcoat->clearcoat_roughness_factor;
+        u.clearcoat_normal_scale = m.clearcoat->clearcoat_normal_scale;
+    }
+    for (int i = 0; i < kMaterialMapCount; ++i) u.maps[std::size_t(i)] = material_map(m, MaterialMap(i));
+    if (m.unlit) u.defines.push_back("UNLIT");
+    if (m.specular_glossiness) u.defines.push_back("SPECULAR_GLOSSINESS");
+    if (m.has_clearcoat()) u.defines.push_back("MATERIAL_CLEARCOAT");
+    if (m.alpha_mode == AlphaMode::Mask) u.defines.push_back("ALPHA_MASK");
+    if (m.alpha_mode == AlphaMode::Blend) u.defines.push_back("ALPHA_BLEND");
+    return u;
+}
+
+void set_material_uniforms(const gpu::Program& prog, const MaterialUniforms& u,
+                           const std::array<bool, kMaterialMapCount>& bound) {
+    prog.set("u_base_color_factor", u.base_color_factor);
+    prog.set("u_metallic_factor", u.metallic_factor);
+    prog.set("u_roughness_factor", u.roughness_factor);
+    prog.set("u_normal_scale", u.normal_scale);
+    prog.set("u_occlusion_strength", u.occlusion_strength);
+    prog.set("u_emissive_factor", u.emissive_factor);
+    prog.set("u_emissive_strength", u.emissive_strength);
+    prog.set("u_alpha_cutoff", u.alpha_cutoff);
+    prog.set("u_ior", u.ior);
+    prog.set("u_specular_factor", u.specular_factor);
+    prog.set("u_specular_color_factor", u.specular_color_factor);
+    prog.set("u_sg_specular_factor", u.sg_specular_factor);
+    prog.set("u_glossiness_factor", u.glossiness_factor);
+    prog.set("u_clearcoat_factor", u.clearcoat_factor);
+    prog.set("u_clearcoat_roughness_factor", u.clearcoat_roughness_factor);
+    prog.set("u_clearcoat_normal_scale", u.clearcoat_normal_scale);
+    for (int i = 0; i < kMaterialMapCount; ++i) {
+        if (!bound[std::size_t(i)] || !u.maps[std::size_t(i)]) continue;
+        const TextureSlot& slot = *u.maps[std::size_t(i)];
+        std::string base = std::string("u_") + material_map_info(MaterialMap(i)).name;
+        prog.set(base + "_map", i);
+        prog.set(base + "_uv", slot.tex_coord);
+        prog.set(base + "_transform", slot.transform);
+    }
+}
+
+}  // namespace fresnel

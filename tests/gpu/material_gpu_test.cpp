@@ -1,0 +1,582 @@
+// GPU (llvmpipe) checks of read_material and shade_light (shaders/material_inputs.glsl)
+// against their C++ twins fresnel::evaluate and fresnel::shade_light (libs/material).
+//
+// Seeded random materials cover every input: factors (F0 clamping included), every map
+// slot with small random textures on both UV sets, KHR_texture_transform, all wrap modes
+// and filters, sRGB and linear slots, specular-glossiness and metallic-roughness,
+// KHR_materials_ior / _specular / _clearcoat / _emissive_strength, alpha modes, vertex
+// colour, missing UV sets and tangents. Uniforms are packed by the renderer's own
+// material_uniforms / set_material_uniforms, so the packing is under test too.
+// shaders/material_probe.frag evaluates one surface point per pixel.
+//
+// Two regimes:
+//  - exact sampling: every map is read at a texel centre of level 0 (uv at texel centres,
+//    transforms that map centres to centres: offsets k/N, quarter-turn rotations, odd
+//    integer scales; explicit LOD 0 with NEAREST magnification, see Gen::make). The GPU
+//    must agree to 1e-4 relative (a 1e-6 floor; unit vectors per component to 1e-4
+//    absolute); measured 3.5e-7. Texels are decoded with the driver's measured response
+//    (MaterialProbe::decode: llvmpipe's sRGB decode is a polynomial, 1.2e-3 off the
+//    curve). shade_light is held to kShadeRelTol, as gpu_brdf_test holds the BRDF.
+//  - filtered sampling: uv anywhere, explicit LOD in [-1, 4] with fractions, mip-mapped
+//    samplers. llvmpipe quantises filter weights (bilinear and between levels) to 1/256
+//    steps, so texture-derived values agree to a few 8-bit steps: kFilteredAbsTol (0.025)
+//    per texel value, scaled by what multiplies it (strengths, F0 tints, normal scales);
+//    measured 0.0158. Normals are skipped where the filtered tangent-space vector is
+//    shorter than 0.5 (normalising a near-zero vector amplifies any difference).
+// Points whose alpha lies within 1e-4 (filtered: kFilteredAbsTol) of the MASK cutoff are
+// skipped: a rounding there may legitimately flip the discard.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "fresnel/core/color.h"
+#include "fresnel/gpu/context.h"
+#include "fresnel/gpu/device.h"
+#include "fresnel/gpu/resources.h"
+#include "fresnel/material/evaluate.h"
+#include "fresnel/render/material_uniforms.h"
+#include "fresnel/render/shader_library.h"
+
+namespace {
+using namespace fresnel;
+
+constexpr int kSide = 8;                 // points per case: kSide x kSide pixels
+constexpr int kTexels = 9;               // input texels per point (material_probe.frag)
+constexpr int kOutputs = 7;              // u_output values
+constexpr float kRelTol = 1e-4f;         // exact sampling: relative ...
+constexpr float kAbsFloor = 1e-6f;       // ... or absolute near zero
+// shade_light: relative, as gpu_brdf_test (the GGX peak of glossy lobes turns float
+// rounding of n.h, 1e-7, into 1e-4..1e-3 of D; measured 1.9e-4 with this seed, 7.6e-4 with another) ...
+constexpr float kShadeRelTol = 1e-3f;
+constexpr float kShadeAbsFloor = 1e-5f;  // ... or absolute (radiance of order 1..1e3)
+constexpr float kFilteredAbsTol = 2.5e-2f;  // filtered sampling: absolute, per texel value (measured 0.0158)
+
+struct TextureDesc {
+    Image8 image;
+    int mag, min, wrap_s, wrap_t;  // GL enums
+};
+
+// How the driver turns texel bytes into values: [linear filter][sRGB] (see MaterialProbe::decode).
+using DriverDecode = std::array<std::array<TexelDecode, 2>, 2>;
+
+class CpuTextures final : public TextureSource {
+public:
+    CpuTextures(const std::vector<TextureDesc>& t, const DriverDecode* decode) : t_(t), decode_(decode) {}
+    const SampledTexture* get(int texture, bool srgb) const override {
+        if (texture < 0 || texture >= int(t_.size())) return nullptr;
+        auto key = std::make_pair(texture, srgb);
+        auto it = cache_.find(key);
+        if (it == cache_.end()) {
+            const TextureDesc& d = t_[std::size_t(texture)];
+            auto s = TextureSampler::from_gl(d.mag, d.min, d.wrap_s, d.wrap_t);
+            const TexelDecode* dec = decode_ ? &(*decode_)[d.mag == 9729 ? 1 : 0][srgb ? 1 : 0] : nullptr;
+            it = cache_.emplace(key, std::make_unique<SampledTexture>(d.image, s, srgb, dec)).first;
+        }
+        return it->second.get();
+    }
+
+private:
+    const std::vector<TextureDesc>& t_;
+    const DriverDecode* decode_;
+    mutable std::map<std::pair<int, bool>, std::unique_ptr<SampledTexture>> cache_;
+};
+
+struct Point {
+    SurfacePoint p;
+    glm::vec3 v, l, comp_d, comp_m;
+};
+
+struct Case {
+    Material material;
+    std::vector<TextureDesc> textures;
+    VertexInputs inputs;
+    float lod = 0.0f;
+    std::vector<Point> points;  // kSide * kSide
+};
+
+class Gen {
+public:
+    explicit Gen(unsigned seed) : rng_(seed) {}
+    float u() { return u01_(rng_); }
+    float range(float a, float b) { return a + (b - a) * u(); }
+    int pick(int n) { return int(u() * float(n)) % n; }
+    bool chance(float p) { return u() < p; }
+    glm::vec3 unit() {
+        for (;;) {
+            glm::vec3 d(range(-1, 1), range(-1, 1), range(-1, 1));
+            float l = glm::length(d);
+            if (l > 0.1f && l <= 1.0f) return d / l;
+        }
+    }
+    // A unit vector in the hemisphere around n (some slightly below, to test clamping).
+    glm::vec3 around(glm::vec3 n) {
+        glm::vec3 d = unit();
+        if (glm::dot(d, n) < -0.1f) d = -d;
+        return d;
+    }
+
+    Case make(bool exact) {
+        Case c;
+        int n = 1 << (1 + pick(3));  // 2, 4, 8 texels per side (power of two: mip chains agree)
+        const int filters[] = {9728, 9729}, mins[] = {9728, 9729, 9984, 9985, 9986, 9987};
+        const int wraps[] = {10497, 33071, 33648};
+        int count = 1 + pick(3);
+        for (int t = 0; t < count; ++t) {
+            TextureDesc d;
+            d.image = Image8(n, n, 4);
+            for (auto& b : d.image.pixels) b = std::uint8_t(pick(256));
+            // Exact regime: NEAREST magnification. At a texel centre LINEAR is the same in
+            // exact arithmetic, but llvmpipe quantises filter weights to 1/256, so a centre
+            // that float rounding of the transform puts 1e-6 below the texel's start mixes
+            // in 1/256 of the neighbour (measured: up to 1e-4 relative). The filtered
+            // regime covers LINEAR.
+            d.mag = exact ? 9728 : filters[pick(2)];
+            d.min = exact ? mins[pick(6)] : mins[2 + pick(4)];
+            d.wrap_s = wraps[pick(3)];
+            d.wrap_t = wraps[pick(3)];
+            c.textures.push_back(std::move(d));
+        }
+        auto slot = [&](float p = 0.6f) {
+            TextureSlot s;
+            if (!chance(p)) return s;
+            s.texture = pick(count);
+            s.tex_coord = pick(2);
+            if (chance(0.5f)) {
+                TextureTransform tt;
+                if (exact) {
+                    tt.offset = glm::vec2(float(pick(2 * n + 1) - n), float(pick(2 * n + 1) - n)) / float(n);
+                    tt.rotation = float(pick(4)) * 1.57079632679f;
+                    const float scales[] = {1, -1, 3, -3};
+                    tt.scale = glm::vec2(scales[pick(4)], scales[pick(4)]);
+                } else {
+                    tt.offset = glm::vec2(range(-1, 1), range(-1, 1));
+                    tt.rotation = range(-3.2f, 3.2f);
+                    tt.scale = glm::vec2(range(-2, 2), range(-2, 2));
+                }
+                s.set_transform(tt);
+            }
+            return s;
+        };
+        Material& m = c.material;
+        m.base_color_factor = glm::vec4(u(), u(), u(), u());
+        m.base_color = slot();
+        m.metallic_factor = chance(0.2f) ? float(pick(2)) : u();
+        m.roughness_factor = chance(0.2f) ? float(pick(2)) : u();
+        m.metallic_roughness = slot();
+        m.normal = slot();
+        m.normal_scale = range(-2, 2);
+        m.occlusion = slot();
+        m.occlusion_strength = u();
+        m.emissive = slot();
+        m.emissive_factor = glm::vec3(u(), u(), u());
+        if (chance(0.4f)) m.emissive_strength = EmissiveStrengthExt{range(0, 20)};
+        m.alpha_mode = AlphaMode(pick(3));
+        m.alpha_cutoff = u();
+        if (chance(0.5f)) m.ior = IorExt{chance(0.1f) ? 0.0f : range(1, 3)};
+        if (chance(0.5f)) {
+            SpecularExt s;
+            s.specular_factor = range(0, 2);
+            s.specular_texture = slot();
+            s.specular_color_factor = glm::vec3(range(0, 30), range(0, 30), range(0, 3));
+            s.specular_color_texture = slot();
+            m.specular = s;
+        }
+        if (chance(0.5f)) {
+            ClearcoatExt cc;
+            cc.clearcoat_factor = chance(0.2f) ? 0.0f : u();
+            cc.clearcoat_texture = slot();
+            cc.clearcoat_roughness_factor = u();
+            cc.clearcoat_roughness_texture = slot();
+            cc.clearcoat_normal_texture = slot();
+            cc.clearcoat_normal_scale = range(-2, 2);
+            m.clearcoat = cc;
+        }
+        if (chance(0.3f)) {
+            SpecularGlossinessExt sg;
+            sg.diffuse_factor = glm::vec4(u(), u(), u(), u());
+            sg.diffuse_texture = slot();
+            sg.specular_factor = glm::vec3(u(), u(), u());
+            sg.glossiness_factor = u();
+            sg.specular_glossiness_texture = slot();
+            m.specular_glossiness = sg;
+        }
+        c.inputs.has_uv1 = chance(0.8f);
+        c.inputs.has_tangent = chance(0.85f);
+        c.lod = exact ? 0.0f : (chance(0.2f) ? float(pick(5)) - 1.0f : range(-1, 4));
+        for (int i = 0; i < kSide * kSide; ++i) {
+            Point pt;
+            SurfacePoint& p = pt.p;
+            auto uv = [&]() {
+                if (!exact) return glm::vec2(range(-1.5f, 2.5f), range(-1.5f, 2.5f));
+                return glm::vec2(float(pick(3 * n) - n) + 0.5f, float(pick(3 * n) - n) + 0.5f) / float(n);
+            };
+            p.uv0 = uv();
+            p.uv1 = c.inputs.has_uv1 ? uv() : p.uv0;  // pbr.vert: uv1 = uv0 without TEXCOORD_1
+            p.color = chance(0.3f) ? glm::vec4(1.0f) : glm::vec4(u(), u(), u(), u());
+            p.tangent = unit();
+            p.bitangent = unit();
+            p.normal = unit();
+            p.inputs = c.inputs;
+            p.lod = c.lod;
+            pt.v = around(p.normal);
+            pt.l = around(p.normal);
+            pt.comp_d = glm::vec3(range(1, 1.5f), range(1, 1.5f), range(1, 1.5f));
+            pt.comp_m = glm::vec3(range(1, 1.5f), range(1, 1.5f), range(1, 1.5f));
+            c.points.push_back(pt);
+        }
+        return c;
+    }
+
+private:
+    std::mt19937 rng_;
+    std::uniform_real_distribution<float> u01_{0.0f, 1.0f};
+};
+
+// The C++ side of the probe's outputs, in u_output order.
+std::array<glm::vec4, kOutputs> cpu_outputs(const Case& c, const TextureSource& tex, const Point& pt) {
+    EvaluatedMaterial e = evaluate(c.material, tex, pt.p);
+    const brdf::Surface& s = e.surface;
+    std::array<glm::vec4, kOutputs> o;
+    o[0] = glm::vec4(s.base_color, e.alpha);
+    o[1] = glm::vec4(s.metallic, s.perceptual_roughness, e.occlusion, e.discard ? 1.0f : 0.0f);
+    o[2] = glm::vec4(e.emissive, s.specular_weight);
+    o[3] = glm::vec4(s.dielectric_f0(), e.clearcoat);
+    o[4] = glm::vec4(e.normal, e.clearcoat_roughness);
+    o[5] = glm::vec4(e.clearcoat_normal, e.clearcoat_f0);
+    o[6] = glm::vec4(shade_light(e, pt.v, pt.l, glm::vec3(1.0f, 0.8f, 0.6f), pt.comp_d, pt.comp_m), 1.0f);
+    return o;
+}
+
+// The length of the scaled tangent-space vector a normal map gives at the point (1
+// without a map). Filtering random texels can make it nearly 0, where normalising it
+// amplifies any difference without bound; the filtered regime skips such normals.
+float tangent_length(const Case& c, const TextureSource& tex, const Point& pt, MaterialMap map, float scale) {
+    const TextureSlot* slot = material_map(c.material, map);
+    if (!slot || !map_usable(*slot, map, c.inputs)) return 1.0f;
+    const SampledTexture* t = tex.get(slot->texture, false);
+    glm::vec2 uv = slot->tex_coord == 1 ? pt.p.uv1 : pt.p.uv0;
+    uv = glm::vec2(slot->transform * glm::vec3(uv, 1.0f));
+    glm::vec3 tn = glm::vec3(t->sample(uv, c.lod + kNormalMapLodBias)) * 2.0f - 1.0f;
+    return glm::length(tn * glm::vec3(scale, scale, 1.0f));
+}
+
+const char* kOutputNames[kOutputs][4] = {
+    {"base.r", "base.g", "base.b", "alpha"},
+    {"metallic", "roughness", "occlusion", "discard"},
+    {"emissive.r", "emissive.g", "emissive.b", "specular_weight"},
+    {"f0.r", "f0.g", "f0.b", "clearcoat"},
+    {"normal.x", "normal.y", "normal.z", "clearcoat_roughness"},
+    {"cc_normal.x", "cc_normal.y", "cc_normal.z", "clearcoat_f0"},
+    {"shade.r", "shade.g", "shade.b", "one"},
+};
+
+class MaterialProbe : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        try {
+            context_ = gpu::create_headless_context();
+        } catch (const std::exception& e) {
+            context_error_ = e.what();
+        }
+    }
+    static void TearDownTestSuite() {
+        library_.reset();
+        context_.reset();
+    }
+    void SetUp() override {
+        ASSERT_TRUE(context_) << "no headless OpenGL context (EGL/llvmpipe): " << context_error_;
+        context_->make_current();
+        if (!library_) library_ = std::make_unique<ShaderLibrary>();
+    }
+
+    // Runs the probe over one case: per output, one RGBA per point.
+    std::array<std::vector<glm::vec4>, kOutputs> probe(const Case& c, bool count_coverage = true) {
+        std::vector<float> texels(std::size_t(kSide * kTexels * kSide * 4), 0.0f);
+        for (int i = 0; i < kSide * kSide; ++i) {
+            const Point& pt = c.points[std::size_t(i)];
+            const glm::vec4 in[kTexels] = {glm::vec4(pt.p.uv0, pt.p.uv1), pt.p.color,
+                                           glm::vec4(pt.p.tangent, 0), glm::vec4(pt.p.bitangent, 0),
+                                           glm::vec4(pt.p.normal, 0), glm::vec4(pt.v, 0), glm::vec4(pt.l, 0),
+                                           glm::vec4(pt.comp_d, 0), glm::vec4(pt.comp_m, 0)};
+            int x = i % kSide, y = i / kSide;
+            for (int k = 0; k < kTexels; ++k)
+                for (int ch = 0; ch < 4; ++ch)
+                    texels[(std::size_t(y) * kSide * kTexels + std::size_t(x * kTexels + k)) * 4 + std::size_t(ch)] =
+                        in[k][ch];
+        }
+        gpu::Device device;
+        gpu::Texture points = gpu::Texture::create_2d(kSide * kTexels, kSide, gpu::TextureFormat::RGBA32F,
+                                                      texels.data(), false);
+        points.set_sampler(gpu::SamplerState::clamped(Filter::Nearest));
+        gpu::Texture target = gpu::Texture::create_2d(kSide, kSide, gpu::TextureFormat::RGBA32F, nullptr, false);
+        gpu::Framebuffer fb;
+        fb.attach_color(target);
+        fb.check();
+
+        // Textures and defines as the renderer makes them (draw_primitive / texture_for).
+        MaterialUniforms mu = material_uniforms(c.material);
+        std::vector<std::string> defines = mu.defines;
+        defines.push_back("MATERIAL_EXPLICIT_LOD");
+        std::vector<gpu::Texture> maps;
+        std::array<bool, kMaterialMapCount> bound{};
+        std::vector<std::pair<int, int>> units;  // (unit, index into maps)
+        for (int i = 0; i < kMaterialMapCount; ++i) {
+            const TextureSlot* slot = mu.maps[std::size_t(i)];
+            if (!slot || !map_usable(*slot, MaterialMap(i), c.inputs)) continue;
+            const MaterialMapInfo& info = material_map_info(MaterialMap(i));
+            const TextureDesc& d = c.textures[std::size_t(slot->texture)];
+            bool mip = d.min >= 0x2700 && d.min <= 0x2703;
+            maps.push_back(gpu::Texture::create_2d(d.image.width, d.image.height,
+                                                   info.srgb ? gpu::TextureFormat::SRGB8_ALPHA8 : gpu::TextureFormat::RGBA8,
+                                                   d.image.pixels.data(), mip));
+            const TextureSampler ts = TextureSampler::from_gl(d.mag, d.min, d.wrap_s, d.wrap_t);
+            gpu::SamplerState ss;
+            ss.min_filter = ts.min_filter;
+            ss.mipmap = ts.mip_filter;
+            ss.mag_filter = ts.mag_filter;
+            ss.wrap_s = ts.wrap_s;
+            ss.wrap_t = ts.wrap_t;
+            maps.back().set_sampler(ss);
+            units.emplace_back(i, int(maps.size()) - 1);
+            bound[std::size_t(i)] = true;
+            if (count_coverage) ++maps_bound_[std::size_t(i)];
+            defines.push_back(info.define);
+        }
+        const gpu::Program& prog = library_->get("fullscreen.vert", "material_probe.frag", defines);
+        device.bind_framebuffer(&fb);
+        device.viewport(0, 0, kSide, kSide);
+        gpu::PipelineState state;
+        state.depth_test = false;
+        state.depth_write = false;
+        state.cull = gpu::Cull::None;
+        device.apply(state);
+        prog.use();
+        const int points_unit = 15;
+        device.bind_texture(points_unit, points);
+        prog.set("u_points", points_unit);
+        for (auto [unit, index] : units) device.bind_texture(unit, maps[std::size_t(index)]);
+        set_material_uniforms(prog, mu, bound);
+        prog.set("u_material_lod", c.lod);
+        std::array<std::vector<glm::vec4>, kOutputs> out;
+        for (int o = 0; o < kOutputs; ++o) {
+            device.bind_framebuffer(&fb);  // read_rgba32f leaves the default framebuffer bound
+            device.clear(glm::vec4(-7.0f), false);
+            prog.set("u_output", o);
+            device.draw_fullscreen();
+            std::vector<float> px = device.read_rgba32f(fb, kSide, kSide);
+            for (int i = 0; i < kSide * kSide; ++i)
+                out[std::size_t(o)].push_back(glm::vec4(px[std::size_t(i) * 4], px[std::size_t(i) * 4 + 1],
+                                                        px[std::size_t(i) * 4 + 2], px[std::size_t(i) * 4 + 3]));
+        }
+        device.bind_framebuffer(nullptr);
+        EXPECT_EQ(device.take_errors(), "");
+        return out;
+    }
+
+    // The driver's response to each texel byte, read through the probe at texel centres
+    // (explicit LOD 0: the magnification filter), per magnification filter and colour
+    // space: sRGB colour from the base colour map, its alpha with BLEND, linear data from
+    // the occlusion map at strength 1. llvmpipe decodes sRGB with a polynomial
+    // (lp_build_srgb_to_linear), up to 1.2e-3 off the exact curve; byte / 255 it gets
+    // right. The comparisons read textures through this response, so that they test the
+    // rules; DriverTexelResponseIsCloseToExact checks the response itself.
+    const DriverDecode& decode() {
+        if (decode_) return *decode_;
+        decode_ = std::make_unique<DriverDecode>();
+        for (int linear = 0; linear < 2; ++linear) {
+            Case c;
+            TextureDesc d;
+            d.image = Image8(16, 16, 4);
+            for (int i = 0; i < 256; ++i) {
+                std::uint8_t* px = d.image.at(i % 16, i / 16);
+                px[0] = px[1] = px[2] = px[3] = std::uint8_t(i);
+            }
+            d.mag = linear ? 9729 : 9728;
+            d.min = 9728;
+            d.wrap_s = d.wrap_t = 33071;
+            c.textures.push_back(d);
+            c.material.base_color.texture = 0;
+            c.material.occlusion.texture = 0;
+            c.material.alpha_mode = AlphaMode::Blend;
+            for (int batch = 0; batch < 4; ++batch) {
+                c.points.clear();
+                for (int k = 0; k < kSide * kSide; ++k) {
+                    int i = batch * kSide * kSide + k;
+                    Point pt{};
+                    pt.p.uv0 = glm::vec2((float(i % 16) + 0.5f) / 16.0f, (float(i / 16) + 0.5f) / 16.0f);
+                    pt.p.uv1 = pt.p.uv0;
+                    c.points.push_back(pt);
+                }
+                auto out = probe(c, false);
+                for (int k = 0; k < kSide * kSide; ++k) {
+                    std::size_t i = std::size_t(batch * kSide * kSide + k);
+                    TexelDecode& srgb = (*decode_)[std::size_t(linear)][1];
+                    TexelDecode& unorm = (*decode_)[std::size_t(linear)][0];
+                    srgb.rgb[i] = out[0][std::size_t(k)].x;
+                    srgb.alpha[i] = out[0][std::size_t(k)].w;
+                    unorm.rgb[i] = unorm.alpha[i] = out[1][std::size_t(k)].z;  // occlusion
+                }
+            }
+        }
+        return *decode_;
+    }
+
+    // Compares `cases` cases; returns the largest error seen per output (relative for
+    // exact sampling, absolute for filtered).
+    void run(bool exact, int cases, unsigned seed) {
+        Gen gen(seed);
+        int failures = 0, compared = 0, skipped = 0;
+        float worst_rel = 0.0f, worst_shade = 0.0f, worst_abs = 0.0f;
+        int shown[kOutputs][4] = {};
+        const char* worst_what = "-";
+        for (int ci = 0; ci < cases; ++ci) {
+            Case c = gen.make(exact);
+            CpuTextures tex(c.textures, &decode());
+            auto gpu_out = probe(c);
+            for (int i = 0; i < kSide * kSide; ++i) {
+                const Point& pt = c.points[std::size_t(i)];
+                auto cpu = cpu_outputs(c, tex, pt);
+                if (c.material.alpha_mode == AlphaMode::Mask) {
+                    // The alpha before the mode is not an output; recompute it with the mode off.
+                    Material blend = c.material;
+                    blend.alpha_mode = AlphaMode::Blend;
+                    float a = evaluate(blend, tex, pt.p).alpha;
+                    if (std::abs(a - c.material.alpha_cutoff) < (exact ? 1e-4f : kFilteredAbsTol)) {
+                        ++skipped;
+                        continue;
+                    }
+                }
+                bool short_normal = !exact && tangent_length(c, tex, pt, MaterialMap::Normal, c.material.normal_scale) < 0.5f;
+                bool short_coat_normal =
+                    !exact && c.material.clearcoat &&
+                    tangent_length(c, tex, pt, MaterialMap::ClearcoatNormal, c.material.clearcoat->clearcoat_normal_scale) < 0.5f;
+                for (int o = 0; o < kOutputs; ++o) {
+                    for (int ch = 0; ch < 4; ++ch) {
+                        if ((o == 4 && ch < 3 && short_normal) || (o == 5 && ch < 3 && short_coat_normal)) continue;
+                        float want = cpu[std::size_t(o)][ch], got = gpu_out[std::size_t(o)][std::size_t(i)][ch];
+                        float err = std::abs(want - got);
+                        float scale = std::max(std::abs(want), std::abs(got));
+                        if ((o == 4 || o == 5) && ch < 3) scale = 1.0f;  // components of unit vectors
+                        bool ok;
+                        if (o == 6) {
+                            // shade_light: exact sampling only (filtered inputs differ already).
+                            if (!exact) continue;
+                            ok = err <= kShadeRelTol * scale || err <= kShadeAbsFloor;
+                            if (scale > 0) worst_shade = std::max(worst_shade, err > kShadeAbsFloor ? err / scale : 0.0f);
+                        } else if (exact) {
+                            ok = err <= kRelTol * scale || err <= kAbsFloor;
+                            if (scale > 1e-3f && err / scale > worst_rel) {
+                                worst_rel = err / scale;
+                                worst_what = kOutputNames[o][ch];
+                            }
+                        } else {
+                            // Filtered: an 8-bit step of a texel, times what multiplies it (emissive
+                            // strength, F0 tints up to 30, normal scales).
+                            float norm = 1.0f;
+                            const Material& m = c.material;
+                            if (o == 2 && ch < 3)
+                                norm = std::max(1.0f, m.emissive_strength_value() *
+                                                          std::max({m.emissive_factor.x, m.emissive_factor.y, m.emissive_factor.z}));
+                            if (o == 3 && ch < 3 && m.specular && !m.specular_glossiness)
+                                norm = std::max(1.0f, ior_to_f0(m.ior_value()) *
+                                                          std::max({m.specular->specular_color_factor.x,
+                                                                    m.specular->specular_color_factor.y,
+                                                                    m.specular->specular_color_factor.z}));
+                            if (o == 2 && ch == 3 && m.specular) norm = std::max(1.0f, m.specular->specular_factor);
+                            if (o == 4 && ch < 3) norm = 1.0f + std::abs(m.normal_scale);
+                            if (o == 5 && ch < 3 && m.clearcoat) norm = 1.0f + std::abs(m.clearcoat->clearcoat_normal_scale);
+                            ok = err <= kFilteredAbsTol * norm;
+                            worst_abs = std::max(worst_abs, err / norm);
+                        }
+                        ++compared;
+                        if (!ok) ++failures;
+                        if (!ok && ++shown[o][ch] <= 2) {
+                            ADD_FAILURE() << (exact ? "exact" : "filtered") << " case " << ci << " point " << i << " "
+                                          << kOutputNames[o][ch] << ": C++ " << want << " GPU " << got << " (lod "
+                                          << c.lod << ", uv0 " << pt.p.uv0.x << "," << pt.p.uv0.y << ", SG "
+                                          << bool(c.material.specular_glossiness) << ", coat "
+                                          << c.material.has_clearcoat() << ")";
+                        }
+                    }
+                }
+            }
+        }
+        std::printf("%s sampling: %d cases, %d values compared, %d near the cutoff skipped; worst relative %.3g (%s), "
+                    "shade_light %.3g, filtered absolute %.3g\n",
+                    exact ? "exact" : "filtered", cases, compared, skipped, worst_rel, worst_what, worst_shade, worst_abs);
+        EXPECT_EQ(failures, 0);
+        EXPECT_GT(compared, cases * kSide * kSide * 20);
+        for (int i = 0; i < kMaterialMapCount; ++i)
+            EXPECT_GT(maps_bound_[std::size_t(i)], 2) << "map " << material_map_info(MaterialMap(i)).name << " hardly covered";
+    }
+
+    static std::unique_ptr<gpu::Context> context_;
+    static std::string context_error_;
+    static std::unique_ptr<ShaderLibrary> library_;
+    static std::unique_ptr<DriverDecode> decode_;
+    std::array<int, kMaterialMapCount> maps_bound_{};  // coverage: draws that read each map
+};
+std::unique_ptr<DriverDecode> MaterialProbe::decode_;
+
+std::unique_ptr<gpu::Context> MaterialProbe::context_;
+std::string MaterialProbe::context_error_;
+std::unique_ptr<ShaderLibrary> MaterialProbe::library_;
+
+// What the measured response stands in for: the driver's texel values are byte / 255 and
+// the exact sRGB curve up to small errors (llvmpipe: sRGB colour at most 1.2e-3 absolute,
+// near byte 230; the bound is 2e-3; linear data and alpha 1e-4 relative, measured 8e-8).
+TEST_F(MaterialProbe, DriverTexelResponseIsCloseToExact) {
+    const DriverDecode& d = decode();
+    float worst_srgb = 0.0f, worst_rel = 0.0f;
+    for (int linear = 0; linear < 2; ++linear)
+        for (int i = 0; i < 256; ++i) {
+            float unorm = float(i) / 255.0f, curve = srgb_to_linear(unorm);
+            const TexelDecode& s = d[std::size_t(linear)][1];
+            const TexelDecode& u = d[std::size_t(linear)][0];
+            EXPECT_NEAR(s.rgb[i], curve, 2e-3f) << "sRGB byte " << i << (linear ? " LINEAR" : " NEAREST");
+            worst_srgb = std::max(worst_srgb, std::abs(s.rgb[i] - curve));
+            for (float v : {s.alpha[i], u.rgb[i]}) {
+                EXPECT_NEAR(v, unorm, 1e-4f * unorm + 1e-6f) << "byte " << i << (linear ? " LINEAR" : " NEAREST");
+                if (i > 0) worst_rel = std::max(worst_rel, std::abs(v - unorm) / unorm);
+            }
+        }
+    EXPECT_EQ(d[0][1].rgb[0], 0.0f);
+    EXPECT_NEAR(d[0][1].rgb[255], 1.0f, 1e-6f);
+    std::printf("driver texel response: sRGB colour within %.3g of the exact curve, linear and alpha within %.3g "
+                "relative of byte/255\n", worst_srgb, worst_rel);
+}
+
+TEST_F(MaterialProbe, ReadMaterialAndShadeLightMatchEvaluateAtTexelCentres) { run(true, 96, 20261201u); }
+
+TEST_F(MaterialProbe, FilteredSamplingAgreesToAnEightBitStep) { run(false, 48, 777u); }
+
+// The comparison can fail: a rule changed on one side only is caught.
+TEST_F(MaterialProbe, CatchesADifferentRule) {
+    Gen gen(5);
+    Case c = gen.make(true);
+    c.material.specular_glossiness.reset();
+    c.material.metallic_factor = 0.5f;
+    c.material.metallic_roughness = TextureSlot{};
+    CpuTextures tex(c.textures, &decode());
+    auto gpu_out = probe(c);
+    Material changed = c.material;
+    changed.metallic_factor = 0.5f * (1.0f + 1e-3f);  // a 0.1 % change of one rule's input
+    int differ = 0;
+    for (int i = 0; i < kSide * kSide; ++i) {
+        float want = evaluate(changed, tex, c.points[std::size_t(i)].p).surface.metallic;
+        float got = gpu_out[1][std::size_t(i)].x;
+        if (std::abs(want - got) > kRelTol * std::max(std::abs(want), std::abs(got))) ++differ;
+    }
+    EXPECT_EQ(differ, kSide * kSide);
+}
+
+}  // namespace
