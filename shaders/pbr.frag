@@ -54,13 +54,13 @@ Frame shading_frame() {
 #endif
     f.n = f.ng;
 #ifdef HAS_NORMAL_MAP
-    vec3 tn = SAMPLE_NORMAL_MAP(normal).rgb * 2.0 - 1.0;
+    vec3 tn = sample_normal_map(u_normal_map, u_normal_uv, u_normal_transform).rgb * 2.0 - 1.0;
     tn.xy *= u_normal_scale;
     f.n = normalize(mat3(f.t, f.b, f.ng) * tn);
 #endif
     f.nc = f.ng;
 #ifdef HAS_CLEARCOAT_NORMAL_MAP
-    vec3 tc = SAMPLE_NORMAL_MAP(clearcoat_normal).rgb * 2.0 - 1.0;
+    vec3 tc = sample_normal_map(u_clearcoat_normal_map, u_clearcoat_normal_uv, u_clearcoat_normal_transform).rgb * 2.0 - 1.0;
     tc.xy *= u_clearcoat_normal_scale;
     f.nc = normalize(mat3(f.t, f.b, f.ng) * tc);
 #endif

@@ -9,6 +9,7 @@
 #include "fresnel/gpu/context.h"
 #include "fresnel/gpu/device.h"
 #include "fresnel/gpu/resources.h"
+#include "fresnel/render/shader_features.h"
 #include "fresnel/render/shader_library.h"
 
 namespace fresnel {
@@ -29,7 +30,6 @@ constexpr NamedChannel kChannels[] = {
     {"irradiance", DebugChannel::Irradiance}, {"prefiltered", DebugChannel::Prefiltered},
     {"ibl-diffuse", DebugChannel::IblDiffuse}, {"ibl-specular", DebugChannel::IblSpecular},
 };
-constexpr int kMaxLights = 16;
 
 enum Attr : unsigned { kPosition = 0, kNormal, kTangent, kUv0, kUv1, kColor };
 
@@ -157,7 +157,18 @@ struct Renderer::Impl {
         device.draw_fullscreen();
     }
 
-    explicit Impl(gpu::Context& c) : context(c) {}
+    explicit Impl(gpu::Context& c) : context(c), shaders(glsl_target(c.api())) {}
+
+    // 1x1 white: stands in for a map a variant samples but the material lacks.
+    std::unique_ptr<gpu::Texture> white_;
+    const gpu::Texture& white_texture() {
+        if (!white_) {
+            const std::uint8_t px[4] = {255, 255, 255, 255};
+            white_ = std::make_unique<gpu::Texture>(gpu::Texture::create_2d(1, 1, gpu::TextureFormat::RGBA8, px, false));
+            white_->set_sampler({0x2600, 0x2600, 0x2901, 0x2901, 0x2901});  // NEAREST, REPEAT
+        }
+        return *white_;
+    }
 
     void upload(const Scene& s) {
         meshes.clear();
@@ -224,18 +235,27 @@ struct Renderer::Impl {
         target_w = w;
         target_h = h;
         target_samples = samples;
-        msaa_color = gpu::Renderbuffer(w, h, gpu::RenderbufferFormat::RGBA16F, samples);
+        // HDR targets: float where the context renders to float (always on GL 3.3; on ES 3.0
+        // with EXT_color_buffer_float, half float alone with EXT_color_buffer_half_float,
+        // else 8-bit; the context logged the fallback when it was made).
+        const gpu::Capabilities& caps = context.capabilities();
+        const bool half = caps.half_float_color_targets;
+        msaa_color = gpu::Renderbuffer(w, h, half ? gpu::RenderbufferFormat::RGBA16F : gpu::RenderbufferFormat::RGBA8, samples);
         msaa_depth = gpu::Renderbuffer(w, h, gpu::RenderbufferFormat::Depth24, samples);
         msaa_fb = gpu::Framebuffer();
         msaa_fb.attach_color(msaa_color);
         msaa_fb.attach_depth(msaa_depth);
         msaa_fb.check();
-        resolved = gpu::Texture::create_2d(w, h, gpu::TextureFormat::RGBA16F, nullptr, false);
+        resolved = gpu::Texture::create_2d(w, h, half ? gpu::TextureFormat::RGBA16F : gpu::TextureFormat::RGBA8, nullptr, false);
         resolved.set_sampler({0x2600, 0x2600, 0x812F, 0x812F, 0x812F});  // NEAREST, CLAMP_TO_EDGE
         resolved_fb = gpu::Framebuffer();
         resolved_fb.attach_color(resolved);
         resolved_fb.check();
-        output = gpu::Texture::create_2d(w, h, gpu::TextureFormat::RGBA32F, nullptr, false);
+        output = gpu::Texture::create_2d(w, h,
+                                         caps.float_color_targets ? gpu::TextureFormat::RGBA32F
+                                         : half                   ? gpu::TextureFormat::RGBA16F
+                                                                  : gpu::TextureFormat::RGBA8,
+                                         nullptr, false);
         output_fb = gpu::Framebuffer();
         output_fb.attach_color(output);
         output_fb.check();
@@ -246,55 +266,66 @@ struct Renderer::Impl {
         static const Material kDefaultMaterial{};
         const GpuPrimitive& p = *d.prim;
         const Material& m = p.material >= 0 ? scene->materials[std::size_t(p.material)] : kDefaultMaterial;
-        std::vector<std::string> defines;
-        if (p.has_normal) defines.push_back("HAS_NORMAL");
-        if (p.has_tangent) defines.push_back("HAS_TANGENT");
-        if (p.has_uv0) defines.push_back("HAS_UV0");
-        if (p.has_uv1) defines.push_back("HAS_UV1");
-        if (p.has_color) defines.push_back("HAS_COLOR");
-        if (m.unlit) defines.push_back("UNLIT");
-        if (m.specular_glossiness) defines.push_back("SPECULAR_GLOSSINESS");
-        if (m.has_clearcoat()) defines.push_back("MATERIAL_CLEARCOAT");
-        if (m.alpha_mode == AlphaMode::Mask) defines.push_back("ALPHA_MASK");
-        if (m.alpha_mode == AlphaMode::Blend) defines.push_back("ALPHA_BLEND");
-        if (settings.debug != DebugChannel::None) defines.push_back("DEBUG_VIEW");
-        if (settings.environment) defines.push_back("USE_IBL");
-        defines.push_back("MAX_LIGHTS " + std::to_string(kMaxLights));
+        // The draw's raw features; canonical_features() turns them into the variant (shader_features.h).
+        FeatureMask raw = 0;
+        if (p.has_normal) raw |= feature::HasNormal;
+        if (p.has_tangent) raw |= feature::HasTangent;
+        if (p.has_uv0) raw |= feature::HasUv0;
+        if (p.has_uv1) raw |= feature::HasUv1;
+        if (p.has_color) raw |= feature::HasColor;
+        if (m.unlit) raw |= feature::Unlit;
+        if (m.specular_glossiness) raw |= feature::SpecularGlossiness;
+        if (m.has_clearcoat()) raw |= feature::Clearcoat;
+        if (m.alpha_mode == AlphaMode::Mask) raw |= feature::AlphaMask;
+        if (m.alpha_mode == AlphaMode::Blend) raw |= feature::AlphaBlend;
+        if (settings.debug != DebugChannel::None) raw |= feature::DebugView;
+        if (settings.environment) raw |= feature::UseIbl;
 
         struct MapUse {
             const char* name;
-            const char* define;
             const TextureRef* ref;
             bool srgb;
         };
+        // In feature-bit order (feature::BaseColorMap ...), texture units 0..kMaps-1.
         MapUse maps[] = {
-            {"base_color", "HAS_BASE_COLOR_MAP", &m.base_color, true},
-            {"metallic_roughness", "HAS_METALLIC_ROUGHNESS_MAP", &m.metallic_roughness, false},
-            {"normal", "HAS_NORMAL_MAP", &m.normal, false},
-            {"occlusion", "HAS_OCCLUSION_MAP", &m.occlusion, false},
-            {"emissive", "HAS_EMISSIVE_MAP", &m.emissive, true},
-            {"specular", "HAS_SPECULAR_MAP", &m.specular_texture, false},
-            {"specular_color", "HAS_SPECULAR_COLOR_MAP", &m.specular_color_texture, true},
-            {"clearcoat", "HAS_CLEARCOAT_MAP", &m.clearcoat_texture, false},
-            {"clearcoat_roughness", "HAS_CLEARCOAT_ROUGHNESS_MAP", &m.clearcoat_roughness_texture, false},
-            {"clearcoat_normal", "HAS_CLEARCOAT_NORMAL_MAP", &m.clearcoat_normal, false},
+            {"base_color", &m.base_color, true},
+            {"metallic_roughness", &m.metallic_roughness, false},
+            {"normal", &m.normal, false},
+            {"occlusion", &m.occlusion, false},
+            {"emissive", &m.emissive, true},
+            {"specular", &m.specular_texture, false},
+            {"specular_color", &m.specular_color_texture, true},
+            {"clearcoat", &m.clearcoat_texture, false},
+            {"clearcoat_roughness", &m.clearcoat_roughness_texture, false},
+            {"clearcoat_normal", &m.clearcoat_normal, false},
         };
         // Maps take texture units 0..kMaps-1; the image-based light uses kLutUnit and up.
         constexpr int kMaps = 10;
         constexpr int kLutUnit = 13, kSpecularUnit = 14, kIrradianceUnit = 15;  // GLES 3.0 guarantees 16
         const gpu::Texture* bound[kMaps] = {};
-        bool has_uv = p.has_uv0;
         for (int i = 0; i < kMaps; ++i) {
             const TextureRef& ref = *maps[i].ref;
-            if (!ref.valid() || !has_uv) continue;
+            if (!ref.valid()) continue;
             if (ref.tex_coord == 1 && !p.has_uv1) continue;
-            if ((i == 2 || i == 9) && !p.has_tangent) continue;  // normal maps need a tangent frame
-            if (i >= 7 && !m.has_clearcoat()) continue;
-            bound[i] = texture_for(ref, maps[i].srgb);
-            if (bound[i]) defines.push_back(maps[i].define);
+            raw |= FeatureMask(1) << (feature::kFirstMap + i);
+        }
+        // Upload the maps the variant reads; one without a usable image counts as absent.
+        FeatureMask features = canonical_features(raw);
+        for (int i = 0; i < kMaps; ++i) {
+            const FeatureMask bit = FeatureMask(1) << (feature::kFirstMap + i);
+            if (!(features & raw & bit)) continue;
+            bound[i] = texture_for(*maps[i].ref, maps[i].srgb);
+            if (!bound[i]) raw &= ~bit;
+        }
+        features = canonical_features(raw);
+        for (int i = 0; i < kMaps; ++i) {
+            const FeatureMask bit = FeatureMask(1) << (feature::kFirstMap + i);
+            // A map the variant samples but the material lacks reads the white texture: x * 1.0 = x.
+            if (!(features & bit)) bound[i] = nullptr;
+            else if (!bound[i]) bound[i] = &white_texture();
         }
 
-        const gpu::Program& prog = shaders.get("pbr.vert", "pbr.frag", defines);
+        const gpu::Program& prog = shaders.get("pbr.vert", "pbr.frag", features);
         prog.use();
         prog.set("u_model", d.model);
         glm::mat3 normal_matrix = glm::inverseTranspose(glm::mat3(d.model));
@@ -333,7 +364,7 @@ struct Renderer::Impl {
         prog.set("u_f0_dielectric", f0);
         prog.set("u_specular_weight", m.specular_glossiness ? 1.0f : m.specular_factor);
         prog.set("u_glossiness_factor", m.glossiness_factor);
-        if (m.has_clearcoat()) {
+        if (features & feature::Clearcoat) {
             prog.set("u_clearcoat_factor", m.clearcoat_factor);
             prog.set("u_clearcoat_roughness_factor", m.clearcoat_roughness_factor);
             prog.set("u_clearcoat_normal_scale", m.clearcoat_normal_scale);
@@ -344,12 +375,14 @@ struct Renderer::Impl {
             std::string base = std::string("u_") + maps[i].name;
             device.bind_texture(i, *bound[i]);
             prog.set(base + "_map", i);
-            prog.set(base + "_uv", maps[i].ref->tex_coord);
-            prog.set(base + "_transform", maps[i].ref->transform);
+            const bool white = bound[i] == white_.get();
+            prog.set(base + "_uv", white ? 0 : maps[i].ref->tex_coord);
+            prog.set(base + "_transform", white ? glm::mat3(1.0f) : maps[i].ref->transform);
         }
         // Lights.
-        int count = std::min<int>(int(lights.size()), kMaxLights);
-        std::vector<glm::vec4> pos_type(kMaxLights), dir_range(kMaxLights), color(kMaxLights), cone(kMaxLights);
+        int count = std::min<int>(int(lights.size()), kMaxShaderLights);
+        std::vector<glm::vec4> pos_type(kMaxShaderLights), dir_range(kMaxShaderLights), color(kMaxShaderLights),
+            cone(kMaxShaderLights);
         for (int i = 0; i < count; ++i) {
             const LightInstance& l = lights[std::size_t(i)];
             float type = l.type == Light::Type::Directional ? 0.0f : l.type == Light::Type::Point ? 1.0f : 2.0f;
@@ -409,7 +442,7 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
     Impl& r = *impl_;
     FrameStats stats;
     int w = settings.width, h = settings.height;
-    int samples = std::clamp(settings.msaa, 1, std::max(1, gpu::max_samples()));
+    int samples = std::clamp(settings.msaa, 1, std::max(1, r.context.capabilities().max_samples_float));
     if (samples == 1) samples = 0;
     r.ensure_targets(w, h, samples);
 
