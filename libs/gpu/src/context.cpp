@@ -70,7 +70,7 @@ void Context::init_context(const ContextOptions& options) {
     GLint n = 0;
     glGetIntegerv(GL_MAX_SAMPLES, &n);
     c.max_samples = n;
-    c.max_samples_float = c.half_float_color_targets ? max_samples_of(GL_RGBA16F, es) : 0;
+    c.max_samples_float = max_samples_of(c.half_float_color_targets ? GL_RGBA16F : GL_RGBA8, es);
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &n);
     c.max_texture_units = n;
     c.debug_output = epoxy_has_gl_extension("GL_KHR_debug");

@@ -31,7 +31,9 @@ struct Capabilities {
     bool float_linear_filtering = true;
     float max_anisotropy = 1.0f;  // 1 when EXT/ARB_texture_filter_anisotropic is absent
     int max_samples = 0;          // GL_MAX_SAMPLES
-    int max_samples_float = 0;    // largest MSAA sample count of an RGBA16F renderbuffer (0 = none)
+    // Largest MSAA sample count of the HDR colour target's format: RGBA16F, or RGBA8 where
+    // half-float targets are missing.
+    int max_samples_float = 0;
     bool seamless_cube_maps = true;  // desktop: enabled once at creation; ES 3.0 filters seamlessly always
     bool debug_output = false;       // KHR_debug
     int max_texture_units = 16;      // GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS
