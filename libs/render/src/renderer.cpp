@@ -31,6 +31,8 @@ constexpr NamedChannel kChannels[] = {
     {"ibl-diffuse", DebugChannel::IblDiffuse}, {"ibl-specular", DebugChannel::IblSpecular},
 };
 
+constexpr int kMaxLights = kMaxShaderLights;
+
 enum Attr : unsigned { kPosition = 0, kNormal, kTangent, kUv0, kUv1, kColor };
 
 struct GpuPrimitive {
@@ -160,14 +162,14 @@ struct Renderer::Impl {
     explicit Impl(gpu::Context& c) : context(c), shaders(glsl_target(c.api())) {}
 
     // 1x1 white: stands in for a map a variant samples but the material lacks.
-    std::unique_ptr<gpu::Texture> white_;
+    std::unique_ptr<gpu::Texture> white_map;
     const gpu::Texture& white_texture() {
-        if (!white_) {
+        if (!white_map) {
             const std::uint8_t px[4] = {255, 255, 255, 255};
-            white_ = std::make_unique<gpu::Texture>(gpu::Texture::create_2d(1, 1, gpu::TextureFormat::RGBA8, px, false));
-            white_->set_sampler({0x2600, 0x2600, 0x2901, 0x2901, 0x2901});  // NEAREST, REPEAT
+            white_map = std::make_unique<gpu::Texture>(gpu::Texture::create_2d(1, 1, gpu::TextureFormat::RGBA8, px, false));
+            white_map->set_sampler({0x2600, 0x2600, 0x2901, 0x2901, 0x2901});  // NEAREST, REPEAT
         }
-        return *white_;
+        return *white_map;
     }
 
     void upload(const Scene& s) {
@@ -375,14 +377,13 @@ struct Renderer::Impl {
             std::string base = std::string("u_") + maps[i].name;
             device.bind_texture(i, *bound[i]);
             prog.set(base + "_map", i);
-            const bool white = bound[i] == white_.get();
+            const bool white = bound[i] == white_map.get();
             prog.set(base + "_uv", white ? 0 : maps[i].ref->tex_coord);
             prog.set(base + "_transform", white ? glm::mat3(1.0f) : maps[i].ref->transform);
         }
         // Lights.
-        int count = std::min<int>(int(lights.size()), kMaxShaderLights);
-        std::vector<glm::vec4> pos_type(kMaxShaderLights), dir_range(kMaxShaderLights), color(kMaxShaderLights),
-            cone(kMaxShaderLights);
+        int count = std::min<int>(int(lights.size()), kMaxLights);
+        std::vector<glm::vec4> pos_type(kMaxLights), dir_range(kMaxLights), color(kMaxLights), cone(kMaxLights);
         for (int i = 0; i < count; ++i) {
             const LightInstance& l = lights[std::size_t(i)];
             float type = l.type == Light::Type::Directional ? 0.0f : l.type == Light::Type::Point ? 1.0f : 2.0f;
