@@ -24,40 +24,40 @@ uniform float u_clearcoat_roughness_factor;
 uniform float u_clearcoat_normal_scale;
 #endif
 
-// Per map: sampler, UV set (0/1) and the KHR_texture_transform matrix.
-#define DECLARE_MAP(name) uniform sampler2D u_##name##_map; uniform int u_##name##_uv; uniform mat3 u_##name##_transform;
+// Per map: sampler, UV set (0/1) and the KHR_texture_transform matrix. (Spelled out:
+// GLSL ES 3.00 has no token pasting.)
 #ifdef HAS_BASE_COLOR_MAP
-DECLARE_MAP(base_color)
+uniform sampler2D u_base_color_map; uniform int u_base_color_uv; uniform mat3 u_base_color_transform;
 #endif
 #ifdef HAS_METALLIC_ROUGHNESS_MAP
-DECLARE_MAP(metallic_roughness)
+uniform sampler2D u_metallic_roughness_map; uniform int u_metallic_roughness_uv; uniform mat3 u_metallic_roughness_transform;
 #endif
 #ifdef HAS_NORMAL_MAP
-DECLARE_MAP(normal)
+uniform sampler2D u_normal_map; uniform int u_normal_uv; uniform mat3 u_normal_transform;
 #endif
 #ifdef HAS_OCCLUSION_MAP
-DECLARE_MAP(occlusion)
+uniform sampler2D u_occlusion_map; uniform int u_occlusion_uv; uniform mat3 u_occlusion_transform;
 #endif
 #ifdef HAS_EMISSIVE_MAP
-DECLARE_MAP(emissive)
+uniform sampler2D u_emissive_map; uniform int u_emissive_uv; uniform mat3 u_emissive_transform;
 #endif
 #ifdef HAS_SPECULAR_MAP
-DECLARE_MAP(specular)
+uniform sampler2D u_specular_map; uniform int u_specular_uv; uniform mat3 u_specular_transform;
 #endif
 #ifdef HAS_SPECULAR_COLOR_MAP
-DECLARE_MAP(specular_color)
+uniform sampler2D u_specular_color_map; uniform int u_specular_color_uv; uniform mat3 u_specular_color_transform;
 #endif
 #ifdef HAS_SPECULAR_GLOSSINESS_MAP
-DECLARE_MAP(specular_glossiness)
+uniform sampler2D u_specular_glossiness_map; uniform int u_specular_glossiness_uv; uniform mat3 u_specular_glossiness_transform;
 #endif
 #ifdef HAS_CLEARCOAT_MAP
-DECLARE_MAP(clearcoat)
+uniform sampler2D u_clearcoat_map; uniform int u_clearcoat_uv; uniform mat3 u_clearcoat_transform;
 #endif
 #ifdef HAS_CLEARCOAT_ROUGHNESS_MAP
-DECLARE_MAP(clearcoat_roughness)
+uniform sampler2D u_clearcoat_roughness_map; uniform int u_clearcoat_roughness_uv; uniform mat3 u_clearcoat_roughness_transform;
 #endif
 #ifdef HAS_CLEARCOAT_NORMAL_MAP
-DECLARE_MAP(clearcoat_normal)
+uniform sampler2D u_clearcoat_normal_map; uniform int u_clearcoat_normal_uv; uniform mat3 u_clearcoat_normal_transform;
 #endif
 
 vec2 map_uv(int set, mat3 transform) {
@@ -75,11 +75,15 @@ const float NORMAL_MAP_LOD_BIAS = -1.0;
 #ifdef MATERIAL_EXPLICIT_LOD
 // Tests: every map at one given level of detail (SurfacePoint::lod on the C++ side).
 uniform float u_material_lod;
-#define SAMPLE_MAP(name) textureLod(u_##name##_map, map_uv(u_##name##_uv, u_##name##_transform), u_material_lod)
-#define SAMPLE_NORMAL_MAP(name) textureLod(u_##name##_map, map_uv(u_##name##_uv, u_##name##_transform), u_material_lod + NORMAL_MAP_LOD_BIAS)
+vec4 sample_map(sampler2D map, int set, mat3 transform) { return textureLod(map, map_uv(set, transform), u_material_lod); }
+vec4 sample_normal_map(sampler2D map, int set, mat3 transform) {
+    return textureLod(map, map_uv(set, transform), u_material_lod + NORMAL_MAP_LOD_BIAS);
+}
 #else
-#define SAMPLE_MAP(name) texture(u_##name##_map, map_uv(u_##name##_uv, u_##name##_transform))
-#define SAMPLE_NORMAL_MAP(name) texture(u_##name##_map, map_uv(u_##name##_uv, u_##name##_transform), NORMAL_MAP_LOD_BIAS)
+vec4 sample_map(sampler2D map, int set, mat3 transform) { return texture(map, map_uv(set, transform)); }
+vec4 sample_normal_map(sampler2D map, int set, mat3 transform) {
+    return texture(map, map_uv(set, transform), NORMAL_MAP_LOD_BIAS);
+}
 #endif
 
 // ((ior-1)/(ior+1))^2: fresnel::ior_to_f0 in material.h.
@@ -109,7 +113,7 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     MaterialInputs m;
     m.base_color = u_base_color_factor * v_color;
 #ifdef HAS_BASE_COLOR_MAP
-    m.base_color *= SAMPLE_MAP(base_color);  // an SRGB8_ALPHA8 texture: decoded by the sampler
+    m.base_color *= sample_map(u_base_color_map, u_base_color_uv, u_base_color_transform);  // an SRGB8_ALPHA8 texture: decoded by the sampler
 #endif
 #ifdef SPECULAR_GLOSSINESS
     // KHR_materials_pbrSpecularGlossiness: base colour is the diffuse colour, the specular
@@ -118,7 +122,7 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     vec3 sg_specular = u_sg_specular_factor;
     float glossiness = u_glossiness_factor;
 #ifdef HAS_SPECULAR_GLOSSINESS_MAP
-    vec4 sg = SAMPLE_MAP(specular_glossiness);
+    vec4 sg = sample_map(u_specular_glossiness_map, u_specular_glossiness_uv, u_specular_glossiness_transform);
     sg_specular *= sg.rgb;
     glossiness *= sg.a;
 #endif
@@ -130,18 +134,18 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     m.metallic = u_metallic_factor;
     m.roughness = u_roughness_factor;
 #ifdef HAS_METALLIC_ROUGHNESS_MAP
-    vec4 mr = SAMPLE_MAP(metallic_roughness);
+    vec4 mr = sample_map(u_metallic_roughness_map, u_metallic_roughness_uv, u_metallic_roughness_transform);
     m.metallic *= mr.b;
     m.roughness *= mr.g;
 #endif
     vec3 specular_color = u_specular_color_factor;
 #ifdef HAS_SPECULAR_COLOR_MAP
-    specular_color *= SAMPLE_MAP(specular_color).rgb;
+    specular_color *= sample_map(u_specular_color_map, u_specular_color_uv, u_specular_color_transform).rgb;
 #endif
     m.f0_dielectric = ior_to_f0(u_ior) * specular_color;
     m.specular_weight = u_specular_factor;
 #ifdef HAS_SPECULAR_MAP
-    m.specular_weight *= SAMPLE_MAP(specular).a;
+    m.specular_weight *= sample_map(u_specular_map, u_specular_uv, u_specular_transform).a;
 #endif
 #endif
     m.f0_dielectric = min(m.f0_dielectric, vec3(1.0));
@@ -154,21 +158,21 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     m.clearcoat = u_clearcoat_factor;
     m.clearcoat_roughness = u_clearcoat_roughness_factor;
 #ifdef HAS_CLEARCOAT_MAP
-    m.clearcoat *= SAMPLE_MAP(clearcoat).r;
+    m.clearcoat *= sample_map(u_clearcoat_map, u_clearcoat_uv, u_clearcoat_transform).r;
 #endif
 #ifdef HAS_CLEARCOAT_ROUGHNESS_MAP
-    m.clearcoat_roughness *= SAMPLE_MAP(clearcoat_roughness).g;
+    m.clearcoat_roughness *= sample_map(u_clearcoat_roughness_map, u_clearcoat_roughness_uv, u_clearcoat_roughness_transform).g;
 #endif
     m.clearcoat = clamp(m.clearcoat, 0.0, 1.0);
     m.clearcoat_roughness = clamp(m.clearcoat_roughness, 0.0, 1.0);
 #endif
     m.occlusion = 1.0;
 #ifdef HAS_OCCLUSION_MAP
-    m.occlusion = 1.0 + u_occlusion_strength * (SAMPLE_MAP(occlusion).r - 1.0);
+    m.occlusion = 1.0 + u_occlusion_strength * (sample_map(u_occlusion_map, u_occlusion_uv, u_occlusion_transform).r - 1.0);
 #endif
     m.emissive = u_emissive_factor * u_emissive_strength;
 #ifdef HAS_EMISSIVE_MAP
-    m.emissive *= SAMPLE_MAP(emissive).rgb;
+    m.emissive *= sample_map(u_emissive_map, u_emissive_uv, u_emissive_transform).rgb;
 #endif
     m.discard_fragment = false;
 #ifdef ALPHA_MASK
@@ -180,13 +184,13 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
 #endif
     m.normal = ng;
 #ifdef HAS_NORMAL_MAP
-    vec3 tn = SAMPLE_NORMAL_MAP(normal).rgb * 2.0 - 1.0;
+    vec3 tn = sample_normal_map(u_normal_map, u_normal_uv, u_normal_transform).rgb * 2.0 - 1.0;
     tn.xy *= u_normal_scale;
     m.normal = normalize(mat3(t, b, ng) * tn);
 #endif
     m.clearcoat_normal = ng;
 #ifdef HAS_CLEARCOAT_NORMAL_MAP
-    vec3 tc = SAMPLE_NORMAL_MAP(clearcoat_normal).rgb * 2.0 - 1.0;
+    vec3 tc = sample_normal_map(u_clearcoat_normal_map, u_clearcoat_normal_uv, u_clearcoat_normal_transform).rgb * 2.0 - 1.0;
     tc.xy *= u_clearcoat_normal_scale;
     m.clearcoat_normal = normalize(mat3(t, b, ng) * tc);
 #endif

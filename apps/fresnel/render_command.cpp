@@ -38,6 +38,7 @@ struct RenderOptions {
     bool json = false;
     bool allow_external = false;
     bool gl_debug = false;
+    std::string gl = "gl33";
     bool pose_skins = false;
     std::string env;
     bool env_given = false;
@@ -199,6 +200,7 @@ int run_render(const RenderOptions& o) {
 #else
     co.debug = o.gl_debug;
 #endif
+    co.api = o.gl == "es3" ? gpu::Api::OpenGLES30 : gpu::Api::OpenGL33;
     co.log = [](const std::string& m) { std::fprintf(stderr, "fresnel: %s\n", m.c_str()); };
     auto context = gpu::create_headless_context(co);
     Renderer renderer(*context);
@@ -227,6 +229,7 @@ int run_render(const RenderOptions& o) {
         j["height"] = rs.height;
         j["renderer"] = context->renderer();
         j["gl_version"] = context->version();
+        j["gl_api"] = gpu::api_name(context->api());
         j["load_ms"] = load_ms;
         j["upload_ms"] = upload_ms;
         j["frame_ms"] = frame_ms;
@@ -301,6 +304,9 @@ Runner add_render_command(CLI::App& app) {
     cmd->add_flag("--allow-external-files", o->allow_external,
                   "Let URIs point outside the model's folder (absolute paths, ..); never the network");
     cmd->add_flag("--gl-debug", o->gl_debug, "Request a debug GL context and print KHR_debug messages");
+    cmd->add_option("--gl", o->gl, "Graphics API: gl33 (OpenGL 3.3 core) or es3 (OpenGL ES 3.0; same pictures)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"gl33", "es3"}));
     cmd->add_flag("--pose-skins", o->pose_skins,
                   "Pose skinned meshes by their joints' rest transforms (default: the bind pose, as the Khronos "
                   "Sample Renderer's reference images show)");

@@ -18,8 +18,7 @@ void Device::apply(const PipelineState& s) {
     if (s.depth_test) glEnable(GL_DEPTH_TEST);
     else glDisable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
-    // Filter across cube faces (always on in OpenGL ES 3.0 / WebGL 2; a core enable in GL 3.2+).
-    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    // (Seamless cube-map filtering is context state, set once at creation: see Context::init_context.)
     glFrontFace(s.front_ccw ? GL_CCW : GL_CW);
     glDepthMask(s.depth_write ? GL_TRUE : GL_FALSE);
     if (s.cull == Cull::Back) {
@@ -85,7 +84,15 @@ std::vector<float> Device::read_rgba32f(const Framebuffer& fb, int w, int h) {
     std::vector<float> px(std::size_t(w) * h * 4);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fb.id());
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, px.data());
+    if (fb.color_normalized()) {
+        // Fixed-point targets: OpenGL ES reads them back only as RGBA / UNSIGNED_BYTE.
+        std::vector<unsigned char> bytes(px.size());
+        glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+        for (std::size_t i = 0; i < px.size(); ++i) px[i] = float(bytes[i]) / 255.0f;
+    } else {
+        // Float targets: RGBA / FLOAT (on ES 3.0 allowed for float colour buffers).
+        glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, px.data());
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return px;
 }

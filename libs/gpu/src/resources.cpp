@@ -55,6 +55,12 @@ FormatInfo info(TextureFormat f) {
     }
     return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
 }
+// 32-bit float textures filter linearly on GL 3.3; on ES 3.0 only with OES_texture_float_linear
+// (without it a LINEAR-filtered RGBA32F texture is incomplete and samples as zero).
+bool filterable(TextureFormat f) {
+    if (f != TextureFormat::RGBA32F || epoxy_is_desktop_gl()) return true;
+    return epoxy_has_gl_extension("GL_OES_texture_float_linear");
+}
 }  // namespace
 
 Texture Texture::create_2d(int width, int height, TextureFormat format, const void* data, bool mipmaps) {
@@ -68,8 +74,10 @@ Texture Texture::create_2d(int width, int height, TextureFormat format, const vo
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexImage2D(GL_TEXTURE_2D, 0, fi.internal, width, height, 0, fi.format, fi.type, data);
     if (mipmaps) glGenerateMipmap(GL_TEXTURE_2D);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    const bool linear = filterable(format);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
+                    linear ? (mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR) : (mipmaps ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST));
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, linear ? GL_LINEAR : GL_NEAREST);
     glBindTexture(GL_TEXTURE_2D, 0);
     return t;
 }
@@ -165,7 +173,8 @@ Texture::~Texture() {
     if (id_) glDeleteTextures(1, &id_);
 }
 
-Renderbuffer::Renderbuffer(int width, int height, RenderbufferFormat format, int samples) : samples_(samples) {
+Renderbuffer::Renderbuffer(int width, int height, RenderbufferFormat format, int samples)
+    : samples_(samples), format_(format) {
     glGenRenderbuffers(1, &id_);
     glBindRenderbuffer(GL_RENDERBUFFER, id_);
     GLenum internal = GL_RGBA16F;
@@ -188,10 +197,13 @@ Framebuffer::~Framebuffer() {
     if (id_) glDeleteFramebuffers(1, &id_);
 }
 void Framebuffer::attach_color(const Texture& texture) {
+    TextureFormat f = texture.format();
+    color_normalized_ = f == TextureFormat::RGBA8 || f == TextureFormat::SRGB8_ALPHA8 || f == TextureFormat::R8;
     glBindFramebuffer(GL_FRAMEBUFFER, id_);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture.id(), 0);
 }
 void Framebuffer::attach_color(const Renderbuffer& rb) {
+    color_normalized_ = rb.format() == RenderbufferFormat::RGBA8;
     glBindFramebuffer(GL_FRAMEBUFFER, id_);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb.id());
 }

@@ -37,6 +37,16 @@ MaterialUniforms material_uniforms(const Material& m) {
     return u;
 }
 
+FeatureMask material_features(const Material& m) {
+    FeatureMask f = 0;
+    if (m.unlit) f |= feature::Unlit;
+    if (m.specular_glossiness) f |= feature::SpecularGlossiness;
+    if (m.has_clearcoat()) f |= feature::Clearcoat;
+    if (m.alpha_mode == AlphaMode::Mask) f |= feature::AlphaMask;
+    if (m.alpha_mode == AlphaMode::Blend) f |= feature::AlphaBlend;
+    return f;
+}
+
 void set_material_uniforms(const gpu::Program& prog, const MaterialUniforms& u,
                            const std::array<bool, kMaterialMapCount>& bound) {
     prog.set("u_base_color_factor", u.base_color_factor);
@@ -56,12 +66,13 @@ void set_material_uniforms(const gpu::Program& prog, const MaterialUniforms& u,
     prog.set("u_clearcoat_roughness_factor", u.clearcoat_roughness_factor);
     prog.set("u_clearcoat_normal_scale", u.clearcoat_normal_scale);
     for (int i = 0; i < kMaterialMapCount; ++i) {
-        if (!bound[std::size_t(i)] || !u.maps[std::size_t(i)]) continue;
-        const TextureSlot& slot = *u.maps[std::size_t(i)];
+        if (!bound[std::size_t(i)]) continue;
         std::string base = std::string("u_") + material_map_info(MaterialMap(i)).name;
         prog.set(base + "_map", i);
-        prog.set(base + "_uv", slot.tex_coord);
-        prog.set(base + "_transform", slot.transform);
+        // A map the variant reads but the material lacks is the 1x1 white texture.
+        const TextureSlot* slot = u.maps[std::size_t(i)];
+        prog.set(base + "_uv", slot ? slot->tex_coord : 0);
+        prog.set(base + "_transform", slot ? slot->transform : glm::mat3(1.0f));
     }
 }
 

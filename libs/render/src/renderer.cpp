@@ -13,6 +13,7 @@
 #include "fresnel/gpu/device.h"
 #include "fresnel/gpu/resources.h"
 #include "fresnel/render/material_uniforms.h"
+#include "fresnel/render/shader_features.h"
 #include "fresnel/render/shader_library.h"
 
 namespace fresnel {
@@ -33,7 +34,8 @@ constexpr NamedChannel kChannels[] = {
     {"irradiance", DebugChannel::Irradiance}, {"prefiltered", DebugChannel::Prefiltered},
     {"ibl-diffuse", DebugChannel::IblDiffuse}, {"ibl-specular", DebugChannel::IblSpecular},
 };
-constexpr int kMaxLights = 16;
+
+constexpr int kMaxLights = kMaxShaderLights;
 
 enum Attr : unsigned { kPosition = 0, kNormal, kTangent, kUv0, kUv1, kColor };
 
@@ -160,7 +162,21 @@ struct Renderer::Impl {
         device.draw_fullscreen();
     }
 
-    explicit Impl(gpu::Context& c) : context(c) {}
+    explicit Impl(gpu::Context& c) : context(c), shaders(glsl_target(c.api())) {}
+
+    // 1x1 white: stands in for a map a variant samples but the material lacks.
+    std::unique_ptr<gpu::Texture> white_map;
+    const gpu::Texture& white_texture() {
+        if (!white_map) {
+            const std::uint8_t px[4] = {255, 255, 255, 255};
+            white_map = std::make_unique<gpu::Texture>(gpu::Texture::create_2d(1, 1, gpu::TextureFormat::RGBA8, px, false));
+            gpu::SamplerState ss;
+            ss.min_filter = ss.mag_filter = Filter::Nearest;
+            ss.mipmap = MipmapMode::None;
+            white_map->set_sampler(ss);
+        }
+        return *white_map;
+    }
 
     void upload(const Scene& s) {
         meshes.clear();
@@ -302,18 +318,27 @@ struct Renderer::Impl {
         target_w = w;
         target_h = h;
         target_samples = samples;
-        msaa_color = gpu::Renderbuffer(w, h, gpu::RenderbufferFormat::RGBA16F, samples);
+        // HDR targets: float where the context renders to float (always on GL 3.3; on ES 3.0
+        // with EXT_color_buffer_float, half float alone with EXT_color_buffer_half_float,
+        // else 8-bit; the context logged the fallback when it was made).
+        const gpu::Capabilities& caps = context.capabilities();
+        const bool half = caps.half_float_color_targets;
+        msaa_color = gpu::Renderbuffer(w, h, half ? gpu::RenderbufferFormat::RGBA16F : gpu::RenderbufferFormat::RGBA8, samples);
         msaa_depth = gpu::Renderbuffer(w, h, gpu::RenderbufferFormat::Depth24, samples);
         msaa_fb = gpu::Framebuffer();
         msaa_fb.attach_color(msaa_color);
         msaa_fb.attach_depth(msaa_depth);
         msaa_fb.check();
-        resolved = gpu::Texture::create_2d(w, h, gpu::TextureFormat::RGBA16F, nullptr, false);
+        resolved = gpu::Texture::create_2d(w, h, half ? gpu::TextureFormat::RGBA16F : gpu::TextureFormat::RGBA8, nullptr, false);
         resolved.set_sampler(gpu::SamplerState::clamped(Filter::Nearest));
         resolved_fb = gpu::Framebuffer();
         resolved_fb.attach_color(resolved);
         resolved_fb.check();
-        output = gpu::Texture::create_2d(w, h, gpu::TextureFormat::RGBA32F, nullptr, false);
+        output = gpu::Texture::create_2d(w, h,
+                                         caps.float_color_targets ? gpu::TextureFormat::RGBA32F
+                                         : half                   ? gpu::TextureFormat::RGBA16F
+                                                                  : gpu::TextureFormat::RGBA8,
+                                         nullptr, false);
         output_fb = gpu::Framebuffer();
         output_fb.attach_color(output);
         output_fb.check();
@@ -324,33 +349,44 @@ struct Renderer::Impl {
         static const Material kDefaultMaterial{};
         const GpuPrimitive& p = *d.prim;
         const Material& m = p.material >= 0 ? scene->materials[std::size_t(p.material)] : kDefaultMaterial;
-        std::vector<std::string> defines;
-        if (p.has_normal) defines.push_back("HAS_NORMAL");
-        if (p.has_tangent) defines.push_back("HAS_TANGENT");
-        if (p.has_uv0) defines.push_back("HAS_UV0");
-        if (p.has_uv1) defines.push_back("HAS_UV1");
-        if (p.has_color) defines.push_back("HAS_COLOR");
+        // The draw's raw features; canonical_features() turns them into the variant (shader_features.h).
         const MaterialUniforms mu = material_uniforms(m);
-        defines.insert(defines.end(), mu.defines.begin(), mu.defines.end());
-        if (settings.debug != DebugChannel::None) defines.push_back("DEBUG_VIEW");
-        if (settings.environment) defines.push_back("USE_IBL");
-        defines.push_back("MAX_LIGHTS " + std::to_string(kMaxLights));
+        FeatureMask raw = material_features(m);
+        if (p.has_normal) raw |= feature::HasNormal;
+        if (p.has_tangent) raw |= feature::HasTangent;
+        if (p.has_uv0) raw |= feature::HasUv0;
+        if (p.has_uv1) raw |= feature::HasUv1;
+        if (p.has_color) raw |= feature::HasColor;
+        if (settings.debug != DebugChannel::None) raw |= feature::DebugView;
+        if (settings.environment) raw |= feature::UseIbl;
 
-        // Map i takes texture unit i; the image-based light uses kLutUnit and up.
+        // Map i takes texture unit i (feature bit kFirstMap + i); the image-based light uses kLutUnit and up.
         constexpr int kLutUnit = 13, kSpecularUnit = 14, kIrradianceUnit = 15;  // GLES 3.0 guarantees 16
-        static_assert(kMaterialMapCount <= kLutUnit);
+        static_assert(kMaterialMapCount <= kLutUnit && kMaterialMapCount == feature::kMapCount);
         const gpu::Texture* bound[kMaterialMapCount] = {};
         std::array<bool, kMaterialMapCount> is_bound{};
         const VertexInputs vertex{p.has_uv0, p.has_uv1, p.has_tangent};
         for (int i = 0; i < kMaterialMapCount; ++i) {
             const TextureSlot* slot = mu.maps[std::size_t(i)];
-            if (!slot || !map_usable(*slot, MaterialMap(i), vertex)) continue;
+            if (slot && map_usable(*slot, MaterialMap(i), vertex)) raw |= feature::map_bit(i);
+        }
+        // Upload the maps the variant reads; one without a usable image counts as absent.
+        FeatureMask features = canonical_features(raw);
+        for (int i = 0; i < kMaterialMapCount; ++i) {
+            if (!(features & raw & feature::map_bit(i))) continue;
             const MaterialMapInfo& info = material_map_info(MaterialMap(i));
-            bound[i] = texture_for(*slot, info.srgb, anisotropic_map(MaterialMap(i)), settings.anisotropy);
-            if ((is_bound[std::size_t(i)] = bound[i] != nullptr)) defines.push_back(info.define);
+            bound[i] = texture_for(*mu.maps[std::size_t(i)], info.srgb, anisotropic_map(MaterialMap(i)), settings.anisotropy);
+            if (!bound[i]) raw &= ~feature::map_bit(i);
+        }
+        features = canonical_features(raw);
+        for (int i = 0; i < kMaterialMapCount; ++i) {
+            // A map the variant samples but the material lacks reads the white texture: x * 1.0 = x.
+            if (!(features & feature::map_bit(i))) bound[i] = nullptr;
+            else if (!bound[i]) bound[i] = &white_texture();
+            is_bound[std::size_t(i)] = bound[i] != nullptr;
         }
 
-        const gpu::Program& prog = shaders.get("pbr.vert", "pbr.frag", defines);
+        const gpu::Program& prog = shaders.get("pbr.vert", "pbr.frag", features);
         prog.use();
         prog.set("u_model", d.model);
         glm::mat3 normal_matrix = glm::inverseTranspose(glm::mat3(d.model));
@@ -443,7 +479,7 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
     Impl& r = *impl_;
     FrameStats stats;
     int w = settings.width, h = settings.height;
-    int samples = std::clamp(settings.msaa, 1, std::max(1, gpu::max_samples()));
+    int samples = std::clamp(settings.msaa, 1, std::max(1, r.context.capabilities().max_samples_float));
     if (samples == 1) samples = 0;
     r.ensure_targets(w, h, samples);
 

@@ -39,6 +39,8 @@ void expand(const std::string& file, const ShaderFiles& files, std::set<std::str
 
 }  // namespace
 
+GlslTarget glsl_target(gpu::Api api) { return api == gpu::Api::OpenGLES30 ? GlslTarget::Es30 : GlslTarget::Gl33; }
+
 std::string assemble_shader(const std::string& file, const std::vector<std::string>& defines, GlslTarget target) {
     return assemble_shader(file, defines, target, [](const std::string& name) { return shaders::find(name); });
 }
@@ -46,7 +48,9 @@ std::string assemble_shader(const std::string& file, const std::vector<std::stri
 std::string assemble_shader(const std::string& file, const std::vector<std::string>& defines, GlslTarget target,
                             const ShaderFiles& files) {
     std::string out = target == GlslTarget::Gl33 ? "#version 330 core\n"
-                                                 : "#version 300 es\nprecision highp float;\nprecision highp int;\n";
+                                                 : "#version 300 es\n"
+                                                   "precision highp float;\nprecision highp int;\n"
+                                                   "precision highp sampler2D;\nprecision highp samplerCube;\n";
     for (const auto& d : defines) out += "#define " + d + "\n";
     std::set<std::string> included;
     std::vector<std::string> stack;
@@ -66,4 +70,15 @@ const gpu::Program& ShaderLibrary::get(const std::string& vertex, const std::str
     return *programs_.emplace(key, std::move(program)).first->second;
 }
 
+}  // namespace fresnel
+
+namespace fresnel {
+const gpu::Program& ShaderLibrary::get(const std::string& vertex, const std::string& fragment, FeatureMask features) {
+    auto key = std::make_tuple(vertex, fragment, features);
+    auto it = variants_.find(key);
+    if (it != variants_.end()) return *it->second;
+    const gpu::Program& p = get(vertex, fragment, feature_defines(features));
+    variants_.emplace(std::move(key), &p);
+    return p;
+}
 }  // namespace fresnel

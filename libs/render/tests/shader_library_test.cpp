@@ -51,11 +51,14 @@ TEST(AssembleShader, VersionLinePerTarget) {
 TEST(AssembleShader, DefinesFollowTheVersionInOrder) {
     std::string s = assemble_shader("pbr.frag", {"HAS_NORMAL", "MAX_LIGHTS 4", "USE_IBL"}, GlslTarget::Es30);
     auto l = lines(s);
-    ASSERT_GE(l.size(), 6u);
+    ASSERT_GE(l.size(), 8u);
     EXPECT_EQ(l[0], "#version 300 es");
-    EXPECT_EQ(l[3], "#define HAS_NORMAL");
-    EXPECT_EQ(l[4], "#define MAX_LIGHTS 4");
-    EXPECT_EQ(l[5], "#define USE_IBL");
+    // The ES preamble: default precisions, samplers included (both dialects then agree).
+    EXPECT_EQ(l[1], "precision highp float;");
+    EXPECT_EQ(l[4], "precision highp samplerCube;");
+    EXPECT_EQ(l[5], "#define HAS_NORMAL");
+    EXPECT_EQ(l[6], "#define MAX_LIGHTS 4");
+    EXPECT_EQ(l[7], "#define USE_IBL");
     // lights.glsl's own default (#ifndef MAX_LIGHTS) comes after, so the define wins.
     EXPECT_LT(s.find("#define MAX_LIGHTS 4"), s.find("#ifndef MAX_LIGHTS"));
 }

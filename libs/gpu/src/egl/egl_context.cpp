@@ -2,6 +2,7 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <string>
 #include <vector>
 
 #include "fresnel/core/error.h"
@@ -22,7 +23,7 @@ public:
         if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
             throw Error("EGL", "", "eglMakeCurrent failed");
     }
-    void init(const ContextOptions& o) { install_debug_output(o); }
+    void init(const ContextOptions& o) { init_context(o); }
 
 private:
     EGLDisplay display_;
@@ -54,24 +55,28 @@ std::vector<EGLDisplay> candidate_displays() {
     return out;
 }
 
-EGLContext try_create(EGLDisplay display, bool debug) {
+EGLContext try_create(EGLDisplay display, const ContextOptions& options) {
     EGLint major = 0, minor = 0;
     if (!eglInitialize(display, &major, &minor)) return EGL_NO_CONTEXT;
-    if (!eglBindAPI(EGL_OPENGL_API)) return EGL_NO_CONTEXT;
+    const bool es = options.api == Api::OpenGLES30;
+    if (!eglBindAPI(es ? EGL_OPENGL_ES_API : EGL_OPENGL_API)) return EGL_NO_CONTEXT;
     EGLConfig config = nullptr;
-    const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, es ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_BIT, EGL_NONE};
     EGLint count = 0;
     bool no_config = epoxy_has_egl_extension(display, "EGL_KHR_no_config_context");
     if (!eglChooseConfig(display, config_attribs, &config, 1, &count) || count == 0) {
         if (!no_config) return EGL_NO_CONTEXT;
         config = EGL_NO_CONFIG_KHR;
     }
-    const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3,
-                                  EGL_CONTEXT_MINOR_VERSION, 3,
-                                  EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                  EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE,
-                                  EGL_NONE};
-    EGLContext ctx = eglCreateContext(display, config, EGL_NO_CONTEXT, ctx_attribs);
+    const EGLint debug = options.debug ? EGL_TRUE : EGL_FALSE;
+    const EGLint gl_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3,
+                                 EGL_CONTEXT_MINOR_VERSION, 3,
+                                 EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                 EGL_CONTEXT_OPENGL_DEBUG, debug,
+                                 EGL_NONE};
+    const EGLint es_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 0,
+                                 EGL_CONTEXT_OPENGL_DEBUG, debug, EGL_NONE};
+    EGLContext ctx = eglCreateContext(display, config, EGL_NO_CONTEXT, es ? es_attribs : gl_attribs);
     if (ctx == EGL_NO_CONTEXT) return ctx;
     if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {
         eglDestroyContext(display, ctx);
@@ -84,7 +89,7 @@ EGLContext try_create(EGLDisplay display, bool debug) {
 
 std::unique_ptr<Context> create_headless_context(const ContextOptions& options) {
     for (EGLDisplay display : candidate_displays()) {
-        EGLContext ctx = try_create(display, options.debug);
+        EGLContext ctx = try_create(display, options);
         if (ctx != EGL_NO_CONTEXT) {
             auto c = std::make_unique<EglContext>(display, ctx);
             c->init(options);
@@ -92,7 +97,8 @@ std::unique_ptr<Context> create_headless_context(const ContextOptions& options) 
         }
         eglTerminate(display);
     }
-    throw Error("EGL", "", "no headless OpenGL 3.3 core context could be created (is Mesa's libegl-mesa0 installed?)");
+    throw Error("EGL", "", std::string("no headless ") + api_name(options.api) +
+                               " context could be created (is Mesa's libegl-mesa0 installed?)");
 }
 
 }  // namespace fresnel::gpu

@@ -20,7 +20,7 @@ public:
     void swap_buffers() override { glfwSwapBuffers(window_); }
     bool should_close() const override { return glfwWindowShouldClose(window_); }
     void poll_events() override { glfwPollEvents(); }
-    void init(const ContextOptions& o) { install_debug_output(o); }
+    void init(const ContextOptions& o) { init_context(o); }
 
 private:
     GLFWwindow* window_;
@@ -30,15 +30,19 @@ private:
 std::unique_ptr<Context> create_window_context(int width, int height, const std::string& title,
                                                const ContextOptions& options) {
     if (!glfwInit()) throw Error("GLFW", "", "cannot initialise GLFW (no display?)");
+    const bool es = options.api == Api::OpenGLES30;
+    glfwWindowHint(GLFW_CLIENT_API, es ? GLFW_OPENGL_ES_API : GLFW_OPENGL_API);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, es ? 0 : 3);
+    if (!es) {
+        glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+        glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    }
     glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, options.debug ? GLFW_TRUE : GLFW_FALSE);
     GLFWwindow* w = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (!w) {
         glfwTerminate();
-        throw Error("GLFW", "", "cannot create an OpenGL 3.3 core window");
+        throw Error("GLFW", "", std::string("cannot create an ") + api_name(options.api) + " window");
     }
     glfwMakeContextCurrent(w);
     auto c = std::make_unique<GlfwContext>(w);

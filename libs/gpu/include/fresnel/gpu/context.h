@@ -9,9 +9,34 @@ namespace fresnel::gpu {
 
 using LogFn = std::function<void(const std::string&)>;
 
+// The API a context speaks. fresnel's GL use is OpenGL 3.3 core ∩ OpenGL ES 3.0; what
+// differs between the two is reported by Capabilities and handled inside libs/gpu.
+enum class Api { OpenGL33, OpenGLES30 };
+const char* api_name(Api api);  // "OpenGL 3.3 core", "OpenGL ES 3.0"
+
 struct ContextOptions {
+    Api api = Api::OpenGL33;
     bool debug = false;  // KHR_debug messages to `log` (when the driver has KHR_debug)
-    LogFn log;           // where driver messages go; default: ignored
+    LogFn log;           // where driver messages (and capability fallbacks) go; default: ignored
+};
+
+// What the context can do, queried once when it is made.
+struct Capabilities {
+    Api api = Api::OpenGL33;
+    // Colour render targets: RGBA16F / RGBA32F renderable (always on GL 3.3; on ES 3.0
+    // behind EXT_color_buffer_float, RGBA16F alone behind EXT_color_buffer_half_float).
+    bool float_color_targets = true;
+    bool half_float_color_targets = true;
+    // Linear filtering of 32-bit float textures (GL 3.3; OES_texture_float_linear on ES).
+    bool float_linear_filtering = true;
+    float max_anisotropy = 1.0f;  // 1 when EXT/ARB_texture_filter_anisotropic is absent
+    int max_samples = 0;          // GL_MAX_SAMPLES
+    // Largest MSAA sample count of the HDR colour target's format: RGBA16F, or RGBA8 where
+    // half-float targets are missing.
+    int max_samples_float = 0;
+    bool seamless_cube_maps = true;  // desktop: enabled once at creation; ES 3.0 filters seamlessly always
+    bool debug_output = false;       // KHR_debug
+    int max_texture_units = 16;      // GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS
 };
 
 class Context {
@@ -26,18 +51,25 @@ public:
     std::string renderer() const;  // GL_RENDERER
     std::string version() const;   // GL_VERSION
     bool has_extension(const char* name) const;
+    const Capabilities& capabilities() const { return caps_; }
+    Api api() const { return caps_.api; }
 
 protected:
-    void install_debug_output(const ContextOptions& options);
+    // Called by each backend once its context is current: queries the capabilities, sets
+    // the state fresnel keeps for the context's life (seamless cube maps on desktop) and
+    // installs the debug callback.
+    void init_context(const ContextOptions& options);
     ContextOptions options_;
+    Capabilities caps_;
 };
 
-// Headless OpenGL 3.3 core through EGL: the Mesa surfaceless platform first
-// (llvmpipe in CI), then the EGL device platform (GPU drivers), then the default
-// display. Throws fresnel::Error when no context can be made.
+// Headless OpenGL 3.3 core (or, with options.api = OpenGLES30, OpenGL ES 3.0) through
+// EGL: the Mesa surfaceless platform first (llvmpipe in CI), then the EGL device
+// platform (GPU drivers), then the default display. Throws fresnel::Error when no
+// context can be made.
 std::unique_ptr<Context> create_headless_context(const ContextOptions& options = {});
 
-// A window with an OpenGL 3.3 core context (GLFW). Throws when no display is available.
+// A window with an OpenGL 3.3 core (or ES 3.0) context (GLFW). Throws when no display is available.
 std::unique_ptr<Context> create_window_context(int width, int height, const std::string& title,
                                                const ContextOptions& options = {});
 

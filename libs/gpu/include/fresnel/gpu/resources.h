@@ -127,9 +127,11 @@ public:
     Renderbuffer& operator=(Renderbuffer&&) noexcept = default;
     ~Renderbuffer();
     int samples() const { return samples_; }
+    RenderbufferFormat format() const { return format_; }
 
 private:
     int samples_ = 0;
+    RenderbufferFormat format_ = RenderbufferFormat::RGBA16F;
 };
 
 class Framebuffer : public Handle {
@@ -143,9 +145,15 @@ public:
     void attach_depth(const Renderbuffer& rb);
     // Throws fresnel::Error when the framebuffer is incomplete.
     void check() const;
+    // True when the colour attachment is fixed-point (RGBA8, sRGB, R8): read back as bytes.
+    bool color_normalized() const { return color_normalized_; }
+
+private:
+    bool color_normalized_ = false;
 };
 
-// Largest MSAA sample count supported for float colour targets.
+// GL_MAX_SAMPLES of the current context (Context::capabilities() also has the
+// largest count for float colour targets, which may be lower on OpenGL ES).
 int max_samples();
 
 class Program : public Handle {

@@ -11,6 +11,7 @@
 
 #include "fresnel/material/evaluate.h"
 #include "fresnel/material/material.h"
+#include "fresnel/render/shader_features.h"
 
 namespace fresnel {
 namespace gpu {
@@ -42,6 +43,10 @@ struct MaterialUniforms {
 };
 
 MaterialUniforms material_uniforms(const Material& m);
+
+// The shader feature bits (shader_features.h) of the material model: unlit,
+// specular-glossiness, clearcoat, alpha mode. The same as MaterialUniforms::defines.
+FeatureMask material_features(const Material& m);
 
 // Sets the values on `program` (in use); bound[i]: map i is bound to texture unit i.
 void set_material_uniforms(const gpu::Program& program, const MaterialUniforms& u,

@@ -7,13 +7,18 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
+#include "fresnel/gpu/context.h"
 #include "fresnel/gpu/resources.h"
+#include "fresnel/render/shader_features.h"
 
 namespace fresnel {
 
 enum class GlslTarget { Gl33, Es30 };
+// The GLSL dialect of a context's API: 330 core for OpenGL 3.3, 300 es for OpenGL ES 3.0.
+GlslTarget glsl_target(gpu::Api api);
 
 // The source of `file` with includes resolved and `defines` ("NAME" or "NAME VALUE") added:
 // the version line (and, for ES, default precisions), one #define line per define, then the
@@ -33,11 +38,16 @@ public:
     explicit ShaderLibrary(GlslTarget target = GlslTarget::Gl33) : target_(target) {}
     // Returns the program for this vertex/fragment pair and define set, compiling it once.
     const gpu::Program& get(const std::string& vertex, const std::string& fragment, std::vector<std::string> defines);
+    // The variant of a mesh shader pair for a feature set (see shader_features.h): its
+    // defines are feature_defines(features). Looked up by (vertex, fragment, mask).
+    const gpu::Program& get(const std::string& vertex, const std::string& fragment, FeatureMask features);
     std::size_t size() const { return programs_.size(); }
+    GlslTarget target() const { return target_; }
 
 private:
     GlslTarget target_;
     std::map<std::string, std::unique_ptr<gpu::Program>> programs_;
+    std::map<std::tuple<std::string, std::string, FeatureMask>, const gpu::Program*> variants_;
 };
 
 }  // namespace fresnel

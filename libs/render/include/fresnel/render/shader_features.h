@@ -1,0 +1,91 @@
+#pragma once
+// The feature bits that select a variant of the mesh shaders (pbr.vert / pbr.frag), the
+// rules that say which combinations exist, and the enumeration of every variant the
+// renderer can ask for. One source of truth: Renderer::draw_primitive describes a draw
+// by the raw bits of its primitive, material and settings and keeps canonical_features()
+// of them; tests/gpu/es300_test.cpp compiles every mask all_feature_sets() lists.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace fresnel {
+
+using FeatureMask = std::uint32_t;
+
+namespace feature {
+enum : FeatureMask {
+    // Vertex attributes present.
+    HasNormal = 1u << 0,
+    HasTangent = 1u << 1,
+    HasUv0 = 1u << 2,
+    HasUv1 = 1u << 3,
+    HasColor = 1u << 4,
+    // Material model and render settings.
+    Unlit = 1u << 5,               // KHR_materials_unlit
+    SpecularGlossiness = 1u << 6,  // KHR_materials_pbrSpecularGlossiness
+    Clearcoat = 1u << 7,           // KHR_materials_clearcoat
+    AlphaMask = 1u << 8,
+    AlphaBlend = 1u << 9,
+    DebugView = 1u << 10,  // RenderSettings::debug != None
+    UseIbl = 1u << 11,     // an environment lights the scene
+    // Texture maps bound, in fresnel::MaterialMap order (texture units 0..10).
+    BaseColorMap = 1u << 12,
+    MetallicRoughnessMap = 1u << 13,
+    NormalMap = 1u << 14,
+    OcclusionMap = 1u << 15,
+    EmissiveMap = 1u << 16,
+    SpecularMap = 1u << 17,             // KHR_materials_specular specularTexture
+    SpecularColorMap = 1u << 18,        // KHR_materials_specular specularColorTexture
+    SpecularGlossinessMap = 1u << 19,   // KHR_materials_pbrSpecularGlossiness specularGlossinessTexture
+    ClearcoatMap = 1u << 20,
+    ClearcoatRoughnessMap = 1u << 21,
+    ClearcoatNormalMap = 1u << 22,
+};
+constexpr int kCount = 23;
+constexpr int kFirstMap = 12;
+constexpr int kMapCount = 11;
+constexpr FeatureMask kAll = (1u << kCount) - 1;
+constexpr FeatureMask kMaps = ((1u << kMapCount) - 1) << kFirstMap;
+// The bit of map `i` (fresnel::MaterialMap(i)).
+constexpr FeatureMask map_bit(int i) { return FeatureMask(1) << (kFirstMap + i); }
+}  // namespace feature
+
+// Bound lights: the size of the shaders' light arrays (MAX_LIGHTS).
+constexpr int kMaxShaderLights = 16;
+
+struct FeatureInfo {
+    FeatureMask bit;
+    const char* define;  // the GLSL #define ("HAS_NORMAL", ...)
+};
+// Every feature bit in bit order.
+std::span<const FeatureInfo> feature_table();
+
+// The #defines of a variant: one per set bit, in bit order, then "MAX_LIGHTS 16".
+std::vector<std::string> feature_defines(FeatureMask mask);
+
+// The variant the renderer draws with when a draw's raw description is `mask` (the
+// attributes the primitive has, the material's model, the maps it has, the settings).
+// Each rule drops a bit that cannot change the picture or adds a map whose absence
+// a 1x1 white texture stands in for exactly (x * 1.0 = x), so variants stay few:
+//  - tangents without normals are ignored (glTF 2.0, meshes: "TANGENT ... ignored");
+//  - every map needs UV0; normal and clearcoat-normal maps need tangents;
+//    the clearcoat maps need the clearcoat; specular-glossiness reads its own map and
+//    neither the metallic-roughness nor the two KHR_materials_specular maps, which
+//    metallic-roughness reads instead of the specular-glossiness map;
+//  - unlit without the debug view reads only the base colour (map): normals, tangents,
+//    lit maps, specular-glossiness, clearcoat and the environment are dropped;
+//  - KHR_materials_specular's two maps come together, as do the clearcoat and
+//    clearcoat-roughness maps (the missing one is the white texture);
+//  - the debug view samples every map but the normal maps (white where absent);
+//  - alpha mask wins over blend (a material has one alpha mode).
+// Normal maps are never stood in for: a flat normal texel is not exactly (0, 0, 1).
+FeatureMask canonical_features(FeatureMask mask);
+
+// A mask the renderer can produce: in range and canonical.
+bool valid_features(FeatureMask mask);
+
+// Every valid mask, ascending (tens of thousands; each stage source depends on fewer bits).
+std::vector<FeatureMask> all_feature_sets();
+
+}  // namespace fresnel

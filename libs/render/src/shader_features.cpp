@@ -1,0 +1,81 @@
+#include "fresnel/render/shader_features.h"
+
+namespace fresnel {
+
+namespace {
+using namespace feature;
+constexpr FeatureInfo kFeatures[kCount] = {
+    {HasNormal, "HAS_NORMAL"},
+    {HasTangent, "HAS_TANGENT"},
+    {HasUv0, "HAS_UV0"},
+    {HasUv1, "HAS_UV1"},
+    {HasColor, "HAS_COLOR"},
+    {Unlit, "UNLIT"},
+    {SpecularGlossiness, "SPECULAR_GLOSSINESS"},
+    {Clearcoat, "MATERIAL_CLEARCOAT"},
+    {AlphaMask, "ALPHA_MASK"},
+    {AlphaBlend, "ALPHA_BLEND"},
+    {DebugView, "DEBUG_VIEW"},
+    {UseIbl, "USE_IBL"},
+    {BaseColorMap, "HAS_BASE_COLOR_MAP"},
+    {MetallicRoughnessMap, "HAS_METALLIC_ROUGHNESS_MAP"},
+    {NormalMap, "HAS_NORMAL_MAP"},
+    {OcclusionMap, "HAS_OCCLUSION_MAP"},
+    {EmissiveMap, "HAS_EMISSIVE_MAP"},
+    {SpecularMap, "HAS_SPECULAR_MAP"},
+    {SpecularColorMap, "HAS_SPECULAR_COLOR_MAP"},
+    {SpecularGlossinessMap, "HAS_SPECULAR_GLOSSINESS_MAP"},
+    {ClearcoatMap, "HAS_CLEARCOAT_MAP"},
+    {ClearcoatRoughnessMap, "HAS_CLEARCOAT_ROUGHNESS_MAP"},
+    {ClearcoatNormalMap, "HAS_CLEARCOAT_NORMAL_MAP"},
+};
+
+// The maps a draw with these attributes and this material model may bind.
+FeatureMask allowed_maps(FeatureMask m) {
+    if (!(m & HasUv0)) return 0;
+    if ((m & Unlit) && !(m & DebugView)) return BaseColorMap;
+    FeatureMask maps = BaseColorMap | OcclusionMap | EmissiveMap;
+    if (m & SpecularGlossiness) maps |= SpecularGlossinessMap;
+    else maps |= MetallicRoughnessMap | SpecularMap | SpecularColorMap;
+    if (m & HasTangent) maps |= NormalMap;
+    if (m & Clearcoat) {
+        maps |= ClearcoatMap | ClearcoatRoughnessMap;
+        if (m & HasTangent) maps |= ClearcoatNormalMap;
+    }
+    return maps;
+}
+}  // namespace
+
+std::span<const FeatureInfo> feature_table() { return kFeatures; }
+
+std::vector<std::string> feature_defines(FeatureMask mask) {
+    std::vector<std::string> out;
+    for (const auto& f : kFeatures)
+        if (mask & f.bit) out.emplace_back(f.define);
+    out.push_back("MAX_LIGHTS " + std::to_string(kMaxShaderLights));
+    return out;
+}
+
+FeatureMask canonical_features(FeatureMask m) {
+    m &= kAll;
+    if (!(m & HasNormal)) m &= ~HasTangent;
+    if (m & AlphaMask) m &= ~AlphaBlend;
+    if ((m & Unlit) && !(m & DebugView)) m &= ~(HasNormal | HasTangent | SpecularGlossiness | Clearcoat | UseIbl);
+    const FeatureMask allowed = allowed_maps(m);
+    m = (m & ~kMaps) | (m & allowed);
+    if (!(m & SpecularGlossiness) && (m & (SpecularMap | SpecularColorMap))) m |= SpecularMap | SpecularColorMap;
+    if (m & (ClearcoatMap | ClearcoatRoughnessMap)) m |= ClearcoatMap | ClearcoatRoughnessMap;
+    if (m & DebugView) m |= allowed & ~(NormalMap | ClearcoatNormalMap);
+    return m;
+}
+
+bool valid_features(FeatureMask mask) { return (mask & ~kAll) == 0 && canonical_features(mask) == mask; }
+
+std::vector<FeatureMask> all_feature_sets() {
+    std::vector<FeatureMask> out;
+    for (FeatureMask m = 0; m <= kAll; ++m)
+        if (canonical_features(m) == m) out.push_back(m);
+    return out;
+}
+
+}  // namespace fresnel

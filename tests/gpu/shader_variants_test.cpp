@@ -1,0 +1,173 @@
+// Every shader variant the renderer can ask for compiles as GLSL ES 3.00 and as GLSL
+// 3.30 core, checked offline with glslang (Debian's glslang-dev, in process, one
+// thread per core): the mesh shaders for every feature set of all_feature_sets()
+// (shader_features.h, the same enumeration the renderer's rules come from) and the
+// other programs (fullscreen.vert, post.frag, sky.frag, brdf_probe.frag).
+//
+// A stage's source depends only on the feature #defines it mentions, so each stage
+// is compiled once per distinct set of the bits it reads (the bits it never names
+// cannot change its text after preprocessing); the test finds those bits by scanning
+// the assembled source, so a shader that starts reading a new bit is covered at once.
+#include <gtest/gtest.h>
+
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <mutex>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "fresnel/render/shader_features.h"
+#include "fresnel/render/shader_library.h"
+
+using namespace fresnel;
+
+namespace {
+
+struct Job {
+    std::string file;
+    FeatureMask mask = 0;
+    bool mesh = false;  // a pbr.* stage: compiled with feature_defines(mask)
+    GlslTarget target = GlslTarget::Gl33;
+};
+
+bool is_vertex(const std::string& file) { return file.size() > 5 && file.substr(file.size() - 5) == ".vert"; }
+
+// True when `name` occurs in `text` as a whole identifier.
+bool mentions(const std::string& text, const std::string& name) {
+    auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (std::size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + 1)) {
+        bool left = at == 0 || !ident(text[at - 1]);
+        bool right = at + name.size() >= text.size() || !ident(text[at + name.size()]);
+        if (left && right) return true;
+    }
+    return false;
+}
+
+// The feature bits a stage's assembled source names.
+FeatureMask bits_read_by(const std::string& file) {
+    const std::string src = assemble_shader(file, {}, GlslTarget::Gl33);
+    FeatureMask m = 0;
+    for (const auto& f : feature_table())
+        if (mentions(src, f.define)) m |= f.bit;
+    return m;
+}
+
+// Compiles one stage; returns "" or the info log.
+std::string compile(const Job& job) {
+    const std::vector<std::string> defines = job.mesh ? feature_defines(job.mask) : std::vector<std::string>{};
+    const std::string src = assemble_shader(job.file, defines, job.target);
+    glslang::TShader shader(is_vertex(job.file) ? EShLangVertex : EShLangFragment);
+    const char* text = src.c_str();
+    shader.setStrings(&text, 1);
+    if (shader.parse(GetDefaultResources(), 100, false, EShMsgDefault)) return "";
+    return shader.getInfoLog();
+}
+
+std::string describe(const Job& job) {
+    std::string s = job.file + (job.target == GlslTarget::Es30 ? " (300 es)" : " (330 core)");
+    if (job.mesh) {
+        s += ":";
+        for (const auto& d : feature_defines(job.mask)) s += " " + d;
+    }
+    return s;
+}
+
+struct GlslangProcess {
+    GlslangProcess() { glslang::InitializeProcess(); }
+    ~GlslangProcess() { glslang::FinalizeProcess(); }
+};
+
+}  // namespace
+
+TEST(ShaderFeatures, RulesAreCanonicalAndEnumerated) {
+    using namespace feature;
+    const std::vector<FeatureMask> all = all_feature_sets();
+    const std::set<FeatureMask> set(all.begin(), all.end());
+    // canonical_features is idempotent, and everything it returns is enumerated.
+    for (FeatureMask m = 0; m <= kAll; m += 7) {  // a stride through all 4M raw masks
+        FeatureMask c = canonical_features(m);
+        ASSERT_EQ(canonical_features(c), c) << std::hex << m;
+        ASSERT_TRUE(set.count(c)) << std::hex << m;
+    }
+    for (FeatureMask m : all) EXPECT_TRUE(valid_features(m));
+    // The rules the renderer relies on.
+    EXPECT_FALSE(valid_features(HasUv0 | HasNormal | NormalMap));  // normal maps need tangents
+    EXPECT_FALSE(valid_features(HasNormal | BaseColorMap));        // maps need UV0
+    EXPECT_FALSE(valid_features(HasUv0 | HasNormal | ClearcoatMap | ClearcoatRoughnessMap));  // need the clearcoat
+    EXPECT_FALSE(valid_features(AlphaMask | AlphaBlend));
+    EXPECT_FALSE(valid_features(HasUv0 | HasNormal | SpecularMap));  // the specular pair comes together
+    EXPECT_EQ(canonical_features(HasUv0 | HasNormal | Unlit | UseIbl | MetallicRoughnessMap | BaseColorMap),
+              HasUv0 | Unlit | BaseColorMap);
+    // DamagedHelmet's variant exists unchanged.
+    const FeatureMask helmet = HasNormal | HasTangent | HasUv0 | UseIbl | BaseColorMap | MetallicRoughnessMap |
+                               NormalMap | OcclusionMap | EmissiveMap;
+    EXPECT_EQ(canonical_features(helmet), helmet);
+    EXPECT_GT(all.size(), 1000u);
+    std::printf("feature sets: %zu\n", all.size());
+}
+
+TEST(ShaderVariants, EveryVariantCompilesAsEs300AndGl330) {
+    GlslangProcess process;
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::vector<FeatureMask> all = all_feature_sets();
+    std::vector<Job> jobs;
+    std::size_t per_target = 0;
+    for (const char* file : {"pbr.vert", "pbr.frag"}) {
+        const FeatureMask read = bits_read_by(file);
+        EXPECT_NE(read, 0u) << file << " reads no feature bit: the scan is broken";
+        std::set<FeatureMask> distinct;
+        for (FeatureMask m : all) distinct.insert(m & read);
+        std::printf("%s: %zu distinct sources over %zu feature sets\n", file, distinct.size(), all.size());
+        per_target += distinct.size();
+        for (GlslTarget t : {GlslTarget::Es30, GlslTarget::Gl33})
+            for (FeatureMask m : distinct) jobs.push_back({file, m, true, t});
+    }
+    for (const char* file : {"fullscreen.vert", "post.frag", "sky.frag", "brdf_probe.frag"}) {
+        ++per_target;
+        for (GlslTarget t : {GlslTarget::Es30, GlslTarget::Gl33}) jobs.push_back({file, 0, false, t});
+    }
+
+    std::atomic<std::size_t> next{0}, compiled{0};
+    std::mutex mutex;
+    std::vector<std::string> failures;
+    auto worker = [&] {
+        for (std::size_t i = next++; i < jobs.size(); i = next++) {
+            std::string log = compile(jobs[i]);
+            ++compiled;
+            if (log.empty()) continue;
+            std::lock_guard<std::mutex> lock(mutex);
+            failures.push_back(describe(jobs[i]) + "\n" + log);
+        }
+    };
+    const unsigned n = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::thread> threads;
+    for (unsigned i = 0; i < n; ++i) threads.emplace_back(worker);
+    for (auto& t : threads) t.join();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("compiled %zu stage sources (%zu per target, 300 es and 330 core) on %u threads in %.1f s\n",
+                compiled.load(), per_target, n, seconds);
+    EXPECT_EQ(compiled.load(), jobs.size());
+    EXPECT_TRUE(failures.empty()) << failures.size() << " of " << jobs.size() << " failed; first:\n"
+                                  << (failures.empty() ? "" : failures.front());
+}
+
+TEST(ShaderVariants, CompilerRejectsBadSource) {
+    // The check can fail: GLSL ES rejects an implicit int -> float conversion that 330 core accepts.
+    GlslangProcess process;
+    auto parse = [](const char* src) {
+        glslang::TShader shader(EShLangFragment);
+        shader.setStrings(&src, 1);
+        return shader.parse(GetDefaultResources(), 100, false, EShMsgDefault);
+    };
+    EXPECT_FALSE(parse("#version 300 es\nprecision highp float;\nout vec4 c;\nvoid main() { float x = 1; c = vec4(x); }\n"));
+    EXPECT_TRUE(parse("#version 330 core\nout vec4 c;\nvoid main() { float x = 1; c = vec4(x); }\n"));
+}
