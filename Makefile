@@ -4,6 +4,8 @@ BUILD       ?= build
 ASAN_BUILD  ?= build-asan
 BUILD_TYPE  ?= Release
 FUZZ_SECONDS ?= 60
+# ON: compiler warnings are errors (CI: `make test FRESNEL_WERROR=ON`); the gcc builds only, not `make fuzz`.
+FRESNEL_WERROR ?= OFF
 CMAKE_GEN   := $(shell command -v ninja >/dev/null 2>&1 && echo "-G Ninja")
 
 .PHONY: all deps configure build demo test test-fast asan fuzz bench clean
@@ -14,9 +16,11 @@ deps:
 	@scripts/install-deps.sh
 
 $(BUILD)/CMakeCache.txt:
-	cmake -S . -B $(BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
+	cmake -S . -B $(BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DFRESNEL_WERROR=$(FRESNEL_WERROR)
 
+# An existing build folder is reconfigured when FRESNEL_WERROR differs from its cache.
 configure: $(BUILD)/CMakeCache.txt
+	@grep -qx 'FRESNEL_WERROR:BOOL=$(FRESNEL_WERROR)' $(BUILD)/CMakeCache.txt || cmake -S . -B $(BUILD) -DFRESNEL_WERROR=$(FRESNEL_WERROR)
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
@@ -38,12 +42,14 @@ test-fast: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 $(ASAN_BUILD)/CMakeCache.txt:
-	cmake -S . -B $(ASAN_BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFRESNEL_SANITIZE=ON -DFRESNEL_BENCH=OFF
+	cmake -S . -B $(ASAN_BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFRESNEL_SANITIZE=ON -DFRESNEL_BENCH=OFF \
+	  -DFRESNEL_WERROR=$(FRESNEL_WERROR)
 
 # Only what the sanitizer tests need: the loaders' unit tests, the CLI (corpus and
 # hostile-input tests) and the fuzz-regression replayers.
 ASAN_TARGETS := core_test scene_test fresnel replay_gltf replay_image replay_hdr replay_exr
 asan: $(ASAN_BUILD)/CMakeCache.txt
+	@grep -qx 'FRESNEL_WERROR:BOOL=$(FRESNEL_WERROR)' $(ASAN_BUILD)/CMakeCache.txt || cmake -S . -B $(ASAN_BUILD) -DFRESNEL_WERROR=$(FRESNEL_WERROR)
 	cmake --build $(ASAN_BUILD) -j $(JOBS) --target $(ASAN_TARGETS)
 	cd $(ASAN_BUILD) && ctest --output-on-failure -j $(JOBS) -L sanitize
 

@@ -1,6 +1,9 @@
 // fresnel: a physically based renderer and toolkit. See README.md for the CLI reference.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <string>
+
+#include "fresnel/core/version.h"
 
 #include "cli_common.h"
 #include "commands.h"
@@ -8,7 +11,7 @@
 int main(int argc, char** argv) {
     CLI::App app{"fresnel: physically based rendering of glTF 2.0 models", "fresnel"};
     app.require_subcommand(1);
-    app.set_version_flag("--version", "fresnel 0.1.0");
+    app.set_version_flag("--version", "fresnel " + std::string(fresnel::version()));
     auto render = fresnel::cli::add_render_command(app);
     auto info = fresnel::cli::add_info_command(app);
     auto bake = fresnel::cli::add_bake_command(app);

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fresnel/core/image.h"
+#include "fresnel/core/version.h"
 
 namespace fs = std::filesystem;
 
@@ -98,6 +99,14 @@ TEST_F(Cli, HelpExitsZero) {
     r = run({"info", "--help"});
     EXPECT_EQ(r.exit_code, 0) << show(r);
     EXPECT_NE(r.out.find("--json"), std::string::npos) << show(r);
+}
+
+// --version prints the version written once in CMakeLists.txt (project(VERSION)).
+TEST_F(Cli, VersionIsTheProjectVersion) {
+    Result r = run({"--version"});
+    EXPECT_EQ(r.exit_code, 0) << show(r);
+    EXPECT_EQ(r.out, std::string("fresnel ") + FRESNEL_VERSION_STRING + "\n") << show(r);
+    EXPECT_EQ(fresnel::version(), FRESNEL_VERSION_STRING);
 }
 
 TEST_F(Cli, InfoJsonCountsDamagedHelmet) {

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "fresnel/core/error.h"
+#include "fresnel/core/version.h"
 #include "fresnel/ibl/ktx2.h"
 
 namespace fresnel::ibl {
@@ -126,7 +127,7 @@ void save_baked(const BakedIbl& ibl, const fs::path& dir, const BakeOptions& o, 
         files.push_back("preview/brdf_lut.exr");
     }
     json manifest = {
-        {"generator", "fresnel 0.1.0"},
+        {"generator", "fresnel " + std::string(fresnel::version())},
         {"format_version", kFormatVersion},
         {"source", ibl.source},
         {"key", ibl.key},

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "fresnel/core/error.h"
+#include "fresnel/core/version.h"
 
 namespace fresnel::ibl {
 namespace fs = std::filesystem;
@@ -89,7 +90,7 @@ void write_ktx2(const fs::path& path, int width, int height, int faces,
     write_dfd(w);
     std::size_t dfd_len = w.out.size() - dfd_at;
     std::size_t kvd_at = w.out.size();
-    write_kv(w, "KTXwriter", "fresnel 0.1.0");
+    write_kv(w, "KTXwriter", "fresnel " + std::string(fresnel::version()));
     std::size_t kvd_len = w.out.size() - kvd_at;
     w.put_u32(index_at, std::uint32_t(dfd_at));
     w.put_u32(index_at + 4, std::uint32_t(dfd_len));

@@ -1,0 +1,46 @@
+#pragma once
+// fresnel as a library: every layer's public headers and fresnel::version().
+// Link fresnel::fresnel (CMake: find_package(fresnel REQUIRED)). Layers, bottom up:
+// core (errors, colour, images), scene (glTF loader), material (BRDF), ibl (environments,
+// baking), gpu (OpenGL contexts and objects), render (cameras, lights, the renderer).
+#include "fresnel/core/version.h"
+
+#include "fresnel/core/color.h"
+#include "fresnel/core/error.h"
+#include "fresnel/core/image.h"
+#include "fresnel/core/metrics.h"
+#include "fresnel/core/mipmap.h"
+#include "fresnel/core/parallel.h"
+#include "fresnel/core/sampler.h"
+
+#include "fresnel/scene/gltf_loader.h"
+#include "fresnel/scene/mesh_ops.h"
+#include "fresnel/scene/procedural.h"
+#include "fresnel/scene/scene.h"
+#include "fresnel/scene/tangents.h"
+
+#include "fresnel/material/brdf.h"
+#include "fresnel/material/evaluate.h"
+#include "fresnel/material/material.h"
+#include "fresnel/material/sampling.h"
+#include "fresnel/material/texture.h"
+
+#include "fresnel/ibl/bake.h"
+#include "fresnel/ibl/cubemap.h"
+#include "fresnel/ibl/environment.h"
+#include "fresnel/ibl/ktx2.h"
+#include "fresnel/ibl/precompute.h"
+
+#include "fresnel/gpu/context.h"
+#include "fresnel/gpu/device.h"
+#include "fresnel/gpu/resources.h"
+
+#include "fresnel/render/camera.h"
+#include "fresnel/render/job.h"
+#include "fresnel/render/lights.h"
+#include "fresnel/render/material_uniforms.h"
+#include "fresnel/render/renderer.h"
+#include "fresnel/render/shader_features.h"
+#include "fresnel/render/shader_library.h"
+
+#include "fresnel/shaders/shaders.h"
