@@ -59,7 +59,8 @@ fuzz: deps
 	scripts/run-fuzzers.sh build-fuzz $(FUZZ_SECONDS)
 
 bench: build
-	$(BUILD)/bin/fresnel-bench
+	@scripts/setup-khronos-ref.sh $(BUILD)/khronos-ref
+	FRESNEL_KHRONOS_REF=$(abspath $(BUILD))/khronos-ref $(BUILD)/bin/fresnel-bench
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) build-fuzz

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -60,13 +61,52 @@ double khronos_figure(const fs::path& timings, const std::string& model, const s
     }
     return median(values);
 }
+// Runs ../shared/tools/khronos-ref (a copy with its npm packages installed, found through
+// $FRESNEL_KHRONOS_REF) with --gl llvmpipe on DamagedHelmet and 2CylinderEngine at 1024^2
+// and returns their median frame times; {"measured": false, ...} when it cannot run.
+nlohmann::json khronos_frames(const fs::path& helmet, const fs::path& engine, const fs::path& env) {
+    nlohmann::json out = {{"measured", false}};
+    const char* dir = std::getenv("FRESNEL_KHRONOS_REF");
+    if (!dir || !fs::exists(fs::path(dir) / "node_modules") || !fs::exists("/usr/bin/chromium")) {
+        out["why"] = "khronos-ref with its npm packages and /usr/bin/chromium not found (make bench sets it up)";
+        return out;
+    }
+    fs::path tmp = fs::temp_directory_path() / "fresnel-bench-khronos";
+    fs::create_directories(tmp);
+    nlohmann::json jobs = nlohmann::json::array();
+    jobs.push_back({{"model", helmet.string()}, {"out", (tmp / "helmet.png").string()}, {"size", "1024x1024"}});
+    if (fs::exists(engine)) jobs.push_back({{"model", engine.string()}, {"out", (tmp / "engine.png").string()}, {"size", "1024x1024"}});
+    std::ofstream(tmp / "jobs.json") << jobs.dump();
+    std::string cmd = std::string(dir) + "/render --gl llvmpipe --env " + env.string() + " --jobs " + (tmp / "jobs.json").string() +
+                      " --frames 15 > " + (tmp / "out.jsonl").string() + " 2> " + (tmp / "err.txt").string();
+    std::fprintf(stderr, "fresnel-bench: running the Khronos Sample Renderer (its IBL step takes ~100 s)...\n");
+    int rc = std::system(cmd.c_str());
+    std::ifstream in(tmp / "out.jsonl");
+    std::string line;
+    while (std::getline(in, line)) {
+        try {
+            auto j = nlohmann::json::parse(line);
+            std::string model = fs::path(j.value("model", "")).filename().string();
+            if (j.contains("frame_ms_median") && j["frame_ms_median"].is_number()) {
+                out[model] = {{"frame_ms_median", j["frame_ms_median"]}, {"renderer", j.value("renderer", "")}};
+                out["measured"] = true;
+            }
+        } catch (...) {
+        }
+    }
+    if (!out["measured"].get<bool>()) out["why"] = "khronos-ref exited " + std::to_string(rc) + " (see " + (tmp / "err.txt").string() + ")";
+    return out;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
-    bool quick = false, as_json = false;
+    bool quick = false, as_json = false, frames_only = false;
+    float anisotropy = 16.0f;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--quick")) quick = true;
         if (!std::strcmp(argv[i], "--json")) as_json = true;
+        if (!std::strcmp(argv[i], "--frames-only")) frames_only = true;  // the 1024^2 IBL frames alone
+        if (!std::strcmp(argv[i], "--anisotropy") && i + 1 < argc) anisotropy = float(std::atof(argv[++i]));
     }
     fs::path shared = FRESNEL_SHARED_DIR;
     fs::path helmet = shared / "assets/models/DamagedHelmet/DamagedHelmet.glb";
@@ -84,7 +124,7 @@ int main(int argc, char** argv) {
 
     // 1. DamagedHelmet.glb: parse + decode (parallel), upload, frame at 1024^2.
     std::vector<double> load, upload, frame, draw_only, first;
-    for (int r = 0; r < runs; ++r) {
+    for (int r = 0; r < (frames_only ? 0 : runs); ++r) {
         auto t = Clock::now();
         Diagnostics d;
         Scene scene = load_gltf(helmet, d);
@@ -118,7 +158,71 @@ int main(int argc, char** argv) {
                              {"khronos_load_ms", khronos_figure(timings, "DamagedHelmet.glb", "load_ms")},
                              {"khronos_frame_512_ms", khronos_figure(timings, "DamagedHelmet.glb", "frame_ms_median")}};
 
-    // 2. IBL bake at the defaults (256^2, 5 levels, 1024 samples, irradiance, 128^2 LUT).
+    // 2. Frames with image-based light, as the Khronos Sample Renderer draws them: 1024^2,
+    //    4x MSAA, the studio environment, no punctual lights; drawn and fenced (no read-back).
+    ibl::BakedIbl studio = ibl::load_or_bake(ibl::parse_environment(env.string()), ibl::BakeOptions{}, {}, false);
+    auto ibl_frames = [&](const fs::path& model) {
+        Diagnostics d;
+        Scene scene = load_gltf(model, d);
+        Renderer renderer(*context);
+        renderer.set_scene(scene);
+        RenderSettings rs;
+        rs.width = rs.height = 1024;
+        rs.environment = &studio;
+        rs.anisotropy = anisotropy;
+        auto inst = flatten(scene);
+        CameraSetup cam = orbit_camera(scene_bounds(scene, inst), {}, 1024, 1024);
+        renderer.draw(cam, {}, rs);  // warm-up: shader compilation
+        renderer.finish();
+        std::vector<double> ms;
+        FrameStats stats;
+        for (int f = 0; f < (quick ? 5 : 15); ++f) {
+            auto t = Clock::now();
+            renderer.draw(cam, {}, rs, &stats);
+            renderer.finish();
+            ms.push_back(ms_since(t));
+        }
+        return std::make_pair(median(ms), stats.draw_calls);
+    };
+    fs::path engine = shared / "assets/models/2CylinderEngine/2CylinderEngine.glb";
+    auto [helmet_ibl_ms, helmet_draws] = ibl_frames(helmet);
+    auto [engine_ibl_ms, engine_draws] = fs::exists(engine) ? ibl_frames(engine) : std::make_pair(0.0, 0);
+    if (frames_only) {
+        std::printf("frame 1024^2, 4x MSAA, studio IBL, anisotropy %g: DamagedHelmet %.1f ms, 2CylinderEngine %.1f ms\n",
+                    double(anisotropy), helmet_ibl_ms, engine_ibl_ms);
+        return 0;
+    }
+
+    // 3. The whole `fresnel render` process, file to a 512^2 PNG (environment cache warm).
+    double process_ms = 0;
+    {
+        fs::path cache = fs::temp_directory_path() / "fresnel-bench-process-cache";
+        std::string cmd = std::string("XDG_CACHE_HOME=") + cache.string() + " " + FRESNEL_EXE + " render " + helmet.string() +
+                          " -o " + (fs::temp_directory_path() / "fresnel-bench.png").string() + " --size 512x512 --env " +
+                          env.string() + " > /dev/null";
+        if (std::system(cmd.c_str()) == 0) {  // fills the environment cache (and Mesa's shader cache)
+            std::vector<double> runs_ms;
+            for (int r = 0; r < (quick ? 3 : 7); ++r) {
+                auto t = Clock::now();
+                if (std::system(cmd.c_str()) != 0) break;
+                runs_ms.push_back(ms_since(t));
+            }
+            process_ms = median(runs_ms);
+        }
+        fs::remove_all(cache);
+    }
+
+    // 4. The Khronos Sample Renderer on the same rasteriser (llvmpipe through ANGLE), in this
+    //    run, when it is installed (`make bench` sets it up where Chromium and npm exist).
+    nlohmann::json khronos = khronos_frames(helmet, engine, env);
+    out["frames"] = {{"damaged_helmet_ibl_1024_ms", helmet_ibl_ms},
+                     {"damaged_helmet_draw_calls", helmet_draws},
+                     {"engine_ibl_1024_ms", engine_ibl_ms},
+                     {"engine_draw_calls", engine_draws},
+                     {"process_512_ms", process_ms},
+                     {"khronos", khronos}};
+
+    // 5. IBL bake at the defaults (256^2, 5 levels, 1024 samples, irradiance, 128^2 LUT).
     ImageF pano = read_image_float(env);
     ibl::BakeOptions bo;
     std::vector<double> bake;
@@ -168,6 +272,23 @@ int main(int argc, char** argv) {
                 h["draw_1024_ms_median"].get<double>(), h["frame_1024_ms_median"].get<double>());
     std::printf("  [Khronos Sample Renderer: %.1f ms at 512^2 on SwiftShader; 256 ms at 1024^2 on llvmpipe per its README]\n",
                 h["khronos_frame_512_ms"].get<double>());
+    const auto& fr = out["frames"];
+    const auto& k = fr["khronos"];
+    auto ratio = [&](const char* model, double ours) {
+        if (!k["measured"].get<bool>() || !k.contains(model)) return std::string("  [Khronos not measured in this run: ") +
+                                                                  k.value("why", "") + "; last measured 2026-12-01: DamagedHelmet 329 ms]";
+        double theirs = k[model]["frame_ms_median"].get<double>();
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "  [Khronos Sample Renderer, same run, llvmpipe: %.1f ms; ratio %.2fx]", theirs, ours / theirs);
+        return std::string(buf);
+    };
+    std::printf("frame 1024^2, 4x MSAA, studio IBL, drawn and fenced:\n");
+    std::printf("  DamagedHelmet    %.1f ms (%d draws)%s\n", fr["damaged_helmet_ibl_1024_ms"].get<double>(),
+                fr["damaged_helmet_draw_calls"].get<int>(), ratio("DamagedHelmet.glb", fr["damaged_helmet_ibl_1024_ms"].get<double>()).c_str());
+    std::printf("  2CylinderEngine  %.1f ms (%d draws)%s\n", fr["engine_ibl_1024_ms"].get<double>(), fr["engine_draw_calls"].get<int>(),
+                ratio("2CylinderEngine.glb", fr["engine_ibl_1024_ms"].get<double>()).c_str());
+    std::printf("whole `fresnel render` DamagedHelmet.glb -> 512^2 PNG, warm environment cache: %.0f ms median  [target 420 ms]\n",
+                fr["process_512_ms"].get<double>());
     const auto& i = out["ibl"];
     std::printf("IBL bake studio_small_03_1k.hdr at defaults: %.0f ms median  [Khronos: %.0f ms, %.0fx slower]\n",
                 i["bake_ms_median"].get<double>(), i["khronos_env_ms"].get<double>(), i["speedup_vs_khronos"].get<double>());

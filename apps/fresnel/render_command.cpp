@@ -34,6 +34,7 @@ struct RenderOptions {
     std::vector<std::string> lights;
     bool no_scene_lights = false;
     int msaa = 4;
+    float anisotropy = 16;
     std::string debug = "none";
     bool json = false;
     bool allow_external = false;
@@ -140,6 +141,7 @@ std::optional<Job> job_from_options(const RenderOptions& o) {
     out.encoding = *encoding;
     out.debug = *debug;
     out.msaa = o.msaa;
+    out.anisotropy = o.anisotropy;
     out.exposure_ev = o.exposure;
     out.energy_compensation = !o.no_energy_compensation;
 
@@ -295,6 +297,11 @@ Runner add_render_command(CLI::App& app) {
                     "point:X,Y,Z,CANDELA[,R,G,B]; repeatable");
     cmd->add_flag("--no-scene-lights", o->no_scene_lights, "Ignore the file's KHR_lights_punctual lights");
     cmd->add_option("--msaa", o->msaa, "MSAA samples (1 = off)")->capture_default_str()->check(CLI::Range(1, 16));
+    cmd->add_option("--anisotropy", o->anisotropy,
+                    "Anisotropic filtering of the detail maps (base colour, metallic-roughness, normal, specular "
+                    "colour, clearcoat normal) with trilinear samplers, 1 = off. 16 matches the Khronos Sample "
+                    "Viewer's images best; on software rasterisers each level above 1 costs frame time")
+        ->capture_default_str()->check(CLI::Range(1.0f, 16.0f));
     cmd->add_option("--debug", o->debug,
                     "Show a channel instead of shading: basecolor metallic roughness normal geometry-normal tangent "
                     "bitangent occlusion emissive alpha uv0 uv1 D G F diffuse specular irradiance prefiltered ibl-diffuse "

