@@ -68,6 +68,7 @@ BakedIbl bake(const ImageF& panorama, const BakeOptions& o, const Progress& prog
         fill(out.irradiance_map);
         out.irradiance.c[0] = c / 0.282095f;  // irradiance / pi of a uniform sky is the sky itself
         out.lut = o.use_lut_cache ? load_or_bake_lut(o) : bake_lut(o);
+        out.content_hash = baked_content_hash(out);
         out.bake_ms = ms_since(start);
         return out;
     }
@@ -92,6 +93,7 @@ BakedIbl bake(const ImageF& panorama, const BakeOptions& o, const Progress& prog
     // The table does not depend on the environment: it comes from the cache when present.
     out.lut = o.use_lut_cache ? load_or_bake_lut(o) : bake_lut(o);
     out.lut_ms = ms_since(t);
+    out.content_hash = baked_content_hash(out);
     if (progress) progress(1.0);
     out.bake_ms = ms_since(start);
     return out;
@@ -178,7 +180,37 @@ BakedIbl load_baked(const fs::path& dir) {
     ibl.irradiance_map = read_ktx2_cube(dir / "irradiance.ktx2");
     ibl.lut = read_ktx2_2d(dir / "brdf_lut.ktx2");
     ibl.from_cache = true;
+    ibl.content_hash = baked_content_hash(ibl);
     return ibl;
+}
+
+namespace {
+// Word-wise mixing (a multiply-xorshift step per 32-bit float): fast enough to run on every
+// bake and load. Not a cryptographic hash; it tells baked environments apart.
+std::uint64_t mix_floats(const std::vector<float>& v, std::uint64_t h) {
+    const std::uint32_t* w = reinterpret_cast<const std::uint32_t*>(v.data());
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        h = (h ^ w[i]) * 0x9E3779B97F4A7C15ull;
+        h ^= h >> 29;
+    }
+    return (h ^ v.size()) * 0xBF58476D1CE4E5B9ull;
+}
+std::uint64_t mix_cube(const Cubemap& c, std::uint64_t h) {
+    for (const auto& lv : c.levels)
+        for (const auto& f : lv.faces) h = mix_floats(f, h ^ std::uint64_t(lv.size));
+    return h;
+}
+}  // namespace
+
+std::uint64_t image_content_hash(const ImageF& image, std::uint64_t seed) {
+    std::uint64_t h = seed ^ (std::uint64_t(image.width) << 32) ^ std::uint64_t(image.height);
+    return mix_floats(image.pixels, h);
+}
+
+std::uint64_t baked_content_hash(const BakedIbl& ibl) {
+    std::uint64_t h = mix_cube(ibl.specular, 0x243F6A8885A308D3ull);
+    h = mix_cube(ibl.irradiance_map, h);
+    return image_content_hash(ibl.lut, h) | 1u;  // never 0 (0 = not computed)
 }
 
 std::uint64_t content_hash(std::span<const std::uint8_t> bytes, std::uint64_t h) {

@@ -384,3 +384,34 @@ TEST(Environment, UniformBakeIsFlat) {
     EXPECT_NEAR(e.x, 1.0f, 1e-3);  // a white Lambertian surface in a uniform environment reflects it
     EXPECT_NEAR(e.z, 0.25f, 1e-3);
 }
+
+TEST(Bake, ContentHashIdentifiesTheBakedData) {
+    BakeOptions o;
+    o.size = 16;
+    o.levels = 3;
+    o.samples = 16;
+    o.lut_size = 8;
+    o.lut_samples = 16;
+    o.use_lut_cache = false;
+    BakedIbl a = bake(make_uniform_panorama(glm::vec3(1.0f, 0.5f, 0.25f)), o);
+    BakedIbl same = bake(make_uniform_panorama(glm::vec3(1.0f, 0.5f, 0.25f)), o);
+    BakedIbl other = bake(make_uniform_panorama(glm::vec3(1.0f, 0.5f, 0.5f)), o);
+    EXPECT_NE(a.content_hash, 0u);
+    EXPECT_EQ(a.content_hash, same.content_hash);
+    EXPECT_NE(a.content_hash, other.content_hash);
+    EXPECT_EQ(a.content_hash, baked_content_hash(a));
+    // One texel changed anywhere changes it.
+    BakedIbl edited = a;
+    edited.specular.levels.back().faces[5][0] += 1e-3f;
+    EXPECT_NE(baked_content_hash(edited), a.content_hash);
+    // Through the bake folder (half floats): loading sets the hash of what was loaded, the
+    // same every time.
+    auto dir = std::filesystem::temp_directory_path() / "fresnel-ibl-hash-test";
+    std::filesystem::remove_all(dir);
+    save_baked(a, dir, o, false);
+    BakedIbl loaded = load_baked(dir), again = load_baked(dir);
+    EXPECT_NE(loaded.content_hash, 0u);
+    EXPECT_EQ(loaded.content_hash, baked_content_hash(loaded));
+    EXPECT_EQ(loaded.content_hash, again.content_hash);
+    std::filesystem::remove_all(dir);
+}

@@ -99,14 +99,19 @@ struct Renderer::Impl {
     gpu::Framebuffer output_fb;
 
     // Image-based light on the GPU, re-uploaded when the environment or table changes.
-    const ibl::BakedIbl* uploaded_env = nullptr;
+    // Keyed by content (BakedIbl::content_hash, image_content_hash), not by address: a new
+    // object holding the same environment uploads nothing, a reused address with new data does.
+    std::uint64_t uploaded_env = 0;
     gpu::Texture env_specular;
     gpu::Texture env_irradiance;
-    const ImageF* uploaded_lut = nullptr;
+    std::uint64_t uploaded_lut = 0;
     gpu::Texture lut_texture;
 
     void ensure_environment(const RenderSettings& s) {
-        if (s.environment && s.environment != uploaded_env) {
+        std::uint64_t env_id = 0;
+        if (s.environment)
+            env_id = s.environment->content_hash ? s.environment->content_hash : ibl::baked_content_hash(*s.environment);
+        if (s.environment && env_id != uploaded_env) {
             const ibl::Cubemap& c = s.environment->specular;
             env_specular = gpu::Texture::create_cube(c.size(), gpu::TextureFormat::RGBA16F, int(c.levels.size()));
             for (std::size_t l = 0; l < c.levels.size(); ++l)
@@ -116,14 +121,15 @@ struct Renderer::Impl {
             env_irradiance = gpu::Texture::create_cube(irr.size(), gpu::TextureFormat::RGBA16F, 1);
             for (int f = 0; f < 6; ++f)
                 env_irradiance.upload_cube_face(f, 0, irr.size(), irr.levels[0].faces[std::size_t(f)].data());
-            uploaded_env = s.environment;
+            uploaded_env = env_id;
         }
         const ImageF* lut = s.brdf_lut ? s.brdf_lut : (s.environment ? &s.environment->lut : nullptr);
-        if (lut && lut != uploaded_lut) {
+        const std::uint64_t lut_id = lut ? ibl::image_content_hash(*lut) | 1u : 0;
+        if (lut && lut_id != uploaded_lut) {
             lut_texture = gpu::Texture::create_2d(lut->width, lut->height, gpu::TextureFormat::RGBA32F,
                                                   lut->pixels.data(), false);
             lut_texture.set_sampler(gpu::SamplerState::clamped(Filter::Linear));
-            uploaded_lut = lut;
+            uploaded_lut = lut_id;
         }
     }
 
@@ -402,7 +408,7 @@ struct Renderer::Impl {
         prog.set("u_tonemap", int(settings.tone_mapper));
         prog.set("u_encoding", settings.encoding ? int(*settings.encoding) : -1);
         // The split-sum table, the prefiltered environment, the irradiance.
-        bool have_lut = lut_texture && uploaded_lut;
+        bool have_lut = lut_texture && uploaded_lut != 0;
         if (have_lut) device.bind_texture(kLutUnit, lut_texture);
         prog.set("u_brdf_lut", kLutUnit);
         prog.set("u_energy_compensation", settings.energy_compensation && have_lut ? 1 : 0);

@@ -48,7 +48,16 @@ struct BakedIbl {
     // Where the bake's time went: cube conversion + mips, specular prefilter, irradiance, LUT.
     double cube_ms = 0, specular_ms = 0, irradiance_ms = 0, lut_ms = 0;
     bool from_cache = false;
+    // Identity of the baked data (specular, irradiance, table): baked_content_hash(*this),
+    // set by bake() and load_baked(). Renderers key their uploads by it, not by address.
+    std::uint64_t content_hash = 0;
 };
+
+// A 64-bit hash of the texels of `ibl` (its specular cube, irradiance cube and table);
+// word-wise, about 2 ms for the default 256^2 bake.
+std::uint64_t baked_content_hash(const BakedIbl& ibl);
+// The same hash of one float image (the renderer keys its table upload by it).
+std::uint64_t image_content_hash(const ImageF& image, std::uint64_t seed = 0);
 
 // Bakes a panorama (equirect, linear).
 BakedIbl bake(const ImageF& panorama, const BakeOptions& options, const Progress& progress = {});
