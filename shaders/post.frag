@@ -3,13 +3,28 @@
 in vec2 v_texcoord;
 out vec4 frag_color;
 
+#ifdef MSAA_RESOLVE
+// Desktop GL: the multisampled frame itself, resolved here (the box average of its samples,
+// what glBlitFramebuffer does) instead of by a blit first. GLSL ES 3.00 has no sampler2DMS:
+// ES contexts blit, then run this pass without the define.
+uniform highp sampler2DMS u_frame_ms;
+uniform int u_samples;
+#else
 uniform sampler2D u_frame;
+#endif
 uniform int u_transparent;  // 1: un-premultiply (a transparent frame going to PNG)
 
 bool bad(vec4 c) { return any(isnan(c)) || any(isinf(c)); }
 
 void main() {
+#ifdef MSAA_RESOLVE
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec4 c = vec4(0.0);
+    for (int i = 0; i < u_samples; ++i) c += texelFetch(u_frame_ms, p, i);
+    c /= float(u_samples);
+#else
     vec4 c = texture(u_frame, v_texcoord);
+#endif
     if (bad(c)) {
         frag_color = vec4(1.0, 0.0, 1.0, 1.0);
         return;

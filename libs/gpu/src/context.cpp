@@ -54,6 +54,7 @@ void Context::init_context(const ContextOptions& options) {
         c.half_float_color_targets = c.float_color_targets || epoxy_has_gl_extension("GL_EXT_color_buffer_half_float");
         c.float_linear_filtering = epoxy_has_gl_extension("GL_OES_texture_float_linear");
         c.seamless_cube_maps = true;  // always on in ES 3.0; GL_TEXTURE_CUBE_MAP_SEAMLESS does not exist there
+        c.multisample_textures = false;  // ES 3.1
     } else {
         c.float_color_targets = c.half_float_color_targets = c.float_linear_filtering = true;
         // Filter across cube faces: a core enable since GL 3.2, off by default. Set once here.
@@ -71,6 +72,11 @@ void Context::init_context(const ContextOptions& options) {
     glGetIntegerv(GL_MAX_SAMPLES, &n);
     c.max_samples = n;
     c.max_samples_float = max_samples_of(c.half_float_color_targets ? GL_RGBA16F : GL_RGBA8, es);
+    if (c.multisample_textures) {
+        n = 0;
+        glGetIntegerv(GL_MAX_COLOR_TEXTURE_SAMPLES, &n);
+        c.max_color_texture_samples = n;
+    }
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &n);
     c.max_texture_units = n;
     c.debug_output = epoxy_has_gl_extension("GL_KHR_debug");

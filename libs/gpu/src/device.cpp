@@ -44,7 +44,10 @@ void Device::apply(const PipelineState& s) {
 
 void Device::bind_texture(int unit, const Texture& t) {
     glActiveTexture(GLenum(GL_TEXTURE0 + unit));
-    glBindTexture(t.kind() == Texture::Kind::Cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D, t.id());
+    GLenum target = GL_TEXTURE_2D;
+    if (t.kind() == Texture::Kind::Cube) target = GL_TEXTURE_CUBE_MAP;
+    if (t.kind() == Texture::Kind::Tex2DMultisample) target = GL_TEXTURE_2D_MULTISAMPLE;
+    glBindTexture(target, t.id());
 }
 
 void Device::draw(const VertexArray& vao, Primitive mode, int count, bool indexed) {

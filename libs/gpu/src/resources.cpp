@@ -102,6 +102,20 @@ Texture Texture::create_2d_levels(TextureFormat format, std::span<const MipLevel
     return t;
 }
 
+Texture Texture::create_2d_multisample(int width, int height, TextureFormat format, int samples) {
+    Texture t;
+    t.width_ = width;
+    t.height_ = height;
+    t.format_ = format;
+    t.kind_ = Kind::Tex2DMultisample;
+    glGenTextures(1, &t.id_);
+    glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, t.id_);
+    // Fixed sample locations, as renderbuffers have: the depth renderbuffer attaches beside it.
+    glTexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, samples, info(format).internal, width, height, GL_TRUE);
+    glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
+    return t;
+}
+
 Texture Texture::create_cube(int size, TextureFormat format, int levels) {
     Texture t;
     t.width_ = t.height_ = size;
@@ -200,7 +214,9 @@ void Framebuffer::attach_color(const Texture& texture) {
     TextureFormat f = texture.format();
     color_normalized_ = f == TextureFormat::RGBA8 || f == TextureFormat::SRGB8_ALPHA8 || f == TextureFormat::R8;
     glBindFramebuffer(GL_FRAMEBUFFER, id_);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture.id(), 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                           texture.kind() == Texture::Kind::Tex2DMultisample ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D,
+                           texture.id(), 0);
 }
 void Framebuffer::attach_color(const Renderbuffer& rb) {
     color_normalized_ = rb.format() == RenderbufferFormat::RGBA8;

@@ -95,6 +95,12 @@ struct Renderer::Impl {
     gpu::Framebuffer msaa_fb;
     gpu::Texture resolved;
     gpu::Framebuffer resolved_fb;
+    // Desktop GL: the MSAA colour is a multisampled texture that the output pass resolves
+    // itself (texelFetch of every sample), with no blit and no resolved copy in between; on
+    // llvmpipe the blit's own shader was compiled again in every process (~100 ms of a
+    // first frame). ES 3.0 has no multisampled textures: a renderbuffer, blitted.
+    bool shader_resolve = false;
+    gpu::Texture msaa_texture;
     gpu::Texture output;
     gpu::Framebuffer output_fb;
 
@@ -329,17 +335,30 @@ struct Renderer::Impl {
         // else 8-bit; the context logged the fallback when it was made).
         const gpu::Capabilities& caps = context.capabilities();
         const bool half = caps.half_float_color_targets;
-        msaa_color = gpu::Renderbuffer(w, h, half ? gpu::RenderbufferFormat::RGBA16F : gpu::RenderbufferFormat::RGBA8, samples);
+        shader_resolve = caps.multisample_textures && samples > 1 && samples <= caps.max_color_texture_samples;
         msaa_depth = gpu::Renderbuffer(w, h, gpu::RenderbufferFormat::Depth24, samples);
         msaa_fb = gpu::Framebuffer();
-        msaa_fb.attach_color(msaa_color);
+        if (shader_resolve) {
+            msaa_texture = gpu::Texture::create_2d_multisample(
+                w, h, half ? gpu::TextureFormat::RGBA16F : gpu::TextureFormat::RGBA8, samples);
+            msaa_fb.attach_color(msaa_texture);
+            msaa_color = gpu::Renderbuffer();
+            resolved_fb = gpu::Framebuffer();
+            resolved = gpu::Texture();
+        } else {
+            msaa_color = gpu::Renderbuffer(w, h, half ? gpu::RenderbufferFormat::RGBA16F : gpu::RenderbufferFormat::RGBA8,
+                                           samples);
+            msaa_fb.attach_color(msaa_color);
+            msaa_texture = gpu::Texture();
+            resolved = gpu::Texture::create_2d(w, h, half ? gpu::TextureFormat::RGBA16F : gpu::TextureFormat::RGBA8, nullptr,
+                                               false);
+            resolved.set_sampler(gpu::SamplerState::clamped(Filter::Nearest));
+            resolved_fb = gpu::Framebuffer();
+            resolved_fb.attach_color(resolved);
+            resolved_fb.check();
+        }
         msaa_fb.attach_depth(msaa_depth);
         msaa_fb.check();
-        resolved = gpu::Texture::create_2d(w, h, half ? gpu::TextureFormat::RGBA16F : gpu::TextureFormat::RGBA8, nullptr, false);
-        resolved.set_sampler(gpu::SamplerState::clamped(Filter::Nearest));
-        resolved_fb = gpu::Framebuffer();
-        resolved_fb.attach_color(resolved);
-        resolved_fb.check();
         output = gpu::Texture::create_2d(w, h,
                                          caps.float_color_targets ? gpu::TextureFormat::RGBA32F
                                          : half                   ? gpu::TextureFormat::RGBA16F
@@ -521,7 +540,7 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
         for (const auto& d : blended) r.draw_primitive(d, cam, lights, settings, stats);
     }
 
-    r.device.blit_color(r.msaa_fb, r.resolved_fb, w, h);
+    if (!r.shader_resolve) r.device.blit_color(r.msaa_fb, r.resolved_fb, w, h);
 
     // Output pass.
     r.device.bind_framebuffer(&r.output_fb);
@@ -531,10 +550,17 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
     post.depth_write = false;
     post.cull = gpu::Cull::None;
     r.device.apply(post);
-    const gpu::Program& prog = r.shaders.get("fullscreen.vert", "post.frag", {});
+    const gpu::Program& prog = r.shader_resolve ? r.shaders.get("fullscreen.vert", "post.frag", {"MSAA_RESOLVE"})
+                                                : r.shaders.get("fullscreen.vert", "post.frag", {});
     prog.use();
-    r.device.bind_texture(0, r.resolved);
-    prog.set("u_frame", 0);
+    if (r.shader_resolve) {
+        r.device.bind_texture(0, r.msaa_texture);
+        prog.set("u_frame_ms", 0);
+        prog.set("u_samples", r.target_samples);
+    } else {
+        r.device.bind_texture(0, r.resolved);
+        prog.set("u_frame", 0);
+    }
     prog.set("u_transparent", transparent && settings.straight_alpha ? 1 : 0);
     r.device.draw_fullscreen();
     stats.gl_errors = r.device.take_errors();

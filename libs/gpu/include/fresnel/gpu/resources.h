@@ -92,13 +92,16 @@ struct MipLevel {
 
 class Texture : public Handle {
 public:
-    enum class Kind { Tex2D, Cube };
+    enum class Kind { Tex2D, Cube, Tex2DMultisample };
     Texture() = default;
     // Uploads a 2D image (rows top to bottom as stored; data may be null). `mipmaps` generates the chain.
     static Texture create_2d(int width, int height, TextureFormat format, const void* data, bool mipmaps);
     // Uploads a 2D image with its mip chain made on the CPU (levels[0] is the base);
     // the driver generates nothing.
     static Texture create_2d_levels(TextureFormat format, std::span<const MipLevel> levels);
+    // A multisampled colour target a shader reads with texelFetch (OpenGL 3.2+; not in
+    // OpenGL ES 3.0, where Capabilities::multisample_textures is false).
+    static Texture create_2d_multisample(int width, int height, TextureFormat format, int samples);
     // A cube map with `levels` mip levels (data uploaded later with upload_cube_face).
     static Texture create_cube(int size, TextureFormat format, int levels);
     void upload_cube_face(int face, int level, int size, const float* rgba);
