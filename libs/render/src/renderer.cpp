@@ -37,6 +37,17 @@ constexpr NamedChannel kChannels[] = {
 
 constexpr int kMaxLights = kMaxShaderLights;
 
+// Texture units: 0 .. kMaterialMapCount-1 are the material's maps (unit = MaterialMap), the
+// image-based light's textures sit at the top of the 16 units OpenGL ES 3.0 guarantees, and
+// the output pass reads its frame from unit 0 (no material is bound then).
+enum class TextureUnit : int {
+    FirstMaterialMap = 0,
+    Frame = 0,
+    BrdfLut = 13,
+    SpecularEnvironment = 14,
+    IrradianceEnvironment = 15,
+};
+
 enum Attr : unsigned { kPosition = 0, kNormal, kTangent, kUv0, kUv1, kColor };
 
 struct GpuPrimitive {
@@ -369,6 +380,29 @@ struct Renderer::Impl {
         output_fb.check();
     }
 
+    // The lights as the shaders' arrays hold them (lights.glsl), packed once per frame into
+    // storage the renderer keeps: no allocation per draw.
+    struct PackedLights {
+        int count = 0;
+        std::array<glm::vec4, kMaxLights> position_type{}, direction_range{}, color{}, cone{};
+    } frame_lights;
+    void pack_lights(const std::vector<LightInstance>& lights) {
+        PackedLights& p = frame_lights;
+        p.count = std::min<int>(int(lights.size()), kMaxLights);
+        for (int i = 0; i < p.count; ++i) {
+            const LightInstance& l = lights[std::size_t(i)];
+            float type = l.type == Light::Type::Directional ? 0.0f : l.type == Light::Type::Point ? 1.0f : 2.0f;
+            p.position_type[std::size_t(i)] = glm::vec4(l.position, type);
+            p.direction_range[std::size_t(i)] = glm::vec4(l.direction, l.range);
+            p.color[std::size_t(i)] = glm::vec4(l.radiance, 0.0f);
+            float scale = 1.0f / std::max(0.001f, std::cos(l.inner_cone) - std::cos(l.outer_cone));
+            p.cone[std::size_t(i)] = glm::vec4(scale, -std::cos(l.outer_cone) * scale, 0, 0);
+        }
+        for (int i = p.count; i < kMaxLights; ++i)
+            p.position_type[std::size_t(i)] = p.direction_range[std::size_t(i)] = p.color[std::size_t(i)] =
+                p.cone[std::size_t(i)] = glm::vec4(0.0f);
+    }
+
     void draw_primitive(const Draw& d, const CameraSetup& cam, const std::vector<LightInstance>& lights,
                         const RenderSettings& settings, FrameStats& stats) {
         static const Material kDefaultMaterial{};
@@ -385,8 +419,10 @@ struct Renderer::Impl {
         if (settings.debug != DebugChannel::None) raw |= feature::DebugView;
         if (settings.environment) raw |= feature::UseIbl;
 
-        // Map i takes texture unit i (feature bit kFirstMap + i); the image-based light uses kLutUnit and up.
-        constexpr int kLutUnit = 13, kSpecularUnit = 14, kIrradianceUnit = 15;  // GLES 3.0 guarantees 16
+        // Map i takes texture unit i (feature bit kFirstMap + i); the image-based light uses the
+        // named units above them (TextureUnit).
+        constexpr int kLutUnit = int(TextureUnit::BrdfLut), kSpecularUnit = int(TextureUnit::SpecularEnvironment),
+                      kIrradianceUnit = int(TextureUnit::IrradianceEnvironment);
         static_assert(kMaterialMapCount <= kLutUnit && kMaterialMapCount == feature::kMapCount);
         const gpu::Texture* bound[kMaterialMapCount] = {};
         std::array<bool, kMaterialMapCount> is_bound{};
@@ -441,23 +477,12 @@ struct Renderer::Impl {
         for (int i = 0; i < kMaterialMapCount; ++i)
             if (bound[i]) device.bind_texture(i, *bound[i]);
         set_material_uniforms(prog, mu, is_bound);
-        // Lights.
-        int count = std::min<int>(int(lights.size()), kMaxLights);
-        std::vector<glm::vec4> pos_type(kMaxLights), dir_range(kMaxLights), color(kMaxLights), cone(kMaxLights);
-        for (int i = 0; i < count; ++i) {
-            const LightInstance& l = lights[std::size_t(i)];
-            float type = l.type == Light::Type::Directional ? 0.0f : l.type == Light::Type::Point ? 1.0f : 2.0f;
-            pos_type[std::size_t(i)] = glm::vec4(l.position, type);
-            dir_range[std::size_t(i)] = glm::vec4(l.direction, l.range);
-            color[std::size_t(i)] = glm::vec4(l.radiance, 0.0f);
-            float scale = 1.0f / std::max(0.001f, std::cos(l.inner_cone) - std::cos(l.outer_cone));
-            cone[std::size_t(i)] = glm::vec4(scale, -std::cos(l.outer_cone) * scale, 0, 0);
-        }
-        prog.set("u_light_count", count);
-        prog.set("u_light_position_type", std::span<const glm::vec4>(pos_type));
-        prog.set("u_light_direction_range", std::span<const glm::vec4>(dir_range));
-        prog.set("u_light_color", std::span<const glm::vec4>(color));
-        prog.set("u_light_cone", std::span<const glm::vec4>(cone));
+        // Lights, packed once per frame (pack_lights).
+        prog.set("u_light_count", frame_lights.count);
+        prog.set("u_light_position_type", std::span<const glm::vec4>(frame_lights.position_type));
+        prog.set("u_light_direction_range", std::span<const glm::vec4>(frame_lights.direction_range));
+        prog.set("u_light_color", std::span<const glm::vec4>(frame_lights.color));
+        prog.set("u_light_cone", std::span<const glm::vec4>(frame_lights.cone));
 
         gpu::PipelineState state;
         state.cull = m.double_sided ? gpu::Cull::None : gpu::Cull::Back;
@@ -536,6 +561,7 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
         }
         // Blended primitives last, far to near.
         std::stable_sort(blended.begin(), blended.end(), [](const Draw& a, const Draw& b) { return a.depth > b.depth; });
+        r.pack_lights(lights);
         for (const auto& d : opaque) r.draw_primitive(d, cam, lights, settings, stats);
         for (const auto& d : blended) r.draw_primitive(d, cam, lights, settings, stats);
     }
