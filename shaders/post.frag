@@ -18,7 +18,7 @@ bool bad(vec4 c) { return any(isnan(c)) || any(isinf(c)); }
 
 void main() {
 #ifdef MSAA_RESOLVE
-    ivec2 p = ivec2(gl_FragCoord.xy);
+    ivec2 p = ivec2(v_texcoord * vec2(textureSize(u_frame_ms)));  // pixel of the frame, wherever the viewport is
     vec4 c = vec4(0.0);
     for (int i = 0; i < u_samples; ++i) c += texelFetch(u_frame_ms, p, i);
     c /= float(u_samples);

@@ -526,6 +526,11 @@ ImageF Renderer::render(const CameraSetup& cam, const std::vector<LightInstance>
 
 void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& lights, const RenderSettings& settings,
                     FrameStats* stats_out) {
+    draw(cam, lights, settings, RenderTarget::offscreen(), stats_out);
+}
+
+void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& lights, const RenderSettings& settings,
+                    const RenderTarget& target, FrameStats* stats_out) {
     Impl& r = *impl_;
     FrameStats stats;
     int w = settings.width, h = settings.height;
@@ -568,9 +573,11 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
 
     if (!r.shader_resolve) r.device.blit_color(r.msaa_fb, r.resolved_fb, w, h);
 
-    // Output pass.
-    r.device.bind_framebuffer(&r.output_fb);
-    r.device.viewport(0, 0, w, h);
+    // Output pass, into the offscreen image or the default framebuffer.
+    const bool to_default = target.kind == RenderTarget::Kind::DefaultFramebuffer;
+    r.device.bind_framebuffer(to_default ? nullptr : &r.output_fb);
+    if (to_default) r.device.viewport(target.x, target.y, w, h);
+    else r.device.viewport(0, 0, w, h);
     gpu::PipelineState post;
     post.depth_test = false;
     post.depth_write = false;

@@ -13,21 +13,23 @@ namespace {
 
 class EglContext final : public Context {
 public:
-    EglContext(EGLDisplay display, EGLContext context) : display_(display), context_(context) {}
+    EglContext(EGLDisplay display, EGLContext context, EGLSurface surface)
+        : display_(display), context_(context), surface_(surface) {}
     ~EglContext() override {
         eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (surface_ != EGL_NO_SURFACE) eglDestroySurface(display_, surface_);
         eglDestroyContext(display_, context_);
         eglTerminate(display_);
     }
     void make_current() override {
-        if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
-            throw Error("EGL", "", "eglMakeCurrent failed");
+        if (!eglMakeCurrent(display_, surface_, surface_, context_)) throw Error("EGL", "", "eglMakeCurrent failed");
     }
     void init(const ContextOptions& o) { init_context(o); }
 
 private:
     EGLDisplay display_;
     EGLContext context_;
+    EGLSurface surface_;
 };
 
 bool client_has(const char* ext) { return epoxy_has_egl_extension(EGL_NO_DISPLAY, ext); }
@@ -55,17 +57,27 @@ std::vector<EGLDisplay> candidate_displays() {
     return out;
 }
 
-EGLContext try_create(EGLDisplay display, const ContextOptions& options) {
+struct Created {
+    EGLContext context = EGL_NO_CONTEXT;
+    EGLSurface surface = EGL_NO_SURFACE;
+};
+
+Created try_create(EGLDisplay display, const ContextOptions& options) {
     EGLint major = 0, minor = 0;
-    if (!eglInitialize(display, &major, &minor)) return EGL_NO_CONTEXT;
+    if (!eglInitialize(display, &major, &minor)) return {};
     const bool es = options.api == Api::OpenGLES30;
-    if (!eglBindAPI(es ? EGL_OPENGL_ES_API : EGL_OPENGL_API)) return EGL_NO_CONTEXT;
+    if (!eglBindAPI(es ? EGL_OPENGL_ES_API : EGL_OPENGL_API)) return {};
+    const bool surface = options.surface_width > 0 && options.surface_height > 0;
     EGLConfig config = nullptr;
-    const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, es ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_BIT, EGL_NONE};
+    const EGLint renderable = es ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_BIT;
+    const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, renderable, EGL_NONE};
+    const EGLint pbuffer_config_attribs[] = {EGL_RENDERABLE_TYPE, renderable, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
+                                             EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8,
+                                             EGL_NONE};
     EGLint count = 0;
-    bool no_config = epoxy_has_egl_extension(display, "EGL_KHR_no_config_context");
-    if (!eglChooseConfig(display, config_attribs, &config, 1, &count) || count == 0) {
-        if (!no_config) return EGL_NO_CONTEXT;
+    bool no_config = !surface && epoxy_has_egl_extension(display, "EGL_KHR_no_config_context");
+    if (!eglChooseConfig(display, surface ? pbuffer_config_attribs : config_attribs, &config, 1, &count) || count == 0) {
+        if (!no_config) return {};
         config = EGL_NO_CONFIG_KHR;
     }
     const EGLint debug = options.debug ? EGL_TRUE : EGL_FALSE;
@@ -77,21 +89,31 @@ EGLContext try_create(EGLDisplay display, const ContextOptions& options) {
     const EGLint es_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 0,
                                  EGL_CONTEXT_OPENGL_DEBUG, debug, EGL_NONE};
     EGLContext ctx = eglCreateContext(display, config, EGL_NO_CONTEXT, es ? es_attribs : gl_attribs);
-    if (ctx == EGL_NO_CONTEXT) return ctx;
-    if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {
-        eglDestroyContext(display, ctx);
-        return EGL_NO_CONTEXT;
+    if (ctx == EGL_NO_CONTEXT) return {};
+    EGLSurface surf = EGL_NO_SURFACE;
+    if (surface) {
+        const EGLint pbuffer_attribs[] = {EGL_WIDTH, options.surface_width, EGL_HEIGHT, options.surface_height, EGL_NONE};
+        surf = eglCreatePbufferSurface(display, config, pbuffer_attribs);
+        if (surf == EGL_NO_SURFACE) {
+            eglDestroyContext(display, ctx);
+            return {};
+        }
     }
-    return ctx;
+    if (!eglMakeCurrent(display, surf, surf, ctx)) {
+        if (surf != EGL_NO_SURFACE) eglDestroySurface(display, surf);
+        eglDestroyContext(display, ctx);
+        return {};
+    }
+    return {ctx, surf};
 }
 
 }  // namespace
 
 std::unique_ptr<Context> create_headless_context(const ContextOptions& options) {
     for (EGLDisplay display : candidate_displays()) {
-        EGLContext ctx = try_create(display, options);
-        if (ctx != EGL_NO_CONTEXT) {
-            auto c = std::make_unique<EglContext>(display, ctx);
+        Created made = try_create(display, options);
+        if (made.context != EGL_NO_CONTEXT) {
+            auto c = std::make_unique<EglContext>(display, made.context, made.surface);
             c->init(options);
             return c;
         }

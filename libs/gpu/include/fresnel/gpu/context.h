@@ -18,6 +18,9 @@ struct ContextOptions {
     Api api = Api::OpenGL33;
     bool debug = false;  // KHR_debug messages to `log` (when the driver has KHR_debug)
     LogFn log;           // where driver messages (and capability fallbacks) go; default: ignored
+    // Headless contexts: > 0 gives the context a default framebuffer of this size (an EGL
+    // pbuffer), which stands in for a window's in tests of RenderTarget::DefaultFramebuffer.
+    int surface_width = 0, surface_height = 0;
 };
 
 // What the context can do, queried once when it is made.

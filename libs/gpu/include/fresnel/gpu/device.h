@@ -1,5 +1,6 @@
 #pragma once
 // Pipeline state, draws, clears, blits and read-back on the current context.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,6 +35,8 @@ public:
     void blit_color(const Framebuffer& src, const Framebuffer& dst, int width, int height);
     // Reads RGBA float pixels of the bound read framebuffer, rows bottom to top (GL order).
     std::vector<float> read_rgba32f(const Framebuffer& fb, int width, int height);
+    // Reads 8-bit RGBA from the default framebuffer (a window's, or a pbuffer's), rows bottom to top.
+    std::vector<std::uint8_t> read_default_rgba8(int x, int y, int width, int height);
     // Returns "" or the names of pending GL errors (clears them).
     std::string take_errors();
     void finish();

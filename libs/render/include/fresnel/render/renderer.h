@@ -59,6 +59,17 @@ struct RenderSettings {
     bool energy_compensation = true;
 };
 
+// Where a frame goes. Every frame is drawn into the renderer's own multisampled HDR target;
+// the output pass (resolve, un-premultiply, NaN check) then writes it to the offscreen
+// image that render() reads back, or into the context's default framebuffer (a window's,
+// which the caller then presents; a GUI can draw on top first), at a viewport origin.
+struct RenderTarget {
+    enum class Kind { Offscreen, DefaultFramebuffer } kind = Kind::Offscreen;
+    int x = 0, y = 0;  // DefaultFramebuffer: the viewport's lower-left corner (size = RenderSettings)
+    static RenderTarget offscreen() { return {}; }
+    static RenderTarget default_framebuffer(int x = 0, int y = 0) { return {Kind::DefaultFramebuffer, x, y}; }
+};
+
 struct FrameStats {
     int draw_calls = 0;
     std::size_t triangles = 0;
@@ -85,6 +96,9 @@ public:
     // timing, and for windows that present it). finish() waits until the GPU is done.
     void draw(const CameraSetup& camera, const std::vector<LightInstance>& lights, const RenderSettings& settings,
               FrameStats* stats = nullptr);
+    // The same, into `target` (a window's default framebuffer, to present).
+    void draw(const CameraSetup& camera, const std::vector<LightInstance>& lights, const RenderSettings& settings,
+              const RenderTarget& target, FrameStats* stats = nullptr);
     void finish();
 
     // Number of shader variants compiled so far (they are cached by feature set).

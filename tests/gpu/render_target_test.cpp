@@ -1,0 +1,75 @@
+// RenderTarget::DefaultFramebuffer: the frame written into a context's default framebuffer
+// (here an EGL pbuffer standing in for a window) is the image render() reads back offscreen.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "fresnel/core/error.h"
+#include "fresnel/core/metrics.h"
+#include "fresnel/gpu/context.h"
+#include "fresnel/gpu/device.h"
+#include "fresnel/render/renderer.h"
+#include "fresnel/scene/procedural.h"
+
+using namespace fresnel;
+
+namespace {
+// The default framebuffer's pixels (GL rows bottom to top) of the viewport at (x, y) as an image.
+Image8 read_window(int x, int y, int w, int h) {
+    gpu::Device device;
+    std::vector<std::uint8_t> px = device.read_default_rgba8(x, y, w, h);
+    Image8 img(w, h, 3);
+    for (int row = 0; row < h; ++row)
+        for (int col = 0; col < w; ++col)
+            for (int c = 0; c < 3; ++c)
+                img.at(col, row)[c] = px[(std::size_t(h - 1 - row) * std::size_t(w) + std::size_t(col)) * 4 + std::size_t(c)];
+    return img;
+}
+}  // namespace
+
+TEST(RenderTarget, DefaultFramebufferShowsTheOffscreenFrame) {
+    gpu::ContextOptions co;
+    co.surface_width = 200;
+    co.surface_height = 150;
+    std::unique_ptr<gpu::Context> context;
+    try {
+        context = gpu::create_headless_context(co);
+    } catch (const Error& e) {
+        GTEST_SKIP() << "no EGL pbuffer: " << e.what();
+    }
+    Scene scene = make_demo_scene();
+    Renderer renderer(*context);
+    renderer.set_scene(scene);
+    RenderSettings rs;
+    rs.width = 160;
+    rs.height = 120;
+    rs.background = glm::vec4(0.1f, 0.2f, 0.3f, 1.0f);
+    auto instances = flatten(scene);
+    CameraSetup cam = orbit_camera(scene_bounds(scene, instances), {}, rs.width, rs.height);
+    auto lights = default_lights();
+
+    Image8 offscreen = to_image8(renderer.render(cam, lights, rs), false);
+    // Into the window, at an offset: the rest of the window keeps its clear colour.
+    gpu::Device device;
+    device.bind_framebuffer(nullptr);
+    device.viewport(0, 0, 200, 150);
+    device.clear(glm::vec4(1.0f, 0.0f, 1.0f, 1.0f), true);
+    FrameStats stats;
+    renderer.draw(cam, lights, rs, RenderTarget::default_framebuffer(20, 10), &stats);
+    renderer.finish();
+    EXPECT_EQ(stats.gl_errors, "");
+    EXPECT_GT(stats.draw_calls, 0);
+
+    Image8 window = read_window(20, 10, rs.width, rs.height);
+    ImageMetrics m = compare_images(window, offscreen, false);
+    std::printf("default framebuffer vs offscreen: PSNR %.2f dB, max %.0f over %zu pixels\n", m.psnr_db, m.max_abs, m.pixels);
+    EXPECT_EQ(m.pixels, std::size_t(rs.width) * rs.height);
+    EXPECT_GE(m.psnr_db, 50.0);  // the same frame; 8-bit targets may round differently by one step
+    // Outside the viewport the clear colour is untouched.
+    Image8 corner = read_window(0, 0, 10, 10);
+    EXPECT_EQ(corner.at(5, 5)[0], 255);
+    EXPECT_EQ(corner.at(5, 5)[1], 0);
+    // The frame is not empty: the centre shows spheres, brighter than the background.
+    const std::uint8_t* c = window.at(rs.width / 2, rs.height / 2);
+    EXPECT_GT(int(c[0]) + c[1] + c[2], 3 * 40);
+}
