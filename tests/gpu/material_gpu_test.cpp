@@ -27,6 +27,8 @@
 // skipped: a rounding there may legitimately flip the discard.
 #include <gtest/gtest.h>
 
+#include "fresnel/core/mipmap.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -324,7 +326,9 @@ protected:
 
         // Textures and defines as the renderer makes them (draw_primitive / texture_for).
         MaterialUniforms mu = material_uniforms(c.material);
-        std::vector<std::string> defines = mu.defines;
+        std::vector<std::string> defines;
+        for (const FeatureInfo& f : feature_table())
+            if (material_features(c.material) & f.bit) defines.emplace_back(f.define);
         defines.push_back("MATERIAL_EXPLICIT_LOD");
         std::vector<gpu::Texture> maps;
         std::array<bool, kMaterialMapCount> bound{};
@@ -334,11 +338,14 @@ protected:
             if (!slot || !map_usable(*slot, MaterialMap(i), c.inputs)) continue;
             const MaterialMapInfo& info = material_map_info(MaterialMap(i));
             const TextureDesc& d = c.textures[std::size_t(slot->texture)];
-            bool mip = d.min >= 0x2700 && d.min <= 0x2703;
-            maps.push_back(gpu::Texture::create_2d(d.image.width, d.image.height,
-                                                   info.srgb ? gpu::TextureFormat::SRGB8_ALPHA8 : gpu::TextureFormat::RGBA8,
-                                                   d.image.pixels.data(), mip));
             const TextureSampler ts = TextureSampler::from_gl(d.mag, d.min, d.wrap_s, d.wrap_t);
+            // Every level from the CPU chain, as the renderer uploads them (Renderer::Impl::make_texture).
+            std::vector<Image8> chain;
+            if (ts.mip_filter != MipFilter::None) chain = build_mip_chain(d.image, info.srgb);
+            std::vector<gpu::MipLevel> levels{{d.image.width, d.image.height, d.image.pixels.data()}};
+            for (const auto& l : chain) levels.push_back({l.width, l.height, l.pixels.data()});
+            maps.push_back(gpu::Texture::create_2d_levels(
+                info.srgb ? gpu::TextureFormat::SRGB8_ALPHA8 : gpu::TextureFormat::RGBA8, levels));
             gpu::SamplerState ss;
             ss.min_filter = ts.min_filter;
             ss.mipmap = ts.mip_filter;

@@ -5,6 +5,7 @@
 
 #include "fresnel/core/color.h"
 #include "fresnel/core/error.h"
+#include "fresnel/core/mipmap.h"
 
 namespace fresnel {
 
@@ -44,8 +45,6 @@ Image8 to_rgba(const Image8& in) {
     return out;
 }
 
-std::uint8_t to_byte(float v) { return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
-
 // The GL spec's wrap of an integer texel index (ES 3.0 table 3.20).
 int wrap_index(int i, int size, TextureWrap w) {
     switch (w) {
@@ -77,25 +76,8 @@ SampledTexture::SampledTexture(const Image8& image, const TextureSampler& sample
     }
     levels_.push_back(to_rgba(image));
     if (sampler.mip_filter == MipFilter::None) return;
-    // glGenerateMipmap: each level halves (at least 1), 2x2 box average of the level above.
-    while (levels_.back().width > 1 || levels_.back().height > 1) {
-        const Image8& src = levels_.back();
-        Image8 dst(std::max(1, src.width / 2), std::max(1, src.height / 2), 4);
-        for (int y = 0; y < dst.height; ++y)
-            for (int x = 0; x < dst.width; ++x) {
-                int x0 = std::min(2 * x, src.width - 1), x1 = std::min(2 * x + 1, src.width - 1);
-                int y0 = std::min(2 * y, src.height - 1), y1 = std::min(2 * y + 1, src.height - 1);
-                const std::uint8_t* p[4] = {src.at(x0, y0), src.at(x1, y0), src.at(x0, y1), src.at(x1, y1)};
-                for (int c = 0; c < 4; ++c) {
-                    float sum = 0.0f;
-                    // The box filter of the driver's blit: exact decode, average, encode.
-                    for (auto* q : p) sum += c < 3 && srgb ? srgb_to_linear(float(q[c]) / 255.0f) : float(q[c]) / 255.0f;
-                    float avg = sum * 0.25f;
-                    dst.at(x, y)[c] = to_byte(c < 3 && srgb ? linear_to_srgb(avg) : avg);
-                }
-            }
-        levels_.push_back(std::move(dst));
-    }
+    // The chain the renderer uploads (fresnel/core/mipmap.h): the GPU samples these very levels.
+    for (Image8& level : build_mip_chain(levels_.front(), srgb)) levels_.push_back(std::move(level));
 }
 
 glm::vec4 SampledTexture::texel(int level, int x, int y) const {

@@ -29,11 +29,6 @@ MaterialUniforms material_uniforms(const Material& m) {
         u.clearcoat_normal_scale = m.clearcoat->clearcoat_normal_scale;
     }
     for (int i = 0; i < kMaterialMapCount; ++i) u.maps[std::size_t(i)] = material_map(m, MaterialMap(i));
-    if (m.unlit) u.defines.push_back("UNLIT");
-    if (m.specular_glossiness) u.defines.push_back("SPECULAR_GLOSSINESS");
-    if (m.has_clearcoat()) u.defines.push_back("MATERIAL_CLEARCOAT");
-    if (m.alpha_mode == AlphaMode::Mask) u.defines.push_back("ALPHA_MASK");
-    if (m.alpha_mode == AlphaMode::Blend) u.defines.push_back("ALPHA_BLEND");
     return u;
 }
 

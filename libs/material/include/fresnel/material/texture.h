@@ -5,10 +5,10 @@
 //   - NEAREST / LINEAR filtering, mip-map selection NEAREST / LINEAR from a given LOD λ
 //     (λ <= 0 magnifies; minification without mip-maps reads level 0);
 //   - sRGB textures (SRGB8_ALPHA8) are decoded per texel before filtering; alpha is linear;
-//   - the mip chain is built as glGenerateMipmap does on Mesa: each level the 2x2 box
-//     average of the one above (in linear light for sRGB), rounded to 8 bits.
-// Not modelled: anisotropic filtering (the renderer asks for 16x on trilinear samplers),
-// and non-power-of-two reductions are a clamped 2x2 box (drivers differ there).
+//   - the mip chain is fresnel::build_mip_chain's (core/mipmap.h), the one the renderer
+//     builds and uploads: each level from the one above as a linear blit filters it (in
+//     linear light for sRGB), rounded to 8 bits.
+// Not modelled: anisotropic filtering (the renderer asks for 16x on the detail maps).
 #include <memory>
 #include <vector>
 

@@ -38,14 +38,12 @@ struct MaterialUniforms {
     float clearcoat_normal_scale = 1.0f;
     // The slot each map reads (material_map), nullptr for none; index = MaterialMap.
     std::array<const TextureSlot*, kMaterialMapCount> maps{};
-    // Feature defines of the shader variant (UNLIT, SPECULAR_GLOSSINESS, MATERIAL_CLEARCOAT, ALPHA_MASK, ALPHA_BLEND).
-    std::vector<std::string> defines;
 };
 
 MaterialUniforms material_uniforms(const Material& m);
 
 // The shader feature bits (shader_features.h) of the material model: unlit,
-// specular-glossiness, clearcoat, alpha mode. The same as MaterialUniforms::defines.
+// specular-glossiness, clearcoat, alpha mode (feature_defines() spells them as #defines).
 FeatureMask material_features(const Material& m);
 
 // Sets the values on `program` (in use); bound[i]: map i is bound to texture unit i.
