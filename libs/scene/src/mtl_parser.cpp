@@ -64,7 +64,12 @@ private:
     std::map<std::string, Once> once_;
 
     std::string where() const { return "line " + std::to_string(line_); }
-    void warn(const std::string& message) { diag_.warn(name_, where(), message); }
+    // At most 64 warnings of their own per file; the rest are counted in one.
+    void warn(const std::string& message) {
+        if (warned_++ < 64) diag_.warn(name_, where(), message);
+        else warn_once("more", "more warnings of this file not shown");
+    }
+    std::size_t warned_ = 0;
     // Warnings that may repeat on every line collapse into one, at the first line.
     void warn_once(const std::string& kind, const std::string& message) {
         Once& o = once_[kind];
@@ -188,7 +193,8 @@ private:
             } else if (opt == "-type") {
                 if (i < tok.size()) ++i;
             } else {
-                warn_once("option " + opt, "unknown texture option '" + printable(opt) + "'; ignored");
+                if (unknown_keys_++ < 16) warn_once("option " + opt, "unknown texture option '" + printable(opt) + "'; ignored");
+                else warn_once("option more", "more unknown texture options; ignored");
             }
         }
         if (i >= tok.size()) return warn(std::string(tok[0]) + " without a file name; ignored");
@@ -258,10 +264,13 @@ private:
         else if (key == "sharpness" || key == "disp" || key == "decal" || key == "refl" || key == "map_aat" ||
                  key == "map_tr" || key == "map_pc" || key == "map_pcr" || key == "map_ka" || key == "tw")
             warn_once("key " + key, "'" + std::string(tok[0]) + "' is not supported; ignored");
-        else
+        else if (unknown_keys_++ < 16)
             warn_once("key " + key, "unknown key '" + printable(tok[0]) + "'; ignored");
+        else
+            warn_once("key more", "more unknown keys; ignored");
     }
     std::vector<bool> has_d_;
+    std::size_t unknown_keys_ = 0;
 };
 
 }  // namespace

@@ -214,6 +214,7 @@ private:
     std::vector<fs::path> mtl_loaded_;
     std::map<std::string, int> unknown_materials_;
     bool mtllib_seen_ = false;
+    std::size_t unknown_statements_ = 0, missing_textures_ = 0;
     std::size_t texture_bytes_ = 0;
 
     struct Once {
@@ -224,7 +225,12 @@ private:
     std::map<std::string, Once> once_;
 
     [[noreturn]] void fail(const std::string& what) const { throw Error(file_, "line " + std::to_string(line_), what); }
-    void warn(const std::string& what) { diag_.warn(file_, line_ > 0 ? "line " + std::to_string(line_) : "", what); }
+    // At most 64 warnings of their own per file; the rest are counted in one.
+    void warn(const std::string& what) {
+        if (warned_++ < 64) diag_.warn(file_, line_ > 0 ? "line " + std::to_string(line_) : "", what);
+        else warn_once("more", "more warnings of this file not shown");
+    }
+    std::size_t warned_ = 0;
     void warn_once(const std::string& kind, const std::string& message) {
         Once& o = once_[kind];
         if (o.count++ == 0) {
@@ -411,10 +417,14 @@ private:
                     material_ = it->second;
                 } else {
                     material_ = -1;
-                    auto u = unknown_materials_.emplace(name, line_);
-                    if (u.second)
-                        warn(std::string(mtllib_seen_ ? "no MTL file read defines" : "no mtllib before") +
-                             " material '" + printable(name) + "'; using the default material");
+                    // Each unknown name once; past 16 names, one counted warning for the rest.
+                    if (unknown_materials_.size() < 16) {
+                        if (unknown_materials_.emplace(name, line_).second)
+                            warn(std::string(mtllib_seen_ ? "no MTL file read defines" : "no mtllib before") +
+                                 " material '" + printable(name) + "'; using the default material");
+                    } else if (!unknown_materials_.count(name)) {
+                        warn_once("unknown materials", "more materials no MTL file defines; using the default material");
+                    }
                 }
             } else if (k == "mtllib") {
                 mtllib(std::string(rest_after(line, k)));
@@ -425,7 +435,11 @@ private:
                        k == "maplib" || k == "ctech" || k == "stech" || k == "call" || k == "csh") {
                 warn_once("stmt " + std::string(k), "'" + std::string(k) + "' (free-form geometry or display attribute) is not supported; ignored");
             } else {
-                warn_once("unknown " + printable(k, 32), "unknown statement '" + printable(k, 32) + "'; ignored");
+                // Garbage can hold any number of distinct "statements": name the first few only.
+                if (unknown_statements_++ < 16)
+                    warn_once("unknown " + printable(k, 32), "unknown statement '" + printable(k, 32) + "'; ignored");
+                else
+                    warn_once("unknown more", "more unknown statements; ignored");
             }
         }
         if (any_color_) color_.resize(v_.size(), glm::vec4(0, 0, 0, -1));
@@ -470,10 +484,12 @@ private:
             }
             std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
             auto mats = parse_mtl(text, mtl_name, diag_, opt_.max_materials);
+            std::size_t again = 0;
+            int again_line = 0;
+            std::string again_name;
             for (auto& m : mats) {
                 if (material_by_name_.count(m.name)) {
-                    diag_.warn(mtl_name, "line " + std::to_string(m.line),
-                               "material '" + printable(m.name) + "' is defined again; the first definition is used");
+                    if (again++ == 0) again_line = m.line, again_name = m.name;
                     continue;
                 }
                 material_by_name_[m.name] = int(mtl_.size());
@@ -481,6 +497,10 @@ private:
                 mtl_file_.push_back(mtl_name);
                 mtl_.push_back(std::move(m));
             }
+            if (again)
+                diag_.warn(mtl_name, "line " + std::to_string(again_line),
+                           "material '" + printable(again_name) + "' is defined again; the first definition is used" +
+                               (again > 1 ? " (and " + std::to_string(again - 1) + " more repeated names)" : std::string()));
         }
     }
 
@@ -514,8 +534,11 @@ private:
         if (!fs::is_regular_file(*path, ec)) {
             auto alt = case_insensitive_match(*path);
             if (!alt) {
-                diag_.warn(mtl, "line " + std::to_string(ref.line),
-                           "texture '" + printable(ref.path) + "' not found; the map is ignored");
+                if (missing_textures_++ < 16)
+                    diag_.warn(mtl, "line " + std::to_string(ref.line),
+                               "texture '" + printable(ref.path) + "' not found; the map is ignored");
+                else
+                    warn_once("missing textures", "more textures not found; their maps are ignored");
                 return slot;
             }
             path = alt;
