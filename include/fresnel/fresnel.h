@@ -22,6 +22,7 @@
 #include "fresnel/material/brdf.h"
 #include "fresnel/material/evaluate.h"
 #include "fresnel/material/material.h"
+#include "fresnel/material/legacy_shading.h"
 #include "fresnel/material/phong.h"
 #include "fresnel/material/sampling.h"
 #include "fresnel/material/texture.h"

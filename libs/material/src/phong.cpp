@@ -1,5 +1,7 @@
 #include "fresnel/material/phong.h"
 
+#include "fresnel/material/legacy_shading.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -7,7 +9,7 @@ namespace fresnel {
 
 float phong_shininess_to_roughness(float ns) {
     if (!(ns > 0.0f)) return 1.0f;  // also NaN
-    return std::pow(2.0f / (std::min(ns, 1e30f) + 2.0f), 0.25f);
+    return legacy::blinn_phong_ibl_roughness(std::min(ns, 1e30f));  // one formula for both uses
 }
 
 float roughness_to_phong_shininess(float roughness) {
