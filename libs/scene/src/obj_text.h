@@ -23,7 +23,9 @@ inline std::string_view trim(std::string_view s) {
 // Reads logical lines: a line whose last non-blank character is '\' continues on the next.
 class LineReader {
 public:
-    explicit LineReader(std::string_view text) : text_(text) {}
+    explicit LineReader(std::string_view text) : text_(text) {
+        if (text_.substr(0, 3) == "\xEF\xBB\xBF") text_.remove_prefix(3);  // a UTF-8 byte order mark
+    }
     // The next logical line (comments not removed) and the number of its first physical line.
     bool next(std::string_view& line, int& number) {
         if (pos_ >= text_.size()) return false;

@@ -316,6 +316,13 @@ TEST(ObjLoader, ContinuationsCommentsColoursAndNumberForms) {
     EXPECT_EQ(p.bounds_max, glm::vec3(1, 1, 0));
 }
 
+TEST(ObjLoader, ByteOrderMarkAndLineEndings) {
+    Diagnostics diag;
+    Scene s = load_text("\xEF\xBB\xBFv 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3", diag);  // CRLF, no final newline
+    EXPECT_EQ(triangles(s), 1u);
+    EXPECT_EQ(diag.total(), 0u) << diag.lines()[0];
+}
+
 TEST(ObjLoader, ErrorsNameTheLine) {
     Error e = error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
     EXPECT_EQ(e.file(), "test.obj");
