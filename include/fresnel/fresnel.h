@@ -15,6 +15,7 @@
 
 #include "fresnel/scene/gltf_loader.h"
 #include "fresnel/scene/mesh_ops.h"
+#include "fresnel/scene/obj_loader.h"
 #include "fresnel/scene/procedural.h"
 #include "fresnel/scene/scene.h"
 #include "fresnel/scene/tangents.h"
