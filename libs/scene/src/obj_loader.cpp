@@ -708,7 +708,6 @@ private:
         const Image8* metal = pixels(pbr ? p.metallic_map : MtlMap{});
         const Image8* shiny = pbr ? nullptr : pixels(p.shininess_map);
         if (rough || metal || shiny) {
-            const Image8* first = rough ? rough : metal ? metal : shiny;
             int w = 0, h = 0;
             for (const Image8* i : {rough, metal, shiny})
                 if (i) w = std::max(w, i->width), h = std::max(h, i->height);
@@ -727,7 +726,6 @@ private:
                 }
             if (shiny) mat.roughness_factor = 1.0f;  // the texture holds the converted roughness
             const MtlMap& src = rough ? p.roughness_map : metal ? p.metallic_map : p.shininess_map;
-            (void)first;
             TextureSlot slot = src.slot;
             slot.texture = add_packed(std::move(out), mat.name + " (metallic-roughness)", src.slot);
             mat.metallic_roughness = slot;

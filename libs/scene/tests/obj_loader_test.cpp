@@ -237,7 +237,6 @@ TEST(ObjLoader, SmoothingGroupsDecideNormals) {
     const std::string geometry = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1 0 -1\nv 1 1 -1\n";
     auto normals_at_edge = [](const Scene& s) {
         std::vector<glm::vec3> out;
-        for (const auto& p : s.meshes[0].primitives[0].normals) (void)p;
         const Primitive& p = s.meshes[0].primitives[0];
         for (std::size_t i = 0; i < p.positions.size(); ++i)
             if (p.positions[i].x == 1.0f && p.positions[i].z == 0.0f) out.push_back(p.normals[i]);
