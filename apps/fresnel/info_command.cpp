@@ -5,6 +5,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "fresnel/scene/gltf_loader.h"
+#include "fresnel/scene/obj_loader.h"
 
 namespace fresnel::cli {
 
@@ -17,10 +18,18 @@ struct InfoOptions {
 
 int run_info(const InfoOptions& o) {
     Diagnostics diag;
-    GltfLoadOptions lo;
-    lo.allow_external_files = o.allow_external;
-    lo.decode_images = false;  // counts and bounds need no pixels
-    Scene scene = load_gltf(o.model, diag, lo);
+    Scene scene;
+    if (is_obj_path(o.model)) {
+        ObjLoadOptions oo;
+        oo.allow_external_files = o.allow_external;
+        oo.decode_images = false;  // counts and bounds need no pixels
+        scene = load_obj(o.model, diag, oo);
+    } else {
+        GltfLoadOptions lo;
+        lo.allow_external_files = o.allow_external;
+        lo.decode_images = false;
+        scene = load_gltf(o.model, diag, lo);
+    }
     std::size_t primitives = 0, vertices = 0, triangles = 0;
     for (const auto& m : scene.meshes)
         for (const auto& p : m.primitives) {
@@ -75,8 +84,8 @@ int run_info(const InfoOptions& o) {
 
 Runner add_info_command(CLI::App& app) {
     auto o = std::make_shared<InfoOptions>();
-    CLI::App* cmd = app.add_subcommand("info", "Print counts, bounds and extensions of a glTF model");
-    cmd->add_option("model", o->model, "glTF 2.0 file (.gltf or .glb)")->required();
+    CLI::App* cmd = app.add_subcommand("info", "Print counts, bounds and extensions of a glTF or OBJ model");
+    cmd->add_option("model", o->model, "glTF 2.0 file (.gltf or .glb) or Wavefront OBJ (.obj)")->required();
     cmd->add_flag("--json", o->json, "Print a JSON object instead of text");
     cmd->add_flag("--allow-external-files", o->allow_external,
                   "Let URIs point outside the model's folder (absolute paths, ..); never the network");

@@ -16,6 +16,7 @@
 
 #include "fresnel/scene/gltf_loader.h"
 #include "fresnel/scene/mesh_ops.h"
+#include "fresnel/scene/obj_loader.h"
 #include "fresnel/scene/procedural.h"
 #include "fresnel/scene/scene.h"
 #include "fresnel/scene/tangents.h"
@@ -23,6 +24,8 @@
 #include "fresnel/material/brdf.h"
 #include "fresnel/material/evaluate.h"
 #include "fresnel/material/material.h"
+#include "fresnel/material/legacy_shading.h"
+#include "fresnel/material/phong.h"
 #include "fresnel/material/sampling.h"
 #include "fresnel/material/texture.h"
 

@@ -336,3 +336,50 @@ TEST_F(Cli, WhiteFurnaceThroughRender) {
             << "base " << c.base << " metallic " << c.metallic << " roughness " << c.roughness;
     }
 }
+
+// An OBJ/MTL model through `fresnel render` and `fresnel info`: a red cube (quads, one
+// face a concave hexagon-with-notch, no normals, smoothing off) on a black background must
+// cover a good part of the frame, be red, and have no NaN (magenta) pixel; a bad index is
+// an error that names the line.
+TEST_F(Cli, RendersAndDescribesObj) {
+    std::ofstream(dir_ / "cube.mtl") << "newmtl red\nKa 0.2 0.2 0.2\nKd 0.9 0.1 0.1\nKs 0.2 0.2 0.2\nNs 32\nillum 2\n";
+    std::ofstream(dir_ / "cube.obj")
+        << "mtllib cube.mtl\no cube\n"
+           "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+           "v 0 0.5 1\n"  // the notch of the front face
+           "usemtl red\n"
+           "f 5 6 7 9 8\n"  // front, concave at vertex 9
+           "f 2 1 4 3\nf 1 5 8 4\nf 6 2 3 7\nf 4 8 7 3\nf 1 2 6 5\n";
+    fs::path png = dir_ / "cube.png";
+    Result r = run({"render", (dir_ / "cube.obj").string(), "-o", png.string(), "--size", "96x96", "--yaw", "30",
+                    "--pitch", "20", "--background", "0,0,0"});
+    ASSERT_EQ(r.exit_code, 0) << show(r);
+    fresnel::Image8 img = fresnel::read_image8(png);
+    ASSERT_EQ(img.width, 96);
+    std::size_t covered = 0, red = 0, magenta = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const std::uint8_t* p = img.at(x, y);
+            bool lit = p[0] > 8 || p[1] > 8 || p[2] > 8;
+            covered += lit;
+            red += lit && p[0] > p[1] + 20 && p[0] > p[2] + 20;
+            magenta += p[0] == 255 && p[1] == 0 && p[2] == 255;
+        }
+    EXPECT_GT(covered, std::size_t(96 * 96 / 5)) << "the cube covers too little of the frame";
+    EXPECT_GT(red, covered * 8 / 10) << "the cube is not red (Kd 0.9 0.1 0.1)";
+    EXPECT_EQ(magenta, 0u) << "NaN or Inf pixels";
+
+    r = run({"info", (dir_ / "cube.obj").string(), "--json"});
+    ASSERT_EQ(r.exit_code, 0) << show(r);
+    nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j.at("meshes").get<int>(), 1);
+    EXPECT_EQ(j.at("materials").get<int>(), 1);
+    EXPECT_EQ(j.at("triangles").get<int>(), 3 + 5 * 2);  // a pentagon and five quads
+    EXPECT_NEAR(j.at("bounds").at("radius").get<double>(), std::sqrt(3.0), 1e-5);
+
+    std::ofstream(dir_ / "bad.obj") << "v 0 0 0\nv 1 0 0\n\nf 1 2 3\n";
+    r = run({"render", (dir_ / "bad.obj").string(), "-o", (dir_ / "bad.png").string(), "--size", "32x32"});
+    EXPECT_EQ(r.exit_code, 1) << show(r);
+    EXPECT_NE(r.err.find("bad.obj: line 4: vertex index 3 is out of range"), std::string::npos) << show(r);
+    EXPECT_FALSE(fs::exists(dir_ / "bad.png"));
+}

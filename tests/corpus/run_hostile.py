@@ -129,6 +129,56 @@ def main():
             f.write(data)
         rc, err, _ = fresnel(binary, "info", full)
         expect("the untruncated GLB loads", rc == 0, err[-300:])
+
+        # OBJ/MTL: the same path policy for mtllib and texture maps, errors naming FILE: line N.
+        def write_text(name, text):
+            path = os.path.join(model_dir, name)
+            with open(path, "w") as f:
+                f.write(text)
+            return path
+        tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\n"
+        with open(os.path.join(tmp, "outside.mtl"), "w") as f:
+            f.write("newmtl m\nKd 1 0 0\n")
+        for label, ref in (("dot-dot", "../outside.mtl"), ("absolute", os.path.join(tmp, "outside.mtl")),
+                           ("http", "http://example.com/x.mtl")):
+            path = write_text(f"mtllib-{label}.obj", f"mtllib {ref}\n" + tri)
+            for cmd in (["info", path], ["render", path, "-o", out_png, "--size", "32x32", "--no-ibl"]):
+                rc, err, _ = fresnel(binary, *cmd)
+                expect(f"OBJ mtllib {label} refused by {cmd[0]}",
+                       rc == 1 and ref in err and "line 1:" in err and "fresnel: error:" in err,
+                       f"exit {rc}, stderr {err[-300:]!r}")
+        for label, ref in (("dot-dot", "../outside.png"), ("absolute", outside)):
+            write_text(f"map-{label}.mtl", f"newmtl m\nmap_Kd {ref}\n")
+            path = write_text(f"map-{label}.obj", f"mtllib map-{label}.mtl\n" + tri)
+            rc, err, _ = fresnel(binary, "render", path, "-o", out_png, "--size", "32x32", "--no-ibl")
+            expect(f"OBJ map_Kd {label} refused", rc == 1 and f"map-{label}.mtl: line 2:" in err, f"exit {rc}: {err[-300:]!r}")
+        rc, err, _ = fresnel(binary, "render", os.path.join(model_dir, "map-absolute.obj"), "-o", out_png,
+                             "--size", "32x32", "--no-ibl", "--allow-external-files")
+        expect("OBJ absolute map_Kd loads with --allow-external-files", rc == 0, f"exit {rc}: {err[-300:]!r}")
+        write_text("huge.mtl", "newmtl m\nmap_Kd huge.png\n")
+        path = write_text("huge.obj", "mtllib huge.mtl\n" + tri)
+        rc, err, secs = fresnel(binary, "render", path, "-o", out_png, "--size", "32x32", "--no-ibl")
+        expect("OBJ with a 100000x100000 PNG map: message naming the limit, within seconds",
+               rc in (0, 1) and "limit" in err and secs < 10, f"exit {rc} in {secs:.1f} s: {err[-300:]!r}")
+        # A 100000-sided star (concave at every other vertex): triangulated within seconds.
+        import math
+        n = 100000
+        star = "".join(f"v {(1 if i % 2 else 0.3) * math.cos(2 * math.pi * i / n):.7f} "
+                       f"{(1 if i % 2 else 0.3) * math.sin(2 * math.pi * i / n):.7f} 0\n" for i in range(n))
+        path = write_text("star.obj", star + "f " + " ".join(str(i + 1) for i in range(n)) + "\n")
+        rc, err, secs = fresnel(binary, "info", path, "--json")
+        expect("100000-sided concave polygon: loads within 20 s", rc == 0 and secs < 20, f"exit {rc} in {secs:.1f} s")
+        # Truncated OBJ at every length: loads (exit 0) or a clear error (exit 1), never a crash.
+        data = ("mtllib m.mtl\no a\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\ns 1\n"
+                "usemtl m\nf 1/1/1 2/1/1 3/1/1 4/1/1\nf -4 -3 -2\nl 1 2\n")
+        write_text("m.mtl", "newmtl m\nKd 0.5 0.5 0.5\nNs 20\n")
+        bad = []
+        for k in range(len(data)):
+            path = write_text("cut.obj", data[:k])
+            rc, err, _ = fresnel(binary, "info", path)
+            if rc not in (0, 1) or (rc == 1 and "fresnel: error:" not in err):
+                bad.append((k, rc, err[-200:]))
+        expect(f"OBJ truncated at each of {len(data)} lengths -> exit 0 or 1 with message", not bad, str(bad[:3]))
     print(f"{len(failures)} failure(s)")
     return 1 if failures else 0
 

@@ -2,7 +2,7 @@
 // 3.30 core, checked offline with glslang (Debian's glslang-dev, in process, one
 // thread per core): the mesh shaders for every feature set of all_feature_sets()
 // (shader_features.h, the same enumeration the renderer's rules come from) and the
-// other programs (fullscreen.vert, post.frag, sky.frag, brdf_probe.frag).
+// other programs (fullscreen.vert, post.frag, sky.frag, brdf_probe.frag, legacy_probe.frag).
 //
 // A stage's source depends only on the feature #defines it mentions, so each stage
 // is compiled once per distinct set of the bits it reads (the bits it never names
@@ -133,7 +133,7 @@ TEST(ShaderVariants, EveryVariantCompilesAsEs300AndGl330) {
         for (GlslTarget t : {GlslTarget::Es30, GlslTarget::Gl33})
             for (FeatureMask m : distinct) jobs.push_back({file, m, true, t});
     }
-    for (const char* file : {"fullscreen.vert", "post.frag", "sky.frag", "brdf_probe.frag"}) {
+    for (const char* file : {"fullscreen.vert", "post.frag", "sky.frag", "brdf_probe.frag", "legacy_probe.frag"}) {
         ++per_target;
         for (GlslTarget t : {GlslTarget::Es30, GlslTarget::Gl33}) jobs.push_back({file, 0, false, t});
     }

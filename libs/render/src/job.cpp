@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "fresnel/scene/gltf_loader.h"
+#include "fresnel/scene/obj_loader.h"
 #include "fresnel/scene/procedural.h"
 
 namespace fresnel {
@@ -13,6 +14,11 @@ std::string model_name(const Job& job) { return job.source.model.empty() ? std::
 
 Scene load_scene(const Job& job, Diagnostics& diag) {
     if (job.source.model.empty()) return make_demo_scene();
+    if (is_obj_path(job.source.model)) {
+        ObjLoadOptions oo;
+        oo.allow_external_files = job.source.allow_external_files;
+        return load_obj(job.source.model, diag, oo);
+    }
     GltfLoadOptions lo;
     lo.allow_external_files = job.source.allow_external_files;
     lo.pose_skins = job.source.pose_skins;

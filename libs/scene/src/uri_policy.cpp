@@ -129,4 +129,53 @@ std::optional<fs::path> resolve_uri(const std::string& uri, const fs::path& base
     return full;
 }
 
+std::optional<fs::path> resolve_model_path(const std::string& path, const fs::path& base_dir, const fs::path& root_dir,
+                                           bool allow_external, std::string& error) {
+    if (path.empty()) {
+        error = "empty path";
+        return std::nullopt;
+    }
+    if (path.find('\0') != std::string::npos) {
+        error = "path '" + path + "' contains a NUL byte";
+        return std::nullopt;
+    }
+    std::string text = path;
+    for (char& c : text)
+        if (c == '\\') c = '/';
+    std::size_t colon = text.find(':');
+    if (colon != std::string::npos && colon > 1) {
+        bool scheme = std::isalpha(static_cast<unsigned char>(text[0]));
+        for (std::size_t i = 1; i < colon && scheme; ++i) {
+            char c = text[i];
+            scheme = std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '-' || c == '.';
+        }
+        if (scheme) {
+            error = "path '" + path + "' uses the '" + text.substr(0, colon) +
+                    ":' scheme; only relative file paths are read (never the network)";
+            return std::nullopt;
+        }
+    }
+    fs::path p(text);
+    if (p.is_absolute() || colon == 1) {
+        if (!allow_external) {
+            error = "path '" + path + "' is absolute; refused (use --allow-external-files to permit it)";
+            return std::nullopt;
+        }
+        return p;
+    }
+    std::error_code ec;
+    fs::path root = fs::weakly_canonical(root_dir.empty() ? fs::path(".") : root_dir, ec);
+    fs::path base = fs::weakly_canonical(base_dir.empty() ? fs::path(".") : base_dir, ec);
+    fs::path full = fs::weakly_canonical(base / p, ec);
+    if (ec) full = (base / p).lexically_normal();
+    if (!allow_external) {
+        auto rel = full.lexically_relative(root);
+        if (rel.empty() || *rel.begin() == "..") {
+            error = "path '" + path + "' points outside the model's folder; refused (use --allow-external-files to permit it)";
+            return std::nullopt;
+        }
+    }
+    return full;
+}
+
 }  // namespace fresnel::gltf

@@ -23,4 +23,12 @@ std::string percent_decode(const std::string& s);
 std::optional<std::filesystem::path> resolve_uri(const std::string& uri, const std::filesystem::path& base_dir,
                                                  bool allow_external, std::string& error);
 
+// Resolves a file path written in a model file that is not a URI (OBJ's mtllib, MTL's
+// texture maps: no percent-decoding, '\\' taken as '/'), relative to `base_dir`; the result
+// must stay inside `root_dir` (the model's folder) unless external files are allowed.
+// Schemes (http:, file:, ...) are refused always; absolute paths unless allowed.
+std::optional<std::filesystem::path> resolve_model_path(const std::string& path, const std::filesystem::path& base_dir,
+                                                        const std::filesystem::path& root_dir, bool allow_external,
+                                                        std::string& error);
+
 }  // namespace fresnel::gltf

@@ -132,6 +132,38 @@ struct DiffuseTransmissionExt {            // KHR_materials_diffuse_transmission
     TextureSlot diffuse_transmission_color_texture;  // RGB, sRGB
 };
 
+// Wavefront MTL, as read from the file: the classic (Phong-era) keys and the PBR
+// extension's. The OBJ loader fills it and converts it to the metallic-roughness core by
+// phong_to_metallic_roughness (phong.h); the block keeps the original values for a Phong
+// shading model and a fitted conversion. Kept, not shaded. Absent keys take OpenGL 1's
+// glMaterial defaults (Ka 0.2, Kd 0.8, Ks 0, Ke 0, Ns 0, d 1), as an OpenGL 1 viewer shows them.
+enum class MtlChannel { R, G, B, Matte, Luminance };  // -imfchan r|g|b|m|l (m = alpha)
+struct MtlMap {
+    TextureSlot slot;                       // -o/-s become slot's transform (in glTF's UV space)
+    MtlChannel channel = MtlChannel::R;     // which channel a scalar map uses
+    float bump_multiplier = 1.0f;           // -bm (bump and normal maps)
+    bool valid() const { return slot.valid(); }
+};
+struct PhongExt {
+    glm::vec3 ambient{0.2f};                // Ka
+    glm::vec3 diffuse{0.8f};                // Kd
+    glm::vec3 specular{0.0f};               // Ks
+    glm::vec3 emission{0.0f};               // Ke
+    float shininess = 0.0f;                 // Ns: Blinn-Phong exponent (as written; OpenGL 1 clamps to 128)
+    float optical_density = 1.0f;           // Ni
+    float dissolve = 1.0f;                  // d, or 1 - Tr when the file has no d
+    glm::vec3 transmission_filter{1.0f};    // Tf
+    int illum = 2;                          // illumination model 0..10
+    MtlMap ambient_map, diffuse_map, specular_map, shininess_map, dissolve_map, emission_map;  // map_Ka Kd Ks Ns d Ke
+    MtlMap bump_map;                        // bump / map_bump (-bm)
+    // The PBR extension (absent: not written in the file).
+    std::optional<float> roughness, metallic, sheen;           // Pr, Pm, Ps
+    std::optional<float> clearcoat, clearcoat_roughness;       // Pc, Pcr
+    std::optional<float> anisotropy, anisotropy_rotation;      // aniso, anisor (fraction of a turn)
+    MtlMap roughness_map, metallic_map, sheen_map, normal_map; // map_Pr map_Pm map_Ps norm
+    bool has_pbr() const { return roughness || metallic || roughness_map.valid() || metallic_map.valid(); }
+};
+
 // glTF metallic-roughness material with its extension blocks.
 struct Material {
     std::string name;
@@ -163,6 +195,7 @@ struct Material {
     std::optional<AnisotropyExt> anisotropy;
     std::optional<DispersionExt> dispersion;
     std::optional<DiffuseTransmissionExt> diffuse_transmission;
+    std::optional<PhongExt> phong;  // Wavefront MTL source values (OBJ files)
 
     // The values that hold without a block (the extensions' defaults).
     float ior_value() const { return ior ? ior->ior : 1.5f; }
