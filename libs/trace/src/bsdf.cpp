@@ -67,20 +67,27 @@ BsdfSample sample_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 u) {
     BsdfLobes p = lobe_probabilities(m, v);
     if (p.diffuse + p.specular + p.clearcoat <= 0.0f) return s;
     glm::vec2 u2(u.y, u.z);
+    // Each lobe's samples below its own horizon are lost (the pdf of a lobe is 0 there, so
+    // keeping them would make the mixture's pdf wrong where another lobe reaches).
+    glm::vec3 local;
     if (u.x < p.diffuse) {
         Frame f(m.normal);
-        s.l = f.to_world(sampling::sample_cosine(u2));
+        local = sampling::sample_cosine(u2);
+        s.l = f.to_world(local);
     } else if (u.x < p.diffuse + p.specular) {
         Frame f(m.normal);
         glm::vec3 vl = f.to_local(v);
         if (vl.z <= 0.0f) return s;
-        s.l = f.to_world(sampling::sample_ggx_reflection(vl, u2, brdf::alpha_from_roughness(m.surface.perceptual_roughness)));
+        local = sampling::sample_ggx_reflection(vl, u2, brdf::alpha_from_roughness(m.surface.perceptual_roughness));
+        s.l = f.to_world(local);
     } else {
         Frame f(m.clearcoat_normal);
         glm::vec3 vl = f.to_local(v);
         if (vl.z <= 0.0f) return s;
-        s.l = f.to_world(sampling::sample_ggx_reflection(vl, u2, brdf::alpha_from_roughness(m.clearcoat_roughness)));
+        local = sampling::sample_ggx_reflection(vl, u2, brdf::alpha_from_roughness(m.clearcoat_roughness));
+        s.l = f.to_world(local);
     }
+    if (!(local.z > 0.0f)) return s;
     float len = glm::length(s.l);
     if (!(len > 0.0f)) return s;
     s.l /= len;

@@ -128,12 +128,13 @@ TraceSettings small(int spp, int bounces = 16) {
 
 TEST(Tracer, WhiteFurnaceConvex) {
     EnvironmentLight env(ibl::make_uniform_panorama(glm::vec3(1.0f)));
-    Traced t = run(spheres(lambert(1.0f), {{0, 0, 0, 1}}), &env, small(16));
+    Traced t = run(spheres(lambert(1.0f), {{0, 0, 0, 1}}), &env, small(64));
     MeanErr m = covered_mean(t.image);
     ASSERT_GT(m.n, 300u);
     EXPECT_NEAR(m.mean, 1.0, 0.005) << "standard error " << m.err;
-    // Every pixel away from the silhouette, not just the mean (16 samples each; the estimator
-    // varies only through the MIS weights of the environment and BSDF samples). At the
+    // Every pixel away from the silhouette, not just the mean (64 samples each; the estimator
+    // varies only through the MIS weights of the environment and BSDF samples, a standard
+    // deviation of about 0.04 per pixel). At the
     // silhouette the interpolated normals and the facets disagree, and directions between
     // the two are lost (as in every tracer that keeps rays on the facet's side).
     auto covered = [&](int x, int y) {
@@ -143,7 +144,7 @@ TEST(Tracer, WhiteFurnaceConvex) {
     for (int y = 0; y < t.image.height; ++y)
         for (int x = 0; x < t.image.width; ++x) {
             if (!covered(x - 2, y) || !covered(x + 2, y) || !covered(x, y - 2) || !covered(x, y + 2)) continue;
-            ASSERT_NEAR(t.image.at(x, y)[0], 1.0f, 0.15f) << x << "," << y;
+            ASSERT_NEAR(t.image.at(x, y)[0], 1.0f, 0.2f) << x << "," << y;
             ++checked;
         }
     EXPECT_GT(checked, 200);
@@ -187,17 +188,21 @@ TEST(Tracer, ClosedSphereGeometricSeries) {
     cam.eye = glm::vec3(0.0f);
     cam.view = glm::lookAt(glm::vec3(0.0f), glm::vec3(0, 0, -1), glm::vec3(0, 1, 0));
     cam.projection = glm::perspective(glm::radians(60.0f), 1.0f, 0.01f, 10.0f);
-    for (int n : {0, 1, 2, 4, 8, 64}) {
-        TraceSettings ts = small(n >= 8 ? 64 : 16, n);
+    for (int n : {0, 1, 2, 4, 8, 32}) {
+        TraceSettings ts = small(16, n);
+        ts.width = ts.height = 24;
         ts.russian_roulette_start = 1000;
         Traced t = run(s, nullptr, ts, {}, {}, &cam);
         MeanErr me = covered_mean(t.image);
         ASSERT_EQ(me.n, std::size_t(ts.width * ts.height));
+        if (n == 0) EXPECT_NEAR(me.mean, Le, 1e-5);  // emission alone: exact
         double expected = Le * (1.0 - std::pow(double(a), n + 1)) / (1.0 - a);
-        EXPECT_NEAR(me.mean, expected, 0.005 * expected) << n << " bounces, standard error " << me.err;
+        EXPECT_NEAR(me.mean, expected, std::max(0.005 * expected, 4 * me.err)) << n << " bounces, standard error " << me.err;
     }
     // With Russian roulette (on by default) the limit Le / (1 - a).
-    Traced t = run(s, nullptr, small(64, 1000), {}, {}, &cam);
+    TraceSettings rr = small(16, 1000);
+    rr.width = rr.height = 24;
+    Traced t = run(s, nullptr, rr, {}, {}, &cam);
     MeanErr me = covered_mean(t.image);
     EXPECT_NEAR(me.mean, Le / (1.0 - a), std::max(0.01 * Le / (1.0 - a), 4 * me.err));
 }
@@ -234,8 +239,7 @@ TEST(Tracer, GltfBrdfInTheFurnaceMatchesItsAlbedo) {
 
 TEST(Tracer, SameSeedSameImage) {
     Scene s = make_demo_scene();
-    ibl::EnvironmentSource studio;
-    EnvironmentLight env(ibl::load_panorama(studio), 30.0f);
+    EnvironmentLight env(ibl::make_studio_panorama(256), 30.0f);
     TraceSettings ts = small(4);
     ts.env_background = true;
     ts.seed = 7;
