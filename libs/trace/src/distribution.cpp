@@ -61,4 +61,45 @@ float Distribution2D::pdf(glm::vec2 uv) const {
     return marginal_.pdf(y) * rows_[std::size_t(y)].pdf(x);
 }
 
+AliasTable::AliasTable(const std::vector<float>& weights) : weights_(weights) {
+    const std::size_t n = weights_.size();
+    for (float& w : weights_) w = std::isfinite(w) ? std::max(w, 0.0f) : 0.0f;
+    for (float w : weights_) total_ += double(w);
+    entries_.assign(n, Entry{1.0f, 0});
+    for (std::size_t i = 0; i < n; ++i) entries_[i].alias = int(i);
+    if (n == 0 || total_ <= 0) return;
+    std::vector<double> scaled(n);
+    std::vector<int> small, large;
+    for (std::size_t i = 0; i < n; ++i) {
+        scaled[i] = double(weights_[i]) * double(n) / total_;
+        (scaled[i] < 1.0 ? small : large).push_back(int(i));
+    }
+    while (!small.empty() && !large.empty()) {
+        int s = small.back(), l = large.back();
+        small.pop_back();
+        entries_[std::size_t(s)] = Entry{float(scaled[std::size_t(s)]), l};
+        scaled[std::size_t(l)] -= 1.0 - scaled[std::size_t(s)];
+        if (scaled[std::size_t(l)] < 1.0) {
+            large.pop_back();
+            small.push_back(l);
+        }
+    }
+    for (int i : large) entries_[std::size_t(i)] = Entry{1.0f, i};
+    for (int i : small) entries_[std::size_t(i)] = Entry{1.0f, i};  // rounding leftovers
+}
+
+int AliasTable::sample(float u, float& remainder) const {
+    const int n = size();
+    float x = u * float(n);
+    int i = std::min(int(x), n - 1);
+    float coin = std::min(x - float(i), 0x1.fffffep-1f);
+    const Entry& e = entries_[std::size_t(i)];
+    if (coin < e.threshold) {
+        remainder = e.threshold > 0.0f ? coin / e.threshold : 0.0f;
+        return i;
+    }
+    remainder = std::min((coin - e.threshold) / (1.0f - e.threshold), 0x1.fffffep-1f);
+    return e.alias;
+}
+
 }  // namespace fresnel::trace

@@ -28,16 +28,7 @@ EnvironmentLight::EnvironmentLight(ImageF panorama, float rotation_deg, float in
         float sin_t = std::sin((float(y) + 0.5f) / float(h) * kPi);
         for (int x = 0; x < w; ++x) {
             const float* p = panorama_.at(x, y);
-            // Bilinear lookups reach into the neighbours: weigh each pixel by the brightest of
-            // its 3x3 neighbourhood so that no lit direction has a zero density.
-            float m = 0;
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    int yy = std::clamp(y + dy, 0, h - 1), xx = ((x + dx) % w + w) % w;
-                    const float* q = panorama_.at(xx, yy);
-                    m = std::max(m, luminance({q[0], q[1], q[2]}));
-                }
-            float l = 0.5f * (luminance({p[0], p[1], p[2]}) + m);
+            float l = luminance({p[0], p[1], p[2]});
             weights[std::size_t(y) * w + x] = l * sin_t;
             sum += l * sin_t;
         }
@@ -48,48 +39,47 @@ EnvironmentLight::EnvironmentLight(ImageF panorama, float rotation_deg, float in
         float sin_t = std::sin((float(y) + 0.5f) / float(h) * kPi);
         for (int x = 0; x < w; ++x) weights[std::size_t(y) * w + x] += floor_w * sin_t;
     }
-    distribution_ = Distribution2D(weights, w, h);
+    alias_ = AliasTable(weights);
+    texels_.resize(weights.size());
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const float* p = panorama_.at(x, y);
+            std::size_t i = std::size_t(y) * w + x;
+            texels_[i].radiance = glm::vec3(p[0], p[1], p[2]) * intensity_;
+            texels_[i].pdf = float(alias_.probability(int(i)) * double(weights.size()));
+        }
 }
 
-glm::vec3 EnvironmentLight::lookup(glm::vec2 uv) const {
-    // Bilinear, wrapping in u and clamped in v (the panorama as a linear-filtered texture).
+const EnvironmentLight::Texel& EnvironmentLight::texel_at(glm::vec2 uv) const {
     const int w = panorama_.width, h = panorama_.height;
-    float fu = uv.x * float(w) - 0.5f, fv = uv.y * float(h) - 0.5f;
-    float x0f = std::floor(fu), y0f = std::floor(fv);
-    float a = fu - x0f, b = fv - y0f;
-    int x0 = int(x0f), y0 = int(y0f);
-    int xa = ((x0 % w) + w) % w, xb = (((x0 + 1) % w) + w) % w;
-    int ya = std::clamp(y0, 0, h - 1), yb = std::clamp(y0 + 1, 0, h - 1);
-    const float *p00 = panorama_.at(xa, ya), *p10 = panorama_.at(xb, ya);
-    const float *p01 = panorama_.at(xa, yb), *p11 = panorama_.at(xb, yb);
-    glm::vec3 r;
-    for (int i = 0; i < 3; ++i)
-        r[i] = (1 - a) * (1 - b) * p00[i] + a * (1 - b) * p10[i] + (1 - a) * b * p01[i] + a * b * p11[i];
-    return r * intensity_;
+    int x = std::clamp(int(uv.x * float(w)), 0, w - 1), y = std::clamp(int(uv.y * float(h)), 0, h - 1);
+    return texels_[std::size_t(y) * w + x];
 }
 
 glm::vec3 EnvironmentLight::radiance(glm::vec3 dir) const {
-    return lookup(ibl::direction_to_equirect(to_env_ * dir));
+    return texel_at(ibl::direction_to_equirect(to_env_ * dir)).radiance;
 }
 
 EnvironmentLight::Sample EnvironmentLight::sample(glm::vec2 u) const {
     Sample s;
-    float pdf_uv = 0;
-    glm::vec2 uv = distribution_.sample(u, pdf_uv);
+    float jx = 0;
+    int i = alias_.sample(u.x, jx);
+    const Texel& t = texels_[std::size_t(i)];
+    const int w = panorama_.width, h = panorama_.height;
+    glm::vec2 uv((float(i % w) + jx) / float(w), (float(i / w) + u.y) / float(h));
     float sin_t = std::sin(uv.y * kPi);
-    if (pdf_uv <= 0.0f || sin_t <= 0.0f) return s;
+    if (t.pdf <= 0.0f || sin_t <= 0.0f) return s;
     s.direction = to_world_ * ibl::equirect_to_direction(uv);
-    s.pdf = pdf_uv / (2.0f * kPi * kPi * sin_t);
-    s.radiance = lookup(uv);
+    s.pdf = t.pdf / (2.0f * kPi * kPi * sin_t);
+    s.radiance = t.radiance;
     return s;
 }
 
 float EnvironmentLight::pdf(glm::vec3 dir) const {
     glm::vec3 e = to_env_ * dir;
-    glm::vec2 uv = ibl::direction_to_equirect(e);
     float sin_t = std::sqrt(std::max(0.0f, 1.0f - e.y * e.y));
     if (sin_t <= 0.0f) return 0.0f;
-    return distribution_.pdf(uv) / (2.0f * kPi * kPi * sin_t);
+    return texel_at(ibl::direction_to_equirect(e)).pdf / (2.0f * kPi * kPi * sin_t);
 }
 
 }  // namespace fresnel::trace

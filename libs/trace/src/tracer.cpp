@@ -82,8 +82,11 @@ glm::vec3 offset_ray(glm::vec3 p, glm::vec3 n) {
 }
 
 // ---------------------------------------------------------------------------
-// Textures: every (texture, colour space) a material reads, decoded once at level 0 (the
-// tracer reads level 0 only, so no mip chain is built).
+// Textures: every (texture, colour space) a material reads, decoded once with its mip
+// chain. Camera rays read level 0 (the pixel's samples integrate its footprint, as Cycles
+// does); later bounces read level kSecondaryLod, a footprint that a diffuse or glossy bounce
+// far exceeds anyway, and one that stays in the caches (incoherent reads of five 2048^2
+// maps were a quarter of the time).
 
 class SceneTextures final : public TextureSource {
 public:
@@ -108,7 +111,7 @@ public:
             TextureSampler s;
             s.mag_filter = tex.sampler.mag_filter;
             s.min_filter = tex.sampler.min_filter;
-            s.mip_filter = MipFilter::None;
+            s.mip_filter = MipFilter::Linear;
             s.wrap_s = tex.sampler.wrap_s;
             s.wrap_t = tex.sampler.wrap_t;
             textures_[std::size_t(t) * 2 + (srgb ? 1 : 0)] =
@@ -158,6 +161,7 @@ struct Geometry {
 };
 
 const Material kDefaultMaterial{};
+constexpr float kSecondaryLod = 3.0f;  // 2048^2 -> 256^2
 
 // The per-query context: Embree's, and the random seed of the ray for stochastic opacity.
 struct RayContext {
@@ -410,6 +414,7 @@ struct Integrator {
             glm::vec3 wo = -dir;
             bool back = glm::dot(ng, wo) < 0.0f;
             SurfacePoint sp = g.surface_point(hit.prim, u, v);
+            if (bounce > 0) sp.lod = kSecondaryLod;
             glm::vec3 ns = ng;
             if (!g.normals.empty()) {
                 ns = w0 * g.normals[tri[0]] + u * g.normals[tri[1]] + v * g.normals[tri[2]];

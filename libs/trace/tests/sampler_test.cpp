@@ -357,7 +357,9 @@ TEST(EnvironmentLight, SampleAgreesWithPdfAndRadiance) {
     for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 8; ++x) p.at(x, y)[0] = float(x), p.at(x, y)[3] = 1.0f;
     trace::EnvironmentLight plain(p, 0.0f), turned(p, 90.0f);
-    EXPECT_NEAR(plain.radiance({0, 0, 1}).x, 3.5f, 1e-3f);  // u = 0.5: halfway between texels 3 and 4
+    const float phi = 0.0625f * 2.0f * 3.14159265f;  // u = 0.5625, the centre of texel 4
+    EXPECT_NEAR(plain.radiance({-std::sin(phi), 0, std::cos(phi)}).x, 4.0f, 1e-6f);
+    EXPECT_NEAR(plain.radiance({-1, 0, 0}).x, 6.0f, 1e-6f);  // -X: u = 0.75, texel 6
     EXPECT_NEAR(turned.radiance({0, 0, 1}).x, plain.radiance({-1, 0, 0}).x, 1e-4f);
 }
 
@@ -377,6 +379,8 @@ TEST(Distribution2D, PdfMatchesSampledFrequencies) {
     }
     for (int i = 0; i < 8; ++i) {
         EXPECT_NEAR(double(counts[std::size_t(i)]) / n, w[std::size_t(i)] / 8.0, 0.01) << i;
-        if (w[std::size_t(i)] == 0) EXPECT_EQ(counts[std::size_t(i)], 0) << i;
+        if (w[std::size_t(i)] == 0) {
+            EXPECT_EQ(counts[std::size_t(i)], 0) << i;
+        }
     }
 }

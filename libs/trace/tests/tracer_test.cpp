@@ -195,7 +195,9 @@ TEST(Tracer, ClosedSphereGeometricSeries) {
         Traced t = run(s, nullptr, ts, {}, {}, &cam);
         MeanErr me = covered_mean(t.image);
         ASSERT_EQ(me.n, std::size_t(ts.width * ts.height));
-        if (n == 0) EXPECT_NEAR(me.mean, Le, 1e-5);  // emission alone: exact
+        if (n == 0) {
+            EXPECT_NEAR(me.mean, Le, 1e-5);  // emission alone: exact
+        }
         double expected = Le * (1.0 - std::pow(double(a), n + 1)) / (1.0 - a);
         EXPECT_NEAR(me.mean, expected, std::max(0.005 * expected, 4 * me.err)) << n << " bounces, standard error " << me.err;
     }

@@ -41,4 +41,25 @@ private:
     Distribution1D marginal_;
 };
 
+// Walker's alias method (Vose's construction): a discrete distribution over n outcomes
+// drawn in constant time from one uniform number, whose remainder comes back uniform.
+class AliasTable {
+public:
+    AliasTable() = default;
+    explicit AliasTable(const std::vector<float>& weights);
+    // The outcome, and in `remainder` a fresh uniform number in [0, 1) from what u had left.
+    int sample(float u, float& remainder) const;
+    double probability(int i) const { return total_ > 0 ? double(weights_[std::size_t(i)]) / total_ : 0.0; }
+    int size() const { return int(entries_.size()); }
+
+private:
+    struct Entry {
+        float threshold;  // keep i when the coin is below it, else take alias
+        int alias;
+    };
+    std::vector<Entry> entries_;
+    std::vector<float> weights_;
+    double total_ = 0;
+};
+
 }  // namespace fresnel::trace
