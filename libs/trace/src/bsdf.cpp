@@ -10,12 +10,6 @@ namespace fresnel::trace {
 namespace {
 float luminance(glm::vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
-struct Frame {
-    glm::vec3 t, b, n;
-    explicit Frame(glm::vec3 normal) : n(normal) { sampling::basis(n, t, b); }
-    glm::vec3 to_local(glm::vec3 w) const { return {glm::dot(w, t), glm::dot(w, b), glm::dot(w, n)}; }
-    glm::vec3 to_world(glm::vec3 w) const { return w.x * t + w.y * b + w.z * n; }
-};
 }  // namespace
 
 BsdfLobes lobe_probabilities(const EvaluatedMaterial& m, glm::vec3 v) {
@@ -38,66 +32,72 @@ BsdfLobes lobe_probabilities(const EvaluatedMaterial& m, glm::vec3 v) {
     return p;
 }
 
-glm::vec3 eval_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l) { return shade_light(m, v, l, glm::vec3(1.0f)); }
-
-namespace {
-float pdf_with(const EvaluatedMaterial& m, const BsdfLobes& p, glm::vec3 v, glm::vec3 l) {
-    float pdf = 0.0f;
-    if (p.diffuse > 0.0f || p.specular > 0.0f) {
-        Frame f(m.normal);
-        glm::vec3 vl = f.to_local(v), ll = f.to_local(l);
-        if (p.diffuse > 0.0f) pdf += p.diffuse * sampling::pdf_cosine(ll);
-        if (p.specular > 0.0f && ll.z > 0.0f)
-            pdf += p.specular * sampling::pdf_ggx_reflection(vl, ll, brdf::alpha_from_roughness(m.surface.perceptual_roughness));
+Bsdf::Bsdf(const EvaluatedMaterial& m, glm::vec3 v) : m_(m), v_(v), lobes_(lobe_probabilities(m, v)) {
+    base_.n = m.normal;
+    sampling::basis(base_.n, base_.t, base_.b);
+    v_base_ = base_.to_local(v);
+    alpha_ = brdf::alpha_from_roughness(m.surface.perceptual_roughness);
+    if (lobes_.clearcoat > 0.0f) {
+        coat_.n = m.clearcoat_normal;
+        sampling::basis(coat_.n, coat_.t, coat_.b);
+        v_coat_ = coat_.to_local(v);
+        coat_alpha_ = brdf::alpha_from_roughness(m.clearcoat_roughness);
     }
-    if (p.clearcoat > 0.0f) {
-        Frame f(m.clearcoat_normal);
-        glm::vec3 ll = f.to_local(l);
-        if (ll.z > 0.0f)
-            pdf += p.clearcoat * sampling::pdf_ggx_reflection(f.to_local(v), ll, brdf::alpha_from_roughness(m.clearcoat_roughness));
+}
+
+glm::vec3 Bsdf::eval(glm::vec3 l) const { return shade_light(m_, v_, l, glm::vec3(1.0f)); }
+
+float Bsdf::pdf(glm::vec3 l) const {
+    float pdf = 0.0f;
+    if (lobes_.diffuse > 0.0f || lobes_.specular > 0.0f) {
+        glm::vec3 ll = base_.to_local(l);
+        if (ll.z > 0.0f) {
+            if (lobes_.diffuse > 0.0f) pdf += lobes_.diffuse * sampling::pdf_cosine(ll);
+            if (lobes_.specular > 0.0f) pdf += lobes_.specular * sampling::pdf_ggx_reflection(v_base_, ll, alpha_);
+        }
+    }
+    if (lobes_.clearcoat > 0.0f) {
+        glm::vec3 ll = coat_.to_local(l);
+        if (ll.z > 0.0f) pdf += lobes_.clearcoat * sampling::pdf_ggx_reflection(v_coat_, ll, coat_alpha_);
     }
     return pdf;
 }
-}  // namespace
 
-float pdf_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l) { return pdf_with(m, lobe_probabilities(m, v), v, l); }
-
-BsdfSample sample_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 u) {
+BsdfSample Bsdf::sample(glm::vec3 u) const {
     BsdfSample s;
-    BsdfLobes p = lobe_probabilities(m, v);
+    const BsdfLobes& p = lobes_;
     if (p.diffuse + p.specular + p.clearcoat <= 0.0f) return s;
     glm::vec2 u2(u.y, u.z);
     // Each lobe's samples below its own horizon are lost (the pdf of a lobe is 0 there, so
     // keeping them would make the mixture's pdf wrong where another lobe reaches).
     glm::vec3 local;
     if (u.x < p.diffuse) {
-        Frame f(m.normal);
         local = sampling::sample_cosine(u2);
-        s.l = f.to_world(local);
+        s.l = base_.to_world(local);
     } else if (u.x < p.diffuse + p.specular) {
-        Frame f(m.normal);
-        glm::vec3 vl = f.to_local(v);
-        if (vl.z <= 0.0f) return s;
-        local = sampling::sample_ggx_reflection(vl, u2, brdf::alpha_from_roughness(m.surface.perceptual_roughness));
-        s.l = f.to_world(local);
+        if (v_base_.z <= 0.0f) return s;
+        local = sampling::sample_ggx_reflection(v_base_, u2, alpha_);
+        s.l = base_.to_world(local);
     } else {
-        Frame f(m.clearcoat_normal);
-        glm::vec3 vl = f.to_local(v);
-        if (vl.z <= 0.0f) return s;
-        local = sampling::sample_ggx_reflection(vl, u2, brdf::alpha_from_roughness(m.clearcoat_roughness));
-        s.l = f.to_world(local);
+        if (v_coat_.z <= 0.0f) return s;
+        local = sampling::sample_ggx_reflection(v_coat_, u2, coat_alpha_);
+        s.l = coat_.to_world(local);
     }
     if (!(local.z > 0.0f)) return s;
     float len = glm::length(s.l);
     if (!(len > 0.0f)) return s;
     s.l /= len;
-    s.pdf = pdf_with(m, p, v, s.l);
+    s.pdf = pdf(s.l);
     if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) {
         s.pdf = 0.0f;
         return s;
     }
-    s.f_cos = eval_bsdf(m, v, s.l);
+    s.f_cos = eval(s.l);
     return s;
 }
+
+glm::vec3 eval_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l) { return Bsdf(m, v).eval(l); }
+float pdf_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l) { return Bsdf(m, v).pdf(l); }
+BsdfSample sample_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 u) { return Bsdf(m, v).sample(u); }
 
 }  // namespace fresnel::trace

@@ -141,12 +141,6 @@ struct Geometry {
     VertexInputs inputs;
     bool filtered = false;  // single-sided or not opaque: hits go through filter_hits
 
-    glm::vec3 face_normal(unsigned prim) const {  // unnormalised, pointing to the front side
-        const std::uint32_t* t = &indices[std::size_t(prim) * 3];
-        glm::vec3 p0 = positions[t[0]], p1 = positions[t[1]], p2 = positions[t[2]];
-        glm::vec3 n = glm::cross(p1 - p0, p2 - p0);
-        return mirrored ? -n : n;
-    }
     SurfacePoint surface_point(unsigned prim, float u, float v) const {
         const std::uint32_t* t = &indices[std::size_t(prim) * 3];
         float w0 = 1.0f - u - v;
@@ -180,7 +174,10 @@ void filter_hits(const RTCFilterFunctionNArguments* args) {
         unsigned prim = RTCHitN_primID(args->hit, args->N, i);
         glm::vec3 dir(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
                       RTCRayN_dir_z(args->ray, args->N, i));
-        bool back = glm::dot(g->face_normal(prim), dir) > 0.0f;
+        // Embree's Ng is the counter-clockwise normal cross(v1 - v0, v2 - v0), unnormalised.
+        glm::vec3 ng(RTCHitN_Ng_x(args->hit, args->N, i), RTCHitN_Ng_y(args->hit, args->N, i),
+                     RTCHitN_Ng_z(args->hit, args->N, i));
+        bool back = (glm::dot(ng, dir) > 0.0f) != g->mirrored;
         const Material& m = *g->material;
         if (back && !m.double_sided) {
             args->valid[i] = 0;
@@ -202,6 +199,7 @@ void filter_hits(const RTCFilterFunctionNArguments* args) {
 struct Hit {
     unsigned geom = RTC_INVALID_GEOMETRY_ID, prim = 0;
     float t = 0, u = 0, v = 0;
+    glm::vec3 ng{0.0f};  // Embree's: counter-clockwise, unnormalised
     bool valid() const { return geom != RTC_INVALID_GEOMETRY_ID; }
 };
 
@@ -220,9 +218,10 @@ struct TraceScene::Impl {
         if (device) rtcReleaseDevice(device);
     }
 
-    Hit intersect(glm::vec3 o, glm::vec3 d, float tfar, std::uint64_t seed) const {
+    Hit intersect(glm::vec3 o, glm::vec3 d, float tfar, std::uint64_t seed, bool coherent = false) const {
         RayContext ctx;
         rtcInitIntersectContext(&ctx.rtc);
+        if (coherent) ctx.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
         ctx.seed = seed;
         RTCRayHit rh;
         rh.ray.org_x = o.x;
@@ -246,6 +245,7 @@ struct TraceScene::Impl {
         h.t = rh.ray.tfar;
         h.u = rh.hit.u;
         h.v = rh.hit.v;
+        h.ng = glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
         return h;
     }
 
@@ -396,7 +396,7 @@ struct Integrator {
         covered = false;
         for (int bounce = 0;; ++bounce) {
             ++rays;
-            Hit hit = scene.intersect(origin, dir, INFINITY, splitmix64(rng.next()));
+            Hit hit = scene.intersect(origin, dir, INFINITY, splitmix64(rng.next()), bounce == 0);
             if (!hit.valid()) {
                 if (bounce == 0) {
                     if (env && settings.env_background) L += env->radiance(dir);
@@ -410,7 +410,7 @@ struct Integrator {
             const std::uint32_t* tri = &g.indices[std::size_t(hit.prim) * 3];
             const float u = hit.u, v = hit.v, w0 = 1.0f - u - v;
             glm::vec3 p = w0 * g.positions[tri[0]] + u * g.positions[tri[1]] + v * g.positions[tri[2]];
-            glm::vec3 ng = glm::normalize(g.face_normal(hit.prim));
+            glm::vec3 ng = glm::normalize(g.mirrored ? -hit.ng : hit.ng);
             glm::vec3 wo = -dir;
             bool back = glm::dot(ng, wo) < 0.0f;
             SurfacePoint sp = g.surface_point(hit.prim, u, v);
@@ -455,6 +455,7 @@ struct Integrator {
             m.surface.perceptual_roughness = std::max(m.surface.perceptual_roughness, kMinTraceRoughness);
             m.clearcoat_roughness = std::max(m.clearcoat_roughness, kMinTraceRoughness);
 
+            const Bsdf bsdf(m, wo);
             // Next-event estimation: every punctual light, then one sample of the environment.
             glm::vec3 p_out = offset_ray(p, ng);
             for (const LightInstance& light : lights) {
@@ -472,9 +473,9 @@ struct Integrator {
             if (env) {
                 EnvironmentLight::Sample es = env->sample(u_env);
                 if (es.pdf > 0.0f && glm::dot(es.direction, ng) > 0.0f) {
-                    glm::vec3 f = eval_bsdf(m, wo, es.direction) * es.radiance;
+                    glm::vec3 f = bsdf.eval(es.direction) * es.radiance;
                     if (f.x + f.y + f.z > 0.0f) {
-                        float w = power_heuristic(es.pdf, pdf_bsdf(m, wo, es.direction));
+                        float w = power_heuristic(es.pdf, bsdf.pdf(es.direction));
                         bool visible = true;
                         if (settings.env_visibility) {
                             ++rays;
@@ -486,7 +487,7 @@ struct Integrator {
             }
 
             // Continue along a sample of the BSDF.
-            BsdfSample bs = sample_bsdf(m, wo, rng.uniform3());
+            BsdfSample bs = bsdf.sample(rng.uniform3());
             if (bs.pdf <= 0.0f || glm::dot(bs.l, ng) <= 0.0f) break;
             beta *= bs.f_cos / bs.pdf;
             bsdf_pdf = bs.pdf;

@@ -7,6 +7,7 @@
 //   specular   GGX visible normals about the shading normal (sampling::sample_ggx_reflection)
 //   clearcoat  GGX visible normals about the coat normal, when there is a coat
 // and the pdf of a direction is the mixture's (one-sample MIS over the lobes).
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -29,7 +30,32 @@ struct BsdfSample {
     float pdf = 0.0f;       // over solid angle; 0: no sample (absorbed)
 };
 
-// v: unit direction towards the viewer; m.normal (and m.clearcoat_normal) must face v.
+// The BSDF at one shading point, seen from v (unit, towards the viewer; m.normal and
+// m.clearcoat_normal must face it), with its lobe probabilities and frames set up once for
+// the several queries a path vertex makes. `m` must outlive it.
+class Bsdf {
+public:
+    Bsdf(const EvaluatedMaterial& m, glm::vec3 v);
+    BsdfSample sample(glm::vec3 u) const;  // u uniform in [0,1)^3: lobe, then direction
+    float pdf(glm::vec3 l) const;
+    glm::vec3 eval(glm::vec3 l) const;  // f cos
+    const BsdfLobes& lobes() const { return lobes_; }
+
+private:
+    struct Frame {
+        glm::vec3 t{1, 0, 0}, b{0, 1, 0}, n{0, 0, 1};
+        glm::vec3 to_local(glm::vec3 w) const { return {glm::dot(w, t), glm::dot(w, b), glm::dot(w, n)}; }
+        glm::vec3 to_world(glm::vec3 w) const { return w.x * t + w.y * b + w.z * n; }
+    };
+    const EvaluatedMaterial& m_;
+    glm::vec3 v_;
+    BsdfLobes lobes_;
+    Frame base_, coat_;
+    glm::vec3 v_base_{0.0f}, v_coat_{0.0f};  // v in each frame
+    float alpha_ = 0.0f, coat_alpha_ = 0.0f;
+};
+
+// One-query forms of the same (tests).
 BsdfSample sample_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 u);
 float pdf_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l);
 glm::vec3 eval_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l);  // f cos
