@@ -158,9 +158,10 @@ const Material kDefaultMaterial{};
 constexpr float kSecondaryLod = 3.0f;  // 2048^2 -> 256^2
 
 // The per-query context: Embree's, and the random seed of the ray for stochastic opacity.
+// The seeds are per ray of a packet, found by the ray's id (single rays: id 0).
 struct RayContext {
     RTCIntersectContext rtc;
-    std::uint64_t seed = 0;
+    std::uint64_t seed[8] = {};
 };
 
 // Rejects hits on back faces of single-sided materials, on MASK texels below the cutoff, and
@@ -189,7 +190,8 @@ void filter_hits(const RTCFilterFunctionNArguments* args) {
         if (em.discard) {
             args->valid[i] = 0;
         } else if (m.alpha_mode == AlphaMode::Blend) {
-            std::uint64_t h = splitmix64(ctx->seed ^ splitmix64((std::uint64_t(RTCHitN_geomID(args->hit, args->N, i)) << 32) | prim));
+            std::uint64_t seed = ctx->seed[RTCRayN_id(args->ray, args->N, i) & 7u];
+            std::uint64_t h = splitmix64(seed ^ splitmix64((std::uint64_t(RTCHitN_geomID(args->hit, args->N, i)) << 32) | prim));
             float u = float(h >> 40) * 0x1p-24f;
             if (u >= em.alpha) args->valid[i] = 0;
         }
@@ -209,6 +211,7 @@ struct TraceScene::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     std::unique_ptr<SceneTextures> textures;
+    std::vector<Material> materials;  // the scene's, occlusion maps removed
     std::vector<std::unique_ptr<Geometry>> geometries;  // by Embree geometry id
     std::size_t triangles = 0;
     double build_ms = 0;
@@ -222,7 +225,7 @@ struct TraceScene::Impl {
         RayContext ctx;
         rtcInitIntersectContext(&ctx.rtc);
         if (coherent) ctx.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        ctx.seed = seed;
+        ctx.seed[0] = seed;
         RTCRayHit rh;
         rh.ray.org_x = o.x;
         rh.ray.org_y = o.y;
@@ -249,10 +252,49 @@ struct TraceScene::Impl {
         return h;
     }
 
+    // Eight camera rays at once (Embree's packet traversal is much faster for coherent rays);
+    // lanes with active[i] == 0 are skipped.
+    void intersect8(const int active[8], const glm::vec3 o[8], const glm::vec3 d[8], const std::uint64_t seeds[8],
+                    Hit hits[8]) const {
+        RayContext ctx;
+        rtcInitIntersectContext(&ctx.rtc);
+        ctx.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        alignas(32) int valid[8];
+        alignas(32) RTCRayHit8 rh;
+        for (int i = 0; i < 8; ++i) {
+            valid[i] = active[i] ? -1 : 0;
+            ctx.seed[i] = seeds[i];
+            rh.ray.org_x[i] = o[i].x;
+            rh.ray.org_y[i] = o[i].y;
+            rh.ray.org_z[i] = o[i].z;
+            rh.ray.dir_x[i] = d[i].x;
+            rh.ray.dir_y[i] = d[i].y;
+            rh.ray.dir_z[i] = d[i].z;
+            rh.ray.tnear[i] = 0.0f;
+            rh.ray.tfar[i] = INFINITY;
+            rh.ray.time[i] = 0.0f;
+            rh.ray.mask[i] = 0xFFFFFFFFu;
+            rh.ray.id[i] = unsigned(i);
+            rh.ray.flags[i] = 0;
+            rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+            rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect8(valid, scene, &ctx.rtc, &rh);
+        for (int i = 0; i < 8; ++i) {
+            Hit& h = hits[i];
+            h.geom = rh.hit.geomID[i];
+            h.prim = rh.hit.primID[i];
+            h.t = rh.ray.tfar[i];
+            h.u = rh.hit.u[i];
+            h.v = rh.hit.v[i];
+            h.ng = glm::vec3(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
+        }
+    }
+
     bool occluded(glm::vec3 o, glm::vec3 d, float tfar, std::uint64_t seed) const {
         RayContext ctx;
         rtcInitIntersectContext(&ctx.rtc);
-        ctx.seed = seed;
+        ctx.seed[0] = seed;
         RTCRay r;
         r.org_x = o.x;
         r.org_y = o.y;
@@ -279,6 +321,10 @@ TraceScene::TraceScene(const Scene& scene, const std::vector<NodeInstance>& inst
     im.scene = rtcNewScene(im.device);
     rtcSetSceneBuildQuality(im.scene, RTC_BUILD_QUALITY_HIGH);
     im.textures = std::make_unique<SceneTextures>(scene);
+    // The materials without their occlusion maps: the tracer computes occlusion, and a map
+    // read for nothing costs a texture fetch per hit.
+    im.materials = scene.materials;
+    for (Material& m : im.materials) m.occlusion = TextureSlot{};
 
     for (const NodeInstance& inst : instances) {
         const Node& node = scene.nodes[std::size_t(inst.node)];
@@ -290,8 +336,8 @@ TraceScene::TraceScene(const Scene& scene, const std::vector<NodeInstance>& inst
         for (const Primitive& prim : scene.meshes[std::size_t(node.mesh)].primitives) {
             if (prim.topology != Topology::Triangles || prim.positions.empty()) continue;
             auto g = std::make_unique<Geometry>();
-            g->material = prim.material >= 0 && prim.material < int(scene.materials.size())
-                              ? &scene.materials[std::size_t(prim.material)]
+            g->material = prim.material >= 0 && prim.material < int(im.materials.size())
+                              ? &im.materials[std::size_t(prim.material)]
                               : &kDefaultMaterial;
             g->textures = im.textures.get();
             g->mirrored = det < 0.0f;
@@ -388,15 +434,17 @@ struct Integrator {
         return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
     }
 
-    // The radiance along one camera ray; `covered` says whether it hit the scene.
-    glm::vec3 radiance(glm::vec3 origin, glm::vec3 dir, Rng& rng, bool& covered) {
+    // The radiance along one camera ray; `covered` says whether it hit the scene. `first`,
+    // when given, is the camera ray's hit, already traced (in a packet) with the seed that
+    // this function would have drawn from `rng` first.
+    glm::vec3 radiance(glm::vec3 origin, glm::vec3 dir, Rng& rng, bool& covered, const Hit* first = nullptr) {
         glm::vec3 L(0.0f), beta(1.0f);
         float bsdf_pdf = 0.0f;  // of the direction that led here (for MIS with the environment)
         bool env_counted = false;  // no-env-visibility: the last vertex already took the environment
         covered = false;
         for (int bounce = 0;; ++bounce) {
             ++rays;
-            Hit hit = scene.intersect(origin, dir, INFINITY, splitmix64(rng.next()), bounce == 0);
+            Hit hit = bounce == 0 && first ? *first : scene.intersect(origin, dir, INFINITY, splitmix64(rng.next()), bounce == 0);
             if (!hit.valid()) {
                 if (bounce == 0) {
                     if (env && settings.env_background) L += env->radiance(dir);
@@ -542,27 +590,58 @@ ImageF trace_image(const TraceScene& tscene, const CameraSetup& camera, const st
             [&](std::size_t tile) {
                 Integrator integ{scene, lights, environment, settings};
                 const int tx = int(tile % std::size_t(tiles_x)) * kTile, ty = int(tile / std::size_t(tiles_x)) * kTile;
+                // Camera rays in packets of 8 (pixel by pixel, sample by sample within a pixel, as
+                // a single-ray loop would visit them), then each path on its own.
+                struct Lane {
+                    int x = 0, y = 0;
+                    Rng rng{0, 0};
+                    glm::vec3 o{0.0f}, d{0.0f};
+                };
+                Lane lanes[8];
+                int active[8] = {};
+                glm::vec3 org[8], dirs[8];
+                std::uint64_t seeds[8] = {};
+                Hit hits[8];
+                int n = 0;
+                auto flush = [&] {
+                    for (int i = n; i < 8; ++i) active[i] = 0;
+                    scene.intersect8(active, org, dirs, seeds, hits);
+                    for (int i = 0; i < n; ++i) {
+                        Lane& ln = lanes[i];
+                        bool covered = false;
+                        glm::vec3 L = integ.radiance(ln.o, ln.d, ln.rng, covered, &hits[i]);
+                        if (!std::isfinite(L.x + L.y + L.z)) L = glm::vec3(0.0f);  // a lost sample, not a NaN pixel
+                        float* acc = &sum[(std::size_t(ln.y) * W + ln.x) * 4];
+                        acc[0] += L.x;
+                        acc[1] += L.y;
+                        acc[2] += L.z;
+                        acc[3] += covered ? 1.0f : 0.0f;
+                    }
+                    n = 0;
+                };
                 for (int y = ty; y < std::min(H, ty + kTile); ++y)
                     for (int x = tx; x < std::min(W, tx + kTile); ++x) {
-                        float* acc = &sum[(std::size_t(y) * W + x) * 4];
                         const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(W) + std::uint64_t(x);
                         for (int s = s0; s < s1; ++s) {
                             // The state from (seed, pixel, sample) through the hash; one stream (PCG streams
                             // that share a state are correlated).
-                            Rng rng(splitmix64(splitmix64(settings.seed ^ splitmix64(pixel)) + std::uint64_t(s)), 0);
-                            glm::vec2 j = rng.uniform2();
+                            Lane& ln = lanes[n];
+                            ln.x = x;
+                            ln.y = y;
+                            ln.rng = Rng(splitmix64(splitmix64(settings.seed ^ splitmix64(pixel)) + std::uint64_t(s)), 0);
+                            glm::vec2 j = ln.rng.uniform2();
                             glm::vec2 ndc(2.0f * (float(x) + j.x) / float(W) - 1.0f, 1.0f - 2.0f * (float(y) + j.y) / float(H));
                             glm::vec3 near_p = unproject(ndc, -1.0f), mid_p = unproject(ndc, 0.0f);
-                            glm::vec3 d = glm::normalize(mid_p - near_p);
-                            bool covered = false;
-                            glm::vec3 L = integ.radiance(near_p, d, rng, covered);
-                            if (!std::isfinite(L.x + L.y + L.z)) L = glm::vec3(0.0f);  // a lost sample, not a NaN pixel
-                            acc[0] += L.x;
-                            acc[1] += L.y;
-                            acc[2] += L.z;
-                            acc[3] += covered ? 1.0f : 0.0f;
+                            ln.o = near_p;
+                            ln.d = glm::normalize(mid_p - near_p);
+                            org[n] = ln.o;
+                            dirs[n] = ln.d;
+                            seeds[n] = splitmix64(ln.rng.next());
+                            active[n] = 1;
+                            if (++n == 8) flush();
                         }
                     }
+                if (n > 0) flush();
                 rays += integ.rays;
                 std::size_t k = ++tiles_done;
                 if (progress)

@@ -261,17 +261,18 @@ TEST(TraceSamplerChi2, CatchesAWrongDirectionSampler) {
 
 namespace {
 
-// A test panorama: a dim sky gradient, a bright sun disc and a small bright square, 64x32.
-ImageF test_panorama() {
-    ImageF p(64, 32);
+// A test panorama: a dim sky gradient, a bright sun disc and a small bright square, 64x32
+// (or wider: above 512 pixels the distribution's cells are 2x2 pixels).
+ImageF test_panorama(int width = 64, int height = 32) {
+    ImageF p(width, height);
     for (int y = 0; y < p.height; ++y)
         for (int x = 0; x < p.width; ++x) {
             float* t = p.at(x, y);
             float v = 0.1f + 0.5f * float(p.height - y) / float(p.height);
-            float dx = float(x - 20), dy = float(y - 8);
+            float dx = float(x - 20 * width / 64), dy = float(y - 8 * height / 32);
             if (dx * dx + dy * dy < 6.0f) v = 50.0f;
-            if (x >= 50 && x < 53 && y >= 20 && y < 22) v = 20.0f;
-            if (y == 31) v = 0.0f;
+            if (x >= 50 * width / 64 && x < 53 * width / 64 && y >= 20 * height / 32 && y < 22 * height / 32) v = 20.0f;
+            if (y == height - 1) v = 0.0f;
             t[0] = v;
             t[1] = 0.8f * v;
             t[2] = 0.6f * v;
@@ -324,6 +325,13 @@ TEST(TraceSamplerChi2, EnvironmentDrawsFromItsPdf) {
         EXPECT_GT(r.dof, 1000);
         EXPECT_GE(r.p_value, 0.005);
     }
+    // A wide panorama, whose distribution has cells of 2x2 pixels.
+    trace::EnvironmentLight wide(test_panorama(1024, 32), 10.0f);
+    Chi2Result r = chi2_environment(wide, [&](glm::vec2 u) { return wide.sample(u); }, kSamples, 4);
+    EXPECT_TRUE(r.message.empty()) << r.message;
+    std::printf("environment 1024x32: chi2 %8.1f  dof %4d  p-value %.3g\n", r.chi2, r.dof, r.p_value);
+    EXPECT_GT(r.dof, 1000);
+    EXPECT_GE(r.p_value, 0.005);
 }
 
 TEST(TraceSamplerChi2, CatchesAWrongEnvironmentSampler) {

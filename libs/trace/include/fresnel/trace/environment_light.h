@@ -5,11 +5,12 @@
 // -angle, as the renderer's u_env_rotation) and intensity, as a piecewise-constant function
 // (each direction sees its pixel; at 1k a pixel is 0.35 degrees), importance-sampled by a
 // 2-D piecewise-constant distribution over its pixels (luminance times sin(theta), the
-// equirectangular map's solid angle per pixel), drawn in constant time from an alias table.
-// Radiance and density share one 16-byte record per pixel: one cache line per lookup.
+// equirectangular map's solid angle per pixel; cells of 2x2 pixels above 512 wide), drawn in
+// constant time from an alias table.
 #include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <vector>
 
 #include "fresnel/core/image.h"
 #include "fresnel/trace/distribution.h"
@@ -38,13 +39,10 @@ public:
     const ImageF& panorama() const { return panorama_; }
 
 private:
-    struct Texel {
-        glm::vec3 radiance;  // times the intensity
-        float pdf;           // over [0,1)^2
-    };
-    const Texel& texel_at(glm::vec2 uv) const;
     ImageF panorama_;
-    std::vector<Texel> texels_;
+    std::vector<glm::vec3> radiance_;  // per pixel, times the intensity
+    int cell_ = 1, cells_w_ = 1, cells_h_ = 1;  // the distribution's cells: cell_ x cell_ pixels
+    std::vector<float> cell_pdf_;      // density over [0,1)^2 of each cell
     AliasTable alias_;
     glm::mat3 to_env_{1.0f}, to_world_{1.0f};
     float intensity_ = 1.0f;
