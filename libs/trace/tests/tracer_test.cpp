@@ -289,3 +289,25 @@ TEST(Tracer, DirectionalLightAndShadow) {
     EXPECT_LT(t.image.at(shadow_x, 24)[0], 0.01f * lit) << "column " << shadow_x;
     EXPECT_GT(t.image.at(shadow_x, 24)[3], 0.99f);
 }
+
+TEST(Tracer, OneBounceUnshadowedEnvironmentIsTheRasterisersTransport) {
+    // --bounces 1 --no-env-visibility: direct light only and the environment never shadowed,
+    // so even where three spheres occlude each other a Lambertian surface of albedo a under a
+    // uniform radiance L is exactly L a (what a rasteriser's irradiance gives); with
+    // visibility the crevices are darker, with all bounces brighter again.
+    const float a = 0.7f, L = 1.5f;
+    Scene s = spheres(lambert(a), {{-0.8f, 0, 0, 1}, {0.8f, 0, 0, 1}, {0, 0.9f, -0.3f, 0.8f}});
+    EnvironmentLight env(ibl::make_uniform_panorama(glm::vec3(L)));
+    TraceSettings ts = small(32, 1);
+    ts.env_visibility = false;
+    Traced unshadowed = run(s, &env, ts);
+    MeanErr mu = covered_mean(unshadowed.image);
+    EXPECT_NEAR(mu.mean, double(L * a), 0.01 * L * a) << "standard error " << mu.err;
+    ts.env_visibility = true;
+    MeanErr ms = covered_mean(run(s, &env, ts).image);
+    EXPECT_LT(ms.mean, 0.97 * L * a);
+    ts.max_bounces = 16;
+    MeanErr mall = covered_mean(run(s, &env, ts).image);
+    EXPECT_GT(mall.mean, ms.mean + 3 * (mall.err + ms.err));
+    EXPECT_LT(mall.mean, L * a);
+}
