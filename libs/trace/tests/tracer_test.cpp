@@ -311,3 +311,47 @@ TEST(Tracer, OneBounceUnshadowedEnvironmentIsTheRasterisersTransport) {
     EXPECT_GT(mall.mean, ms.mean + 3 * (mall.err + ms.err));
     EXPECT_LT(mall.mean, L * a);
 }
+
+TEST(Tracer, PointAndSpotLightsFollowTheExtension) {
+    // light_incident (the twin of shaders/lights.glsl): 1/d^2, the range window
+    // clamp(1 - (d/range)^4, 0, 1), and the spot's smooth cone between inner and outer angles.
+    LightInstance point;
+    point.type = Light::Type::Point;
+    point.position = glm::vec3(0, 2, 0);
+    point.radiance = glm::vec3(8.0f);
+    glm::vec3 l;
+    float d = 0;
+    EXPECT_NEAR(light_incident(point, glm::vec3(0), l, d).x, 8.0f / 4.0f, 1e-5f);
+    EXPECT_NEAR(d, 2.0f, 1e-6f);
+    EXPECT_NEAR(l.y, 1.0f, 1e-6f);
+    point.range = 4.0f;
+    EXPECT_NEAR(light_incident(point, glm::vec3(0), l, d).x, 2.0f * (1.0f - 0.0625f), 1e-5f);
+    EXPECT_EQ(light_incident(point, glm::vec3(0, -3, 0), l, d).x, 0.0f);  // beyond the range
+    LightInstance spot = point;
+    spot.type = Light::Type::Spot;
+    spot.range = 0.0f;
+    spot.direction = glm::vec3(0, -1, 0);
+    spot.inner_cone = glm::radians(10.0f);
+    spot.outer_cone = glm::radians(20.0f);
+    EXPECT_NEAR(light_incident(spot, glm::vec3(0), l, d).x, 2.0f, 1e-5f);  // on the axis
+    EXPECT_EQ(light_incident(spot, glm::vec3(2.0f * std::tan(glm::radians(25.0f)), 0, 0), l, d).x, 0.0f);
+    float half = light_incident(spot, glm::vec3(2.0f * std::tan(glm::radians(15.0f)), 0, 0), l, d).x;
+    EXPECT_GT(half, 0.0f);
+    EXPECT_LT(half, 2.0f);
+
+    // Through the tracer: a diffuse floor lit by the point light from 2 units above is
+    // I / d^2 * a / pi under the light.
+    Scene s = spheres(lambert(0.5f), {});
+    Node floor;
+    floor.mesh = 0;
+    floor.local = glm::scale(glm::mat4(1.0f), glm::vec3(4.0f, 0.01f, 4.0f));
+    s.nodes = {floor};
+    s.scenes = {{0}};
+    CameraSetup cam;
+    cam.view = glm::lookAt(glm::vec3(0, 5, 0), glm::vec3(0, 0, 0), glm::vec3(0, 0, -1));
+    cam.projection = glm::perspective(glm::radians(4.0f), 1.0f, 0.1f, 20.0f);  // cos^3 falloff < 1.5 % in view
+    point.range = 0.0f;
+    point.position = glm::vec3(0, 2.01f, 0);
+    Traced t = run(s, nullptr, small(4, 1), {}, {point}, &cam);
+    EXPECT_NEAR(covered_mean(t.image).mean, 8.0 / 4.0 * 0.5 / kPi, 0.02 * 8.0 / 4.0 * 0.5 / kPi);
+}
