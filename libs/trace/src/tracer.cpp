@@ -6,8 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <limits>
-#include <map>
 #include <string>
 
 #include <glm/geometric.hpp>
