@@ -61,6 +61,7 @@ fuzz: deps
 bench: build
 	@scripts/setup-khronos-ref.sh $(BUILD)/khronos-ref
 	FRESNEL_KHRONOS_REF=$(abspath $(BUILD))/khronos-ref $(BUILD)/bin/fresnel-bench
+	bench/trace_bench.sh $(BUILD)/bin/fresnel
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) build-fuzz

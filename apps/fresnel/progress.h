@@ -12,7 +12,11 @@ namespace fresnel::cli {
 
 class ProgressBar {
 public:
-    explicit ProgressBar(std::string label) : label_(std::move(label)), enabled_(isatty(STDERR_FILENO) != 0) {}
+    // With `time_left`, the bar also shows the time remaining, extrapolated from the time
+    // since construction and the fraction done.
+    explicit ProgressBar(std::string label, bool time_left = false)
+        : label_(std::move(label)), enabled_(isatty(STDERR_FILENO) != 0), time_left_(time_left),
+          start_(std::chrono::steady_clock::now()) {}
     ~ProgressBar() { finish(); }
     void update(double fraction) {
         if (!enabled_) return;
@@ -26,6 +30,11 @@ public:
         int filled = pct * 30 / 100;
         std::fprintf(stderr, "\r%s [%.*s%*s] %3d%%", label_.c_str(), filled, "##############################",
                      30 - filled, "", pct);
+        if (time_left_ && fraction > 0.0) {
+            double elapsed = std::chrono::duration<double>(now - start_).count();
+            int left = int(elapsed * (1.0 - fraction) / fraction + 0.5);
+            std::fprintf(stderr, "  %d:%02d left ", left / 60, left % 60);
+        }
         std::fflush(stderr);
     }
     void finish() {
@@ -37,6 +46,8 @@ public:
 private:
     std::string label_;
     bool enabled_;
+    bool time_left_ = false;
+    std::chrono::steady_clock::time_point start_;
     bool drawn_ = false;
     int last_pct_ = -1;
     std::chrono::steady_clock::time_point last_draw_{};

@@ -2,7 +2,7 @@
 // fresnel as a library: every layer's public headers and fresnel::version().
 // Link fresnel::fresnel (CMake: find_package(fresnel REQUIRED)). Layers, bottom up:
 // core (errors, colour, images), scene (glTF loader), material (BRDF), ibl (environments,
-// baking), gpu (OpenGL contexts and objects), render (cameras, lights, the renderer).
+// baking), gpu (OpenGL contexts and objects), render (cameras, lights, the renderer), trace (the CPU path tracer).
 #include "fresnel/core/version.h"
 
 #include "fresnel/core/color.h"
@@ -46,5 +46,10 @@
 #include "fresnel/render/renderer.h"
 #include "fresnel/render/shader_features.h"
 #include "fresnel/render/shader_library.h"
+
+#include "fresnel/trace/bsdf.h"
+#include "fresnel/trace/distribution.h"
+#include "fresnel/trace/environment_light.h"
+#include "fresnel/trace/tracer.h"
 
 #include "fresnel/shaders/shaders.h"

@@ -382,4 +382,84 @@ TEST_F(Cli, RendersAndDescribesObj) {
     EXPECT_EQ(r.exit_code, 1) << show(r);
     EXPECT_NE(r.err.find("bad.obj: line 4: vertex index 3 is out of range"), std::string::npos) << show(r);
     EXPECT_FALSE(fs::exists(dir_ / "bad.png"));
+// ---------------------------------------------------------------------------
+// `fresnel trace`: the same flags as render give the same scene. In the white furnace the
+// rasteriser and the path tracer agree to 1 % where the glTF BRDF loses no energy by single
+// scattering (the rasteriser's energy compensation adds what the tracer's single-scattering
+// BRDF cannot, so rough white metals are not compared): a white mirror-like metal, a
+// smooth metal and a Lambertian sphere (KHR_materials_specular with factor 0).
+
+namespace {
+// write_sphere, plus KHR_materials_specular { specularFactor: 0 } on its material.
+void write_lambert_sphere(const fs::path& path, float base) {
+    write_sphere(path, base, 0.0f, 1.0f);
+    nlohmann::json j = nlohmann::json::parse(slurp(path));
+    j["extensionsUsed"] = {"KHR_materials_specular"};
+    j["materials"][0]["extensions"]["KHR_materials_specular"] = {{"specularFactor", 0.0}};
+    std::ofstream(path) << j.dump();
+}
+}  // namespace
+
+TEST_F(Cli, TraceAgreesWithRenderInTheFurnace) {
+    struct Case {
+        float base, metallic, roughness;
+        bool lambert;
+    };
+    const Case cases[] = {{1, 1, 0, false}, {1, 1, 0.15f, false}, {1, 0, 1, true}, {0.5f, 0, 1, true}};
+    for (const Case& c : cases) {
+        fs::path model = dir_ / "sphere.gltf", raster = dir_ / "raster.hdr", traced = dir_ / "traced.hdr";
+        if (c.lambert) write_lambert_sphere(model, c.base);
+        else write_sphere(model, c.base, c.metallic, c.roughness);
+        std::vector<std::string> common = {model.string(), "--env", "color:1,1,1", "--tonemap", "none",
+                                           "--size", "128x128", "--background", "0,0,0"};
+        std::vector<std::string> a = {"render", "-o", raster.string()}, b = {"trace", "-o", traced.string(), "--spp", "16"};
+        a.insert(a.end(), common.begin(), common.end());
+        b.insert(b.end(), common.begin(), common.end());
+        Result ra = run(a), rb = run(b);
+        ASSERT_EQ(ra.exit_code, 0) << show(ra);
+        ASSERT_EQ(rb.exit_code, 0) << show(rb);
+        auto [mr, nr] = interior_mean(fresnel::read_image_float(raster));
+        auto [mt, nt] = interior_mean(fresnel::read_image_float(traced));
+        ASSERT_GT(nr, 500);
+        ASSERT_GT(nt, 500);
+        EXPECT_NEAR(mt, mr, 0.01 * mr) << "base " << c.base << " metallic " << c.metallic << " roughness " << c.roughness
+                                       << (c.lambert ? " (Lambertian)" : "");
+        EXPECT_NEAR(mt, c.base, 0.01 * c.base);
+    }
+}
+
+TEST_F(Cli, TraceIsDeterministicAndReportsItsWork) {
+    fs::path a = dir_ / "a.png", b = dir_ / "b.png", c = dir_ / "c.png";
+    std::vector<std::string> args = {"trace", "--size", "64x48", "--spp", "2", "--max-bounces", "4", "--json", "-o"};
+    auto with = [&](const fs::path& out, std::vector<std::string> extra) {
+        std::vector<std::string> v = args;
+        v.push_back(out.string());
+        v.insert(v.end(), extra.begin(), extra.end());
+        return v;
+    };
+    Result ra = run(with(a, {"--seed", "3", "--threads", "1"}));
+    Result rb = run(with(b, {"--seed", "3", "--threads", "2"}));
+    Result rc = run(with(c, {"--seed", "4"}));
+    ASSERT_EQ(ra.exit_code, 0) << show(ra);
+    ASSERT_EQ(rb.exit_code, 0) << show(rb);
+    ASSERT_EQ(rc.exit_code, 0) << show(rc);
+    EXPECT_EQ(slurp(a), slurp(b)) << "same seed, different thread counts";
+    EXPECT_NE(slurp(a), slurp(c)) << "another seed";
+    nlohmann::json j = nlohmann::json::parse(ra.out);
+    EXPECT_EQ(j["spp"], 2);
+    EXPECT_EQ(j["camera_paths"], 64 * 48 * 2);
+    EXPECT_EQ(j["max_bounces"], 4);
+    EXPECT_GT(j["msamples_per_s"].get<double>(), 0.0);
+    EXPECT_GT(j["rays"].get<double>(), 64 * 48 * 2 - 1);
+    EXPECT_GT(j["trace_ms"].get<double>(), 0.0);
+    // --time-limit stops early: a tiny limit ends after the first pass (1 sample).
+    Result rt = run({"trace", "--size", "64x48", "--spp", "1000", "--time-limit", "0.001", "--json", "-o", a.string()});
+    ASSERT_EQ(rt.exit_code, 0) << show(rt);
+    nlohmann::json jt = nlohmann::json::parse(rt.out);
+    EXPECT_TRUE(jt["time_limited"].get<bool>());
+    EXPECT_LT(jt["spp"].get<int>(), 1000);
+    // Usage errors as render's.
+    EXPECT_EQ(run({"trace", "-o", (dir_ / "x.jpg").string()}).exit_code, 2);
+    EXPECT_EQ(run({"trace", "-o", a.string(), "--spp", "0"}).exit_code, 2);
+    EXPECT_EQ(run({"trace", "-o", a.string(), "--tonemap", "nope"}).exit_code, 2);
 }

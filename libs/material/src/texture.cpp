@@ -96,8 +96,14 @@ glm::vec4 SampledTexture::filter(int level, glm::vec2 uv, TextureFilter f) const
     float fu = u - 0.5f, fv = v - 0.5f;
     int i0 = int(std::floor(fu)), j0 = int(std::floor(fv));
     float a = fu - std::floor(fu), b = fv - std::floor(fv);
-    glm::vec4 t00 = texel(level, i0, j0), t10 = texel(level, i0 + 1, j0);
-    glm::vec4 t01 = texel(level, i0, j0 + 1), t11 = texel(level, i0 + 1, j0 + 1);
+    // The four texels of texel(), with each index wrapped once.
+    const int xa = wrap_index(i0, img.width, sampler_.wrap_s), xb = wrap_index(i0 + 1, img.width, sampler_.wrap_s);
+    const int ya = wrap_index(j0, img.height, sampler_.wrap_t), yb = wrap_index(j0 + 1, img.height, sampler_.wrap_t);
+    const std::uint8_t* row_a = img.pixels.data() + std::size_t(ya) * std::size_t(img.width) * 4;
+    const std::uint8_t* row_b = img.pixels.data() + std::size_t(yb) * std::size_t(img.width) * 4;
+    auto fetch = [this](const std::uint8_t* p) { return glm::vec4(decode_[p[0]], decode_[p[1]], decode_[p[2]], alpha_[p[3]]); };
+    glm::vec4 t00 = fetch(row_a + std::size_t(xa) * 4), t10 = fetch(row_a + std::size_t(xb) * 4);
+    glm::vec4 t01 = fetch(row_b + std::size_t(xa) * 4), t11 = fetch(row_b + std::size_t(xb) * 4);
     return (1 - a) * (1 - b) * t00 + a * (1 - b) * t10 + (1 - a) * b * t01 + a * b * t11;
 }
 

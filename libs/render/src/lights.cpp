@@ -1,5 +1,6 @@
 #include "fresnel/render/lights.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <sstream>
@@ -7,6 +8,33 @@
 #include "fresnel/core/error.h"
 
 namespace fresnel {
+
+glm::vec3 light_incident(const LightInstance& light, glm::vec3 position, glm::vec3& l, float& distance) {
+    if (light.type == Light::Type::Directional) {
+        l = -light.direction;
+        distance = INFINITY;
+        return light.radiance;
+    }
+    glm::vec3 to_light = light.position - position;
+    float dist = glm::length(to_light);
+    l = dist > 0.0f ? to_light / dist : glm::vec3(0.0f, 0.0f, 1.0f);
+    distance = dist;
+    float d2 = std::max(dist * dist, 1e-8f);
+    float attenuation = 1.0f / d2;
+    if (light.range > 0.0f) {
+        float r = dist / light.range;
+        attenuation = std::clamp(1.0f - r * r * r * r, 0.0f, 1.0f) / d2;
+    }
+    glm::vec3 radiance = light.radiance * attenuation;
+    if (light.type == Light::Type::Spot) {
+        // The renderer's packing (renderer.cpp, pack_lights): scale and offset of the cone.
+        float scale = 1.0f / std::max(0.001f, std::cos(light.inner_cone) - std::cos(light.outer_cone));
+        float offset = -std::cos(light.outer_cone) * scale;
+        float a = std::clamp(glm::dot(light.direction, -l) * scale + offset, 0.0f, 1.0f);
+        radiance *= a * a;
+    }
+    return radiance;
+}
 
 std::vector<LightInstance> scene_lights(const Scene& scene, const std::vector<NodeInstance>& instances) {
     std::vector<LightInstance> out;

@@ -61,6 +61,24 @@ inline float pdf_ggx_vndf(glm::vec3 v, glm::vec3 h, float alpha) {
     return smith_g1(v, alpha) * std::max(0.0f, glm::dot(v, h)) * brdf::d_ggx(h.z, alpha) / std::max(v.z, 1e-8f);
 }
 
+// A reflected direction l = reflect(-v, h) with h from the visible normals (sample_ggx_vndf),
+// and its pdf over solid angle: pdf_ggx_vndf(v, h) / (4 v.h) (the Jacobian of reflection).
+// Directions below the surface (l.z <= 0) carry no energy; the caller drops them.
+inline glm::vec3 sample_ggx_reflection(glm::vec3 v, glm::vec2 u, float alpha) {
+    glm::vec3 h = sample_ggx_vndf(v, u, alpha);
+    return 2.0f * glm::dot(v, h) * h - v;
+}
+inline float pdf_ggx_reflection(glm::vec3 v, glm::vec3 l, float alpha) {
+    glm::vec3 h = v + l;
+    float len = glm::length(h);
+    if (len <= 0.0f || v.z <= 0.0f) return 0.0f;
+    h /= len;
+    if (h.z <= 0.0f) return 0.0f;
+    float v_dot_h = glm::dot(v, h);
+    if (v_dot_h <= 0.0f) return 0.0f;
+    return pdf_ggx_vndf(v, h, alpha) / (4.0f * v_dot_h);
+}
+
 // Cosine-weighted direction around +Z (pdf cos(theta)/pi).
 inline glm::vec3 sample_cosine(glm::vec2 u) {
     float r = std::sqrt(u.x), phi = 2.0f * brdf::kPi * u.y;

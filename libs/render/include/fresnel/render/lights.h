@@ -32,6 +32,13 @@ glm::vec3 direction_from_angles(float azimuth_deg, float elevation_deg);
 //   fill: from azimuth -120, elevation 15, 1.0 lux, slightly cool (0.85, 0.9, 1.0)
 std::vector<LightInstance> default_lights();
 
+// The light's radiance arriving at `position` (colour * intensity, times the range window
+// clamp(1 - (d/range)^4, 0, 1) / d^2 and the spot cone's smooth falloff for point and spot
+// lights), the unit direction `l` towards the light and its distance (infinite for
+// directional lights). The C++ twin of light_incident in shaders/lights.glsl (the path
+// tracer shades punctual lights with it).
+glm::vec3 light_incident(const LightInstance& light, glm::vec3 position, glm::vec3& l, float& distance);
+
 // Parses the CLI forms "dir:AZ,EL,LUX[,R,G,B]" and "point:X,Y,Z,CANDELA[,R,G,B]".
 // Throws fresnel::Error (file "--light") on malformed input.
 LightInstance parse_light(const std::string& spec);

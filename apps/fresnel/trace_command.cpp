@@ -1,0 +1,152 @@
+// `fresnel trace [MODEL] -o OUT ...`: the CPU path tracer (libs/trace), the ground truth for
+// `render`. It takes render's flags for the model, camera, environment, lights, tone mapping
+// and background (cli_common.h), so the same flags describe the same scene; every option is
+// documented where it is declared; README.md's CLI reference is `fresnel trace --help`.
+#include <chrono>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "fresnel/ibl/bake.h"
+#include "fresnel/ibl/environment.h"
+#include "fresnel/render/job.h"
+#include "fresnel/trace/environment_light.h"
+#include "fresnel/trace/tracer.h"
+#include "progress.h"
+
+namespace fresnel::cli {
+namespace {
+
+struct TraceOptions : JobOptions {
+    int spp = 64;
+    int max_bounces = 16;
+    double time_limit = 0;
+    std::uint64_t seed = 0;
+    unsigned threads = 0;
+    bool no_env_visibility = false;
+};
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+int run_trace(const TraceOptions& o) {
+    auto t_start = Clock::now();
+    std::optional<Job> parsed = job_from_options(o);  // usage checks first (exit 2)
+    if (!parsed) return kExitUsage;
+    const Job& job = *parsed;
+
+    Diagnostics diag;
+    auto t_load = Clock::now();
+    Scene scene = load_scene(job, diag);
+    double load_ms = ms_since(t_load);
+    print_warnings(diag);
+    // The same rules as render: camera, lights, environment, background (libs/render/job.h).
+    ResolvedJob resolved = resolve(job, scene);
+    const RenderSettings& rs = resolved.settings;
+
+    auto t_env = Clock::now();
+    std::optional<trace::EnvironmentLight> environment;
+    if (resolved.environment) {
+        const ibl::EnvironmentSource& src = *resolved.environment;
+        if (src.kind == ibl::EnvironmentSource::Kind::File && ibl::is_baked_dir(src.path))
+            throw Error(src.path.string(), "--env",
+                        "a baked folder holds no panorama; trace needs the .hdr/.exr it was baked from");
+        environment.emplace(ibl::load_panorama(src), rs.env_rotation_deg, rs.env_intensity);
+    }
+    double env_ms = ms_since(t_env);
+
+    auto t_build = Clock::now();
+    trace::TraceScene tscene(scene, resolved.instances);
+    double build_ms = ms_since(t_build);
+
+    trace::TraceSettings ts;
+    ts.width = rs.width;
+    ts.height = rs.height;
+    ts.samples = o.spp;
+    ts.max_bounces = o.max_bounces;
+    ts.time_limit_s = o.time_limit;
+    ts.seed = o.seed;
+    ts.threads = o.threads;
+    ts.env_visibility = !o.no_env_visibility;
+    // env and blur backgrounds both show the environment (sharp: the tracer has no blurred copy).
+    ts.env_background = rs.background_mode != RenderSettings::Background::Color;
+
+    trace::TraceStats stats;
+    ImageF radiance;
+    {
+        ProgressBar bar("tracing", true);
+        radiance = trace::trace_image(tscene, resolved.camera, resolved.lights, environment ? &*environment : nullptr, ts,
+                                      &stats, [&](double f) { bar.update(f); });
+    }
+    ImageF image = trace::to_output(radiance, rs);
+    write_output(o.output, image, resolved.transparent());
+
+    if (o.json) {
+        const CameraSetup& camera = resolved.camera;
+        double seconds = stats.trace_ms / 1000.0;
+        nlohmann::json j;
+        j["output"] = o.output;
+        j["model"] = o.model.empty() ? "(demo)" : o.model;
+        j["width"] = rs.width;
+        j["height"] = rs.height;
+        j["renderer"] = "fresnel trace (CPU, Embree 3)";
+        j["threads"] = o.threads ? o.threads : std::max(1u, std::thread::hardware_concurrency());
+        j["spp"] = stats.samples;
+        j["spp_requested"] = o.spp;
+        j["time_limited"] = stats.time_limited;
+        j["max_bounces"] = o.max_bounces;
+        j["env_visibility"] = !o.no_env_visibility;
+        j["seed"] = o.seed;
+        j["camera_paths"] = stats.camera_paths;
+        j["rays"] = stats.rays;
+        j["msamples_per_s"] = seconds > 0 ? double(stats.camera_paths) / seconds / 1e6 : 0.0;
+        j["mpaths_per_s"] = j["msamples_per_s"];
+        j["mrays_per_s"] = seconds > 0 ? double(stats.rays) / seconds / 1e6 : 0.0;
+        j["load_ms"] = load_ms;
+        j["environment_ms"] = env_ms;
+        j["build_ms"] = build_ms;
+        j["trace_ms"] = stats.trace_ms;
+        j["total_ms"] = ms_since(t_start);
+        j["triangles"] = tscene.triangle_count();
+        j["lights"] = resolved.lights.size();
+        j["default_lights"] = resolved.default_lights;
+        j["environment"] = resolved.environment ? resolved.environment->describe() : "none";
+        j["camera"] = {{"eye", {camera.eye.x, camera.eye.y, camera.eye.z}},
+                       {"target", {camera.target.x, camera.target.y, camera.target.z}},
+                       {"znear", camera.znear}, {"zfar", camera.zfar}, {"yfov_deg", camera.yfov_deg}};
+        j["warnings"] = diag.lines();
+        std::printf("%s\n", j.dump().c_str());
+    }
+    return kExitOk;
+}
+
+}  // namespace
+
+Runner add_trace_command(CLI::App& app) {
+    auto o = std::make_shared<TraceOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "trace", "Path-trace a glTF model (or the built-in demo) on the CPU: the ground truth for render");
+    add_view_options(cmd, *o);
+    cmd->add_option("--spp", o->spp, "Samples (camera paths) per pixel")->capture_default_str()->check(CLI::Range(1, 1 << 20));
+    cmd->add_option("--max-bounces,--bounces", o->max_bounces,
+                    "Scattering events per path; 1 = direct light only (punctual lights and one bounce of the "
+                    "environment: the rasteriser's light transport)")
+        ->capture_default_str()->check(CLI::Range(0, 1024));
+    cmd->add_option("--time-limit", o->time_limit,
+                    "Stop after the pass during which this many seconds have passed (0 = none); --json reports the "
+                    "samples reached")
+        ->capture_default_str()->check(CLI::NonNegativeNumber);
+    cmd->add_option("--seed", o->seed, "Random seed: the same seed gives the same image")->capture_default_str();
+    cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
+    cmd->add_flag("--no-env-visibility", o->no_env_visibility,
+                  "Environment light is never shadowed (as in real-time image-based lighting); punctual lights are");
+    add_light_options(cmd, *o);
+    cmd->add_flag("--json", o->json, "Print timings, samples, Msamples/s and the camera as one JSON line");
+    add_file_options(cmd, *o);
+    add_pose_options(cmd, *o);
+    return [o] { return run_trace(*o); };
+}
+
+}  // namespace fresnel::cli

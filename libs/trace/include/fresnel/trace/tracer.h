@@ -1,0 +1,93 @@
+#pragma once
+// The CPU path tracer behind `fresnel trace`: unidirectional path tracing with next-event
+// estimation (punctual lights and the environment, the environment importance-sampled and
+// combined with BSDF sampling by multiple importance sampling, power heuristic), GGX
+// visible-normal sampling, Russian roulette. Rays are Embree 3's.
+//
+// Conventions, as the rasteriser's where it has one:
+//   - the scene is the flattened scene at rest (world-space triangles), cameras and lights as
+//     fresnel::resolve() makes them (CameraSetup, LightInstance; light_incident() for the
+//     punctual lights' range window and spot cones);
+//   - materials through fresnel::evaluate (textures read at level 0, bilinear as the
+//     sampler says: the samples of a pixel integrate over its footprint); the occlusion
+//     texture is not used (the tracer computes occlusion); unlit materials emit their base
+//     colour; roughness below kMinTraceRoughness is raised to it;
+//   - single-sided materials: back faces are invisible to every ray (as the rasteriser culls
+//     them); double-sided ones shade their back faces with the normal flipped;
+//   - alpha: MASK below the cutoff is invisible, BLEND is stochastic opacity (a ray passes
+//     with probability 1 - alpha);
+//   - a bounce is one scattering event: max_bounces 1 is direct light (punctual lights and the
+//     environment) at the first surface, the rasteriser's light transport;
+//   - every sample of every pixel draws its own random numbers from (seed, pixel, sample):
+//     the same seed gives the same image on any number of threads.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "fresnel/core/image.h"
+#include "fresnel/render/camera.h"
+#include "fresnel/render/lights.h"
+#include "fresnel/render/renderer.h"
+#include "fresnel/scene/scene.h"
+#include "fresnel/trace/environment_light.h"
+
+namespace fresnel::trace {
+
+struct TraceSettings {
+    int width = 1024, height = 768;
+    int samples = 64;         // per pixel
+    int max_bounces = 16;     // scattering events per path (1 = direct light only)
+    double time_limit_s = 0;  // > 0: stop after the pass during which this much time has passed
+    std::uint64_t seed = 0;
+    unsigned threads = 0;          // 0 = all cores
+    bool env_visibility = true;    // false: environment light is never shadowed (real-time IBL)
+    bool env_background = true;    // camera rays that miss see the environment (else coverage 0)
+    int russian_roulette_start = 3;  // bounces before Russian roulette may end a path
+};
+
+struct TraceStats {
+    int samples = 0;                  // per pixel, completed
+    std::uint64_t camera_paths = 0;   // width * height * samples
+    std::uint64_t rays = 0;           // every ray query (camera, continuation, shadow)
+    double trace_ms = 0;
+    bool time_limited = false;        // stopped by time_limit_s before `samples`
+};
+
+// Called after every tile with the fraction of the work done (from worker threads).
+using TraceProgress = std::function<void(double fraction)>;
+
+// The scene as the tracer holds it: world-space triangles in an Embree BVH, their vertex
+// attributes, materials and the textures they read (decoded once). Build once, trace often.
+class TraceScene {
+public:
+    TraceScene(const Scene& scene, const std::vector<NodeInstance>& instances);
+    ~TraceScene();
+    TraceScene(const TraceScene&) = delete;
+    TraceScene& operator=(const TraceScene&) = delete;
+    std::size_t triangle_count() const;
+    double build_ms() const;
+
+    struct Impl;
+    const Impl& impl() const { return *impl_; }
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+// Traces an image: RGB the mean radiance of each pixel's samples (linear, before exposure),
+// A its coverage (the fraction of camera samples that hit the scene; 1 everywhere when the
+// environment is the background). Rows top to bottom.
+ImageF trace_image(const TraceScene& scene, const CameraSetup& camera, const std::vector<LightInstance>& lights,
+                   const EnvironmentLight* environment, const TraceSettings& settings, TraceStats* stats = nullptr,
+                   const TraceProgress& progress = {});
+
+// The traced radiance as `fresnel render` would write it with `settings` (exposure, tone
+// mapper, encoding, background colour or transparency, premultiplied or straight alpha):
+// display-encoded values in [0,1] when settings.encoding is set, else linear.
+// Over a colour background, pixels are display(L) + (1 - coverage) * background: the radiance
+// over black (what a path tracer's transparent film holds), then the background behind.
+ImageF to_output(const ImageF& radiance, const RenderSettings& settings);
+
+}  // namespace fresnel::trace

@@ -1,0 +1,357 @@
+// The path tracer against scenes whose answer is known in closed form:
+//  - white furnace: albedo-1 (Lambertian, no specular lobe) objects under a uniform
+//    environment of radiance 1 are 1 everywhere, convex or not, with all bounces;
+//  - a convex diffuse object of albedo a under a uniform environment of radiance L is L a;
+//  - the inside of a closed diffuse sphere of albedo a whose wall emits Le: with at most N
+//    bounces the radiance is Le (1 + a + ... + a^N), converging to Le / (1 - a);
+//  - the glTF BRDF (specular lobe on) in the furnace: its directional albedo (brdf.h's quadrature);
+//  - the same seed gives the same image on any number of threads, another seed another one;
+//  - punctual lights: a diffuse plane under a directional light is E a / pi, its shadow is black.
+// Tolerances are a few standard errors of the means measured (the pixels are averaged).
+#include "fresnel/trace/tracer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fresnel/ibl/environment.h"
+#include "fresnel/material/brdf.h"
+#include "fresnel/render/camera.h"
+#include "fresnel/scene/procedural.h"
+
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
+
+using namespace fresnel;
+using namespace fresnel::trace;
+
+namespace {
+
+constexpr float kPi = 3.14159265358979323846f;
+
+// A Lambertian material: KHR_materials_specular with factor 0 removes the dielectric lobe,
+// leaving f = albedo / pi.
+Material lambert(float albedo, bool double_sided = false) {
+    Material m;
+    m.base_color_factor = glm::vec4(albedo, albedo, albedo, 1.0f);
+    m.metallic_factor = 0.0f;
+    m.roughness_factor = 1.0f;
+    m.specular = SpecularExt{};
+    m.specular->specular_factor = 0.0f;
+    m.double_sided = double_sided;
+    return m;
+}
+
+// A scene of spheres (radius r at centres), all of material 0.
+Scene spheres(const Material& material, const std::vector<glm::vec4>& centre_radius, bool inward = false) {
+    Scene s;
+    s.materials.push_back(material);
+    Mesh mesh;
+    Primitive p = make_uv_sphere(96, 48);
+    p.material = 0;
+    if (inward) {  // facing the centre: reversed winding and normals
+        for (std::size_t i = 0; i + 2 < p.indices.size(); i += 3) std::swap(p.indices[i + 1], p.indices[i + 2]);
+        for (auto& n : p.normals) n = -n;
+    }
+    mesh.primitives.push_back(p);
+    s.meshes.push_back(mesh);
+    std::vector<int> roots;
+    for (const glm::vec4& cr : centre_radius) {
+        Node n;
+        n.mesh = 0;
+        n.local = glm::mat4(cr.w);
+        n.local[3] = glm::vec4(glm::vec3(cr), 1.0f);
+        roots.push_back(int(s.nodes.size()));
+        s.nodes.push_back(n);
+    }
+    s.scenes.push_back(roots);
+    return s;
+}
+
+struct Traced {
+    ImageF image;
+    TraceStats stats;
+};
+
+Traced run(const Scene& scene, const EnvironmentLight* env, const TraceSettings& ts, const OrbitParams& orbit = {},
+             const std::vector<LightInstance>& lights = {}, const CameraSetup* camera = nullptr) {
+    auto instances = flatten(scene);
+    TraceScene tscene(scene, instances);
+    CameraSetup cam = camera ? *camera : orbit_camera(scene_bounds(scene, instances), orbit, ts.width, ts.height);
+    Traced t;
+    t.image = trace_image(tscene, cam, lights, env, ts, &t.stats);
+    return t;
+}
+
+// The mean radiance of channel `c` over what the camera sees of the scene: the sum of the
+// (coverage-premultiplied) pixels over the sum of their coverage, so that silhouette pixels
+// count by the part of them the object covers; and a standard error from the pixel spread
+// of the fully covered pixels.
+struct MeanErr {
+    double mean = 0, err = 0;
+    std::size_t n = 0;  // fully covered pixels
+};
+MeanErr covered_mean(const ImageF& img, int c = 0) {
+    double s = 0, cov = 0, s1 = 0, s2 = 0;
+    std::size_t n = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const float* p = img.at(x, y);
+            s += p[c];
+            cov += p[3];
+            if (p[3] < 1.0f) continue;
+            s1 += p[c];
+            s2 += double(p[c]) * p[c];
+            ++n;
+        }
+    MeanErr m;
+    m.n = n;
+    if (n < 2 || cov <= 0) return m;
+    m.mean = s / cov;
+    double mean1 = s1 / double(n);
+    m.err = std::sqrt(std::max(0.0, s2 / double(n) - mean1 * mean1) / double(n));
+    return m;
+}
+
+TraceSettings small(int spp, int bounces = 16) {
+    TraceSettings ts;
+    ts.width = ts.height = 48;
+    ts.samples = spp;
+    ts.max_bounces = bounces;
+    ts.env_background = false;
+    ts.threads = 2;
+    return ts;
+}
+
+}  // namespace
+
+TEST(Tracer, WhiteFurnaceConvex) {
+    EnvironmentLight env(ibl::make_uniform_panorama(glm::vec3(1.0f)));
+    Traced t = run(spheres(lambert(1.0f), {{0, 0, 0, 1}}), &env, small(64));
+    MeanErr m = covered_mean(t.image);
+    ASSERT_GT(m.n, 300u);
+    EXPECT_NEAR(m.mean, 1.0, 0.005) << "standard error " << m.err;
+    // Every pixel away from the silhouette, not just the mean (64 samples each; the estimator
+    // varies only through the MIS weights of the environment and BSDF samples, a standard
+    // deviation of about 0.04 per pixel). At the
+    // silhouette the interpolated normals and the facets disagree, and directions between
+    // the two are lost (as in every tracer that keeps rays on the facet's side).
+    auto covered = [&](int x, int y) {
+        return x >= 0 && y >= 0 && x < t.image.width && y < t.image.height && t.image.at(x, y)[3] == 1.0f;
+    };
+    int checked = 0;
+    for (int y = 0; y < t.image.height; ++y)
+        for (int x = 0; x < t.image.width; ++x) {
+            if (!covered(x - 2, y) || !covered(x + 2, y) || !covered(x, y - 2) || !covered(x, y + 2)) continue;
+            ASSERT_NEAR(t.image.at(x, y)[0], 1.0f, 0.2f) << x << "," << y;
+            ++checked;
+        }
+    EXPECT_GT(checked, 200);
+}
+
+TEST(Tracer, WhiteFurnaceInterreflection) {
+    // Three overlapping spheres: light bounces between them; with every bounce the furnace is 1,
+    // with one bounce the crevices are darker.
+    Scene s = spheres(lambert(1.0f), {{-0.8f, 0, 0, 1}, {0.8f, 0, 0, 1}, {0, 0.9f, -0.3f, 0.8f}});
+    EnvironmentLight env(ibl::make_uniform_panorama(glm::vec3(1.0f)));
+    TraceSettings ts = small(64, 64);
+    ts.russian_roulette_start = 1000;  // no roulette: the estimator stays 1 on every path
+    Traced all = run(s, &env, ts);
+    MeanErr m = covered_mean(all.image);
+    ASSERT_GT(m.n, 500u);
+    EXPECT_NEAR(m.mean, 1.0, 0.01) << "standard error " << m.err;
+    Traced roulette = run(s, &env, small(64, 64));
+    MeanErr mr = covered_mean(roulette.image);
+    EXPECT_NEAR(mr.mean, 1.0, std::max(0.01, 4 * mr.err)) << "with Russian roulette";
+    Traced one = run(s, &env, small(64, 1));
+    EXPECT_LT(covered_mean(one.image).mean, 0.97);
+}
+
+TEST(Tracer, ConvexDiffuseIsAlbedoTimesRadiance) {
+    const float a = 0.4f, L = 2.5f;
+    EnvironmentLight env(ibl::make_uniform_panorama(glm::vec3(L)));
+    for (int bounces : {1, 16}) {
+        Traced t = run(spheres(lambert(a), {{0, 0, 0, 1}}), &env, small(16, bounces));
+        MeanErr m = covered_mean(t.image);
+        EXPECT_NEAR(m.mean, double(L * a), 0.01 * L * a) << bounces << " bounces, standard error " << m.err;
+    }
+}
+
+TEST(Tracer, ClosedSphereGeometricSeries) {
+    // Camera at the centre of a sphere that faces inwards, emits Le and reflects albedo a.
+    const float a = 0.6f, Le = 0.5f;
+    Material m = lambert(a);
+    m.emissive_factor = glm::vec3(Le);
+    Scene s = spheres(m, {{0, 0, 0, 1}}, true);
+    CameraSetup cam;
+    cam.eye = glm::vec3(0.0f);
+    cam.view = glm::lookAt(glm::vec3(0.0f), glm::vec3(0, 0, -1), glm::vec3(0, 1, 0));
+    cam.projection = glm::perspective(glm::radians(60.0f), 1.0f, 0.01f, 10.0f);
+    for (int n : {0, 1, 2, 4, 8, 32}) {
+        TraceSettings ts = small(16, n);
+        ts.width = ts.height = 24;
+        ts.russian_roulette_start = 1000;
+        Traced t = run(s, nullptr, ts, {}, {}, &cam);
+        MeanErr me = covered_mean(t.image);
+        ASSERT_EQ(me.n, std::size_t(ts.width * ts.height));
+        if (n == 0) {
+            EXPECT_NEAR(me.mean, Le, 1e-5);  // emission alone: exact
+        }
+        double expected = Le * (1.0 - std::pow(double(a), n + 1)) / (1.0 - a);
+        EXPECT_NEAR(me.mean, expected, std::max(0.005 * expected, 4 * me.err)) << n << " bounces, standard error " << me.err;
+    }
+    // With Russian roulette (on by default) the limit Le / (1 - a).
+    TraceSettings rr = small(16, 1000);
+    rr.width = rr.height = 24;
+    Traced t = run(s, nullptr, rr, {}, {}, &cam);
+    MeanErr me = covered_mean(t.image);
+    EXPECT_NEAR(me.mean, Le / (1.0 - a), std::max(0.01 * Le / (1.0 - a), 4 * me.err));
+}
+
+TEST(Tracer, GltfBrdfInTheFurnaceMatchesItsAlbedo) {
+    // A sphere seen from far away (nearly orthographic): its mean is the directional albedo
+    // E(mu) of the glTF BRDF averaged with the weight 2 mu over mu = n.v, which brdf.h's
+    // quadrature computes independently of the tracer's sampling. (The glTF BRDF is not
+    // energy conserving: the dielectric branch exceeds 1 a little, rough metals lose much.)
+    EnvironmentLight env(ibl::make_uniform_panorama(glm::vec3(1.0f)));
+    OrbitParams far;
+    far.distance_k = 30.0f;
+    far.yfov_deg = 4.0f;
+    for (float metallic : {0.0f, 1.0f})
+        for (float roughness : {0.2f, 0.5f, 1.0f}) {
+            Material m;
+            m.metallic_factor = metallic;
+            m.roughness_factor = roughness;
+            Traced t = run(spheres(m, {{0, 0, 0, 1}}), &env, small(32), far);
+            MeanErr me = covered_mean(t.image);
+            brdf::Surface s;
+            s.metallic = metallic;
+            s.perceptual_roughness = roughness;
+            double expected = 0;
+            const int n = 64;
+            for (int i = 0; i < n; ++i) {
+                float mu = (float(i) + 0.5f) / float(n);
+                expected += brdf::directional_albedo(s, mu, 64).x * 2.0 * mu / n;
+            }
+            EXPECT_NEAR(me.mean, expected, std::max(0.015 * expected, 4 * me.err))
+                << "metallic " << metallic << " roughness " << roughness;
+        }
+}
+
+TEST(Tracer, SameSeedSameImage) {
+    Scene s = make_demo_scene();
+    EnvironmentLight env(ibl::make_studio_panorama(256), 30.0f);
+    TraceSettings ts = small(4);
+    ts.env_background = true;
+    ts.seed = 7;
+    ts.threads = 1;
+    Traced a = run(s, &env, ts);
+    ts.threads = 2;
+    Traced b = run(s, &env, ts);
+    EXPECT_EQ(a.image.pixels, b.image.pixels);
+    ts.seed = 8;
+    Traced c = run(s, &env, ts);
+    EXPECT_NE(a.image.pixels, c.image.pixels);
+    EXPECT_EQ(a.stats.samples, 4);
+    EXPECT_EQ(a.stats.camera_paths, std::uint64_t(48 * 48 * 4));
+}
+
+TEST(Tracer, DirectionalLightAndShadow) {
+    // A diffuse floor (a flattened sphere's top) under a light arriving at 45 degrees, a small
+    // sphere floating over it: E cos45 a / pi on the lit floor and the ball's top, 0 in the
+    // ball's shadow, which falls 1 unit towards +X.
+    Scene s = spheres(lambert(0.5f), {});
+    Node floor;
+    floor.mesh = 0;
+    floor.local = glm::scale(glm::mat4(1.0f), glm::vec3(4.0f, 0.01f, 4.0f));
+    Node ball;
+    ball.mesh = 0;
+    ball.local = glm::translate(glm::mat4(1.0f), glm::vec3(0, 1.0f, 0)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.3f));
+    s.nodes = {floor, ball};
+    s.scenes = {{0, 1}};
+    LightInstance sun;
+    sun.type = Light::Type::Directional;
+    sun.direction = glm::normalize(glm::vec3(1, -1, 0));
+    sun.radiance = glm::vec3(3.0f);
+    CameraSetup cam;  // from above, +X to the right of the image
+    cam.view = glm::lookAt(glm::vec3(0, 5, 0), glm::vec3(0, 0, 0), glm::vec3(0, 0, -1));
+    cam.projection = glm::perspective(glm::radians(40.0f), 1.0f, 0.1f, 20.0f);
+    TraceSettings ts = small(4, 1);
+    Traced t = run(s, nullptr, ts, {}, {sun}, &cam);
+    const float lit = 3.0f * std::sqrt(0.5f) * 0.5f / kPi;
+    // The ball's top: the two pixels either side of its pole (normals tilted by up to 10
+    // degrees either way, and interpolated across the UV sphere's pole).
+    EXPECT_NEAR(0.5f * (t.image.at(23, 24)[0] + t.image.at(24, 24)[0]), lit, 0.04f * lit);
+    EXPECT_NEAR(t.image.at(8, 24)[0], lit, 0.02f);   // open floor at x = -1.2
+    // The shadow's centre: x = 0.99 (the ball's height above the floor), ~13 pixels right.
+    int shadow_x = 24 + int(std::lround(0.99f / (5.0f * std::tan(glm::radians(20.0f))) * 24.0f));
+    EXPECT_LT(t.image.at(shadow_x, 24)[0], 0.01f * lit) << "column " << shadow_x;
+    EXPECT_GT(t.image.at(shadow_x, 24)[3], 0.99f);
+}
+
+TEST(Tracer, OneBounceUnshadowedEnvironmentIsTheRasterisersTransport) {
+    // --bounces 1 --no-env-visibility: direct light only and the environment never shadowed,
+    // so even where three spheres occlude each other a Lambertian surface of albedo a under a
+    // uniform radiance L is exactly L a (what a rasteriser's irradiance gives); with
+    // visibility the crevices are darker, with all bounces brighter again.
+    const float a = 0.7f, L = 1.5f;
+    Scene s = spheres(lambert(a), {{-0.8f, 0, 0, 1}, {0.8f, 0, 0, 1}, {0, 0.9f, -0.3f, 0.8f}});
+    EnvironmentLight env(ibl::make_uniform_panorama(glm::vec3(L)));
+    TraceSettings ts = small(32, 1);
+    ts.env_visibility = false;
+    Traced unshadowed = run(s, &env, ts);
+    MeanErr mu = covered_mean(unshadowed.image);
+    EXPECT_NEAR(mu.mean, double(L * a), 0.01 * L * a) << "standard error " << mu.err;
+    ts.env_visibility = true;
+    MeanErr ms = covered_mean(run(s, &env, ts).image);
+    EXPECT_LT(ms.mean, 0.97 * L * a);
+    ts.max_bounces = 16;
+    MeanErr mall = covered_mean(run(s, &env, ts).image);
+    EXPECT_GT(mall.mean, ms.mean + 3 * (mall.err + ms.err));
+    EXPECT_LT(mall.mean, L * a);
+}
+
+TEST(Tracer, PointAndSpotLightsFollowTheExtension) {
+    // light_incident (the twin of shaders/lights.glsl): 1/d^2, the range window
+    // clamp(1 - (d/range)^4, 0, 1), and the spot's smooth cone between inner and outer angles.
+    LightInstance point;
+    point.type = Light::Type::Point;
+    point.position = glm::vec3(0, 2, 0);
+    point.radiance = glm::vec3(8.0f);
+    glm::vec3 l;
+    float d = 0;
+    EXPECT_NEAR(light_incident(point, glm::vec3(0), l, d).x, 8.0f / 4.0f, 1e-5f);
+    EXPECT_NEAR(d, 2.0f, 1e-6f);
+    EXPECT_NEAR(l.y, 1.0f, 1e-6f);
+    point.range = 4.0f;
+    EXPECT_NEAR(light_incident(point, glm::vec3(0), l, d).x, 2.0f * (1.0f - 0.0625f), 1e-5f);
+    EXPECT_EQ(light_incident(point, glm::vec3(0, -3, 0), l, d).x, 0.0f);  // beyond the range
+    LightInstance spot = point;
+    spot.type = Light::Type::Spot;
+    spot.range = 0.0f;
+    spot.direction = glm::vec3(0, -1, 0);
+    spot.inner_cone = glm::radians(10.0f);
+    spot.outer_cone = glm::radians(20.0f);
+    EXPECT_NEAR(light_incident(spot, glm::vec3(0), l, d).x, 2.0f, 1e-5f);  // on the axis
+    EXPECT_EQ(light_incident(spot, glm::vec3(2.0f * std::tan(glm::radians(25.0f)), 0, 0), l, d).x, 0.0f);
+    float half = light_incident(spot, glm::vec3(2.0f * std::tan(glm::radians(15.0f)), 0, 0), l, d).x;
+    EXPECT_GT(half, 0.0f);
+    EXPECT_LT(half, 2.0f);
+
+    // Through the tracer: a diffuse floor lit by the point light from 2 units above is
+    // I / d^2 * a / pi under the light.
+    Scene s = spheres(lambert(0.5f), {});
+    Node floor;
+    floor.mesh = 0;
+    floor.local = glm::scale(glm::mat4(1.0f), glm::vec3(4.0f, 0.01f, 4.0f));
+    s.nodes = {floor};
+    s.scenes = {{0}};
+    CameraSetup cam;
+    cam.view = glm::lookAt(glm::vec3(0, 5, 0), glm::vec3(0, 0, 0), glm::vec3(0, 0, -1));
+    cam.projection = glm::perspective(glm::radians(4.0f), 1.0f, 0.1f, 20.0f);  // cos^3 falloff < 1.5 % in view
+    point.range = 0.0f;
+    point.position = glm::vec3(0, 2.01f, 0);
+    Traced t = run(s, nullptr, small(4, 1), {}, {point}, &cam);
+    EXPECT_NEAR(covered_mean(t.image).mean, 8.0 / 4.0 * 0.5 / kPi, 0.02 * 8.0 / 4.0 * 0.5 / kPi);
+}
