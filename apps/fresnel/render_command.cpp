@@ -1,8 +1,13 @@
-// `fresnel render [MODEL] -o OUT ...`: headless rendering to PNG, EXR or HDR.
+// `fresnel render [MODEL... | SCENE.fresnel.json] -o OUT ...`: headless rendering to PNG, EXR or HDR.
 // Every option is documented here, where it is declared; README.md's CLI
 // reference is the output of `fresnel render --help`.
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <thread>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -13,44 +18,13 @@
 #include "fresnel/ibl/environment.h"
 #include "fresnel/render/job.h"
 #include "fresnel/render/renderer.h"
+#include "fresnel/render/scene_file.h"
+#include "job_options.h"
 #include "progress.h"
 
 namespace fresnel::cli {
 namespace {
 
-struct RenderOptions {
-    std::string model;
-    std::string output;
-    std::string size = "1024x768";
-    float yaw = 0, pitch = 0;
-    std::optional<float> distance;
-    float fov = 45.0f;
-    std::optional<int> camera;
-    int scene = -1;
-    std::string tonemap = "neutral";
-    float exposure = 0;
-    std::string encoding = "srgb";
-    std::string background;
-    std::vector<std::string> lights;
-    bool no_scene_lights = false;
-    int msaa = 4;
-    float anisotropy = 16;
-    std::string debug = "none";
-    bool json = false;
-    bool allow_external = false;
-    bool gl_debug = false;
-    std::string gl = "gl33";
-    bool pose_skins = false;
-    std::string env;
-    bool env_given = false;
-    float env_rotation = 0;
-    float env_intensity = 1;
-    bool no_ibl = false;
-    bool no_cache = false;
-    bool no_energy_compensation = false;
-    int env_samples = 1024;
-    int env_size = 256;
-};
 
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
@@ -71,18 +45,18 @@ std::vector<float> parse_floats(const std::string& s, const std::string& what) {
     return out;
 }
 
+
+}  // namespace
+
 std::string lower_extension(const std::string& path) {
     std::string e = std::filesystem::path(path).extension().string();
     for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
     return e;
 }
 
-// The job the flags describe. Usage errors are printed and give nullopt (exit 2), before
-// any file is touched; a malformed --env throws fresnel::Error (exit 1).
-std::optional<Job> job_from_options(const RenderOptions& o) {
-    Job job;
+std::optional<Job> job_from_options(const RenderOptions& o, Job job, const GivenFlags& given) {
     Job::Output& out = job.output;
-    {
+    if (given("--size")) {
         char x = 0;
         std::stringstream ss(o.size);
         if (!(ss >> out.width >> x >> out.height) || x != 'x' || !ss.eof() || out.width < 1 || out.height < 1 ||
@@ -106,14 +80,9 @@ std::optional<Job> job_from_options(const RenderOptions& o) {
         print_error("--debug: unknown channel '" + o.debug + "'");
         return std::nullopt;
     }
-    std::string ext = lower_extension(o.output);
-    out.float_output = ext == ".exr" || ext == ".hdr";
-    if (!out.float_output && ext != ".png") {
-        print_error("-o: output must end in .png, .exr or .hdr: '" + o.output + "'");
-        return std::nullopt;
-    }
     using Mode = Job::Background::Mode;
-    if (o.background == "env") {
+    if (!given("--background")) {
+    } else if (o.background == "env") {
         job.background.mode = Mode::Environment;
     } else if (o.background == "blur") {
         job.background.mode = Mode::Blurred;
@@ -128,33 +97,45 @@ std::optional<Job> job_from_options(const RenderOptions& o) {
         job.background.mode = Mode::Color;
         job.background.color = glm::vec3(v[0], v[1], v[2]);
     }
-    for (const auto& spec : o.lights) {
-        try {
-            job.lights.extra.push_back(parse_light(spec));
-        } catch (const Error& e) {
-            print_error(e);
-            return std::nullopt;
+    if (given("--light")) {
+        job.lights.extra.clear();  // --light replaces a scene file's lights
+        for (const auto& spec : o.lights) {
+            try {
+                job.lights.extra.push_back(parse_light(spec));
+            } catch (const Error& e) {
+                print_error(e);
+                return std::nullopt;
+            }
         }
     }
-    job.lights.scene_lights = !o.no_scene_lights;
-    out.tone_mapper = *tone;
-    out.encoding = *encoding;
-    out.debug = *debug;
-    out.msaa = o.msaa;
-    out.anisotropy = o.anisotropy;
-    out.exposure_ev = o.exposure;
-    out.energy_compensation = !o.no_energy_compensation;
+    if (given("--no-scene-lights")) job.lights.scene_lights = !o.no_scene_lights;
+    if (given("--tonemap")) out.tone_mapper = *tone;
+    if (given("--encoding")) out.encoding = *encoding;
+    if (given("--debug")) out.debug = *debug;
+    if (given("--msaa")) out.msaa = o.msaa;
+    if (given("--anisotropy")) out.anisotropy = o.anisotropy;
+    if (given("--exposure")) out.exposure_ev = o.exposure;
+    if (given("--no-energy-compensation")) out.energy_compensation = !o.no_energy_compensation;
 
-    job.source.model = o.model;
-    job.source.scene = o.scene;
-    job.source.allow_external_files = o.allow_external;
-    job.source.pose_skins = o.pose_skins;
+    if (given("--scene")) job.source.scene = o.scene;
+    if (given("--allow-external-files")) job.source.allow_external_files = o.allow_external;
+    if (given("--pose-skins")) job.source.pose_skins = o.pose_skins;
 
-    job.camera.scene_camera = o.camera;
-    job.camera.yaw_deg = o.yaw;
-    job.camera.pitch_deg = o.pitch;
-    job.camera.distance_k = o.distance;
-    job.camera.yfov_deg = o.fov;
+    // A camera flag given on the command line replaces a scene file's camera.
+    Job::Camera& cam = job.camera;
+    if (given("--camera")) {
+        cam.scene_camera = o.camera;
+        cam.scene_camera_model = 0;
+        if (given.explicitly("--camera")) cam.look_at.reset();
+    }
+    if (given.explicitly("--yaw") || given.explicitly("--pitch") || given.explicitly("--distance") ||
+        given.explicitly("--fov")) {
+        if (cam.scene_camera || cam.look_at) cam = Job::Camera{};  // to the orbit camera, its defaults
+    }
+    if (given("--yaw")) cam.yaw_deg = o.yaw;
+    if (given("--pitch")) cam.pitch_deg = o.pitch;
+    if (given("--distance")) cam.distance_k = o.distance;
+    if (given("--fov")) cam.yfov_deg = o.fov;
 
     Job::Environment& env = job.environment;
     using Kind = Job::Environment::Kind;
@@ -168,22 +149,163 @@ std::optional<Job> job_from_options(const RenderOptions& o) {
             case ibl::EnvironmentSource::Kind::Studio: env.kind = Kind::Studio; break;
         }
     }
-    env.rotation_deg = o.env_rotation;
-    env.intensity = o.env_intensity;
-    env.bake_samples = o.env_samples;
-    env.bake_size = o.env_size;
-    env.use_cache = !o.no_cache;
+    if (given("--env-rotation")) env.rotation_deg = o.env_rotation;
+    if (given("--env-intensity")) env.intensity = o.env_intensity;
+    if (given("--env-samples")) env.bake_samples = o.env_samples;
+    if (given("--env-size")) env.bake_size = o.env_size;
+    if (given("--no-cache")) env.use_cache = !o.no_cache;
     return job;
 }
 
-int run_render(const RenderOptions& o) {
+ContextFlags context_flags(const RenderOptions& o) {
+    ContextFlags f;
+#ifndef NDEBUG
+    f.debug = true;  // debug builds always report KHR_debug messages
+#else
+    f.debug = o.gl_debug;
+#endif
+    f.es3 = o.gl == "es3";
+    return f;
+}
+
+void write_image_atomically(const std::string& path, const ImageF& image, bool transparent) {
+    namespace fs = std::filesystem;
+    std::string ext = lower_extension(path);
+    fs::path target(path);
+    // The temporary keeps the extension (the writers need not look at it, but tools do).
+    fs::path tmp = target.parent_path() /
+                   ("." + target.stem().string() + ".partial-" + std::to_string(::getpid()) + "-" +
+                    std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()) % 100000) + ext);
+    try {
+        if (ext == ".png") write_png(tmp.string(), to_image8(image, transparent));
+        else if (ext == ".exr") write_exr(tmp.string(), image);
+        else write_hdr(tmp.string(), image);
+    } catch (...) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw;
+    }
+    std::error_code ec;
+    fs::rename(tmp, target, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw Error(path, "", "cannot write the image: " + ec.message());
+    }
+}
+
+namespace {
+
+// Frame `i` of `n`: OUT with a printf pattern (%d, %04d) filled in, else "-NNN" before the extension.
+std::string frame_path(const std::string& output, int i, int n) {
+    if (output.find('%') != std::string::npos) {
+        char buf[4096];
+        std::snprintf(buf, sizeof buf, output.c_str(), i);
+        return buf;
+    }
+    int digits = std::max(3, int(std::to_string(std::max(n - 1, 0)).size()));
+    std::filesystem::path p(output);
+    char num[32];
+    std::snprintf(num, sizeof num, "-%0*d", digits, i);
+    return (p.parent_path() / (p.stem().string() + num + p.extension().string())).string();
+}
+
+// The ffmpeg on PATH, or empty.
+std::string find_program(const std::string& name) {
+    const char* path = std::getenv("PATH");
+    std::stringstream ss(path ? path : "");
+    std::string dir;
+    while (std::getline(ss, dir, ':')) {
+        if (dir.empty()) continue;
+        std::filesystem::path p = std::filesystem::path(dir) / name;
+        if (::access(p.c_str(), X_OK) == 0) return p.string();
+    }
+    return {};
+}
+
+// Encodes the numbered PNG frames of `output` into an H.264 MP4 with ffmpeg (no shell).
+void encode_video(const std::string& ffmpeg, const std::string& output, int n, int fps, const std::string& video) {
+    std::string pattern = output;
+    if (pattern.find('%') == std::string::npos) {
+        int digits = std::max(3, int(std::to_string(std::max(n - 1, 0)).size()));
+        std::filesystem::path p(output);
+        pattern = (p.parent_path() / (p.stem().string() + "-%0" + std::to_string(digits) + "d" + p.extension().string())).string();
+    }
+    std::vector<std::string> args = {ffmpeg, "-y", "-loglevel", "error", "-framerate", std::to_string(fps),
+                                     "-i", pattern, "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264",
+                                     "-pix_fmt", "yuv420p", video};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = ::fork();
+    if (pid < 0) throw Error(video, "", "cannot start ffmpeg");
+    if (pid == 0) {
+        ::execv(argv[0], argv.data());
+        ::_exit(127);
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        throw Error(video, "", "ffmpeg failed (exit " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
+}
+
+int run_render(const RenderOptions& o, const CLI::App* cmd) {
     auto t_start = Clock::now();
-    std::optional<Job> parsed = job_from_options(o);  // usage checks first (exit 2), before touching files
+    // The job: a scene file read onto the default job, then the flags the user gave; or the
+    // flags alone (every one, defaults included) for models and the demo.
+    bool scene_file = o.models.size() == 1 && is_scene_file(o.models[0]);
+    if (!scene_file && o.models.size() > 1)
+        for (const auto& m : o.models)
+            if (is_scene_file(m)) {
+                print_error("a scene file is rendered alone, not with other models: '" + m + "'");
+                return kExitUsage;
+            }
+    Diagnostics diag;
+    std::optional<Job> parsed;
+    std::string output = o.output;
+    if (scene_file) {
+        SceneFileOptions so;
+        so.allow_external_files = o.allow_external;
+        // Usage checks of the flags first (exit 2), before the file is read.
+        if (!job_from_options(o, Job{}, GivenFlags{cmd})) return kExitUsage;
+        SceneFile sf = load_scene_file(o.models[0], Job{}, diag, so);
+        parsed = job_from_options(o, sf.job, GivenFlags{cmd});
+        if (output.empty() && sf.output) output = sf.output->string();
+    } else {
+        parsed = job_from_options(o, Job{});  // usage checks first (exit 2), before touching files
+        if (parsed && o.models.size() == 1) parsed->source.model = o.models[0];
+        if (parsed && o.models.size() > 1)
+            for (const auto& m : o.models) parsed->source.models.push_back({.path = m});
+    }
     if (!parsed) return kExitUsage;
-    const Job& job = *parsed;
+    if (output.empty()) {
+        print_error("-o,--output is required (or an \"output\" in the scene file)");
+        return kExitUsage;
+    }
+    std::string ext = lower_extension(output);
+    parsed->output.float_output = ext == ".exr" || ext == ".hdr";
+    if (!parsed->output.float_output && ext != ".png") {
+        print_error("-o: output must end in .png, .exr or .hdr: '" + output + "'");
+        return kExitUsage;
+    }
+    if (!o.video.empty() && (o.turntable < 1 || ext != ".png")) {
+        print_error("--video: needs --turntable N and PNG frames");
+        return kExitUsage;
+    }
+    std::string ffmpeg;
+    if (!o.video.empty()) {
+        ffmpeg = find_program("ffmpeg");
+        if (ffmpeg.empty()) {
+            print_error("--video: ffmpeg is not installed (Debian: apt-get install ffmpeg); no frames rendered");
+            return kExitBadInput;
+        }
+    }
+    Job& job = *parsed;
+    if (o.turntable > 0 && (job.camera.scene_camera || job.camera.look_at)) {
+        print_error("--turntable: turns the orbit camera; not with --camera or a scene file's lookAt/model camera");
+        return kExitUsage;
+    }
 
     // Scene, then the rules of README.md's "Lighting rules" (libs/render/job.h).
-    Diagnostics diag;
     auto t_load = Clock::now();
     Scene scene = load_scene(job, diag);
     double load_ms = ms_since(t_load);
@@ -197,12 +319,9 @@ int run_render(const RenderOptions& o) {
     // GPU.
     auto t_gpu = Clock::now();
     gpu::ContextOptions co;
-#ifndef NDEBUG
-    co.debug = true;  // debug builds always report KHR_debug messages
-#else
-    co.debug = o.gl_debug;
-#endif
-    co.api = o.gl == "es3" ? gpu::Api::OpenGLES30 : gpu::Api::OpenGL33;
+    ContextFlags cf = context_flags(o);
+    co.debug = cf.debug;
+    co.api = cf.es3 ? gpu::Api::OpenGLES30 : gpu::Api::OpenGL33;
     co.log = [](const std::string& m) { std::fprintf(stderr, "fresnel: %s\n", m.c_str()); };
     auto context = gpu::create_headless_context(co);
     Renderer renderer(*context);
@@ -212,21 +331,30 @@ int run_render(const RenderOptions& o) {
     RenderSettings rs = lighting.settings(resolved);
     auto t_frame = Clock::now();
     FrameStats stats;
-    ImageF image = renderer.render(resolved.camera, resolved.lights, rs, &stats);
-    double frame_ms = ms_since(t_frame);
-    if (!stats.gl_errors.empty()) throw Error("OpenGL", "", "the frame raised " + stats.gl_errors);
-
-    std::string ext = lower_extension(o.output);
-    if (ext == ".png") write_png(o.output, to_image8(image, resolved.transparent()));
-    else if (ext == ".exr") write_exr(o.output, image);
-    else write_hdr(o.output, image);
+    const int frames = std::max(o.turntable, 1);
+    for (int i = 0; i < frames; ++i) {
+        if (o.turntable > 0) {
+            // N frames around the model: the orbit camera's yaw advances by 360/N degrees.
+            Job frame = job;
+            frame.camera.yaw_deg = job.camera.yaw_deg + 360.0f * float(i) / float(frames);
+            resolved.camera = resolve(frame, scene).camera;
+        }
+        stats = FrameStats{};
+        ImageF image = renderer.render(resolved.camera, resolved.lights, rs, &stats);
+        if (!stats.gl_errors.empty()) throw Error("OpenGL", "", "the frame raised " + stats.gl_errors);
+        write_image_atomically(o.turntable > 0 ? frame_path(output, i, frames) : output, image, resolved.transparent());
+    }
+    double frame_ms = ms_since(t_frame) / frames;
+    if (!o.video.empty()) encode_video(ffmpeg, output, frames, o.fps, o.video);
 
     if (o.json) {
         const CameraSetup& camera = resolved.camera;
         const auto& environment = lighting.environment;
         nlohmann::json j;
-        j["output"] = o.output;
-        j["model"] = o.model.empty() ? "(demo)" : o.model;
+        j["output"] = output;
+        if (o.turntable > 0) j["frames"] = frames;
+        if (!o.video.empty()) j["video"] = o.video;
+        j["model"] = o.models.empty() ? "(demo)" : o.models.size() == 1 ? nlohmann::json(o.models[0]) : nlohmann::json(o.models);
         j["width"] = rs.width;
         j["height"] = rs.height;
         j["renderer"] = context->renderer();
@@ -258,10 +386,26 @@ int run_render(const RenderOptions& o) {
 Runner add_render_command(CLI::App& app) {
     auto o = std::make_shared<RenderOptions>();
     CLI::App* cmd = app.add_subcommand("render", "Render a glTF model (or the built-in demo) to an image, headless");
-    cmd->add_option("model", o->model, "glTF 2.0 file (.gltf/.glb); omitted: the built-in demo (7x7 spheres)");
+    cmd->add_option("model", o->models,
+                    "glTF 2.0 file (.gltf/.glb), several (one scene, each at its own place), or a scene file "
+                    "(.fresnel.json, docs/scene-file.md; the flags given override it); omitted: the built-in demo "
+                    "(7x7 spheres)");
     cmd->add_option("-o,--output", o->output,
-                    "Output image: .png (8-bit, display-encoded), .exr/.hdr (linear float after exposure and tone map)")
-        ->required();
+                    "Output image: .png (8-bit, display-encoded), .exr/.hdr (linear float after exposure and tone "
+                    "map). Required unless the scene file names an output");
+    cmd->add_option("--turntable", o->turntable,
+                    "Render N frames around the model (yaw advances 360/N degrees), numbered OUT-000.png ... (or a "
+                    "printf pattern in -o, e.g. frame_%04d.png)")
+        ->check(CLI::Range(1, 100000));
+    cmd->add_option("--video", o->video, "With --turntable: also encode the PNG frames into this MP4 (H.264) with ffmpeg");
+    cmd->add_option("--fps", o->fps, "Frames per second of --video")->capture_default_str()->check(CLI::Range(1, 240));
+    cmd->add_flag("--json", o->json, "Print timings, camera and counts as one JSON line");
+    add_job_flags(cmd, *o);
+    return [o, cmd] { return run_render(*o, cmd); };
+}
+
+void add_job_flags(CLI::App* cmd, RenderOptions& opts) {
+    RenderOptions* o = &opts;
     cmd->add_option("--size", o->size, "Image size WxH")->capture_default_str();
     cmd->add_option("--yaw", o->yaw, "Orbit yaw in degrees (0: from +Z, 90: from +X)")->capture_default_str();
     cmd->add_option("--pitch", o->pitch, "Orbit pitch in degrees (positive: from above)")->capture_default_str();
@@ -307,7 +451,6 @@ Runner add_render_command(CLI::App& app) {
                     "bitangent occlusion emissive alpha uv0 uv1 D G F diffuse specular irradiance prefiltered ibl-diffuse "
                     "ibl-specular (NaN/Inf show as magenta)")
         ->capture_default_str();
-    cmd->add_flag("--json", o->json, "Print timings, camera and counts as one JSON line");
     cmd->add_flag("--allow-external-files", o->allow_external,
                   "Let URIs point outside the model's folder (absolute paths, ..); never the network");
     cmd->add_flag("--gl-debug", o->gl_debug, "Request a debug GL context and print KHR_debug messages");
@@ -317,7 +460,6 @@ Runner add_render_command(CLI::App& app) {
     cmd->add_flag("--pose-skins", o->pose_skins,
                   "Pose skinned meshes by their joints' rest transforms (default: the bind pose, as the Khronos "
                   "Sample Renderer's reference images show)");
-    return [o] { return run_render(*o); };
 }
 
 }  // namespace fresnel::cli
