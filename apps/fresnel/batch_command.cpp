@@ -240,10 +240,10 @@ std::vector<BatchJob> read_job_list(const BatchOptions& o) {
                 k.sweep = frames[f];
                 std::string name = explicit_output.empty() ? stem + ext : explicit_output;
                 if (sweep) {
-                    char num[32];
-                    std::snprintf(num, sizeof num, "-%0*zu", digits, f);
+                    std::string num = std::to_string(f);
+                    if (num.size() < std::size_t(digits)) num.insert(0, std::size_t(digits) - num.size(), '0');
                     fs::path p(name);
-                    name = (p.parent_path() / (p.stem().string() + num + p.extension().string())).string();
+                    name = (p.parent_path() / (p.stem().string() + "-" + num + p.extension().string())).string();
                     k.label += " #" + std::to_string(f);
                 }
                 k.output = name;

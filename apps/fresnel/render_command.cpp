@@ -4,6 +4,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -180,6 +182,10 @@ void write_image_atomically(const std::string& path, const ImageF& image, bool t
         if (ext == ".png") write_png(tmp.string(), to_image8(image, transparent));
         else if (ext == ".exr") write_exr(tmp.string(), image);
         else write_hdr(tmp.string(), image);
+    } catch (const Error& e) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw Error(path, e.where(), e.reason());  // name the output, not the temporary
     } catch (...) {
         std::error_code ec;
         fs::remove(tmp, ec);
@@ -195,18 +201,34 @@ void write_image_atomically(const std::string& path, const ImageF& image, bool t
 
 namespace {
 
-// Frame `i` of `n`: OUT with a printf pattern (%d, %04d) filled in, else "-NNN" before the extension.
+// `i` zero-padded to `width` digits.
+std::string padded(long long i, int width) {
+    std::string d = std::to_string(i);
+    return d.size() < std::size_t(width) ? std::string(std::size_t(width) - d.size(), '0') + d : d;
+}
+
+// The frame pattern in OUT: its one "%d" or "%0Nd" (N <= 9) as (position, length, width); nullopt without.
+std::optional<std::array<std::size_t, 3>> frame_pattern(const std::string& output) {
+    std::size_t at = output.find('%');
+    if (at == std::string::npos) return std::nullopt;
+    std::size_t k = at + 1, width = 0;
+    if (k < output.size() && output[k] == '0') ++k;
+    while (k < output.size() && std::isdigit(static_cast<unsigned char>(output[k])) && width < 10)
+        width = width * 10 + std::size_t(output[k++] - '0');
+    if (k >= output.size() || output[k] != 'd' || width > 9 || output.find('%', k) != std::string::npos)
+        return std::nullopt;
+    return std::array<std::size_t, 3>{at, k + 1 - at, width};
+}
+
+// The frame width used without a pattern: at least 3 digits.
+int frame_digits(int n) { return std::max(3, int(std::to_string(std::max(n - 1, 0)).size())); }
+
+// Frame `i` of `n`: OUT with its %d / %0Nd filled in, else "-NNN" before the extension.
 std::string frame_path(const std::string& output, int i, int n) {
-    if (output.find('%') != std::string::npos) {
-        char buf[4096];
-        std::snprintf(buf, sizeof buf, output.c_str(), i);
-        return buf;
-    }
-    int digits = std::max(3, int(std::to_string(std::max(n - 1, 0)).size()));
+    if (auto p = frame_pattern(output))
+        return output.substr(0, (*p)[0]) + padded(i, int((*p)[2])) + output.substr((*p)[0] + (*p)[1]);
     std::filesystem::path p(output);
-    char num[32];
-    std::snprintf(num, sizeof num, "-%0*d", digits, i);
-    return (p.parent_path() / (p.stem().string() + num + p.extension().string())).string();
+    return (p.parent_path() / (p.stem().string() + "-" + padded(i, frame_digits(n)) + p.extension().string())).string();
 }
 
 // The ffmpeg on PATH, or empty.
@@ -225,10 +247,10 @@ std::string find_program(const std::string& name) {
 // Encodes the numbered PNG frames of `output` into an H.264 MP4 with ffmpeg (no shell).
 void encode_video(const std::string& ffmpeg, const std::string& output, int n, int fps, const std::string& video) {
     std::string pattern = output;
-    if (pattern.find('%') == std::string::npos) {
-        int digits = std::max(3, int(std::to_string(std::max(n - 1, 0)).size()));
+    if (!frame_pattern(output)) {
         std::filesystem::path p(output);
-        pattern = (p.parent_path() / (p.stem().string() + "-%0" + std::to_string(digits) + "d" + p.extension().string())).string();
+        pattern = (p.parent_path() / (p.stem().string() + "-%0" + std::to_string(frame_digits(n)) + "d" +
+                                      p.extension().string())).string();
     }
     std::vector<std::string> args = {ffmpeg, "-y", "-loglevel", "error", "-framerate", std::to_string(fps),
                                      "-i", pattern, "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264",
@@ -274,7 +296,11 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
         parsed = job_from_options(o, Job{});  // usage checks first (exit 2), before touching files
         if (parsed && o.models.size() == 1) parsed->source.model = o.models[0];
         if (parsed && o.models.size() > 1)
-            for (const auto& m : o.models) parsed->source.models.push_back({.path = m});
+            for (const auto& m : o.models) {
+                Job::Source::Model model;
+                model.path = m;
+                parsed->source.models.push_back(model);
+            }
     }
     if (!parsed) return kExitUsage;
     if (output.empty()) {
