@@ -340,3 +340,21 @@ TEST_F(SceneFileTest, LookAtCameraLooksAtTheTarget) {
 }
 
 }  // namespace
+
+namespace {
+
+// The example of docs/scene-file.md reads without a warning (the docs keep up with the parser).
+TEST(SceneFileDocs, ExampleReadsCleanly) {
+    fs::path example = fs::path(FRESNEL_SOURCE_DIR) / "docs" / "examples" / "demo.fresnel.json";
+    Diagnostics diag;
+    SceneFile sf = load_scene_file(example, Job{}, diag);
+    EXPECT_EQ(diag.total(), 0u) << (diag.lines().empty() ? "" : diag.lines().front());
+    EXPECT_EQ(sf.job.source.models.size(), 2u);
+    EXPECT_EQ(sf.job.lights.extra.size(), 2u);
+    EXPECT_EQ(sf.job.environment.kind, Job::Environment::Kind::Studio);
+    ASSERT_TRUE(sf.output);
+    Scene scene = load_scene(sf.job, diag);
+    EXPECT_EQ(scene.parts.size(), 2u);
+}
+
+}  // namespace
