@@ -61,6 +61,7 @@ fuzz: deps
 bench: build
 	@scripts/setup-khronos-ref.sh $(BUILD)/khronos-ref
 	FRESNEL_KHRONOS_REF=$(abspath $(BUILD))/khronos-ref $(BUILD)/bin/fresnel-bench
+	python3 bench/batch_bench.py $(BUILD)/bin/fresnel $(CURDIR)/../shared
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) build-fuzz

@@ -48,6 +48,15 @@ using json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
+// The process's resident memory now, MiB (/proc/self/statm; 0 where there is none): each
+// result line carries it, so a leak per job shows as a climb (bench/batch_bench.py checks it).
+double resident_mib() {
+    std::ifstream in("/proc/self/statm");
+    double pages = 0, resident = 0;
+    if (!(in >> pages >> resident)) return 0.0;
+    return resident * double(::sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
+}
+
 struct BatchOptions {
     std::string jobs;
     std::string shard;
@@ -584,6 +593,7 @@ int run_batch(const BatchOptions& o, const CLI::App* cmd) {
                 ++rendered;
             }
             r["total_ms"] = ms_since(t_job);
+            r["rss_mib"] = resident_mib();
             r["warnings"] = diag.lines();
             report(r, ok, text);
             progress.job_done(!ok, skip);
