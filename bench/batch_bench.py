@@ -94,8 +94,11 @@ def main():
     peak_kib = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
     lines = [json.loads(l) for l in r.stdout.splitlines() if l.strip()]
     rss = [j.get("rss_mib", 0.0) for j in sorted(lines, key=lambda j: j["index"])]
-    first_round = max(rss[:n]) if rss else 0.0
-    last_round = max(rss[-n:]) if rss else 0.0
+    rounds = [rss[k:k + n] for k in range(0, len(rss), n) if len(rss[k:k + n]) == n]
+    round_max = [max(r) for r in rounds]
+    round_end = [r[-1] for r in rounds]
+    first_round = round_max[0] if round_max else 0.0
+    last_round = round_max[-1] if round_max else 0.0
 
     out = {
         "models": n, "size": size, "environment": os.path.basename(env),
@@ -103,7 +106,8 @@ def main():
         "batch": {"seconds": batch_s, "images_per_hour": batch_rate, "failed": failed_batch},
         "ratio": batch_rate / sep_rate if sep_rate > 0 else 0.0,
         "memory": {"jobs": count, "seconds": mem_s, "rss_mib_first_round_max": first_round,
-                   "rss_mib_last_round_max": last_round, "peak_rss_mib": peak_kib / 1024.0,
+                   "rss_mib_last_round_max": last_round, "rss_mib_round_max": round_max,
+                   "rss_mib_round_end": round_end, "peak_rss_mib": peak_kib / 1024.0,
                    "peak_rss_earlier_children_mib": before / 1024.0},
     }
     subprocess.run(["rm", "-rf", work])
@@ -117,9 +121,11 @@ def main():
           f"{f' ({failed_batch} failed)' if failed_batch else ''}")
     print(f"  batch / separate processes: {out['ratio']:.2f}x  [target 3x]")
     growth = last_round - first_round
-    print(f"memory over a batch of {count} jobs cycling through the {n} models ({mem_s:.1f} s): resident "
-          f"{first_round:.0f} MiB at most in the first round, {last_round:.0f} MiB in the last "
-          f"({growth:+.0f} MiB); peak {peak_kib / 1024.0:.0f} MiB")
+    print(f"memory over a batch of {count} jobs cycling through the {n} models ({mem_s:.1f} s), resident after each job:")
+    print("  largest in each pass over the models: " + ", ".join(f"{v:.0f}" for v in round_max) + " MiB"
+          f" (last - first {growth:+.0f} MiB)")
+    print("  after the last job of each pass:      " + ", ".join(f"{v:.0f}" for v in round_end) + " MiB"
+          f"; process peak {peak_kib / 1024.0:.0f} MiB")
     return 0
 
 

@@ -11,6 +11,9 @@
 // any failed. Outputs are written atomically (temporary file, then rename), so an output that
 // exists is complete, which is what --resume relies on.
 #include <unistd.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 #include <atomic>
@@ -20,6 +23,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <list>
 #include <map>
 #include <memory>
@@ -57,6 +61,8 @@ double resident_mib() {
     return resident * double(::sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
 }
 
+constexpr std::size_t kMaxJobs = 10'000'000;  // a job list longer than this is refused
+
 struct BatchOptions {
     std::string jobs;
     std::string shard;
@@ -75,7 +81,7 @@ struct BatchJob {
     std::string label;      // "jobs.jsonl:3", "jobs.jsonl:3 #5" (sweep frame), a model's path
     std::string model;      // folder mode: the model
     std::string scene_path; // a scene file to read (then `doc` is a merge patch onto it)
-    json doc;               // the inline job (or patch); null when none
+    std::shared_ptr<const json> doc;  // the inline job (or patch), shared by a sweep's frames; null when none
     fs::path base;          // relative paths of `doc` resolve here
     std::vector<std::pair<std::string, double>> sweep;  // JSON pointer, value
     std::string output;     // relative to --out
@@ -231,7 +237,7 @@ std::vector<BatchJob> read_job_list(const BatchOptions& o) {
                     frames = expand_sweep(doc["sweep"]);
                     doc.erase("sweep");
                 }
-                j.doc = std::move(doc);
+                j.doc = std::make_shared<const json>(std::move(doc));
             } catch (const Error& e) {
                 j.error = e.what();
             } catch (const std::exception& e) {
@@ -244,6 +250,8 @@ std::vector<BatchJob> read_job_list(const BatchOptions& o) {
             }
             const bool sweep = frames.size() > 1 || !frames[0].empty();
             const int digits = std::max(3, int(std::to_string(frames.size() - 1).size()));
+            if (jobs.size() + frames.size() > kMaxJobs)
+                throw Error(o.jobs, "line " + std::to_string(line_no), "more than " + std::to_string(kMaxJobs) + " jobs");
             for (std::size_t f = 0; f < frames.size(); ++f) {
                 BatchJob k = j;
                 k.sweep = frames[f];
@@ -265,7 +273,7 @@ std::vector<BatchJob> read_job_list(const BatchOptions& o) {
     for (std::size_t i = 0; i < jobs.size(); ++i) {
         jobs[i].index = i;
         std::string name = jobs[i].output;
-        if (taken.count(name)) {
+        while (taken.count(name)) {
             fs::path p(name);
             name = (p.parent_path() / (p.stem().string() + "-" + std::to_string(i) + p.extension().string())).string();
         }
@@ -426,7 +434,7 @@ Job read_job(const BatchJob& b, const Job& defaults, bool allow_external, Diagno
         job.source.models.clear();
         return job;
     }
-    json doc = b.doc.is_null() ? json::object() : b.doc;
+    json doc = b.doc ? *b.doc : json::object();
     std::string name = b.label;
     fs::path base = b.base;
     if (!b.scene_path.empty()) {
@@ -512,38 +520,114 @@ int run_batch(const BatchOptions& o, const CLI::App* cmd) {
         std::fflush(stdout);
     };
 
+    // Each worker is a pipeline of three stages, so the GL thread mostly draws: the next job is
+    // read and its model loaded (and its environment) in the background while this one is
+    // drawn, and the image is encoded and written in the background while the next is drawn.
+    struct Task {
+        const BatchJob* b = nullptr;
+        fs::path output;
+        json r;
+        Clock::time_point t_job;
+        Diagnostics diag;
+        bool skip = false;
+        std::string error;  // set: failed
+        Job job;
+        std::shared_ptr<const Scene> scene;
+        ResolvedJob resolved;
+        std::shared_ptr<const ibl::BakedIbl> env;
+        std::shared_ptr<const ImageF> lut;
+        ImageF image;
+    };
+    auto failure = [](const BatchJob& b, const std::exception& e) {
+        std::string what = e.what();
+        return what.rfind(b.label, 0) == 0 ? what : b.label + ": " + what;
+    };
+    // Stage 1 (background): the job read, its model and environment loaded.
+    auto prepare = [&](const BatchJob* b, int w) {
+        auto t = std::make_shared<Task>();
+        t->b = b;
+        t->output = out_dir / b->output;
+        t->t_job = Clock::now();
+        t->r = {{"index", b->index}, {"job", b->label}, {"output", t->output.string()}, {"worker", w}};
+        try {
+            if (!b->error.empty()) throw std::runtime_error(b->error);
+            std::error_code e;
+            if (o.resume && fs::is_regular_file(t->output, e) && fs::file_size(t->output, e) > 0) {
+                t->skip = true;
+                return t;
+            }
+            t->job = read_job(*b, *defaults, o.render.allow_external, t->diag);
+            std::string ext = lower_extension(t->output.string());
+            t->job.output.float_output = ext == ".exr" || ext == ".hdr";
+            auto t_load = Clock::now();
+            bool loaded = false;
+            t->scene = caches.scene(t->job, t->diag, loaded);
+            t->r["load_ms"] = ms_since(t_load);
+            t->r["model_cached"] = !loaded;
+            t->resolved = resolve(t->job, *t->scene);
+            auto t_env = Clock::now();
+            if (t->resolved.environment) t->env = caches.environment(t->resolved);
+            if (t->resolved.needs_brdf_lut) t->lut = caches.brdf_lut(t->resolved);
+            t->r["environment_ms"] = ms_since(t_env);
+        } catch (const Error& e) {
+            t->error = e.what();
+        } catch (const std::bad_alloc&) {
+            t->error = b->label + ": out of memory";
+        } catch (const std::exception& e) {
+            t->error = failure(*b, e);
+        }
+        return t;
+    };
+    // Stage 3 (background): the image written atomically, the result reported.
+    auto finish = [&](std::shared_ptr<Task> t) {
+        std::string text;
+        if (t->error.empty() && !t->skip) {
+            try {
+                std::error_code e;
+                fs::create_directories(t->output.parent_path().empty() ? fs::path(".") : t->output.parent_path(), e);
+                write_image_atomically(t->output.string(), t->image, t->resolved.transparent());
+            } catch (const Error& e) {
+                t->error = e.what();
+            } catch (const std::exception& e) {
+                t->error = failure(*t->b, e);
+            }
+        }
+        t->image = ImageF();
+        if (!t->error.empty()) {
+            t->r["status"] = "failed";
+            t->r["error"] = t->error;
+            text = t->error.rfind(t->b->label, 0) == 0 ? t->error : t->b->label + ": " + t->error;
+            ++failed;
+        } else if (t->skip) {
+            t->r["status"] = "skipped";
+            text = "skipped " + t->output.string() + " (exists)";
+            ++skipped;
+        } else {
+            t->r["status"] = "ok";
+            char ms[32];
+            std::snprintf(ms, sizeof ms, "%.0f ms", ms_since(t->t_job));
+            text = "ok " + t->output.string() + " (" + ms + ")";
+            ++rendered;
+        }
+        t->r["total_ms"] = ms_since(t->t_job);
+        t->r["rss_mib"] = resident_mib();
+        t->r["warnings"] = t->diag.lines();
+        report(t->r, t->error.empty(), text);
+        progress.job_done(!t->error.empty(), t->skip);
+    };
     auto work = [&](int w) {
         Worker worker;
-        for (std::size_t i = next++; i < mine.size(); i = next++) {
-            const BatchJob& b = *mine[i];
-            const fs::path output = out_dir / b.output;
-            json r = {{"index", b.index}, {"job", b.label}, {"output", output.string()}, {"worker", w}};
-            auto t_job = Clock::now();
-            Diagnostics diag;
-            bool ok = false, skip = false;
-            std::string text;
-            try {
-                if (!b.error.empty()) throw std::runtime_error(b.error);
-                if (o.resume && fs::is_regular_file(output, ec) && fs::file_size(output, ec) > 0) {
-                    skip = ok = true;
-                    r["status"] = "skipped";
-                    text = "skipped " + output.string() + " (exists)";
-                } else {
-                    Job job = read_job(b, *defaults, o.render.allow_external, diag);
-                    std::string ext = lower_extension(output.string());
-                    job.output.float_output = ext == ".exr" || ext == ".hdr";
-                    auto t_load = Clock::now();
-                    bool loaded = false;
-                    std::shared_ptr<const Scene> scene = caches.scene(job, diag, loaded);
-                    r["load_ms"] = ms_since(t_load);
-                    r["model_cached"] = !loaded;
-                    ResolvedJob resolved = resolve(job, *scene);
-                    auto t_env = Clock::now();
-                    std::shared_ptr<const ibl::BakedIbl> env;
-                    std::shared_ptr<const ImageF> lut;
-                    if (resolved.environment) env = caches.environment(resolved);
-                    if (resolved.needs_brdf_lut) lut = caches.brdf_lut(resolved);
-                    r["environment_ms"] = ms_since(t_env);
+        std::size_t i = next++;
+        std::future<std::shared_ptr<Task>> pending;
+        if (i < mine.size()) pending = std::async(std::launch::async, prepare, mine[i], w);
+        std::future<void> writing;
+        while (i < mine.size()) {
+            std::shared_ptr<Task> t = pending.get();
+            std::size_t j = next++;
+            if (j < mine.size()) pending = std::async(std::launch::async, prepare, mine[j], w);
+            // Stage 2 (this thread, which owns the GL context): upload when the scene changed, draw.
+            if (t->error.empty() && !t->skip) {
+                try {
                     if (!worker.context) {
                         gpu::ContextOptions co;
                         co.debug = cf.debug;
@@ -553,51 +637,38 @@ int run_batch(const BatchOptions& o, const CLI::App* cmd) {
                         worker.renderer = std::make_unique<Renderer>(*worker.context);
                     }
                     auto t_upload = Clock::now();
-                    if (worker.scene != scene || worker.scene_index != resolved.scene_index) {
-                        worker.renderer->set_scene(*scene, resolved.scene_index);
-                        worker.scene = scene;
-                        worker.scene_index = resolved.scene_index;
+                    if (worker.scene != t->scene || worker.scene_index != t->resolved.scene_index) {
+                        worker.renderer->set_scene(*t->scene, t->resolved.scene_index);
+                        worker.scene = t->scene;
+                        worker.scene_index = t->resolved.scene_index;
+#ifdef __GLIBC__
+                        // The previous model's images and meshes are freed by now (unless cached):
+                        // give the pages back, so resident memory follows what is held.
+                        ::malloc_trim(0);
+#endif
                     }
-                    r["upload_ms"] = ms_since(t_upload);
-                    RenderSettings rs = resolved.settings;
-                    rs.environment = env.get();
-                    rs.brdf_lut = lut.get();
+                    t->r["upload_ms"] = ms_since(t_upload);
+                    RenderSettings rs = t->resolved.settings;
+                    rs.environment = t->env.get();
+                    rs.brdf_lut = t->lut.get();
                     auto t_frame = Clock::now();
                     FrameStats stats;
-                    ImageF image = worker.renderer->render(resolved.camera, resolved.lights, rs, &stats);
-                    r["frame_ms"] = ms_since(t_frame);
+                    t->image = worker.renderer->render(t->resolved.camera, t->resolved.lights, rs, &stats);
+                    t->r["frame_ms"] = ms_since(t_frame);
                     if (!stats.gl_errors.empty()) throw Error("OpenGL", "", "the frame raised " + stats.gl_errors);
-                    fs::create_directories(output.parent_path().empty() ? fs::path(".") : output.parent_path(), ec);
-                    write_image_atomically(output.string(), image, resolved.transparent());
-                    ok = true;
-                    r["status"] = "ok";
-                    char ms[32];
-                    std::snprintf(ms, sizeof ms, "%.0f ms", ms_since(t_job));
-                    text = "ok " + output.string() + " (" + ms + ")";
+                } catch (const Error& e) {
+                    t->error = e.what();
+                } catch (const std::bad_alloc&) {
+                    t->error = t->b->label + ": out of memory";
+                } catch (const std::exception& e) {
+                    t->error = failure(*t->b, e);
                 }
-            } catch (const Error& e) {
-                r["error"] = e.what();
-            } catch (const std::bad_alloc&) {
-                r["error"] = b.label + ": out of memory";
-            } catch (const std::exception& e) {
-                r["error"] = std::string(e.what()).rfind(b.label, 0) == 0 ? std::string(e.what()) : b.label + ": " + e.what();
             }
-            if (!ok) {
-                r["status"] = "failed";
-                text = r["error"].get<std::string>();
-                if (text.rfind(b.label, 0) != 0) text = b.label + ": " + text;
-                ++failed;
-            } else if (skip) {
-                ++skipped;
-            } else {
-                ++rendered;
-            }
-            r["total_ms"] = ms_since(t_job);
-            r["rss_mib"] = resident_mib();
-            r["warnings"] = diag.lines();
-            report(r, ok, text);
-            progress.job_done(!ok, skip);
+            if (writing.valid()) writing.get();
+            writing = std::async(std::launch::async, finish, t);
+            i = j;
         }
+        if (writing.valid()) writing.get();
     };
     const int workers = std::max(1, std::min<int>(o.workers, int(std::max<std::size_t>(mine.size(), 1))));
     if (workers == 1) {
