@@ -241,6 +241,14 @@ TEST_F(BatchCli, SceneFileFlagsAndBatchRenderTheSameImage) {
     std::printf("PSNR against one light fewer: %.1f dB\n", psnr(ref, dir_ / "other.png"));
     EXPECT_LT(psnr(ref, dir_ / "other.png"), 45.0);
 
+    // `info` reads the scene file as `render` does.
+    r = run({"info", "two.fresnel.json", "--json"});
+    ASSERT_EQ(r.exit_code, 0) << show(r);
+    json info = json::parse(r.out);
+    EXPECT_EQ(info.at("models").size(), 2u) << r.out;
+    EXPECT_EQ(info.at("lights").get<int>(), 2) << r.out;
+    EXPECT_EQ(info.at("camera").get<std::string>(), "orbit");
+
     // Flags given override the file; those not given do not.
     r = run({"render", "two.fresnel.json", "-o", "override.png", "--size", "32x24", "--json"});
     ASSERT_EQ(r.exit_code, 0) << show(r);
