@@ -227,7 +227,8 @@ std::vector<BatchJob> read_job_list(const BatchOptions& o) {
                     explicit_output = doc["output"].get<std::string>();
                     std::string error;
                     if (!resolve_relative_path(explicit_output, fs::path("."), false, error))
-                        throw std::runtime_error("/output: " + error + " (outputs stay inside --out)");
+                        throw std::runtime_error("/output: must be a relative path inside --out, not '" +
+                                                 explicit_output.substr(0, explicit_output.find('\0')) + "'");
                     std::string e = lower_extension(explicit_output);
                     if (e != ".png" && e != ".exr" && e != ".hdr")
                         throw std::runtime_error("/output: must end in .png, .exr or .hdr");
