@@ -188,6 +188,7 @@ void read_models(const Reader& r, const json& doc, Job& job) {
     if (single) {
         Job::Source::Model m;
         if (!(single->is_string() && single->get<std::string>() == "demo")) m.path = r.path(*single, "/model").string();
+        m.scene = job.source.scene;  // the job's (a batch's --scene) still applies
         models.push_back(m);
     }
     if (list) {
@@ -240,6 +241,13 @@ void read_camera(const Reader& r, const json& c, Job& job) {
     if (auto* v = r.find(c, "type")) type = r.string(*v, at(ptr, "type"));
     else type = r.find(c, "eye") ? "lookAt" : r.find(c, "index") ? "model" : "orbit";
     Job::Camera& cam = job.camera;
+    auto unused = [&](std::initializer_list<const char*> keys) {
+        for (const char* k : keys)
+            if (r.find(c, k)) r.warn(at(ptr, k), std::string("not used by a camera of type ") + type + " (ignored)");
+    };
+    if (type == "orbit") unused({"eye", "target", "up", "model", "index"});
+    if (type == "lookAt") unused({"yaw", "pitch", "distance", "model", "index"});
+    if (type == "model") unused({"yaw", "pitch", "distance", "fov", "eye", "target", "up"});
     auto fov = [&] {
         if (auto* v = r.find(c, "fov")) cam.yfov_deg = float(r.number(*v, at(ptr, "fov"), 0.01, 179.0));
     };

@@ -194,6 +194,14 @@ TEST_F(SceneFileTest, UnknownKeysWarnWithTheirPointer) {
     EXPECT_NE(all.find("scene.fresnel.json"), std::string::npos) << "warnings name the file: " << all;
 }
 
+// A key the chosen camera does not use is reported, not silently dropped (a sweep of yaw on
+// a lookAt camera would otherwise render one picture N times).
+TEST_F(SceneFileTest, KeysTheCameraDoesNotUseWarn) {
+    load(json{{"fresnel", 1}, {"camera", {{"eye", {0, 0, 5}}, {"target", {0, 0, 0}}, {"yaw", 30}}}});
+    ASSERT_EQ(diag_.total(), 1u);
+    EXPECT_NE(diag_.lines().front().find("/camera/yaw"), std::string::npos) << diag_.lines().front();
+}
+
 TEST_F(SceneFileTest, WrongTypesNameFileAndPointer) {
     struct Case {
         const char* text;
