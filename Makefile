@@ -47,7 +47,7 @@ $(ASAN_BUILD)/CMakeCache.txt:
 
 # Only what the sanitizer tests need: the loaders' unit tests, the CLI (corpus and
 # hostile-input tests) and the fuzz-regression replayers.
-ASAN_TARGETS := core_test scene_test mesh_ops_test fresnel replay_gltf replay_image replay_hdr replay_exr
+ASAN_TARGETS := core_test scene_test mesh_ops_test scene_file_test fresnel replay_gltf replay_image replay_hdr replay_exr replay_scene_file
 asan: $(ASAN_BUILD)/CMakeCache.txt
 	@grep -qx 'FRESNEL_WERROR:BOOL=$(FRESNEL_WERROR)' $(ASAN_BUILD)/CMakeCache.txt || cmake -S . -B $(ASAN_BUILD) -DFRESNEL_WERROR=$(FRESNEL_WERROR)
 	cmake --build $(ASAN_BUILD) -j $(JOBS) --target $(ASAN_TARGETS)
@@ -62,6 +62,7 @@ bench: build
 	@scripts/setup-khronos-ref.sh $(BUILD)/khronos-ref
 	FRESNEL_KHRONOS_REF=$(abspath $(BUILD))/khronos-ref $(BUILD)/bin/fresnel-bench
 	bench/trace_bench.sh $(BUILD)/bin/fresnel
+	python3 bench/batch_bench.py $(BUILD)/bin/fresnel $(CURDIR)/../shared
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) build-fuzz

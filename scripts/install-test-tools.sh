@@ -1,17 +1,23 @@
 #!/usr/bin/env bash
-# Installs the independent readers some tests use to check our files, into
-# build/node-tools (never into the repository): the npm package ktx-parse (KTX2).
+# Installs the independent readers and validators some tests use to check our files, into
+# build/node-tools (never into the repository), from npm: ktx-parse (KTX2), ajv (JSON Schema:
+# docs/scene.schema.json), js-yaml and kubernetes-models (docs/batch.md's Kubernetes manifest).
 # Best effort: without node/npm or the npm registry, those tests skip.
 set -u
 dir=${1:-build/node-tools}
-[[ -d $dir/node_modules/ktx-parse ]] && exit 0
+want=(ktx-parse@0.7 ajv@8 js-yaml@4 kubernetes-models@4)
+missing=()
+for p in "${want[@]}"; do
+  [[ -d $dir/node_modules/${p%@*} ]] || missing+=("$p")
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
 if ! command -v npm >/dev/null 2>&1; then
-  echo "install-test-tools: npm not found; the KTX2 independent-reader test will skip"
+  echo "install-test-tools: npm not found; the KTX2 reader and docs format tests will skip"
   exit 0
 fi
 mkdir -p "$dir"
 [[ -f $dir/package.json ]] || echo '{"name":"fresnel-test-tools","private":true}' > "$dir/package.json"
-if ! (cd "$dir" && timeout 120 npm install --no-audit --no-fund --silent ktx-parse@0.7 >/dev/null 2>&1); then
-  echo "install-test-tools: npm install ktx-parse failed; the KTX2 independent-reader test will skip"
+if ! (cd "$dir" && timeout 300 npm install --no-audit --no-fund --silent "${missing[@]}" >/dev/null 2>&1); then
+  echo "install-test-tools: npm install ${missing[*]} failed; the tests that need them will skip"
 fi
 exit 0

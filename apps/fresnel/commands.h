@@ -13,5 +13,6 @@ Runner add_info_command(CLI::App& app);
 Runner add_bake_command(CLI::App& app);
 Runner add_compare_command(CLI::App& app);
 Runner add_trace_command(CLI::App& app);
+Runner add_batch_command(CLI::App& app);
 
 }  // namespace fresnel::cli

@@ -4,6 +4,8 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "fresnel/render/job.h"
+#include "fresnel/render/scene_file.h"
 #include "fresnel/scene/gltf_loader.h"
 #include "fresnel/scene/obj_loader.h"
 
@@ -16,7 +18,53 @@ struct InfoOptions {
     bool allow_external = false;
 };
 
+// A scene file: what the job holds (validated as `render` reads it), then the composed scene.
+int run_scene_file_info(const InfoOptions& o) {
+    Diagnostics diag;
+    SceneFileOptions so;
+    so.allow_external_files = o.allow_external;
+    SceneFile sf = load_scene_file(o.model, Job{}, diag, so);
+    const Job& job = sf.job;
+    Scene scene = load_scene(job, diag);
+    ResolvedJob r = resolve(job, scene);
+    nlohmann::json j;
+    j["file"] = o.model;
+    j["format_version"] = kSceneFileVersion;
+    nlohmann::json models = nlohmann::json::array();
+    if (job.source.models.empty()) models.push_back({{"path", job.source.model.empty() ? "demo" : job.source.model}});
+    for (const auto& m : job.source.models)
+        models.push_back({{"path", m.path.empty() ? "demo" : m.path}, {"visible", m.visible},
+                          {"material_overrides", m.materials.size()}});
+    j["models"] = models;
+    j["camera"] = job.camera.scene_camera ? "model" : job.camera.look_at ? "lookAt" : "orbit";
+    j["lights"] = r.lights.size();
+    j["default_lights"] = r.default_lights;
+    j["environment"] = r.environment ? r.environment->describe() : "none";
+    j["size"] = {job.output.width, job.output.height};
+    if (sf.output) j["output"] = sf.output->string();
+    std::size_t triangles = 0;
+    for (const auto& m : scene.meshes)
+        for (const auto& p : m.primitives) triangles += p.triangle_count();
+    j["triangles"] = triangles;
+    j["materials"] = scene.materials.size();
+    if (!r.bounds.empty)
+        j["bounds"] = {{"min", {r.bounds.min.x, r.bounds.min.y, r.bounds.min.z}},
+                       {"max", {r.bounds.max.x, r.bounds.max.y, r.bounds.max.z}}};
+    j["warnings"] = diag.lines();
+    if (o.json) {
+        std::printf("%s\n", j.dump(2).c_str());
+        return kExitOk;
+    }
+    print_warnings(diag);
+    std::printf("%s (scene file, format %d)\n", o.model.c_str(), kSceneFileVersion);
+    for (const auto& m : models) std::printf("  %-11s %s\n", "model", m["path"].get<std::string>().c_str());
+    for (const char* k : {"camera", "lights", "environment", "size", "output", "triangles", "materials"})
+        if (j.contains(k)) std::printf("  %-11s %s\n", k, j[k].is_string() ? j[k].get<std::string>().c_str() : j[k].dump().c_str());
+    return kExitOk;
+}
+
 int run_info(const InfoOptions& o) {
+    if (is_scene_file(o.model)) return run_scene_file_info(o);
     Diagnostics diag;
     Scene scene;
     if (is_obj_path(o.model)) {
@@ -84,8 +132,8 @@ int run_info(const InfoOptions& o) {
 
 Runner add_info_command(CLI::App& app) {
     auto o = std::make_shared<InfoOptions>();
-    CLI::App* cmd = app.add_subcommand("info", "Print counts, bounds and extensions of a glTF or OBJ model");
-    cmd->add_option("model", o->model, "glTF 2.0 file (.gltf or .glb) or Wavefront OBJ (.obj)")->required();
+    CLI::App* cmd = app.add_subcommand("info", "Print counts, bounds and extensions of a glTF or OBJ model, or a scene file");
+    cmd->add_option("model", o->model, "glTF 2.0 file (.gltf or .glb), Wavefront OBJ (.obj) or a scene file (.fresnel.json)")->required();
     cmd->add_flag("--json", o->json, "Print a JSON object instead of text");
     cmd->add_flag("--allow-external-files", o->allow_external,
                   "Let URIs point outside the model's folder (absolute paths, ..); never the network");

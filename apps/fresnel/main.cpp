@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
     auto bake = fresnel::cli::add_bake_command(app);
     auto compare = fresnel::cli::add_compare_command(app);
     auto trace = fresnel::cli::add_trace_command(app);
+    auto batch = fresnel::cli::add_batch_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("bake")) return bake();
         if (app.got_subcommand("compare")) return compare();
         if (app.got_subcommand("trace")) return trace();
+        if (app.got_subcommand("batch")) return batch();
     } catch (const fresnel::Error& e) {
         fresnel::cli::print_error(e);
         return fresnel::cli::kExitBadInput;

@@ -1,9 +1,15 @@
-// `fresnel render [MODEL] -o OUT ...`: headless rendering to PNG, EXR or HDR.
-// Every option is documented where it is declared: here, or in cli_common.cpp for the
-// flags render shares with trace; README.md's CLI reference is the output of
-// `fresnel render --help`.
+// `fresnel render [MODEL... | SCENE.fresnel.json] -o OUT ...`: headless rendering to PNG, EXR or HDR.
+// Every option is documented here, where it is declared; README.md's CLI
+// reference is the output of `fresnel render --help`.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <thread>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -14,56 +20,321 @@
 #include "fresnel/ibl/environment.h"
 #include "fresnel/render/job.h"
 #include "fresnel/render/renderer.h"
+#include "fresnel/render/scene_file.h"
+#include "job_options.h"
 #include "progress.h"
 
 namespace fresnel::cli {
 namespace {
 
-// render's own flags; the Job's are JobOptions (cli_common.h), shared with `trace`.
-struct RenderOptions : JobOptions {
-    int msaa = 4;
-    float anisotropy = 16;
-    std::string debug = "none";
-    bool gl_debug = false;
-    std::string gl = "gl33";
-    bool no_cache = false;
-    bool no_energy_compensation = false;
-    int env_samples = 1024;
-    int env_size = 256;
-};
 
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-// The job the flags describe: the shared flags (job_from_options), then render's own.
-std::optional<Job> render_job(const RenderOptions& o) {
-    std::optional<Job> job = job_from_options(o);
-    if (!job) return job;
+std::vector<float> parse_floats(const std::string& s, const std::string& what) {
+    std::vector<float> out;
+    std::stringstream ss(s);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        try {
+            std::size_t used = 0;
+            out.push_back(std::stof(item, &used));
+            if (used != item.size()) throw std::invalid_argument(item);
+        } catch (const std::logic_error&) {
+            throw CLI::ValidationError(what, "'" + s + "' is not a comma-separated list of numbers");
+        }
+    }
+    return out;
+}
+
+
+}  // namespace
+
+
+std::optional<Job> job_from_options(const RenderOptions& o, Job job, const GivenFlags& given) {
+    Job::Output& out = job.output;
+    if (given("--size")) {
+        char x = 0;
+        std::stringstream ss(o.size);
+        if (!(ss >> out.width >> x >> out.height) || x != 'x' || !ss.eof() || out.width < 1 || out.height < 1 ||
+            out.width > 16384 || out.height > 16384) {
+            print_error("--size: expected WxH with 1..16384 pixels per side, got '" + o.size + "'");
+            return std::nullopt;
+        }
+    }
+    auto tone = parse_tone_mapper(o.tonemap);
+    if (!tone) {
+        print_error("--tonemap: unknown tone mapper '" + o.tonemap + "' (neutral, aces, aces-hill, reinhard, agx, none)");
+        return std::nullopt;
+    }
+    auto encoding = parse_encoding(o.encoding);
+    if (!encoding) {
+        print_error("--encoding: expected srgb or gamma2.2, got '" + o.encoding + "'");
+        return std::nullopt;
+    }
     auto debug = parse_debug_channel(o.debug);
     if (!debug) {
         print_error("--debug: unknown channel '" + o.debug + "'");
         return std::nullopt;
     }
-    Job::Output& out = job->output;
-    out.debug = *debug;
-    out.msaa = o.msaa;
-    out.anisotropy = o.anisotropy;
-    out.energy_compensation = !o.no_energy_compensation;
-    Job::Environment& env = job->environment;
-    env.bake_samples = o.env_samples;
-    env.bake_size = o.env_size;
-    env.use_cache = !o.no_cache;
+    using Mode = Job::Background::Mode;
+    if (!given("--background")) {
+    } else if (o.background == "env") {
+        job.background.mode = Mode::Environment;
+    } else if (o.background == "blur") {
+        job.background.mode = Mode::Blurred;
+    } else if (o.background == "transparent") {
+        job.background.mode = Mode::Transparent;
+    } else if (!o.background.empty()) {
+        auto v = parse_floats(o.background, "--background");
+        if (v.size() != 3) {
+            print_error("--background: expected env, blur, R,G,B (0..1, display-encoded) or transparent");
+            return std::nullopt;
+        }
+        job.background.mode = Mode::Color;
+        job.background.color = glm::vec3(v[0], v[1], v[2]);
+    }
+    if (given("--light")) {
+        job.lights.extra.clear();  // --light replaces a scene file's lights
+        for (const auto& spec : o.lights) {
+            try {
+                job.lights.extra.push_back(parse_light(spec));
+            } catch (const Error& e) {
+                print_error(e);
+                return std::nullopt;
+            }
+        }
+    }
+    if (given("--no-scene-lights")) job.lights.scene_lights = !o.no_scene_lights;
+    if (given("--tonemap")) out.tone_mapper = *tone;
+    if (given("--encoding")) out.encoding = *encoding;
+    if (given("--debug")) out.debug = *debug;
+    if (given("--msaa")) out.msaa = o.msaa;
+    if (given("--anisotropy")) out.anisotropy = o.anisotropy;
+    if (given("--exposure")) out.exposure_ev = o.exposure;
+    if (given("--no-energy-compensation")) out.energy_compensation = !o.no_energy_compensation;
+
+    if (given("--scene")) job.source.scene = o.scene;
+    if (given("--allow-external-files")) job.source.allow_external_files = o.allow_external;
+    if (given("--pose-skins")) job.source.pose_skins = o.pose_skins;
+
+    // A camera flag given on the command line replaces a scene file's camera.
+    Job::Camera& cam = job.camera;
+    if (given("--camera")) {
+        cam.scene_camera = o.camera;
+        cam.scene_camera_model = 0;
+        if (given.explicitly("--camera")) cam.look_at.reset();
+    }
+    if (given.explicitly("--yaw") || given.explicitly("--pitch") || given.explicitly("--distance") ||
+        given.explicitly("--fov")) {
+        if (cam.scene_camera || cam.look_at) cam = Job::Camera{};  // to the orbit camera, its defaults
+    }
+    if (given("--yaw")) cam.yaw_deg = o.yaw;
+    if (given("--pitch")) cam.pitch_deg = o.pitch;
+    if (given("--distance")) cam.distance_k = o.distance;
+    if (given("--fov")) cam.yfov_deg = o.fov;
+
+    Job::Environment& env = job.environment;
+    using Kind = Job::Environment::Kind;
+    if (o.no_ibl) {
+        env.kind = Kind::None;
+    } else if (o.env_given) {
+        ibl::EnvironmentSource source = ibl::parse_environment(o.env);
+        switch (source.kind) {
+            case ibl::EnvironmentSource::Kind::File: env.kind = Kind::File; env.path = source.path.string(); break;
+            case ibl::EnvironmentSource::Kind::Uniform: env.kind = Kind::Color; env.color = source.color; break;
+            case ibl::EnvironmentSource::Kind::Studio: env.kind = Kind::Studio; break;
+        }
+    }
+    if (given("--env-rotation")) env.rotation_deg = o.env_rotation;
+    if (given("--env-intensity")) env.intensity = o.env_intensity;
+    if (given("--env-samples")) env.bake_samples = o.env_samples;
+    if (given("--env-size")) env.bake_size = o.env_size;
+    if (given("--no-cache")) env.use_cache = !o.no_cache;
     return job;
 }
 
-int run_render(const RenderOptions& o) {
+std::optional<Job> job_from_command(const RenderOptions& o, const CLI::App* cmd, Diagnostics& diag,
+                                    std::string& output) {
+    // A scene file read onto the default job, then the flags the user gave; or the flags
+    // alone (every one, defaults included) for models and the demo.
+    bool scene_file = o.models.size() == 1 && is_scene_file(o.models[0]);
+    if (!scene_file && o.models.size() > 1)
+        for (const auto& m : o.models)
+            if (is_scene_file(m)) {
+                print_error("a scene file is rendered alone, not with other models: '" + m + "'");
+                return std::nullopt;
+            }
+    std::optional<Job> parsed;
+    output = o.output;
+    if (scene_file) {
+        SceneFileOptions so;
+        so.allow_external_files = o.allow_external;
+        // Usage checks of the flags first (exit 2), before the file is read.
+        if (!job_from_options(o, Job{}, GivenFlags{cmd})) return std::nullopt;
+        SceneFile sf = load_scene_file(o.models[0], Job{}, diag, so);
+        parsed = job_from_options(o, sf.job, GivenFlags{cmd});
+        if (output.empty() && sf.output) output = sf.output->string();
+    } else {
+        parsed = job_from_options(o, Job{});  // usage checks first (exit 2), before touching files
+        if (parsed && o.models.size() == 1) parsed->source.model = o.models[0];
+        if (parsed && o.models.size() > 1)
+            for (const auto& m : o.models) {
+                Job::Source::Model model;
+                model.path = m;
+                parsed->source.models.push_back(model);
+            }
+    }
+    if (!parsed) return std::nullopt;
+    if (output.empty()) {
+        print_error("-o,--output is required (or an \"output\" in the scene file)");
+        return std::nullopt;
+    }
+    return parsed;
+}
+
+ContextFlags context_flags(const RenderOptions& o) {
+    ContextFlags f;
+#ifndef NDEBUG
+    f.debug = true;  // debug builds always report KHR_debug messages
+#else
+    f.debug = o.gl_debug;
+#endif
+    f.es3 = o.gl == "es3";
+    return f;
+}
+
+void write_image_atomically(const std::string& path, const ImageF& image, bool transparent) {
+    namespace fs = std::filesystem;
+    std::string ext = lower_extension(path);
+    fs::path target(path);
+    // The temporary keeps the extension (the writers need not look at it, but tools do).
+    fs::path tmp = target.parent_path() /
+                   ("." + target.stem().string() + ".partial-" + std::to_string(::getpid()) + "-" +
+                    std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()) % 100000) + ext);
+    try {
+        if (ext == ".png") write_png(tmp.string(), to_image8(image, transparent));
+        else if (ext == ".exr") write_exr(tmp.string(), image);
+        else write_hdr(tmp.string(), image);
+    } catch (const Error& e) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw Error(path, e.where(), e.reason());  // name the output, not the temporary
+    } catch (...) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw;
+    }
+    std::error_code ec;
+    fs::rename(tmp, target, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw Error(path, "", "cannot write the image: " + ec.message());
+    }
+}
+
+namespace {
+
+// `i` zero-padded to `width` digits.
+std::string padded(long long i, int width) {
+    std::string d = std::to_string(i);
+    return d.size() < std::size_t(width) ? std::string(std::size_t(width) - d.size(), '0') + d : d;
+}
+
+// The frame pattern in OUT: its one "%d" or "%0Nd" (N <= 9) as (position, length, width); nullopt without.
+std::optional<std::array<std::size_t, 3>> frame_pattern(const std::string& output) {
+    std::size_t at = output.find('%');
+    if (at == std::string::npos) return std::nullopt;
+    std::size_t k = at + 1, width = 0;
+    if (k < output.size() && output[k] == '0') ++k;
+    while (k < output.size() && std::isdigit(static_cast<unsigned char>(output[k])) && width < 10)
+        width = width * 10 + std::size_t(output[k++] - '0');
+    if (k >= output.size() || output[k] != 'd' || width > 9 || output.find('%', k) != std::string::npos)
+        return std::nullopt;
+    return std::array<std::size_t, 3>{at, k + 1 - at, width};
+}
+
+// The frame width used without a pattern: at least 3 digits.
+int frame_digits(int n) { return std::max(3, int(std::to_string(std::max(n - 1, 0)).size())); }
+
+// Frame `i` of `n`: OUT with its %d / %0Nd filled in, else "-NNN" before the extension.
+std::string frame_path(const std::string& output, int i, int n) {
+    if (auto p = frame_pattern(output))
+        return output.substr(0, (*p)[0]) + padded(i, int((*p)[2])) + output.substr((*p)[0] + (*p)[1]);
+    std::filesystem::path p(output);
+    return (p.parent_path() / (p.stem().string() + "-" + padded(i, frame_digits(n)) + p.extension().string())).string();
+}
+
+// The ffmpeg on PATH, or empty.
+std::string find_program(const std::string& name) {
+    const char* path = std::getenv("PATH");
+    std::stringstream ss(path ? path : "");
+    std::string dir;
+    while (std::getline(ss, dir, ':')) {
+        if (dir.empty()) continue;
+        std::filesystem::path p = std::filesystem::path(dir) / name;
+        if (::access(p.c_str(), X_OK) == 0) return p.string();
+    }
+    return {};
+}
+
+// Encodes the numbered PNG frames of `output` into an H.264 MP4 with ffmpeg (no shell).
+void encode_video(const std::string& ffmpeg, const std::string& output, int n, int fps, const std::string& video) {
+    std::string pattern = output;
+    if (!frame_pattern(output)) {
+        std::filesystem::path p(output);
+        pattern = (p.parent_path() / (p.stem().string() + "-%0" + std::to_string(frame_digits(n)) + "d" +
+                                      p.extension().string())).string();
+    }
+    std::vector<std::string> args = {ffmpeg, "-y", "-loglevel", "error", "-framerate", std::to_string(fps),
+                                     "-i", pattern, "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264",
+                                     "-pix_fmt", "yuv420p", video};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = ::fork();
+    if (pid < 0) throw Error(video, "", "cannot start ffmpeg");
+    if (pid == 0) {
+        ::execv(argv[0], argv.data());
+        ::_exit(127);
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        throw Error(video, "", "ffmpeg failed (exit " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
+}
+
+int run_render(const RenderOptions& o, const CLI::App* cmd) {
     auto t_start = Clock::now();
-    std::optional<Job> parsed = render_job(o);  // usage checks first (exit 2), before touching files
+    Diagnostics diag;
+    std::string output;
+    std::optional<Job> parsed = job_from_command(o, cmd, diag, output);
     if (!parsed) return kExitUsage;
-    const Job& job = *parsed;
+    std::string ext = lower_extension(output);
+    parsed->output.float_output = ext == ".exr" || ext == ".hdr";
+    if (!parsed->output.float_output && ext != ".png") {
+        print_error("-o: output must end in .png, .exr or .hdr: '" + output + "'");
+        return kExitUsage;
+    }
+    if (!o.video.empty() && (o.turntable < 1 || ext != ".png")) {
+        print_error("--video: needs --turntable N and PNG frames");
+        return kExitUsage;
+    }
+    std::string ffmpeg;
+    if (!o.video.empty()) {
+        ffmpeg = find_program("ffmpeg");
+        if (ffmpeg.empty()) {
+            print_error("--video: ffmpeg is not installed (Debian: apt-get install ffmpeg); no frames rendered");
+            return kExitBadInput;
+        }
+    }
+    Job& job = *parsed;
+    if (o.turntable > 0 && (job.camera.scene_camera || job.camera.look_at)) {
+        print_error("--turntable: turns the orbit camera; not with --camera or a scene file's lookAt/model camera");
+        return kExitUsage;
+    }
 
     // Scene, then the rules of README.md's "Lighting rules" (libs/render/job.h).
-    Diagnostics diag;
     auto t_load = Clock::now();
     Scene scene = load_scene(job, diag);
     double load_ms = ms_since(t_load);
@@ -77,12 +348,9 @@ int run_render(const RenderOptions& o) {
     // GPU.
     auto t_gpu = Clock::now();
     gpu::ContextOptions co;
-#ifndef NDEBUG
-    co.debug = true;  // debug builds always report KHR_debug messages
-#else
-    co.debug = o.gl_debug;
-#endif
-    co.api = o.gl == "es3" ? gpu::Api::OpenGLES30 : gpu::Api::OpenGL33;
+    ContextFlags cf = context_flags(o);
+    co.debug = cf.debug;
+    co.api = cf.es3 ? gpu::Api::OpenGLES30 : gpu::Api::OpenGL33;
     co.log = [](const std::string& m) { std::fprintf(stderr, "fresnel: %s\n", m.c_str()); };
     auto context = gpu::create_headless_context(co);
     Renderer renderer(*context);
@@ -92,18 +360,30 @@ int run_render(const RenderOptions& o) {
     RenderSettings rs = lighting.settings(resolved);
     auto t_frame = Clock::now();
     FrameStats stats;
-    ImageF image = renderer.render(resolved.camera, resolved.lights, rs, &stats);
-    double frame_ms = ms_since(t_frame);
-    if (!stats.gl_errors.empty()) throw Error("OpenGL", "", "the frame raised " + stats.gl_errors);
-
-    write_output(o.output, image, resolved.transparent());
+    const int frames = std::max(o.turntable, 1);
+    for (int i = 0; i < frames; ++i) {
+        if (o.turntable > 0) {
+            // N frames around the model: the orbit camera's yaw advances by 360/N degrees.
+            Job frame = job;
+            frame.camera.yaw_deg = job.camera.yaw_deg + 360.0f * float(i) / float(frames);
+            resolved.camera = resolve(frame, scene).camera;
+        }
+        stats = FrameStats{};
+        ImageF image = renderer.render(resolved.camera, resolved.lights, rs, &stats);
+        if (!stats.gl_errors.empty()) throw Error("OpenGL", "", "the frame raised " + stats.gl_errors);
+        write_image_atomically(o.turntable > 0 ? frame_path(output, i, frames) : output, image, resolved.transparent());
+    }
+    double frame_ms = ms_since(t_frame) / frames;
+    if (!o.video.empty()) encode_video(ffmpeg, output, frames, o.fps, o.video);
 
     if (o.json) {
         const CameraSetup& camera = resolved.camera;
         const auto& environment = lighting.environment;
         nlohmann::json j;
-        j["output"] = o.output;
-        j["model"] = o.model.empty() ? "(demo)" : o.model;
+        j["output"] = output;
+        if (o.turntable > 0) j["frames"] = frames;
+        if (!o.video.empty()) j["video"] = o.video;
+        j["model"] = o.models.empty() ? "(demo)" : o.models.size() == 1 ? nlohmann::json(o.models[0]) : nlohmann::json(o.models);
         j["width"] = rs.width;
         j["height"] = rs.height;
         j["renderer"] = context->renderer();
@@ -135,34 +415,87 @@ int run_render(const RenderOptions& o) {
 Runner add_render_command(CLI::App& app) {
     auto o = std::make_shared<RenderOptions>();
     CLI::App* cmd = app.add_subcommand("render", "Render a glTF model (or the built-in demo) to an image, headless");
-    add_view_options(cmd, *o);
-    cmd->add_option("--env-samples", o->env_samples, "GGX samples per texel when baking")->capture_default_str()
-        ->check(CLI::Range(1, 65536));
-    cmd->add_option("--env-size", o->env_size, "Specular cube face size when baking (power of two)")
-        ->capture_default_str();
-    cmd->add_flag("--no-cache", o->no_cache, "Neither read nor write $XDG_CACHE_HOME/fresnel: bake the environment and the BRDF table again");
-    cmd->add_flag("--no-energy-compensation", o->no_energy_compensation,
-                  "Single-scattering specular only (no multiple-scattering compensation of punctual lights)");
-    add_light_options(cmd, *o);
-    cmd->add_option("--msaa", o->msaa, "MSAA samples (1 = off)")->capture_default_str()->check(CLI::Range(1, 16));
-    cmd->add_option("--anisotropy", o->anisotropy,
-                    "Anisotropic filtering of the detail maps (base colour, metallic-roughness, normal, specular "
-                    "colour, clearcoat normal) with trilinear samplers, 1 = off. 16 matches the Khronos Sample "
-                    "Viewer's images best; on software rasterisers each level above 1 costs frame time")
-        ->capture_default_str()->check(CLI::Range(1.0f, 16.0f));
-    cmd->add_option("--debug", o->debug,
-                    "Show a channel instead of shading: basecolor metallic roughness normal geometry-normal tangent "
-                    "bitangent occlusion emissive alpha uv0 uv1 D G F diffuse specular irradiance prefiltered ibl-diffuse "
-                    "ibl-specular (NaN/Inf show as magenta)")
-        ->capture_default_str();
+    cmd->add_option("model", o->models,
+                    "glTF 2.0 file (.gltf/.glb), several (one scene, each at its own place), or a scene file "
+                    "(.fresnel.json, docs/scene-file.md; the flags given override it); omitted: the built-in demo "
+                    "(7x7 spheres)");
+    cmd->add_option("-o,--output", o->output,
+                    "Output image: .png (8-bit, display-encoded), .exr/.hdr (linear float after exposure and tone "
+                    "map). Required unless the scene file names an output");
+    cmd->add_option("--turntable", o->turntable,
+                    "Render N frames around the model (yaw advances 360/N degrees), numbered OUT-000.png ... (or a "
+                    "printf pattern in -o, e.g. frame_%04d.png)")
+        ->check(CLI::Range(1, 100000));
+    cmd->add_option("--video", o->video, "With --turntable: also encode the PNG frames into this MP4 (H.264) with ffmpeg");
+    cmd->add_option("--fps", o->fps, "Frames per second of --video")->capture_default_str()->check(CLI::Range(1, 240));
     cmd->add_flag("--json", o->json, "Print timings, camera and counts as one JSON line");
-    add_file_options(cmd, *o);
-    cmd->add_flag("--gl-debug", o->gl_debug, "Request a debug GL context and print KHR_debug messages");
-    cmd->add_option("--gl", o->gl, "Graphics API: gl33 (OpenGL 3.3 core) or es3 (OpenGL ES 3.0; same pictures)")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"gl33", "es3"}));
-    add_pose_options(cmd, *o);
-    return [o] { return run_render(*o); };
+    add_job_flags(cmd, *o);
+    return [o, cmd] { return run_render(*o, cmd); };
+}
+
+void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
+    RenderOptions* o = &opts;
+    const bool raster = set == JobFlagSet::Raster;
+    cmd->add_option("--size", o->size, "Image size WxH")->capture_default_str();
+    cmd->add_option("--yaw", o->yaw, "Orbit yaw in degrees (0: from +Z, 90: from +X)")->capture_default_str();
+    cmd->add_option("--pitch", o->pitch, "Orbit pitch in degrees (positive: from above)")->capture_default_str();
+    cmd->add_option("--distance", o->distance, "Camera distance as a multiple K of the bounds radius (default: fit)");
+    cmd->add_option("--fov", o->fov, "Vertical field of view in degrees")->capture_default_str();
+    cmd->add_option("--camera", o->camera, "Use the file's N-th camera instead of the orbit camera")
+        ->excludes("--yaw")->excludes("--pitch")->excludes("--distance")->excludes("--fov");
+    cmd->add_option("--scene", o->scene, "Scene index (default: the file's `scene`)");
+    cmd->add_option("--tonemap", o->tonemap, "Tone mapper: neutral, aces, aces-hill, reinhard, agx, none")
+        ->capture_default_str();
+    cmd->add_option("--exposure", o->exposure, "Exposure in EV (radiance x 2^EV)")->capture_default_str();
+    cmd->add_option("--encoding", o->encoding, "PNG encoding: srgb (exact curve) or gamma2.2 (pow 1/2.2)")
+        ->capture_default_str();
+    cmd->add_option("--background", o->background,
+                    "Background: env (the environment, sharp), blur (a prefiltered level; the default with an "
+                    "environment), R,G,B (0..1, display-encoded; default 0,0,0 without one) or transparent");
+    cmd->add_option("--env", o->env,
+                    "Environment light: an equirectangular .hdr/.exr, a folder made by `fresnel bake`, color:R,G,B "
+                    "(linear) or studio (built in). Default: studio, unless the scene or --light brings lights")
+        ->each([o](const std::string&) { o->env_given = true; });
+    cmd->add_option("--env-rotation", o->env_rotation, "Turn the environment about +Y, degrees")->capture_default_str();
+    cmd->add_option("--env-intensity", o->env_intensity, "Scale the environment's radiance")->capture_default_str();
+    cmd->add_flag("--no-ibl", o->no_ibl, "No image-based light");
+    if (raster) {
+        cmd->add_option("--env-samples", o->env_samples, "GGX samples per texel when baking")->capture_default_str()
+            ->check(CLI::Range(1, 65536));
+        cmd->add_option("--env-size", o->env_size, "Specular cube face size when baking (power of two)")
+            ->capture_default_str();
+        cmd->add_flag("--no-cache", o->no_cache, "Neither read nor write $XDG_CACHE_HOME/fresnel: bake the environment and the BRDF table again");
+        cmd->add_flag("--no-energy-compensation", o->no_energy_compensation,
+                      "Single-scattering specular only (no multiple-scattering compensation of punctual lights)");
+    }
+    cmd->add_option("--light", o->lights,
+                    "Add a light: dir:AZIMUTH,ELEVATION,LUX[,R,G,B] (arriving from that direction) or "
+                    "point:X,Y,Z,CANDELA[,R,G,B]; repeatable");
+    cmd->add_flag("--no-scene-lights", o->no_scene_lights, "Ignore the file's KHR_lights_punctual lights");
+    if (raster) {
+        cmd->add_option("--msaa", o->msaa, "MSAA samples (1 = off)")->capture_default_str()->check(CLI::Range(1, 16));
+        cmd->add_option("--anisotropy", o->anisotropy,
+                        "Anisotropic filtering of the detail maps (base colour, metallic-roughness, normal, specular "
+                        "colour, clearcoat normal) with trilinear samplers, 1 = off. 16 matches the Khronos Sample "
+                        "Viewer's images best; on software rasterisers each level above 1 costs frame time")
+            ->capture_default_str()->check(CLI::Range(1.0f, 16.0f));
+        cmd->add_option("--debug", o->debug,
+                        "Show a channel instead of shading: basecolor metallic roughness normal geometry-normal tangent "
+                        "bitangent occlusion emissive alpha uv0 uv1 D G F diffuse specular irradiance prefiltered ibl-diffuse "
+                        "ibl-specular (NaN/Inf show as magenta)")
+            ->capture_default_str();
+    }
+    cmd->add_flag("--allow-external-files", o->allow_external,
+                  "Let URIs point outside the model's folder (absolute paths, ..); never the network");
+    if (raster) {
+        cmd->add_flag("--gl-debug", o->gl_debug, "Request a debug GL context and print KHR_debug messages");
+        cmd->add_option("--gl", o->gl, "Graphics API: gl33 (OpenGL 3.3 core) or es3 (OpenGL ES 3.0; same pictures)")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"gl33", "es3"}));
+    }
+    cmd->add_flag("--pose-skins", o->pose_skins,
+                  "Pose skinned meshes by their joints' rest transforms (default: the bind pose, as the Khronos "
+                  "Sample Renderer's reference images show)");
 }
 
 }  // namespace fresnel::cli

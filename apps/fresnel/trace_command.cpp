@@ -1,7 +1,8 @@
 // `fresnel trace [MODEL] -o OUT ...`: the CPU path tracer (libs/trace), the ground truth for
-// `render`. It takes render's flags for the model, camera, environment, lights, tone mapping
-// and background (cli_common.h), so the same flags describe the same scene; every option is
-// documented where it is declared; README.md's CLI reference is `fresnel trace --help`.
+// `render`. It takes render's models and scene files and its flags for the camera,
+// environment, lights, tone mapping and background (job_options.h), so the same command line
+// describes the same scene; every option is documented where it is declared; README.md's CLI
+// reference is `fresnel trace --help`.
 #include <chrono>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -14,12 +15,13 @@
 #include "fresnel/render/job.h"
 #include "fresnel/trace/environment_light.h"
 #include "fresnel/trace/tracer.h"
+#include "job_options.h"
 #include "progress.h"
 
 namespace fresnel::cli {
 namespace {
 
-struct TraceOptions : JobOptions {
+struct TraceOptions : RenderOptions {
     int spp = 64;
     int max_bounces = 16;
     double time_limit = 0;
@@ -31,13 +33,20 @@ struct TraceOptions : JobOptions {
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-int run_trace(const TraceOptions& o) {
+int run_trace(const TraceOptions& o, const CLI::App* cmd) {
     auto t_start = Clock::now();
-    std::optional<Job> parsed = job_from_options(o);  // usage checks first (exit 2)
+    Diagnostics diag;
+    std::string output;
+    std::optional<Job> parsed = job_from_command(o, cmd, diag, output);  // usage checks first (exit 2)
     if (!parsed) return kExitUsage;
+    std::string ext = lower_extension(output);
+    if (ext != ".png" && ext != ".exr" && ext != ".hdr") {
+        print_error("-o: output must end in .png, .exr or .hdr: '" + output + "'");
+        return kExitUsage;
+    }
+    parsed->output.float_output = ext == ".exr" || ext == ".hdr";
     const Job& job = *parsed;
 
-    Diagnostics diag;
     auto t_load = Clock::now();
     Scene scene = load_scene(job, diag);
     double load_ms = ms_since(t_load);
@@ -81,14 +90,16 @@ int run_trace(const TraceOptions& o) {
                                       &stats, [&](double f) { bar.update(f); });
     }
     ImageF image = trace::to_output(radiance, rs);
-    write_output(o.output, image, resolved.transparent());
+    write_image_atomically(output, image, resolved.transparent());
 
     if (o.json) {
         const CameraSetup& camera = resolved.camera;
         double seconds = stats.trace_ms / 1000.0;
         nlohmann::json j;
-        j["output"] = o.output;
-        j["model"] = o.model.empty() ? "(demo)" : o.model;
+        j["output"] = output;
+        if (o.models.size() == 1) j["model"] = o.models[0];
+        else if (o.models.empty()) j["model"] = "(demo)";
+        else j["model"] = o.models;
         j["width"] = rs.width;
         j["height"] = rs.height;
         j["renderer"] = "fresnel trace (CPU, Embree 3)";
@@ -128,7 +139,13 @@ Runner add_trace_command(CLI::App& app) {
     auto o = std::make_shared<TraceOptions>();
     CLI::App* cmd = app.add_subcommand(
         "trace", "Path-trace a glTF model (or the built-in demo) on the CPU: the ground truth for render");
-    add_view_options(cmd, *o);
+    cmd->add_option("model", o->models,
+                    "glTF 2.0 file (.gltf/.glb), several (one scene, each at its own place), or a scene file "
+                    "(.fresnel.json, docs/scene-file.md; the flags given override it); omitted: the built-in demo "
+                    "(7x7 spheres)");
+    cmd->add_option("-o,--output", o->output,
+                    "Output image: .png (8-bit, display-encoded), .exr/.hdr (linear float after exposure and tone "
+                    "map). Required unless the scene file names an output");
     cmd->add_option("--spp", o->spp, "Samples (camera paths) per pixel")->capture_default_str()->check(CLI::Range(1, 1 << 20));
     cmd->add_option("--max-bounces,--bounces", o->max_bounces,
                     "Scattering events per path; 1 = direct light only (punctual lights and one bounce of the "
@@ -142,11 +159,9 @@ Runner add_trace_command(CLI::App& app) {
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
     cmd->add_flag("--no-env-visibility", o->no_env_visibility,
                   "Environment light is never shadowed (as in real-time image-based lighting); punctual lights are");
-    add_light_options(cmd, *o);
     cmd->add_flag("--json", o->json, "Print timings, samples, Msamples/s and the camera as one JSON line");
-    add_file_options(cmd, *o);
-    add_pose_options(cmd, *o);
-    return [o] { return run_trace(*o); };
+    add_job_flags(cmd, *o, JobFlagSet::Trace);
+    return [o, cmd] { return run_trace(*o, cmd); };
 }
 
 }  // namespace fresnel::cli

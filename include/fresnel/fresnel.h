@@ -15,8 +15,10 @@
 #include "fresnel/core/sampler.h"
 
 #include "fresnel/scene/gltf_loader.h"
+#include "fresnel/scene/merge.h"
 #include "fresnel/scene/mesh_ops.h"
 #include "fresnel/scene/obj_loader.h"
+#include "fresnel/scene/paths.h"
 #include "fresnel/scene/procedural.h"
 #include "fresnel/scene/scene.h"
 #include "fresnel/scene/tangents.h"
@@ -44,6 +46,7 @@
 #include "fresnel/render/lights.h"
 #include "fresnel/render/material_uniforms.h"
 #include "fresnel/render/renderer.h"
+#include "fresnel/render/scene_file.h"
 #include "fresnel/render/shader_features.h"
 #include "fresnel/render/shader_library.h"
 

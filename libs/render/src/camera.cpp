@@ -33,6 +33,29 @@ CameraSetup orbit_camera(const Bounds& bounds, const OrbitParams& p, int width, 
     return c;
 }
 
+CameraSetup look_at_camera(const Bounds& bounds, const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up,
+                           float yfov_deg, int width, int height) {
+    CameraSetup c;
+    const float deg = 3.14159265358979f / 180.0f;
+    float aspect = float(width) / float(std::max(height, 1));
+    float R = bounds.empty ? 1.0f : std::max(bounds.radius(), 1e-6f);
+    glm::vec3 centre = bounds.empty ? glm::vec3(0.0f) : bounds.center();
+    float D = glm::length(eye - centre);
+    c.eye = eye;
+    c.target = target;
+    glm::vec3 forward = target - eye;
+    glm::vec3 u = up;
+    if (glm::length(forward) < 1e-12f) forward = glm::vec3(0, 0, -1);
+    if (glm::length(glm::cross(forward, u)) < 1e-6f * glm::length(forward) * std::max(glm::length(u), 1e-30f))
+        u = std::fabs(forward.y) > std::fabs(forward.z) ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+    c.view = glm::lookAt(eye, eye + forward, u);
+    c.zfar = std::max(D + 2.0f * R, 1e-4f);
+    c.znear = std::max(D - 2.0f * R, c.zfar / 1000.0f);
+    c.yfov_deg = yfov_deg;
+    c.projection = glm::perspective(yfov_deg * deg, aspect, c.znear, c.zfar);
+    return c;
+}
+
 std::optional<CameraSetup> scene_camera(const Scene& scene, const std::vector<NodeInstance>& instances, int index,
                                         int width, int height) {
     for (const auto& inst : instances) {

@@ -9,10 +9,14 @@
 namespace fresnel {
 
 namespace {
-std::string model_name(const Job& job) { return job.source.model.empty() ? std::string("demo") : job.source.model; }
+std::string model_name(const Job& job) {
+    if (!job.source.models.empty()) return job.source.models.front().path.empty() ? "demo" : job.source.models.front().path;
+    return job.source.model.empty() ? std::string("demo") : job.source.model;
+}
 }  // namespace
 
 Scene load_scene(const Job& job, Diagnostics& diag) {
+    if (!job.source.models.empty()) return load_models(job, diag);
     if (job.source.model.empty()) return make_demo_scene();
     if (is_obj_path(job.source.model)) {
         ObjLoadOptions oo;
@@ -38,12 +42,23 @@ ResolvedJob resolve(const Job& job, const Scene& scene) {
     // Camera.
     if (job.camera.scene_camera) {
         int n = *job.camera.scene_camera;
-        auto c = scene_camera(scene, r.instances, n, out.width, out.height);
+        int index = n;  // in the merged scene: counted from the model's first camera
+        const int model = job.camera.scene_camera_model;
+        if (!scene.parts.empty()) {
+            if (model < 0 || model >= int(scene.parts.size()) || n >= scene.parts[std::size_t(model)].camera_count)
+                throw Error(model_name(job), "camera " + std::to_string(n) + " of model " + std::to_string(model),
+                            "no such (visible) model or camera");
+            index = scene.parts[std::size_t(model)].first_camera + n;
+        }
+        auto c = scene_camera(scene, r.instances, index, out.width, out.height);
         if (!c)
             throw Error(model_name(job), "--camera " + std::to_string(n),
                         "no node of the scene uses camera " + std::to_string(n) + " (the file has " +
                             std::to_string(scene.cameras.size()) + ")");
         r.camera = *c;
+    } else if (job.camera.look_at) {
+        const Job::Camera::LookAt& la = *job.camera.look_at;
+        r.camera = look_at_camera(r.bounds, la.eye, la.target, la.up, job.camera.yfov_deg, out.width, out.height);
     } else {
         OrbitParams op;
         op.yaw_deg = job.camera.yaw_deg;

@@ -32,6 +32,11 @@ struct OrbitParams {
 
 CameraSetup orbit_camera(const Bounds& bounds, const OrbitParams& params, int width, int height);
 
+// A perspective camera at `eye` looking at `target` (`up` roughly up), vertical FOV
+// `yfov_deg`; near and far from the bounds as the orbit camera's, with D = |eye - centre|.
+CameraSetup look_at_camera(const Bounds& bounds, const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up,
+                           float yfov_deg, int width, int height);
+
 // The file's camera `index` (Scene::cameras) as placed by the first node of the flattened
 // scene that uses it (scale removed; the image's aspect replaces the camera's aspectRatio);
 // nullopt when no node of the scene uses it.

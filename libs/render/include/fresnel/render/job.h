@@ -13,7 +13,9 @@
 #include <string>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "fresnel/core/color.h"
 #include "fresnel/core/error.h"
@@ -34,11 +36,44 @@ struct Job {
         int scene = -1;                     // scene index; -1 = the file's `scene`
         bool allow_external_files = false;  // URIs outside the model's folder (GltfLoadOptions)
         bool pose_skins = false;            // skinned meshes posed by their joints' rest transforms
+        // Several models composed into one scene (scene files): when not empty it replaces
+        // `model` and `scene`; each is loaded as `model` would be and put under a root node
+        // holding its transform (fresnel/scene/merge.h). Invisible models are not loaded.
+        struct MaterialOverride {
+            std::optional<std::string> name;  // the material of this name; neither name nor index: all
+            std::optional<int> index;         // the model's material N
+            std::optional<glm::vec4> base_color_factor;
+            std::optional<float> metallic_factor, roughness_factor;
+            std::optional<glm::vec3> emissive_factor;
+            std::optional<float> emissive_strength;
+            std::optional<AlphaMode> alpha_mode;
+            std::optional<float> alpha_cutoff;
+            std::optional<bool> double_sided;
+            std::optional<float> ior;
+            bool operator==(const MaterialOverride&) const = default;
+        };
+        struct Model {
+            std::string path;  // empty: the built-in demo
+            int scene = -1;
+            glm::mat4 transform{1.0f};
+            bool visible = true;
+            std::vector<MaterialOverride> materials;
+            bool operator==(const Model&) const = default;
+        };
+        std::vector<Model> models;
         bool operator==(const Source&) const = default;
     };
     // The orbit camera of README.md's camera convention, or the file's camera N.
     struct Camera {
         std::optional<int> scene_camera;  // set: the file's N-th camera (the orbit fields are unused)
+        int scene_camera_model = 0;       // with Source::models: whose file `scene_camera` counts in
+        // Set (and scene_camera not): a camera at `eye` looking at `target`, vertical FOV
+        // yfov_deg, near and far planes from the bounds as the orbit camera's.
+        struct LookAt {
+            glm::vec3 eye{0.0f, 0.0f, 1.0f}, target{0.0f}, up{0.0f, 1.0f, 0.0f};
+            bool operator==(const LookAt&) const = default;
+        };
+        std::optional<LookAt> look_at;
         float yaw_deg = 0.0f, pitch_deg = 0.0f;
         std::optional<float> distance_k;  // D = K * R; nullopt = fit the bounds
         float yfov_deg = 45.0f;
@@ -94,8 +129,13 @@ struct Job {
     bool operator==(const Job&) const = default;
 };
 
-// Loads the job's scene: its glTF file (warnings into `diag`; throws fresnel::Error) or the demo.
+// Loads the job's scene: its glTF file (warnings into `diag`; throws fresnel::Error) or the demo;
+// with Source::models, every visible model merged into one scene (load_models).
 Scene load_scene(const Job& job, Diagnostics& diag);
+
+// Source::models: each visible model loaded (through load_scene), its material overrides
+// applied, put under a root with its transform. Throws fresnel::Error (the model's file).
+Scene load_models(const Job& job, Diagnostics& diag);
 
 // Everything the renderer needs for one job on one scene.
 struct ResolvedJob {

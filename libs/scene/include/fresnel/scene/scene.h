@@ -122,6 +122,15 @@ struct Scene {
     std::vector<std::vector<int>> scenes;  // root nodes of each scene
     int default_scene = 0;                 // the file's `scene`, else 0
     std::vector<std::string> extensions_used, extensions_required;
+    // Set when several models were merged into this scene (append_model, fresnel/scene/merge.h):
+    // one entry per model, in order, saying where its nodes, cameras and materials start.
+    struct Part {
+        std::string source;
+        int root = -1;  // the node holding the model's transform; its children are the model's roots
+        int first_camera = 0, camera_count = 0;
+        int first_material = 0, material_count = 0;
+    };
+    std::vector<Part> parts;
 };
 
 // A node instance in the scene graph with its world matrix (rest pose).

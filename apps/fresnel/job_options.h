@@ -1,0 +1,97 @@
+#pragma once
+// The flags that describe a render job, shared by `render` (the job) and `batch` (every
+// job's defaults), and how they become a fresnel::Job. They are declared and documented once,
+// in render_command.cpp (add_job_flags).
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fresnel/render/job.h"
+
+namespace fresnel::cli {
+
+struct RenderOptions {
+    std::vector<std::string> models;  // render: glTF files, or one scene file; empty: the demo
+    std::string output;
+    int turntable = 0;       // render --turntable N
+    std::string video;       // render --video FILE.mp4
+    int fps = 24;
+    std::string size = "1024x768";
+    float yaw = 0, pitch = 0;
+    std::optional<float> distance;
+    float fov = 45.0f;
+    std::optional<int> camera;
+    int scene = -1;
+    std::string tonemap = "neutral";
+    float exposure = 0;
+    std::string encoding = "srgb";
+    std::string background;
+    std::vector<std::string> lights;
+    bool no_scene_lights = false;
+    int msaa = 4;
+    float anisotropy = 16;
+    std::string debug = "none";
+    bool json = false;
+    bool allow_external = false;
+    bool gl_debug = false;
+    std::string gl = "gl33";
+    bool pose_skins = false;
+    std::string env;
+    bool env_given = false;
+    float env_rotation = 0;
+    float env_intensity = 1;
+    bool no_ibl = false;
+    bool no_cache = false;
+    bool no_energy_compensation = false;
+    int env_samples = 1024;
+    int env_size = 256;
+};
+
+// Which flags apply. Without a command (`cmd` null) every flag does, defaults included: the
+// flags alone describe the job. With one, only those the user gave (CLI11's count()): they
+// override a scene file.
+// A flag the command does not take (JobFlagSet::Trace) counts as not given.
+struct GivenFlags {
+    const CLI::App* cmd = nullptr;
+    bool operator()(const char* name) const { return !cmd || explicitly(name); }
+    bool explicitly(const char* name) const {
+        const CLI::Option* opt = cmd ? cmd->get_option_no_throw(name) : nullptr;
+        return opt && opt->count() > 0;
+    }
+};
+
+// Which job flags a command takes: all of them (render, batch), or those that describe the
+// scene, camera, light and image but not the rasteriser (trace: no --msaa, --anisotropy,
+// --debug, --gl, --gl-debug, --env-samples, --env-size, --no-cache, --no-energy-compensation).
+enum class JobFlagSet { Raster, Trace };
+
+// Registers the job flags (all of render's but the model, -o, --turntable, --video, --fps and
+// --json) on `cmd`.
+void add_job_flags(CLI::App* cmd, RenderOptions& o, JobFlagSet set = JobFlagSet::Raster);
+
+// `job` with the given flags applied (the output's float/encoded choice is the caller's).
+// Usage errors are printed and give nullopt (exit 2), before any file is touched; a
+// malformed --env throws fresnel::Error (exit 1).
+std::optional<Job> job_from_options(const RenderOptions& o, Job job, const GivenFlags& given = {});
+
+// The context options the flags ask for (--gl, --gl-debug; debug builds always debug).
+struct ContextFlags {
+    bool debug = false;
+    bool es3 = false;
+};
+ContextFlags context_flags(const RenderOptions& o);
+
+// The job of a command line (render, trace): a scene file (the one model) read onto the
+// default job, then the flags the user gave; or the flags alone for models and the demo.
+// `output` is -o, else the scene file's "output". Usage errors are printed and give nullopt
+// (exit 2); a bad scene file throws fresnel::Error (exit 1).
+std::optional<Job> job_from_command(const RenderOptions& o, const CLI::App* cmd, Diagnostics& diag,
+                                    std::string& output);
+
+// Writes a rendered frame to `path` (.png 8-bit, .exr, .hdr) atomically: into a temporary
+// file in the same folder, renamed over `path` when complete. Throws fresnel::Error.
+void write_image_atomically(const std::string& path, const ImageF& image, bool transparent);
+
+
+}  // namespace fresnel::cli

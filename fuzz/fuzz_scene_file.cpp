@@ -1,0 +1,20 @@
+// libFuzzer target: scene files (*.fresnel.json) on arbitrary bytes, read onto a job as
+// `fresnel render` reads them (size and nesting limits, every key checked). Relative paths
+// resolve under a folder that does not exist, so no file is ever found.
+#include <cstddef>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string_view>
+
+#include "fresnel/render/scene_file.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    fresnel::Diagnostics diag;
+    try {
+        std::string_view text(reinterpret_cast<const char*>(data), size);
+        nlohmann::json doc = fresnel::parse_json_limited(text, "fuzz.fresnel.json");
+        (void)fresnel::parse_scene_document(doc, "fuzz.fresnel.json", "/nonexistent-fresnel-fuzz", fresnel::Job{}, diag);
+    } catch (const fresnel::Error&) {
+    }
+    return 0;
+}

@@ -1,0 +1,20 @@
+#pragma once
+// Several models in one scene: each model's scene graph goes under a root node of its own
+// that carries the model's transform, so a composition of models renders, frames (camera
+// convention) and lights as one scene. Used by jobs with several models (scene files).
+#include <glm/mat4x4.hpp>
+
+#include "fresnel/scene/scene.h"
+
+namespace fresnel {
+
+// An empty scene with one (empty) scene graph, ready for append_model.
+Scene make_composite_scene(std::string source);
+
+// Moves scene `scene_index` of `model` (-1: its default scene) into scene 0 of `dst`, under a
+// new root node whose local matrix is `transform`. Every index (meshes, materials, textures,
+// images, cameras, lights, nodes) is offset; `dst.parts` gains the model's entry. Returns its
+// index in `dst.parts`. Throws fresnel::Error when `scene_index` does not exist.
+int append_model(Scene& dst, Scene model, const glm::mat4& transform, int scene_index = -1);
+
+}  // namespace fresnel
