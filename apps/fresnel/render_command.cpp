@@ -41,6 +41,7 @@ struct RenderOptions {
     bool gl_debug = false;
     std::string gl = "gl33";
     bool pose_skins = false;
+    std::string variant;
     std::string env;
     bool env_given = false;
     float env_rotation = 0;
@@ -149,6 +150,7 @@ std::optional<Job> job_from_options(const RenderOptions& o) {
     job.source.scene = o.scene;
     job.source.allow_external_files = o.allow_external;
     job.source.pose_skins = o.pose_skins;
+    job.source.variant = o.variant;
 
     job.camera.scene_camera = o.camera;
     job.camera.yaw_deg = o.yaw;
@@ -317,6 +319,8 @@ Runner add_render_command(CLI::App& app) {
     cmd->add_flag("--pose-skins", o->pose_skins,
                   "Pose skinned meshes by their joints' rest transforms (default: the bind pose, as the Khronos "
                   "Sample Renderer's reference images show)");
+    cmd->add_option("--variant", o->variant,
+                    "KHR_materials_variants: render with the material variant NAME (`fresnel info` lists them)");
     return [o] { return run_render(*o); };
 }
 

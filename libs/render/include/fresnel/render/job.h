@@ -34,6 +34,7 @@ struct Job {
         int scene = -1;                     // scene index; -1 = the file's `scene`
         bool allow_external_files = false;  // URIs outside the model's folder (GltfLoadOptions)
         bool pose_skins = false;            // skinned meshes posed by their joints' rest transforms
+        std::string variant;                // KHR_materials_variants name; empty = the default materials
         bool operator==(const Source&) const = default;
     };
     // The orbit camera of README.md's camera convention, or the file's camera N.

@@ -39,4 +39,10 @@ Scene load_gltf_from_memory(std::span<const std::uint8_t> bytes, const std::stri
 // Extensions this loader understands (others in extensionsRequired are an error).
 const std::vector<std::string>& supported_gltf_extensions();
 
+// How fresnel handles an extension, for `fresnel info`: Supported (loaded and shaded),
+// ReadNotShaded (read into the material with its defaults, not shaded yet: warns),
+// Unsupported (ignored: warns; an error when required).
+enum class GltfExtensionSupport { Supported, ReadNotShaded, Unsupported };
+GltfExtensionSupport gltf_extension_support(const std::string& name);
+
 }  // namespace fresnel
