@@ -2,6 +2,8 @@
 // Shared by the decoder fuzz targets: wraps a JSON document and fuzzed bytes (the BIN
 // chunk) into a GLB and loads it the way fuzz_gltf does.
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -34,9 +36,19 @@ inline void load_glb(const nlohmann::json& j, const std::uint8_t* bin, std::size
     options.max_total_bytes = 256u << 20;
     options.image_limits.max_decoded_bytes = 64u << 20;
     options.threads = 1;
+    // FRESNEL_FUZZ_VERBOSE=1: say what each input became (to check that seeds reach the decoder).
+    static const bool verbose = std::getenv("FRESNEL_FUZZ_VERBOSE") != nullptr;
     try {
-        (void)load_gltf_from_memory(out, "fuzz.glb", "/nonexistent-fresnel-fuzz", diag, options);
-    } catch (const Error&) {
+        Scene s = load_gltf_from_memory(out, "fuzz.glb", "/nonexistent-fresnel-fuzz", diag, options);
+        if (verbose) {
+            std::size_t triangles = 0, pixels = 0;
+            for (const auto& m : s.meshes)
+                for (const auto& p : m.primitives) triangles += p.triangle_count();
+            for (const auto& i : s.images) pixels += std::size_t(i.pixels.width) * std::size_t(i.pixels.height);
+            std::fprintf(stderr, "loaded: %zu triangles, %zu pixels, %zu warnings\n", triangles, pixels, diag.lines().size());
+        }
+    } catch (const Error& e) {
+        if (verbose) std::fprintf(stderr, "error: %s\n", e.what());
     }
 }
 
