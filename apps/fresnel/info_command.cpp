@@ -21,6 +21,7 @@ int run_info(const InfoOptions& o) {
     GltfLoadOptions lo;
     lo.allow_external_files = o.allow_external;
     lo.decode_images = false;  // counts and bounds need no pixels
+    lo.require_supported_extensions = false;  // describe the file even so (and list them below)
     Scene scene = load_gltf(o.model, diag, lo);
     std::size_t primitives = 0, vertices = 0, triangles = 0;
     for (const auto& m : scene.meshes)

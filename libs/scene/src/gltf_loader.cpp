@@ -199,8 +199,11 @@ private:
         const auto& ok = supported_gltf_extensions();
         for (std::size_t i = 0; i < scene_.extensions_required.size(); ++i) {
             const auto& e = scene_.extensions_required[i];
-            if (std::find(ok.begin(), ok.end(), e) == ok.end())
-                r_.fail("/extensionsRequired/" + std::to_string(i), "required extension '" + e + "' is not supported");
+            if (std::find(ok.begin(), ok.end(), e) == ok.end()) {
+                std::string ptr = "/extensionsRequired/" + std::to_string(i);
+                if (opt_.require_supported_extensions) r_.fail(ptr, "required extension '" + e + "' is not supported");
+                warn(ptr, "required extension '" + e + "' is not supported; the file will not render as meant");
+            }
         }
         for (const auto& e : scene_.extensions_used)
             if (std::find(ok.begin(), ok.end(), e) == ok.end())

@@ -6,6 +6,7 @@ namespace fresnel::gltf {
 
 namespace {
 constexpr const char* kExt = "EXT_meshopt_compression";
+constexpr std::size_t kMaxRatio = 256;  // four times the codecs' largest expansion
 }
 
 bool is_meshopt_fallback_buffer(const JsonReader& r, const json& buffer) {
@@ -69,6 +70,12 @@ void decode_meshopt_views(const JsonReader& r, json& doc, std::vector<std::vecto
         if (decoded > view_length)
             fail(ptr + "/count", std::to_string(count) + " elements of " + std::to_string(stride) +
                                      " bytes do not fit the bufferView's byteLength " + std::to_string(view_length));
+        // No meshoptimizer stream expands more than 64:1 (vertex codec: 2 header bits per 16
+        // bytes; index codecs: a byte per triangle or index), so a small stream that claims
+        // a huge view is refused before the view is allocated.
+        if ((unsigned __int128)view_length > (unsigned __int128)length * kMaxRatio + 4096)
+            fail(vptr + "/byteLength", "a view of " + std::to_string(view_length) + " bytes cannot come from " +
+                                           std::to_string(length) + " compressed bytes");
         if (view_length > max_bytes)
             fail(vptr + "/byteLength", "decoded size " + std::to_string(view_length) + " is over the limit of " +
                                            std::to_string(max_bytes) + " bytes");

@@ -214,11 +214,23 @@ TEST(GltfMeshopt, WrongCountsAndParametersAreErrors) {
         std::string want = "/bufferViews/" + std::to_string(c.view) + "/extensions/EXT_meshopt_compression" + c.where;
         EXPECT_EQ(e.where(), want) << c.key << "=" << c.value << ": " << e.what();
     }
-    // A decoded size over the loader's limit is refused before it is allocated.
+    // A decoded size over what the stream can hold, or over the loader's limit, is refused
+    // before it is allocated.
     json j = f.j;
     j["bufferViews"][0]["byteLength"] = 1ull << 40;
     Error e = load_error(j, f.bin);
-    EXPECT_NE(e.reason().find("limit"), std::string::npos) << e.what();
+    EXPECT_EQ(e.where(), "/bufferViews/0/byteLength") << e.what();
+    EXPECT_NE(e.reason().find("cannot come from"), std::string::npos) << e.what();
+    GltfLoadOptions small;
+    small.max_total_bytes = f.j["buffers"][0]["byteLength"].get<std::size_t>() + 10;  // not the 48 decoded bytes
+    Diagnostics d;
+    try {
+        load(f.j, f.bin, d, small);
+        ADD_FAILURE();
+    } catch (const Error& e2) {
+        EXPECT_EQ(e2.where(), "/bufferViews/0") << e2.what();
+        EXPECT_NE(e2.reason().find("limit"), std::string::npos) << e2.what();
+    }
 }
 
 // ---- KHR_draco_mesh_compression ------------------------------------------------------

@@ -20,6 +20,9 @@ struct GltfLoadOptions {
     int max_node_depth = 1024;
     ImageLimits image_limits{};
     bool decode_images = true;  // false: skip texture decoding (fresnel info)
+    // false (fresnel info): an unsupported extension in extensionsRequired is a warning, not
+    // an error, so the file can still be described.
+    bool require_supported_extensions = true;
     // Pose skinned meshes by their joints' rest transforms (joint world x inverse bind).
     // Off by default: skinned meshes are drawn in their bind pose with the node's matrix,
     // which is what the Khronos Sample Renderer's reference images show.
