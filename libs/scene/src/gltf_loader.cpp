@@ -400,8 +400,9 @@ private:
             const json& ext = r_.object(t, "extensions", ptr);
             std::string ep = ptr + "/extensions/";
             if (const json* w = r_.find(ext, "EXT_texture_webp")) {
-                int src = r_.index(*w, "source", ep + "EXT_texture_webp", scene_.images.size(), "image", true);
-                if (scene_.images[std::size_t(src)].valid() || !opt_.decode_images || out.image < 0) out.image = src;
+                int src = r_.index(*w, "source", ep + "EXT_texture_webp", scene_.images.size(), "image");
+                if (src < 0) warn(ep + "EXT_texture_webp", "EXT_texture_webp: no source; using the core source");
+                else if (scene_.images[std::size_t(src)].valid() || !opt_.decode_images || out.image < 0) out.image = src;
                 else warn(ep + "EXT_texture_webp", "EXT_texture_webp: image " + std::to_string(src) +
                                                        " is not usable; using the core source");
             }
