@@ -47,7 +47,9 @@ $(ASAN_BUILD)/CMakeCache.txt:
 
 # Only what the sanitizer tests need: the loaders' unit tests, the CLI (corpus and
 # hostile-input tests) and the fuzz-regression replayers.
-ASAN_TARGETS := core_test scene_test mesh_ops_test scene_file_test fresnel replay_gltf replay_image replay_hdr replay_exr replay_scene_file
+ASAN_TARGETS := core_test scene_test obj_loader_test gltf_compressed_test mesh_ops_test scene_file_test fresnel \
+                replay_gltf replay_obj replay_image replay_hdr replay_exr replay_scene_file replay_meshopt \
+                replay_draco replay_webp
 asan: $(ASAN_BUILD)/CMakeCache.txt
 	@grep -qx 'FRESNEL_WERROR:BOOL=$(FRESNEL_WERROR)' $(ASAN_BUILD)/CMakeCache.txt || cmake -S . -B $(ASAN_BUILD) -DFRESNEL_WERROR=$(FRESNEL_WERROR)
 	cmake --build $(ASAN_BUILD) -j $(JOBS) --target $(ASAN_TARGETS)

@@ -1,4 +1,5 @@
 // `fresnel info MODEL [--json]`: what a model holds, without rendering it.
+#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -76,6 +77,7 @@ int run_info(const InfoOptions& o) {
         GltfLoadOptions lo;
         lo.allow_external_files = o.allow_external;
         lo.decode_images = false;
+        lo.require_supported_extensions = false;  // describe the file even so (and list them below)
         scene = load_gltf(o.model, diag, lo);
     }
     std::size_t primitives = 0, vertices = 0, triangles = 0;
@@ -106,6 +108,22 @@ int run_info(const InfoOptions& o) {
     }
     j["extensions_used"] = scene.extensions_used;
     j["extensions_required"] = scene.extensions_required;
+    // Every extension the file names, with how fresnel handles it.
+    std::vector<std::string> all = scene.extensions_used;
+    for (const auto& e : scene.extensions_required)
+        if (std::find(all.begin(), all.end(), e) == all.end()) all.push_back(e);
+    j["extensions"] = nlohmann::json::array();
+    for (const auto& e : all) {
+        auto s = gltf_extension_support(e);
+        bool required = std::find(scene.extensions_required.begin(), scene.extensions_required.end(), e) !=
+                        scene.extensions_required.end();
+        j["extensions"].push_back({{"name", e},
+                                   {"required", required},
+                                   {"support", s == GltfExtensionSupport::Supported       ? "supported"
+                                               : s == GltfExtensionSupport::ReadNotShaded ? "read, not shaded"
+                                                                                          : "not supported"}});
+    }
+    j["variants"] = scene.material_variants;
     j["warnings"] = diag.lines();
     if (o.json) {
         std::printf("%s\n", j.dump(2).c_str());
@@ -126,6 +144,13 @@ int run_info(const InfoOptions& o) {
     };
     std::printf("  %-11s %s\n", "extensions", list(scene.extensions_used).c_str());
     std::printf("  %-11s %s\n", "required", list(scene.extensions_required).c_str());
+    for (const auto& e : j["extensions"]) {
+        std::string support = e["support"].get<std::string>();
+        std::printf("  %-11s %s%s: %s%s\n", "extension", e["name"].get<std::string>().c_str(),
+                    e["required"].get<bool>() ? " (required)" : "", support == "supported" ? "" : "warning: ",
+                    support.c_str());
+    }
+    if (!scene.material_variants.empty()) std::printf("  %-11s %s\n", "variants", list(scene.material_variants).c_str());
     return kExitOk;
 }
 }  // namespace

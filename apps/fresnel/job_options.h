@@ -37,6 +37,7 @@ struct RenderOptions {
     bool gl_debug = false;
     std::string gl = "gl33";
     bool pose_skins = false;
+    std::string variant;  // KHR_materials_variants name; empty = the default materials
     std::string env;
     bool env_given = false;
     float env_rotation = 0;

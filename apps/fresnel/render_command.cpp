@@ -117,6 +117,7 @@ std::optional<Job> job_from_options(const RenderOptions& o, Job job, const Given
     if (given("--scene")) job.source.scene = o.scene;
     if (given("--allow-external-files")) job.source.allow_external_files = o.allow_external;
     if (given("--pose-skins")) job.source.pose_skins = o.pose_skins;
+    if (given("--variant")) job.source.variant = o.variant;
 
     // A camera flag given on the command line replaces a scene file's camera.
     Job::Camera& cam = job.camera;
@@ -496,6 +497,8 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
     cmd->add_flag("--pose-skins", o->pose_skins,
                   "Pose skinned meshes by their joints' rest transforms (default: the bind pose, as the Khronos "
                   "Sample Renderer's reference images show)");
+    cmd->add_option("--variant", o->variant,
+                    "KHR_materials_variants: render with the material variant NAME (`fresnel info` lists them)");
 }
 
 }  // namespace fresnel::cli

@@ -26,7 +26,9 @@ Scene load_scene(const Job& job, Diagnostics& diag) {
     GltfLoadOptions lo;
     lo.allow_external_files = job.source.allow_external_files;
     lo.pose_skins = job.source.pose_skins;
-    return load_gltf(job.source.model, diag, lo);
+    Scene scene = load_gltf(job.source.model, diag, lo);
+    if (!job.source.variant.empty()) apply_material_variant(scene, find_material_variant(scene, job.source.variant));
+    return scene;
 }
 
 ResolvedJob resolve(const Job& job, const Scene& scene) {

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <map>
 
+#include "draco_decoder.h"
 #include "fresnel/scene/mesh_ops.h"
 
 namespace fresnel::gltf {
@@ -33,8 +35,15 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
     p.material = r.index(prim, "material", ptr, materials.size(), "material");
     const json& attrs = r.object(prim, "attributes", ptr);
     std::string ap = ptr + "/attributes";
-    if (r.has(prim, "extensions") && r.has(r.object(prim, "extensions", ptr), "KHR_draco_mesh_compression"))
-        { warn(ptr, "Draco-compressed primitive is not supported; skipped"); return std::nullopt; }
+    // KHR_draco_mesh_compression: the accessors it names read the decoded mesh instead.
+    std::map<int, AccessorData> decoded;
+    if (const json* draco = r.find(r.object(prim, "extensions", ptr), "KHR_draco_mesh_compression"))
+        decoded = decode_draco_primitive(r, prim, *draco, ptr + "/extensions/KHR_draco_mesh_compression", accessors,
+                                         max_vertices);
+    auto read = [&](int index) {
+        auto it = decoded.find(index);
+        return it != decoded.end() ? it->second : accessors.read(index);
+    };
     int pos_index = r.index(attrs, "POSITION", ap, accessors.accessor_count(), "accessor");
     if (pos_index < 0) {
         warn(ap, "primitive has no POSITION; skipped");
@@ -60,7 +69,7 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
         int idx = r.index(attrs, name, ap, accessors.accessor_count(), "accessor");
         if (idx < 0) return std::nullopt;
         std::string where = ap + "/" + name;
-        AccessorData d = accessors.read(idx);
+        AccessorData d = read(idx);
         if (std::find(allowed_components.begin(), allowed_components.end(), d.components) == allowed_components.end())
             r.fail(where, std::string("accessor ") + std::to_string(idx) + " has the wrong type for " + name);
         // KHR_mesh_quantization also allows non-normalized 8/16-bit texture coordinates.
@@ -135,7 +144,7 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
     bool indexed = false;
     int iidx = r.index(prim, "indices", ptr, accessors.accessor_count(), "accessor");
     if (iidx >= 0) {
-        AccessorData d = accessors.read(iidx);
+        AccessorData d = read(iidx);
         if (d.components != 1 || (d.component_type != 5121 && d.component_type != 5123 && d.component_type != 5125))
             r.fail(ptr + "/indices", "indices must be SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
         indices.resize(d.count);

@@ -18,7 +18,9 @@
 #include "fresnel/scene/mesh_ops.h"
 #include "geometry.h"
 #include "json_reader.h"
+#include "meshopt_decoder.h"
 #include "uri_policy.h"
+#include "webp_decoder.h"
 
 namespace fresnel {
 namespace fs = std::filesystem;
@@ -30,8 +32,25 @@ const std::vector<std::string>& supported_gltf_extensions() {
         "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform",
         "KHR_materials_unlit", "KHR_mesh_quantization", "KHR_materials_ior", "KHR_materials_specular",
         "KHR_materials_pbrSpecularGlossiness", "KHR_materials_clearcoat",
+        "EXT_meshopt_compression", "KHR_draco_mesh_compression", "EXT_texture_webp", "KHR_materials_variants",
     };
     return list;
+}
+
+const std::vector<std::string>& parsed_unshaded_gltf_extensions() {
+    static const std::vector<std::string> list = {
+        "KHR_materials_sheen", "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_iridescence",
+        "KHR_materials_anisotropy", "KHR_materials_dispersion", "KHR_materials_diffuse_transmission",
+    };
+    return list;
+}
+
+GltfExtensionSupport gltf_extension_support(const std::string& name) {
+    const auto& ok = supported_gltf_extensions();
+    if (std::find(ok.begin(), ok.end(), name) != ok.end()) return GltfExtensionSupport::Supported;
+    const auto& parsed = parsed_unshaded_gltf_extensions();
+    if (std::find(parsed.begin(), parsed.end(), name) != parsed.end()) return GltfExtensionSupport::ReadNotShaded;
+    return GltfExtensionSupport::Unsupported;
 }
 
 namespace {
@@ -115,6 +134,9 @@ public:
         check_asset();
         check_extensions();
         load_buffers(glb ? &parts : nullptr);
+        gltf::decode_meshopt_views(r_, doc_, buffers_, opt_.max_file_bytes,
+                                   [this](std::size_t n, const std::string& ptr) { account(n, ptr); });
+        load_variants();
         gltf::AccessorDecoder accessors(r_, doc_, buffers_, opt_.max_vertices * 16);
         load_images(accessors);
         load_samplers_and_textures();
@@ -177,8 +199,11 @@ private:
         const auto& ok = supported_gltf_extensions();
         for (std::size_t i = 0; i < scene_.extensions_required.size(); ++i) {
             const auto& e = scene_.extensions_required[i];
-            if (std::find(ok.begin(), ok.end(), e) == ok.end())
-                r_.fail("/extensionsRequired/" + std::to_string(i), "required extension '" + e + "' is not supported");
+            if (std::find(ok.begin(), ok.end(), e) == ok.end()) {
+                std::string ptr = "/extensionsRequired/" + std::to_string(i);
+                if (opt_.require_supported_extensions) r_.fail(ptr, "required extension '" + e + "' is not supported");
+                warn(ptr, "required extension '" + e + "' is not supported; the file will not render as meant");
+            }
         }
         for (const auto& e : scene_.extensions_used)
             if (std::find(ok.begin(), ok.end(), e) == ok.end())
@@ -207,11 +232,19 @@ private:
         // Buffers no bufferView uses are never read: a missing or refused URI there is a warning only.
         std::vector<bool> used(arr.size(), false);
         const json& views = r_.array(doc_, "bufferViews", "");
-        for (const auto& v : views)
+        auto mark = [&](const json& v) {
             if (v.is_object() && v.contains("buffer") && v["buffer"].is_number()) {
                 double b = v["buffer"].get<double>();
                 if (b >= 0 && b < double(arr.size())) used[std::size_t(b)] = true;
             }
+        };
+        for (const auto& v : views) {
+            mark(v);
+            // EXT_meshopt_compression reads its own buffer.
+            if (v.is_object() && v.contains("extensions") && v["extensions"].is_object() &&
+                v["extensions"].contains("EXT_meshopt_compression"))
+                mark(v["extensions"]["EXT_meshopt_compression"]);
+        }
         buffers_.resize(arr.size());
         for (std::size_t i = 0; i < arr.size(); ++i) {
             std::string ptr = "/buffers/" + std::to_string(i);
@@ -222,6 +255,7 @@ private:
                 r_.fail(ptr + "/byteLength", "buffer of " + std::to_string(length) + " bytes is over the limit");
             if (!r_.has(b, "uri")) {
                 if (!glb || i != 0) {
+                    if (gltf::is_meshopt_fallback_buffer(r_, b)) continue;  // its views decode from another buffer
                     // A placeholder (data supplied by an extension we lack): an error only if an accessor reads it.
                     warn(ptr, "buffer has no uri; its data is not available");
                     continue;
@@ -262,6 +296,9 @@ private:
             if (!img.is_object()) r_.fail(ptr, "must be an object");
             SceneImage& out = scene_.images[i];
             out.name = r_.string(img, "name", ptr);
+            // KHR_texture_basisu: no Basis Universal transcoder in Debian 12; its textures
+            // fall back to their core source (load_samplers_and_textures warns).
+            if (uses("KHR_texture_basisu") && r_.string(img, "mimeType", ptr) == "image/ktx2") continue;
             bool has_uri = r_.has(img, "uri"), has_view = r_.has(img, "bufferView");
             if (has_uri && has_view) r_.fail(ptr, "has both uri and bufferView");
             if (has_uri) {
@@ -303,7 +340,10 @@ private:
             [&](std::size_t i) {
                 if (encoded[i].empty()) return;
                 try {
-                    scene_.images[i].pixels = decode_image8(encoded[i], scene_.images[i].name, opt_.image_limits);
+                    scene_.images[i].pixels =
+                        gltf::is_webp(encoded[i])
+                            ? gltf::decode_webp(encoded[i], scene_.images[i].name, opt_.image_limits)
+                            : decode_image8(encoded[i], scene_.images[i].name, opt_.image_limits);
                 } catch (const Error& e) {
                     errors[i] = e.reason();
                 }
@@ -357,7 +397,25 @@ private:
             if (!t.is_object()) r_.fail(ptr, "must be an object");
             Texture out;
             out.image = r_.index(t, "source", ptr, scene_.images.size(), "image");
-            if (out.image < 0) warn(ptr, "texture has no supported image source; using a neutral texture");
+            const json& ext = r_.object(t, "extensions", ptr);
+            std::string ep = ptr + "/extensions/";
+            if (const json* w = r_.find(ext, "EXT_texture_webp")) {
+                int src = r_.index(*w, "source", ep + "EXT_texture_webp", scene_.images.size(), "image");
+                if (src < 0) warn(ep + "EXT_texture_webp", "EXT_texture_webp: no source; using the core source");
+                else if (scene_.images[std::size_t(src)].valid() || !opt_.decode_images || out.image < 0) out.image = src;
+                else warn(ep + "EXT_texture_webp", "EXT_texture_webp: image " + std::to_string(src) +
+                                                       " is not usable; using the core source");
+            }
+            if (r_.find(ext, "KHR_texture_basisu")) {
+                if (out.image >= 0)
+                    warn(ep + "KHR_texture_basisu", "KHR_texture_basisu: no Basis Universal decoder in this build; "
+                                                    "using the texture's core source");
+                else
+                    warn(ep + "KHR_texture_basisu", "KHR_texture_basisu: no Basis Universal decoder in this build and "
+                                                    "no core source; using a neutral texture");
+            } else if (out.image < 0) {
+                warn(ptr, "texture has no supported image source; using a neutral texture");
+            }
             int s = r_.index(t, "sampler", ptr, samplers_.size(), "sampler");
             if (s >= 0) out.sampler = samplers_[std::size_t(s)];
             scene_.textures.push_back(out);
@@ -570,9 +628,49 @@ private:
                 std::string pptr = ptr + "/primitives/" + std::to_string(p);
                 auto prim = gltf::build_primitive(r_, prims[p], pptr, accessors, scene_.materials, opt_.max_vertices,
                                                   uses("KHR_mesh_quantization"), weights, diag_);
-                if (prim) mesh.primitives.push_back(std::move(*prim));
+                if (prim) {
+                    load_variant_mappings(prims[p], pptr, *prim);
+                    mesh.primitives.push_back(std::move(*prim));
+                }
             }
             scene_.meshes.push_back(std::move(mesh));
+        }
+    }
+
+    // KHR_materials_variants: the variant names (root) and each primitive's mappings.
+    void load_variants() {
+        const json& ext = r_.object(doc_, "extensions", "");
+        const json* v = r_.find(ext, "KHR_materials_variants");
+        if (!v) return;
+        std::string ptr = "/extensions/KHR_materials_variants";
+        if (!v->is_object()) r_.fail(ptr, "must be an object");
+        const json& arr = r_.array(*v, "variants", ptr);
+        for (std::size_t i = 0; i < arr.size(); ++i) {
+            std::string vp = ptr + "/variants/" + std::to_string(i);
+            if (!arr[i].is_object()) r_.fail(vp, "must be an object");
+            std::string name = r_.string(arr[i], "name", vp);
+            if (name.empty()) r_.fail(vp + "/name", "KHR_materials_variants: a variant needs a name");
+            scene_.material_variants.push_back(name);
+        }
+    }
+
+    void load_variant_mappings(const json& prim, const std::string& pptr, Primitive& out) {
+        const json& ext = r_.object(prim, "extensions", pptr);
+        const json* v = r_.find(ext, "KHR_materials_variants");
+        if (!v) return;
+        std::string ptr = pptr + "/extensions/KHR_materials_variants";
+        const json& maps = r_.array(*v, "mappings", ptr);
+        out.variant_materials.assign(scene_.material_variants.size(), -1);
+        for (std::size_t m = 0; m < maps.size(); ++m) {
+            std::string mp = ptr + "/mappings/" + std::to_string(m);
+            if (!maps[m].is_object()) r_.fail(mp, "must be an object");
+            int material = r_.index(maps[m], "material", mp, scene_.materials.size(), "material", true);
+            const json& vars = r_.array(maps[m], "variants", mp);
+            for (std::size_t k = 0; k < vars.size(); ++k) {
+                int var = r_.index_value(vars[k], mp + "/variants/" + std::to_string(k), scene_.material_variants.size(),
+                                         "variant");
+                out.variant_materials[std::size_t(var)] = material;
+            }
         }
     }
 

@@ -61,6 +61,7 @@ struct Job {
             bool operator==(const Model&) const = default;
         };
         std::vector<Model> models;
+        std::string variant;                // KHR_materials_variants name; empty = the default materials
         bool operator==(const Source&) const = default;
     };
     // The orbit camera of README.md's camera convention, or the file's camera N.

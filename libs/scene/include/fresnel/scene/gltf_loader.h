@@ -20,6 +20,9 @@ struct GltfLoadOptions {
     int max_node_depth = 1024;
     ImageLimits image_limits{};
     bool decode_images = true;  // false: skip texture decoding (fresnel info)
+    // false (fresnel info): an unsupported extension in extensionsRequired is a warning, not
+    // an error, so the file can still be described.
+    bool require_supported_extensions = true;
     // Pose skinned meshes by their joints' rest transforms (joint world x inverse bind).
     // Off by default: skinned meshes are drawn in their bind pose with the node's matrix,
     // which is what the Khronos Sample Renderer's reference images show.
@@ -38,5 +41,11 @@ Scene load_gltf_from_memory(std::span<const std::uint8_t> bytes, const std::stri
 
 // Extensions this loader understands (others in extensionsRequired are an error).
 const std::vector<std::string>& supported_gltf_extensions();
+
+// How fresnel handles an extension, for `fresnel info`: Supported (loaded and shaded),
+// ReadNotShaded (read into the material with its defaults, not shaded yet: warns),
+// Unsupported (ignored: warns; an error when required).
+enum class GltfExtensionSupport { Supported, ReadNotShaded, Unsupported };
+GltfExtensionSupport gltf_extension_support(const std::string& name);
 
 }  // namespace fresnel

@@ -66,6 +66,9 @@ struct Primitive {
     // The POSITION accessor's min/max (used by the camera convention); falls back to the data.
     glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
     std::size_t source_vertex_count = 0;  // the POSITION accessor's count, before any re-indexing
+    // KHR_materials_variants: the material of each of Scene::material_variants for this
+    // primitive (-1: none mapped, keep `material`); empty when the primitive has no mappings.
+    std::vector<int> variant_materials;
     bool generated_normals = false;
     bool generated_tangents = false;
     std::size_t vertex_count() const { return positions.size(); }
@@ -131,7 +134,16 @@ struct Scene {
         int first_material = 0, material_count = 0;
     };
     std::vector<Part> parts;
+    std::vector<std::string> material_variants;  // KHR_materials_variants names, in file order
 };
+
+// KHR_materials_variants. The index of the variant called `name`; throws fresnel::Error
+// (file: scene.source) listing the known variants when there is none of that name.
+int find_material_variant(const Scene& scene, const std::string& name);
+// Gives every primitive the material variant `variant` maps it to (others keep theirs),
+// generating tangents where the new material's normal map needs them. Not undoable:
+// keep a copy of the scene to switch back.
+void apply_material_variant(Scene& scene, int variant);
 
 // A node instance in the scene graph with its world matrix (rest pose).
 struct NodeInstance {

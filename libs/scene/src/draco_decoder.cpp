@@ -1,0 +1,126 @@
+#include "draco_decoder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <draco/compression/decode.h>
+#include <draco/mesh/mesh.h>
+
+namespace fresnel::gltf {
+
+namespace {
+constexpr const char* kExt = "KHR_draco_mesh_compression";
+
+// The accessor's normalization of an integer read as a double (glTF 2.0, 3.11).
+double normalize(double v, int ctype) {
+    switch (ctype) {
+        case 5120: return std::max(v / 127.0, -1.0);
+        case 5121: return v / 255.0;
+        case 5122: return std::max(v / 32767.0, -1.0);
+        case 5123: return v / 65535.0;
+        default: return v;
+    }
+}
+}  // namespace
+
+std::map<int, AccessorData> decode_draco_primitive(const JsonReader& r, const json& prim, const json& ext,
+                                                   const std::string& ptr, const AccessorDecoder& accessors,
+                                                   std::size_t max_vertices) {
+    auto fail = [&](const std::string& where, const std::string& what) -> void {
+        r.fail(where, std::string(kExt) + ": " + what);
+    };
+    if (!ext.is_object()) fail(ptr, "must be an object");
+    int view = r.index(ext, "bufferView", ptr, std::numeric_limits<std::size_t>::max(), "bufferView", true);
+    const json& attrs = r.object(ext, "attributes", ptr);
+    if (attrs.empty()) fail(ptr + "/attributes", "names no attribute");
+    const json& prim_attrs = r.object(prim, "attributes", "");
+
+    // What the accessors promise, checked before anything is decoded.
+    struct Want {
+        std::string name;
+        int accessor = -1, unique_id = -1;
+        AccessorData shape;
+    };
+    std::vector<Want> wants;
+    std::size_t points = 0;
+    for (auto it = attrs.begin(); it != attrs.end(); ++it) {
+        Want w;
+        w.name = it.key();
+        std::string ap = ptr + "/attributes/" + w.name;
+        w.unique_id = int(r.integer(attrs, w.name.c_str(), ptr + "/attributes", 0, 0, INT32_MAX, true));
+        w.accessor = r.index(prim_attrs, w.name.c_str(), ptr, accessors.accessor_count(), "accessor");
+        if (w.accessor < 0) fail(ap, "attribute " + w.name + " is not among the primitive's attributes");
+        accessors.describe(w.accessor, w.shape.components, w.shape.component_type, w.shape.normalized, w.shape.count);
+        if (w.shape.count > max_vertices)
+            fail(ap, "accessor " + std::to_string(w.accessor) + " has " + std::to_string(w.shape.count) +
+                         " elements, over the limit of " + std::to_string(max_vertices));
+        if (points && w.shape.count != points)
+            fail(ap, "accessor " + std::to_string(w.accessor) + " has " + std::to_string(w.shape.count) +
+                         " elements, the others " + std::to_string(points));
+        points = w.shape.count;
+        wants.push_back(std::move(w));
+    }
+    int iacc = r.index(prim, "indices", ptr, accessors.accessor_count(), "accessor");
+    AccessorData ishape;
+    if (iacc >= 0) {
+        accessors.describe(iacc, ishape.components, ishape.component_type, ishape.normalized, ishape.count);
+        if (ishape.components != 1) fail(ptr, "indices accessor " + std::to_string(iacc) + " must be SCALAR");
+        if (ishape.count > max_vertices * 3) fail(ptr, "indices accessor has too many elements");
+    }
+
+    auto bytes = accessors.view_bytes(view, ptr + "/bufferView");
+    draco::DecoderBuffer buffer;
+    buffer.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
+    if (!type.ok()) fail(ptr + "/bufferView", "not a Draco stream (" + type.status().error_msg_string() + ")");
+    if (type.value() != draco::TRIANGULAR_MESH) fail(ptr + "/bufferView", "the Draco stream is not a triangle mesh");
+    draco::Decoder decoder;
+    auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
+    if (!decoded.ok()) fail(ptr + "/bufferView", "cannot decode: " + decoded.status().error_msg_string());
+    const draco::Mesh& mesh = *decoded.value();
+
+    if (mesh.num_points() != points)
+        fail(ptr, "the Draco mesh has " + std::to_string(mesh.num_points()) + " points, the accessors " +
+                      std::to_string(points));
+    std::map<int, AccessorData> out;
+    for (const Want& w : wants) {
+        std::string ap = ptr + "/attributes/" + w.name;
+        const draco::PointAttribute* a = mesh.GetAttributeByUniqueId(std::uint32_t(w.unique_id));
+        if (!a) fail(ap, "the Draco mesh has no attribute with id " + std::to_string(w.unique_id));
+        if (a->num_components() != w.shape.components)
+            fail(ap, "the Draco attribute has " + std::to_string(int(a->num_components())) + " components, accessor " +
+                         std::to_string(w.accessor) + " " + std::to_string(w.shape.components));
+        AccessorData d = w.shape;
+        d.values.assign(points * std::size_t(d.components), 0.0);
+        bool integral = a->data_type() != draco::DT_FLOAT32 && a->data_type() != draco::DT_FLOAT64;
+        bool normalize_here = w.shape.normalized && integral && !a->normalized();
+        for (std::size_t i = 0; i < points; ++i) {
+            draco::AttributeValueIndex v = a->mapped_index(draco::PointIndex(std::uint32_t(i)));
+            if (v.value() >= a->size()) fail(ap, "the Draco attribute maps point " + std::to_string(i) + " out of range");
+            double* dst = &d.values[i * std::size_t(d.components)];
+            if (!a->ConvertValue<double>(v, std::int8_t(d.components), dst))
+                fail(ap, "the Draco attribute's values cannot be read as accessor " + std::to_string(w.accessor) + "'s");
+            for (int c = 0; c < d.components; ++c) {
+                if (normalize_here) dst[c] = normalize(dst[c], d.component_type);
+            }
+        }
+        out[w.accessor] = std::move(d);
+    }
+    if (iacc >= 0) {
+        std::size_t faces = mesh.num_faces();
+        if (faces * 3 != ishape.count)
+            fail(ptr, "the Draco mesh has " + std::to_string(faces) + " triangles, indices accessor " +
+                          std::to_string(iacc) + " " + std::to_string(ishape.count) + " indices");
+        AccessorData d = ishape;
+        d.values.resize(faces * 3);
+        for (std::size_t f = 0; f < faces; ++f) {
+            const auto& face = mesh.face(draco::FaceIndex(std::uint32_t(f)));
+            for (int k = 0; k < 3; ++k) d.values[f * 3 + std::size_t(k)] = double(face[k].value());
+        }
+        out[iacc] = std::move(d);
+    }
+    return out;
+}
+
+}  // namespace fresnel::gltf
