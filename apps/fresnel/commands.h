@@ -12,5 +12,7 @@ Runner add_render_command(CLI::App& app);
 Runner add_info_command(CLI::App& app);
 Runner add_bake_command(CLI::App& app);
 Runner add_compare_command(CLI::App& app);
+Runner add_fit_command(CLI::App& app);
+Runner add_convert_command(CLI::App& app);
 
 }  // namespace fresnel::cli

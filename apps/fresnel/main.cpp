@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
     auto info = fresnel::cli::add_info_command(app);
     auto bake = fresnel::cli::add_bake_command(app);
     auto compare = fresnel::cli::add_compare_command(app);
+    auto fit = fresnel::cli::add_fit_command(app);
+    auto convert = fresnel::cli::add_convert_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -29,6 +31,8 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("info")) return info();
         if (app.got_subcommand("bake")) return bake();
         if (app.got_subcommand("compare")) return compare();
+        if (app.got_subcommand("fit")) return fit();
+        if (app.got_subcommand("convert")) return convert();
     } catch (const fresnel::Error& e) {
         fresnel::cli::print_error(e);
         return fresnel::cli::kExitBadInput;
