@@ -68,11 +68,29 @@ void to_metallic_roughness_all(Scene& scene, Diagnostics& d, const std::string& 
     }
 }
 
-// PBR materials -> fitted Phong values in Material::phong (for the OBJ writer).
+// The mean of one channel of a texture (1 without a readable one).
+float texture_mean(const Scene& scene, const TextureSlot& slot, int channel) {
+    if (!slot.valid() || std::size_t(slot.texture) >= scene.textures.size()) return 1.0f;
+    int image = scene.textures[std::size_t(slot.texture)].image;
+    if (image < 0 || std::size_t(image) >= scene.images.size() || !scene.images[std::size_t(image)].valid()) return 1.0f;
+    const Image8& img = scene.images[std::size_t(image)].pixels;
+    double sum = 0.0;
+    std::size_t n = std::size_t(img.width) * std::size_t(img.height);
+    for (std::size_t i = 0; i < n; ++i) sum += img.pixels[i * 4 + std::size_t(channel)];
+    return n ? float(sum / double(n) / 255.0) : 1.0f;
+}
+
+// PBR materials -> fitted Phong values in Material::phong (for the OBJ writer). A
+// metallic-roughness texture enters through its mean (OBJ/MTL has no per-texel Ns); the base
+// colour texture stays map_Kd, which modulates the fitted Kd as the base colour factor did.
 void fit_pbr_materials(Scene& scene, bool quiet) {
     for (Material& m : scene.materials) {
         if (m.phong) continue;  // from an OBJ: keep its own values
         fit::Pbr pbr = fit::from_material(m);
+        pbr.metallic *= texture_mean(scene, m.metallic_roughness, 2);
+        pbr.roughness *= texture_mean(scene, m.metallic_roughness, 1);
+        m.metallic_factor = pbr.metallic;  // what the MTL's Pm / Pr say (no map_Pm / map_Pr is written)
+        m.roughness_factor = pbr.roughness;
         fit::PbrToPhong f = fit::fit_pbr_to_phong(pbr);
         PhongExt p;
         p.diffuse = f.phong.kd;

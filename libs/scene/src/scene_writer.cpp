@@ -127,7 +127,7 @@ bool slot_ok(const TextureSlot& s, const Scene& scene) {
            scene.images[std::size_t(scene.textures[std::size_t(s.texture)].image)].valid();
 }
 
-json material_json(const Material& m, const Scene& scene, GltfBuilder& b) {
+json material_json(const Material& m, const Scene& scene, GltfBuilder& b, bool has_tangents) {
     json j = json::object();
     if (!m.name.empty()) j["name"] = m.name;
     int nt = int(scene.textures.size());
@@ -189,7 +189,9 @@ json material_json(const Material& m, const Scene& scene, GltfBuilder& b) {
         if (slot_ok(c.clearcoat_texture, scene)) e["clearcoatTexture"] = b.texture_info(c.clearcoat_texture, nt);
         if (slot_ok(c.clearcoat_roughness_texture, scene))
             e["clearcoatRoughnessTexture"] = b.texture_info(c.clearcoat_roughness_texture, nt);
-        if (slot_ok(c.clearcoat_normal_texture, scene)) {
+        // Without tangents (a coat normal map but no base normal map, so the loader made none),
+        // the map would be invalid glTF: it is dropped (write_gltf warns).
+        if (slot_ok(c.clearcoat_normal_texture, scene) && has_tangents) {
             e["clearcoatNormalTexture"] = b.texture_info(c.clearcoat_normal_texture, nt);
             if (c.clearcoat_normal_scale != 1.0f) e["clearcoatNormalTexture"]["scale"] = c.clearcoat_normal_scale;
         }
@@ -257,7 +259,18 @@ void write_gltf(const Scene& scene, const fs::path& path, Diagnostics& diagnosti
         textures.push_back(tex);
     }
     json materials = json::array();
-    for (const Material& m : scene.materials) materials.push_back(material_json(m, scene, b));
+    std::vector<bool> tangents(scene.materials.size(), true);
+    for (const Mesh& mesh : scene.meshes)
+        for (const Primitive& p : mesh.primitives)
+            if (p.material >= 0 && std::size_t(p.material) < tangents.size() && p.tangents.size() != p.positions.size())
+                tangents[std::size_t(p.material)] = false;
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        const Material& m = scene.materials[i];
+        if (!tangents[i] && m.has_clearcoat() && slot_ok(m.clearcoat->clearcoat_normal_texture, scene) && !slot_ok(m.normal, scene))
+            diagnostics.warn(path.string(), "/materials/" + std::to_string(i),
+                             "clearcoatNormalTexture dropped: the mesh has no tangents");
+        materials.push_back(material_json(m, scene, b, tangents[i]));
+    }
 
     json meshes = json::array();
     for (const Mesh& mesh : scene.meshes) {
@@ -268,7 +281,7 @@ void write_gltf(const Scene& scene, const fs::path& path, Diagnostics& diagnosti
             json attrs;
             attrs["POSITION"] = b.accessor(p.positions, 3, "VEC3", true, 34962);
             if (p.normals.size() == p.positions.size()) attrs["NORMAL"] = b.accessor(p.normals, 3, "VEC3", false, 34962);
-            if (p.tangents.size() == p.positions.size() && !p.generated_tangents)
+            if (p.tangents.size() == p.positions.size())
                 attrs["TANGENT"] = b.accessor(p.tangents, 4, "VEC4", false, 34962);
             if (p.uv0.size() == p.positions.size()) attrs["TEXCOORD_0"] = b.accessor(p.uv0, 2, "VEC2", false, 34962);
             if (p.uv1.size() == p.positions.size()) attrs["TEXCOORD_1"] = b.accessor(p.uv1, 2, "VEC2", false, 34962);
