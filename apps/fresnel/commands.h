@@ -14,5 +14,7 @@ Runner add_bake_command(CLI::App& app);
 Runner add_compare_command(CLI::App& app);
 Runner add_trace_command(CLI::App& app);
 Runner add_batch_command(CLI::App& app);
+Runner add_fit_command(CLI::App& app);
+Runner add_convert_command(CLI::App& app);
 
 }  // namespace fresnel::cli

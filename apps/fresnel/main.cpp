@@ -18,6 +18,8 @@ int main(int argc, char** argv) {
     auto compare = fresnel::cli::add_compare_command(app);
     auto trace = fresnel::cli::add_trace_command(app);
     auto batch = fresnel::cli::add_batch_command(app);
+    auto fit = fresnel::cli::add_fit_command(app);
+    auto convert = fresnel::cli::add_convert_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -33,6 +35,8 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("compare")) return compare();
         if (app.got_subcommand("trace")) return trace();
         if (app.got_subcommand("batch")) return batch();
+        if (app.got_subcommand("fit")) return fit();
+        if (app.got_subcommand("convert")) return convert();
     } catch (const fresnel::Error& e) {
         fresnel::cli::print_error(e);
         return fresnel::cli::kExitBadInput;

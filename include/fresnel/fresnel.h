@@ -20,11 +20,13 @@
 #include "fresnel/scene/obj_loader.h"
 #include "fresnel/scene/paths.h"
 #include "fresnel/scene/procedural.h"
+#include "fresnel/scene/scene_writer.h"
 #include "fresnel/scene/scene.h"
 #include "fresnel/scene/tangents.h"
 
 #include "fresnel/material/brdf.h"
 #include "fresnel/material/evaluate.h"
+#include "fresnel/material/fit.h"
 #include "fresnel/material/material.h"
 #include "fresnel/material/legacy_shading.h"
 #include "fresnel/material/phong.h"

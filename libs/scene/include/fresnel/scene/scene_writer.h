@@ -1,0 +1,40 @@
+#pragma once
+// Writers for converters (`fresnel convert`): a Scene as glTF 2.0 (.gltf with one .bin and
+// PNG images beside it, or a single .glb with everything embedded) and as Wavefront OBJ/MTL.
+// Both write every file to a temporary name in the destination folder and rename it into
+// place, so a reader never sees half a file.
+//
+// glTF: nodes (as matrices), meshes (POSITION, NORMAL, TANGENT, TEXCOORD_0/1, COLOR_0,
+// 32-bit indices; triangles, lines, points), materials with KHR_materials_specular, _ior,
+// _emissive_strength, _unlit, _clearcoat and KHR_texture_transform, textures (images
+// re-encoded as PNG from the decoded pixels), samplers, cameras, KHR_lights_punctual.
+// Not written: skins and animations (the Scene holds no animations; joints and weights are
+// dropped), the kept-but-unshaded extension blocks (sheen, transmission, ...) and unknown
+// extensions and extras (the glTF loader does not keep them).
+//
+// OBJ: one `o` per mesh instance, with its node's world transform applied to positions
+// and normals (identity for scenes from OBJ files, so the numbers round-trip), `vt` with
+// glTF's top-left UV origin flipped back, `vn`, faces v/vt/vn, `usemtl` per primitive;
+// MTL from each Material's `phong` block (Ka Kd Ks Ke Ns d illum, and the PBR extension
+// keys Pr Pm when `pbr_keys`), map_Kd / map_Ks / map_Ke / norm as PNG files beside it.
+// Floats are written with 9 significant digits, which reads back to the same float.
+#include <filesystem>
+
+#include "fresnel/core/error.h"
+#include "fresnel/scene/scene.h"
+
+namespace fresnel {
+
+// `.glb` writes a binary container; anything else a .gltf with `<stem>.bin` and
+// `<stem>_imageN.png` beside it.
+void write_gltf(const Scene& scene, const std::filesystem::path& path, Diagnostics& diagnostics);
+
+struct ObjWriteOptions {
+    bool pbr_keys = true;  // Pr/Pm from the metallic-roughness factors, beside the Phong keys
+};
+// Writes path (.obj), `<stem>.mtl` and `<stem>_imageN.png` beside it. Materials without a
+// `phong` block get the naive Kd = base colour, Ks 0.04 (converters fill `phong` first).
+void write_obj(const Scene& scene, const std::filesystem::path& path, Diagnostics& diagnostics,
+               const ObjWriteOptions& options = {});
+
+}  // namespace fresnel

@@ -1,0 +1,509 @@
+// glTF and OBJ/MTL writers (scene_writer.h). JSON through nlohmann::json, as the loader.
+#include "fresnel/scene/scene_writer.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include <glm/gtc/type_ptr.hpp>
+
+namespace fresnel {
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// Writes bytes to a temporary file beside `path`, then renames it over `path`.
+void write_atomically(const fs::path& path, const void* data, std::size_t size) {
+    fs::path tmp = path;
+    tmp += ".tmp" + std::to_string(::getpid());
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) throw Error(path.string(), "", "cannot write (" + std::string(std::strerror(errno)) + ")");
+        out.write(static_cast<const char*>(data), std::streamsize(size));
+        out.close();
+        if (!out) {
+            std::error_code ec;
+            fs::remove(tmp, ec);
+            throw Error(path.string(), "", "write failed");
+        }
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw Error(path.string(), "", "cannot rename into place: " + ec.message());
+    }
+}
+void write_atomically(const fs::path& path, const std::string& text) { write_atomically(path, text.data(), text.size()); }
+
+// PNG bytes of an image (write_png writes files only: through a temporary file).
+std::vector<std::uint8_t> png_bytes(const Image8& image, const fs::path& beside) {
+    fs::path tmp = beside;
+    tmp += ".png.tmp" + std::to_string(::getpid());
+    write_png(tmp, image);
+    std::vector<std::uint8_t> bytes = read_file_bytes(tmp, std::size_t(1) << 31);
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    return bytes;
+}
+void write_png_atomically(const fs::path& path, const Image8& image) {
+    auto bytes = png_bytes(image, path);
+    write_atomically(path, bytes.data(), bytes.size());
+}
+
+json vec_json(const float* v, int n) {
+    json a = json::array();
+    for (int i = 0; i < n; ++i) a.push_back(v[i]);
+    return a;
+}
+
+struct GltfBuilder {
+    json doc;
+    std::vector<std::uint8_t> bin;
+    std::set<std::string> used;
+
+    std::size_t append(const void* data, std::size_t size) {
+        while (bin.size() % 4) bin.push_back(0);
+        std::size_t offset = bin.size();
+        bin.insert(bin.end(), static_cast<const std::uint8_t*>(data), static_cast<const std::uint8_t*>(data) + size);
+        return offset;
+    }
+    int buffer_view(const void* data, std::size_t size, int target) {
+        std::size_t offset = append(data, size);
+        json v = {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", size}};
+        if (target) v["target"] = target;
+        doc["bufferViews"].push_back(v);
+        return int(doc["bufferViews"].size()) - 1;
+    }
+    template <class V>
+    int accessor(const std::vector<V>& values, int components, const char* type, bool min_max, int target) {
+        int view = buffer_view(values.data(), values.size() * sizeof(V), target);
+        json a = {{"bufferView", view}, {"componentType", 5126}, {"count", values.size()}, {"type", type}};
+        if (min_max) {
+            std::vector<float> lo(components, INFINITY), hi(components, -INFINITY);
+            for (const V& v : values)
+                for (int c = 0; c < components; ++c) {
+                    lo[c] = std::min(lo[c], glm::value_ptr(v)[c]);
+                    hi[c] = std::max(hi[c], glm::value_ptr(v)[c]);
+                }
+            a["min"] = lo;
+            a["max"] = hi;
+        }
+        doc["accessors"].push_back(a);
+        return int(doc["accessors"].size()) - 1;
+    }
+    int index_accessor(const std::vector<std::uint32_t>& indices) {
+        int view = buffer_view(indices.data(), indices.size() * 4, 34963);
+        doc["accessors"].push_back({{"bufferView", view}, {"componentType", 5125}, {"count", indices.size()}, {"type", "SCALAR"}});
+        return int(doc["accessors"].size()) - 1;
+    }
+    json texture_info(const TextureSlot& s, int texture_count) {
+        json t = {{"index", s.texture}};
+        if (s.tex_coord != 0) t["texCoord"] = s.tex_coord;
+        if (s.has_transform) {
+            const TextureTransform& x = s.transform_params;
+            json e = json::object();
+            if (x.offset != glm::vec2(0.0f)) e["offset"] = {x.offset.x, x.offset.y};
+            if (x.rotation != 0.0f) e["rotation"] = x.rotation;
+            if (x.scale != glm::vec2(1.0f)) e["scale"] = {x.scale.x, x.scale.y};
+            t["extensions"]["KHR_texture_transform"] = e;
+            used.insert("KHR_texture_transform");
+        }
+        (void)texture_count;
+        return t;
+    }
+};
+
+bool slot_ok(const TextureSlot& s, const Scene& scene) {
+    return s.valid() && std::size_t(s.texture) < scene.textures.size() && scene.textures[std::size_t(s.texture)].image >= 0 &&
+           scene.images[std::size_t(scene.textures[std::size_t(s.texture)].image)].valid();
+}
+
+json material_json(const Material& m, const Scene& scene, GltfBuilder& b, bool has_tangents) {
+    json j = json::object();
+    if (!m.name.empty()) j["name"] = m.name;
+    int nt = int(scene.textures.size());
+    json pbr = json::object();
+    if (m.base_color_factor != glm::vec4(1.0f)) pbr["baseColorFactor"] = vec_json(glm::value_ptr(m.base_color_factor), 4);
+    if (slot_ok(m.base_color, scene)) pbr["baseColorTexture"] = b.texture_info(m.base_color, nt);
+    if (m.metallic_factor != 1.0f) pbr["metallicFactor"] = m.metallic_factor;
+    if (m.roughness_factor != 1.0f) pbr["roughnessFactor"] = m.roughness_factor;
+    if (slot_ok(m.metallic_roughness, scene)) pbr["metallicRoughnessTexture"] = b.texture_info(m.metallic_roughness, nt);
+    j["pbrMetallicRoughness"] = pbr;
+    if (slot_ok(m.normal, scene)) {
+        j["normalTexture"] = b.texture_info(m.normal, nt);
+        if (m.normal_scale != 1.0f) j["normalTexture"]["scale"] = m.normal_scale;
+    }
+    if (slot_ok(m.occlusion, scene)) {
+        j["occlusionTexture"] = b.texture_info(m.occlusion, nt);
+        if (m.occlusion_strength != 1.0f) j["occlusionTexture"]["strength"] = m.occlusion_strength;
+    }
+    if (slot_ok(m.emissive, scene)) j["emissiveTexture"] = b.texture_info(m.emissive, nt);
+    glm::vec3 emissive = m.emissive_factor;
+    float strength = m.emissive_strength_value();
+    float peak = std::max({emissive.x, emissive.y, emissive.z});
+    if (peak > 1.0f) {  // emissiveFactor is limited to [0, 1]: the rest goes to the strength
+        emissive /= peak;
+        strength *= peak;
+    }
+    if (emissive != glm::vec3(0.0f)) j["emissiveFactor"] = vec_json(glm::value_ptr(emissive), 3);
+    if (strength != 1.0f) {
+        j["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", strength}};
+        b.used.insert("KHR_materials_emissive_strength");
+    }
+    if (m.alpha_mode == AlphaMode::Mask) {
+        j["alphaMode"] = "MASK";
+        if (m.alpha_cutoff != 0.5f) j["alphaCutoff"] = m.alpha_cutoff;
+    } else if (m.alpha_mode == AlphaMode::Blend) {
+        j["alphaMode"] = "BLEND";
+    }
+    if (m.double_sided) j["doubleSided"] = true;
+    if (m.ior && m.ior->ior != 1.5f) {
+        j["extensions"]["KHR_materials_ior"] = {{"ior", m.ior->ior}};
+        b.used.insert("KHR_materials_ior");
+    }
+    if (m.specular) {
+        const SpecularExt& s = *m.specular;
+        json e = json::object();
+        if (s.specular_factor != 1.0f) e["specularFactor"] = s.specular_factor;
+        if (slot_ok(s.specular_texture, scene)) e["specularTexture"] = b.texture_info(s.specular_texture, nt);
+        if (s.specular_color_factor != glm::vec3(1.0f))
+            e["specularColorFactor"] = vec_json(glm::value_ptr(s.specular_color_factor), 3);
+        if (slot_ok(s.specular_color_texture, scene))
+            e["specularColorTexture"] = b.texture_info(s.specular_color_texture, nt);
+        j["extensions"]["KHR_materials_specular"] = e;
+        b.used.insert("KHR_materials_specular");
+    }
+    if (m.has_clearcoat()) {
+        const ClearcoatExt& c = *m.clearcoat;
+        json e = {{"clearcoatFactor", c.clearcoat_factor}};
+        if (c.clearcoat_roughness_factor != 0.0f) e["clearcoatRoughnessFactor"] = c.clearcoat_roughness_factor;
+        if (slot_ok(c.clearcoat_texture, scene)) e["clearcoatTexture"] = b.texture_info(c.clearcoat_texture, nt);
+        if (slot_ok(c.clearcoat_roughness_texture, scene))
+            e["clearcoatRoughnessTexture"] = b.texture_info(c.clearcoat_roughness_texture, nt);
+        // Without tangents (a coat normal map but no base normal map, so the loader made none),
+        // the map would be invalid glTF: it is dropped (write_gltf warns).
+        if (slot_ok(c.clearcoat_normal_texture, scene) && has_tangents) {
+            e["clearcoatNormalTexture"] = b.texture_info(c.clearcoat_normal_texture, nt);
+            if (c.clearcoat_normal_scale != 1.0f) e["clearcoatNormalTexture"]["scale"] = c.clearcoat_normal_scale;
+        }
+        j["extensions"]["KHR_materials_clearcoat"] = e;
+        b.used.insert("KHR_materials_clearcoat");
+    }
+    if (m.unlit) {
+        j["extensions"]["KHR_materials_unlit"] = json::object();
+        b.used.insert("KHR_materials_unlit");
+    }
+    return j;
+}
+
+int filter_enum(Filter f) { return f == Filter::Nearest ? 9728 : 9729; }
+int min_filter_enum(const Sampler& s) {
+    bool near = s.min_filter == Filter::Nearest;
+    switch (s.mipmap) {
+        case MipmapMode::None: return near ? 9728 : 9729;
+        case MipmapMode::Nearest: return near ? 9984 : 9985;
+        case MipmapMode::Linear: return near ? 9986 : 9987;
+    }
+    return 9987;
+}
+int wrap_enum(Wrap w) { return w == Wrap::ClampToEdge ? 33071 : w == Wrap::MirroredRepeat ? 33648 : 10497; }
+
+}  // namespace
+
+void write_gltf(const Scene& scene, const fs::path& path, Diagnostics& diagnostics) {
+    const bool glb = path.extension() == ".glb" || path.extension() == ".GLB";
+    const std::string stem = path.stem().string();
+    const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    GltfBuilder b;
+    json& doc = b.doc;
+    doc["asset"] = {{"version", "2.0"}, {"generator", "fresnel convert"}};
+    doc["buffers"] = json::array();
+    doc["bufferViews"] = json::array();
+    doc["accessors"] = json::array();
+
+    // Images first (their PNG bytes go into the buffer for .glb, beside the file for .gltf).
+    std::vector<int> image_index(scene.images.size(), -1);
+    json images = json::array();
+    std::vector<std::pair<fs::path, const Image8*>> image_files;
+    for (std::size_t i = 0; i < scene.images.size(); ++i) {
+        if (!scene.images[i].valid()) continue;
+        json img;
+        if (glb) {
+            auto bytes = png_bytes(scene.images[i].pixels, path);
+            img = {{"bufferView", b.buffer_view(bytes.data(), bytes.size(), 0)}, {"mimeType", "image/png"}};
+        } else {
+            std::string name = stem + "_image" + std::to_string(i) + ".png";
+            img = {{"uri", name}};
+            image_files.emplace_back(folder / name, &scene.images[i].pixels);
+        }
+        image_index[i] = int(images.size());
+        images.push_back(img);
+    }
+    json samplers = json::array(), textures = json::array();
+    for (const Texture& t : scene.textures) {
+        json s = {{"magFilter", filter_enum(t.sampler.mag_filter)}, {"minFilter", min_filter_enum(t.sampler)},
+                  {"wrapS", wrap_enum(t.sampler.wrap_s)}, {"wrapT", wrap_enum(t.sampler.wrap_t)}};
+        samplers.push_back(s);
+        json tex = {{"sampler", int(samplers.size()) - 1}};
+        if (t.image >= 0 && std::size_t(t.image) < image_index.size() && image_index[std::size_t(t.image)] >= 0)
+            tex["source"] = image_index[std::size_t(t.image)];
+        textures.push_back(tex);
+    }
+    json materials = json::array();
+    std::vector<bool> tangents(scene.materials.size(), true);
+    for (const Mesh& mesh : scene.meshes)
+        for (const Primitive& p : mesh.primitives)
+            if (p.material >= 0 && std::size_t(p.material) < tangents.size() && p.tangents.size() != p.positions.size())
+                tangents[std::size_t(p.material)] = false;
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        const Material& m = scene.materials[i];
+        if (!tangents[i] && m.has_clearcoat() && slot_ok(m.clearcoat->clearcoat_normal_texture, scene) && !slot_ok(m.normal, scene))
+            diagnostics.warn(path.string(), "/materials/" + std::to_string(i),
+                             "clearcoatNormalTexture dropped: the mesh has no tangents");
+        materials.push_back(material_json(m, scene, b, tangents[i]));
+    }
+
+    json meshes = json::array();
+    for (const Mesh& mesh : scene.meshes) {
+        json jm = {{"primitives", json::array()}};
+        if (!mesh.name.empty()) jm["name"] = mesh.name;
+        for (const Primitive& p : mesh.primitives) {
+            if (p.positions.empty()) continue;
+            json attrs;
+            attrs["POSITION"] = b.accessor(p.positions, 3, "VEC3", true, 34962);
+            if (p.normals.size() == p.positions.size()) attrs["NORMAL"] = b.accessor(p.normals, 3, "VEC3", false, 34962);
+            if (p.tangents.size() == p.positions.size())
+                attrs["TANGENT"] = b.accessor(p.tangents, 4, "VEC4", false, 34962);
+            if (p.uv0.size() == p.positions.size()) attrs["TEXCOORD_0"] = b.accessor(p.uv0, 2, "VEC2", false, 34962);
+            if (p.uv1.size() == p.positions.size()) attrs["TEXCOORD_1"] = b.accessor(p.uv1, 2, "VEC2", false, 34962);
+            if (p.colors.size() == p.positions.size()) attrs["COLOR_0"] = b.accessor(p.colors, 4, "VEC4", false, 34962);
+            json jp = {{"attributes", attrs}};
+            if (!p.indices.empty()) jp["indices"] = b.index_accessor(p.indices);
+            int mode = 4;
+            switch (p.topology) {
+                case Topology::Points: mode = 0; break;
+                case Topology::Lines: mode = 1; break;
+                case Topology::LineLoop: mode = 2; break;
+                case Topology::LineStrip: mode = 3; break;
+                case Topology::Triangles: mode = 4; break;
+            }
+            if (mode != 4) jp["mode"] = mode;
+            if (p.material >= 0 && std::size_t(p.material) < scene.materials.size()) jp["material"] = p.material;
+            jm["primitives"].push_back(jp);
+        }
+        if (jm["primitives"].empty()) diagnostics.warn(path.string(), "/meshes", "a mesh without vertices was written empty");
+        meshes.push_back(jm);
+    }
+    json nodes = json::array();
+    for (const Node& n : scene.nodes) {
+        json jn = json::object();
+        if (!n.name.empty()) jn["name"] = n.name;
+        if (n.local != glm::mat4(1.0f)) jn["matrix"] = vec_json(glm::value_ptr(n.local), 16);
+        if (n.mesh >= 0 && !meshes[std::size_t(n.mesh)]["primitives"].empty()) jn["mesh"] = n.mesh;
+        if (n.camera >= 0) jn["camera"] = n.camera;
+        if (n.light >= 0) {
+            jn["extensions"]["KHR_lights_punctual"] = {{"light", n.light}};
+            b.used.insert("KHR_lights_punctual");
+        }
+        if (n.skin >= 0) diagnostics.warn(path.string(), "/nodes", "skins are not written (the mesh keeps its rest pose)");
+        if (!n.children.empty()) jn["children"] = n.children;
+        nodes.push_back(jn);
+    }
+    json cameras = json::array();
+    for (const Camera& c : scene.cameras) {
+        json jc;
+        if (c.type == Camera::Type::Perspective) {
+            json p = {{"yfov", c.yfov}, {"znear", c.znear}};
+            if (c.aspect_ratio) p["aspectRatio"] = *c.aspect_ratio;
+            if (c.zfar) p["zfar"] = *c.zfar;
+            jc = {{"type", "perspective"}, {"perspective", p}};
+        } else {
+            jc = {{"type", "orthographic"},
+                  {"orthographic", {{"xmag", c.xmag}, {"ymag", c.ymag}, {"znear", c.znear}, {"zfar", c.zfar.value_or(c.znear + 1000.0f)}}}};
+        }
+        if (!c.name.empty()) jc["name"] = c.name;
+        cameras.push_back(jc);
+    }
+    if (!scene.lights.empty()) {
+        json lights = json::array();
+        for (const Light& l : scene.lights) {
+            json jl = {{"type", l.type == Light::Type::Directional ? "directional" : l.type == Light::Type::Point ? "point" : "spot"}};
+            if (l.color != glm::vec3(1.0f)) jl["color"] = vec_json(glm::value_ptr(l.color), 3);
+            if (l.intensity != 1.0f) jl["intensity"] = l.intensity;
+            if (l.range > 0.0f && l.type != Light::Type::Directional) jl["range"] = l.range;
+            if (l.type == Light::Type::Spot)
+                jl["spot"] = {{"innerConeAngle", l.inner_cone_angle}, {"outerConeAngle", l.outer_cone_angle}};
+            if (!l.name.empty()) jl["name"] = l.name;
+            lights.push_back(jl);
+        }
+        doc["extensions"]["KHR_lights_punctual"] = {{"lights", lights}};
+        b.used.insert("KHR_lights_punctual");
+    }
+    json scenes = json::array();
+    for (const auto& roots : scene.scenes) scenes.push_back({{"nodes", roots}});
+    if (scenes.empty() && !nodes.empty()) {
+        json roots = json::array();
+        std::vector<bool> child(nodes.size(), false);
+        for (const Node& n : scene.nodes)
+            for (int c : n.children) child[std::size_t(c)] = true;
+        for (std::size_t i = 0; i < nodes.size(); ++i)
+            if (!child[i]) roots.push_back(i);
+        scenes.push_back({{"nodes", roots}});
+    }
+
+    if (!images.empty()) doc["images"] = images;
+    if (!samplers.empty()) doc["samplers"] = samplers;
+    if (!textures.empty()) doc["textures"] = textures;
+    if (!materials.empty()) doc["materials"] = materials;
+    if (!meshes.empty()) doc["meshes"] = meshes;
+    if (!nodes.empty()) doc["nodes"] = nodes;
+    if (!cameras.empty()) doc["cameras"] = cameras;
+    if (!scenes.empty()) {
+        doc["scenes"] = scenes;
+        doc["scene"] = std::clamp(scene.default_scene, 0, int(scenes.size()) - 1);
+    }
+    if (!b.used.empty()) doc["extensionsUsed"] = std::vector<std::string>(b.used.begin(), b.used.end());
+    while (b.bin.size() % 4) b.bin.push_back(0);
+    if (doc["accessors"].empty()) doc.erase("accessors");
+    if (doc["bufferViews"].empty()) doc.erase("bufferViews");
+    if (b.bin.empty()) {
+        doc.erase("buffers");
+    } else if (glb) {
+        doc["buffers"].push_back({{"byteLength", b.bin.size()}});
+    } else {
+        doc["buffers"].push_back({{"byteLength", b.bin.size()}, {"uri", stem + ".bin"}});
+    }
+
+    for (const auto& [file, image] : image_files) write_png_atomically(file, *image);
+    if (glb) {
+        std::string text = doc.dump();
+        while (text.size() % 4) text.push_back(' ');
+        std::vector<std::uint8_t> out;
+        auto u32 = [&](std::uint32_t v) {
+            for (int i = 0; i < 4; ++i) out.push_back(std::uint8_t(v >> (8 * i)));
+        };
+        std::uint32_t total = 12 + 8 + std::uint32_t(text.size()) + (b.bin.empty() ? 0 : 8 + std::uint32_t(b.bin.size()));
+        u32(0x46546C67);  // "glTF"
+        u32(2);
+        u32(total);
+        u32(std::uint32_t(text.size()));
+        u32(0x4E4F534A);  // JSON
+        out.insert(out.end(), text.begin(), text.end());
+        if (!b.bin.empty()) {
+            u32(std::uint32_t(b.bin.size()));
+            u32(0x004E4942);  // BIN
+            out.insert(out.end(), b.bin.begin(), b.bin.end());
+        }
+        write_atomically(path, out.data(), out.size());
+    } else {
+        if (!b.bin.empty()) write_atomically(folder / (stem + ".bin"), b.bin.data(), b.bin.size());
+        write_atomically(path, doc.dump(2) + "\n");
+    }
+}
+
+// ---- OBJ/MTL -------------------------------------------------------------------------------
+
+namespace {
+std::string num(float v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", double(std::isfinite(v) ? v : 0.0f));
+    return buf;
+}
+std::string vec3_text(const glm::vec3& v) { return num(v.x) + " " + num(v.y) + " " + num(v.z); }
+std::string mtl_name(const Material& m, std::size_t i) {
+    std::string n = m.name.empty() ? "material" + std::to_string(i) : m.name;
+    for (char& c : n)
+        if (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '#') c = '_';
+    return n;
+}
+}  // namespace
+
+void write_obj(const Scene& scene, const fs::path& path, Diagnostics& diagnostics, const ObjWriteOptions& options) {
+    const std::string stem = path.stem().string();
+    const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    std::string mtl, obj = "# written by fresnel convert\nmtllib " + stem + ".mtl\n";
+    std::map<int, std::string> image_file;  // scene image -> file name
+    auto map_line = [&](const char* key, const TextureSlot& s) {
+        if (!slot_ok(s, scene)) return;
+        int image = scene.textures[std::size_t(s.texture)].image;
+        auto it = image_file.find(image);
+        if (it == image_file.end()) {
+            std::string name = stem + "_image" + std::to_string(image) + ".png";
+            write_png_atomically(folder / name, scene.images[std::size_t(image)].pixels);
+            it = image_file.emplace(image, name).first;
+        }
+        mtl += std::string(key) + " " + it->second + "\n";
+    };
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        const Material& m = scene.materials[i];
+        PhongExt p;
+        if (m.phong) {
+            p = *m.phong;
+        } else {
+            p.diffuse = glm::vec3(m.base_color_factor);
+            p.specular = glm::vec3(0.04f);
+            p.shininess = 30.0f;
+            p.dissolve = m.base_color_factor.w;
+        }
+        mtl += "newmtl " + mtl_name(m, i) + "\n";
+        mtl += "Ka " + vec3_text(p.ambient) + "\nKd " + vec3_text(p.diffuse) + "\nKs " + vec3_text(p.specular) + "\n";
+        mtl += "Ke " + vec3_text(m.emissive_factor * m.emissive_strength_value()) + "\nNs " + num(p.shininess) + "\n";
+        mtl += "d " + num(m.alpha_mode == AlphaMode::Blend ? m.base_color_factor.w : 1.0f) + "\n";
+        mtl += "illum " + std::to_string(m.unlit ? 0 : 2) + "\n";
+        if (options.pbr_keys) mtl += "Pr " + num(m.roughness_factor) + "\nPm " + num(m.metallic_factor) + "\n";
+        map_line("map_Kd", m.base_color);
+        map_line("map_Ke", m.emissive);
+        if (slot_ok(m.normal, scene)) map_line("norm", m.normal);
+        mtl += "\n";
+    }
+    std::size_t base_v = 1;
+    for (const NodeInstance& inst : flatten(scene)) {
+        const Node& node = scene.nodes[std::size_t(inst.node)];
+        if (node.mesh < 0) continue;
+        const Mesh& mesh = scene.meshes[std::size_t(node.mesh)];
+        obj += "o " + (mesh.name.empty() ? (node.name.empty() ? "mesh" + std::to_string(node.mesh) : node.name) : mesh.name) + "\n";
+        const bool identity = inst.world == glm::mat4(1.0f);
+        glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(inst.world)));
+        for (const Primitive& p : mesh.primitives) {
+            if (p.topology != Topology::Triangles) {
+                diagnostics.warn(path.string(), mesh.name, "only triangles are written to OBJ; lines and points dropped");
+                continue;
+            }
+            const bool has_n = p.normals.size() == p.positions.size(), has_t = p.uv0.size() == p.positions.size();
+            for (const glm::vec3& v : p.positions)
+                obj += "v " + vec3_text(identity ? v : glm::vec3(inst.world * glm::vec4(v, 1.0f))) + "\n";
+            if (has_t)
+                for (const glm::vec2& t : p.uv0) obj += "vt " + num(t.x) + " " + num(1.0f - t.y) + "\n";
+            if (has_n)
+                for (const glm::vec3& n : p.normals) obj += "vn " + vec3_text(identity ? n : glm::normalize(normal_matrix * n)) + "\n";
+            if (p.material >= 0 && std::size_t(p.material) < scene.materials.size())
+                obj += "usemtl " + mtl_name(scene.materials[std::size_t(p.material)], std::size_t(p.material)) + "\n";
+            auto corner = [&](std::uint32_t i) {
+                std::string k = std::to_string(base_v + i);
+                if (has_t && has_n) return k + "/" + k + "/" + k;
+                if (has_t) return k + "/" + k;
+                if (has_n) return k + "//" + k;
+                return k;
+            };
+            std::size_t count = p.indices.empty() ? p.positions.size() : p.indices.size();
+            for (std::size_t c = 0; c + 2 < count; c += 3) {
+                auto idx = [&](std::size_t k) { return p.indices.empty() ? std::uint32_t(k) : p.indices[k]; };
+                obj += "f " + corner(idx(c)) + " " + corner(idx(c + 1)) + " " + corner(idx(c + 2)) + "\n";
+            }
+            base_v += p.positions.size();
+        }
+    }
+    write_atomically(folder / (stem + ".mtl"), mtl);
+    write_atomically(path, obj);
+}
+
+}  // namespace fresnel
