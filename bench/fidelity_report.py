@@ -240,6 +240,9 @@ def main():
                   f"trace {row['trace'][0]:6.2f} dB {row['trace'][1]:.3f}", flush=True)
 
     elapsed = time.time() - t_start
+    with open(os.path.join(out, "results.json"), "w") as f:
+        json.dump(dict(size=a.size, spp=spp, cycles_spp=a.cycles_spp, minutes=round(elapsed / 60, 2),
+                       cases=cases, cycles=cycles), f, indent=1)
     write_report(out, cases, cycles, a, spp, elapsed)
     if a.readme:
         update_readme(a.readme, cases, spp, a.size)
@@ -273,7 +276,9 @@ def write_report(out, cases, cycles, a, spp, elapsed):
          "Metrics: `fresnel compare --mask auto` (over the pixels where either image shows the model): PSNR in dB "
          "(higher is closer) / mean LDR-FLIP (0 = identical, lower is closer).", "",
          "- **raster vs trace**: everything the real-time path costs;",
-         "- **raster vs 1-bounce**: the split sum, prefiltering and the irradiance cube alone (same transport);",
+         "- **raster vs 1-bounce**: the split sum, prefiltering and the irradiance cube (same transport), plus the "
+         "occlusion texture, which the rasteriser multiplies in and the tracer ignores (DamagedHelmet and "
+         "NormalTangentTest have one; Suzanne and ClearCoatTest do not);",
          "- **1-bounce vs trace**: what environment visibility (shadows, occlusion) and multiple bounces add;",
          f"- **noise floor**: `fresnel trace` with seed 7 vs seed 0 at {spp} spp. No comparison with a traced image "
          "can read much above this PSNR (or below this FLIP); figures near it are limited by the trace's noise, "
