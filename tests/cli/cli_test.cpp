@@ -382,6 +382,8 @@ TEST_F(Cli, RendersAndDescribesObj) {
     EXPECT_EQ(r.exit_code, 1) << show(r);
     EXPECT_NE(r.err.find("bad.obj: line 4: vertex index 3 is out of range"), std::string::npos) << show(r);
     EXPECT_FALSE(fs::exists(dir_ / "bad.png"));
+}
+
 // ---------------------------------------------------------------------------
 // `fresnel trace`: the same flags as render give the same scene. In the white furnace the
 // rasteriser and the path tracer agree to 1 % where the glTF BRDF loses no energy by single
