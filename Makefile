@@ -8,7 +8,7 @@ FUZZ_SECONDS ?= 60
 FRESNEL_WERROR ?= OFF
 CMAKE_GEN   := $(shell command -v ninja >/dev/null 2>&1 && echo "-G Ninja")
 
-.PHONY: all deps configure build demo test test-fast asan fuzz bench clean
+.PHONY: all deps configure build demo test test-fast asan fuzz bench fidelity-report clean
 
 all: build
 
@@ -65,6 +65,12 @@ bench: build
 	FRESNEL_KHRONOS_REF=$(abspath $(BUILD))/khronos-ref $(BUILD)/bin/fresnel-bench
 	bench/trace_bench.sh $(BUILD)/bin/fresnel
 	python3 bench/batch_bench.py $(BUILD)/bin/fresnel $(CURDIR)/../shared
+
+# Optional, not part of `make test`: raster vs `fresnel trace` per shared model x environment
+# (~10 min on 2 cores); writes docs/fidelity/ and the README's fidelity-report section.
+fidelity-report: configure
+	cmake --build $(BUILD) -j $(JOBS) --target fresnel
+	bench/fidelity_report.py $(BUILD)/bin/fresnel --readme README.md
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) build-fuzz
