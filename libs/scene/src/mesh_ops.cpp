@@ -144,6 +144,11 @@ void remap_vertices(Primitive& p, std::span<const std::uint32_t> remap) {
     remap_array(p.colors, remap);
     remap_array(p.joints, remap);
     remap_array(p.weights, remap);
+    for (auto& t : p.targets) {
+        remap_array(t.positions, remap);
+        remap_array(t.normals, remap);
+        remap_array(t.tangents, remap);
+    }
 }
 
 bool drop_identity_indices(Primitive& p) {
