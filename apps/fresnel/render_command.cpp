@@ -14,6 +14,7 @@
 #include "fresnel/ibl/environment.h"
 #include "fresnel/render/job.h"
 #include "fresnel/render/renderer.h"
+#include "fresnel/render/shader_features.h"
 #include "fresnel/scene/pose.h"
 #include "progress.h"
 
@@ -47,6 +48,7 @@ struct RenderOptions {
     std::optional<int> animation;    // --animation: which one (default: all)
     std::optional<int> frames;       // --frames: numbered images from --time (default 0)
     float fps = 30.0f;
+    std::string posing = "gpu";      // --posing: skins and morph targets on the gpu or the cpu
     std::string env;
     bool env_given = false;
     float env_rotation = 0;
@@ -260,16 +262,34 @@ int run_render(const RenderOptions& o) {
     RenderSettings rs = lighting.settings(resolved);
     ResolvedJob frame_job = resolved;
     Scene posed;  // the frame being drawn (the renderer keeps a pointer to it)
+    // GPU posing uploads the bind pose once and moves only the nodes; the CPU posing (the
+    // reference) uploads each frame's posed meshes.
+    const bool gpu_posing = animated(o) && o.posing == "gpu" && gpu_animatable(scene);
+    if (animated(o) && o.posing == "gpu" && !gpu_posing) {
+        Diagnostics note;
+        note.warn(o.model, "--posing gpu", "a skin has more than " + std::to_string(kMaxShaderJoints) +
+                                               " joints or a primitive more than " + std::to_string(kMaxShaderMorphTargets) +
+                                               " morph targets; posing on the CPU");
+        print_warnings(note);
+    }
+    rs.gpu_animation = gpu_posing;
+    if (gpu_posing) posed = scene;
     for (std::size_t f = 0; f < times.size(); ++f) {
         const Scene* draw = &scene;
         if (animated(o)) {
-            posed = animated_scene(scene, o.animation.value_or(-1), times[f]);
+            if (gpu_posing) {
+                posed.nodes = scene.nodes;
+                animate(posed, o.animation.value_or(-1), times[f]);
+            } else {
+                posed = animated_scene(scene, o.animation.value_or(-1), times[f]);
+            }
             frame_job = resolve(job, posed);  // the lights follow their nodes
             if (!job.camera.scene_camera) frame_job.camera = resolved.camera;
             draw = &posed;
         }
         auto t_upload = Clock::now();
-        renderer.set_scene(*draw, frame_job.scene_index);
+        if (gpu_posing && f > 0) renderer.update_transforms();
+        else renderer.set_scene(*draw, frame_job.scene_index);
         if (f == 0) upload_ms = ms_since(t_gpu);
         else upload_ms += ms_since(t_upload);
         auto t_frame = Clock::now();
@@ -393,6 +413,11 @@ Runner add_render_command(CLI::App& app) {
                     "Write N frames from --time (default 0) at --fps, numbered: out.png -> out_0000.png, out_0001.png, ...")
         ->check(CLI::Range(1, 100000));
     cmd->add_option("--fps", o->fps, "Frames per second of --frames")->capture_default_str();
+    cmd->add_option("--posing", o->posing,
+                    "Where animated frames are skinned and morphed: gpu (vertex shader; skins of up to 32 joints, "
+                    "2 morph targets a primitive, else the CPU) or cpu (the reference)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"gpu", "cpu"}));
     return [o] { return run_render(*o); };
 }
 

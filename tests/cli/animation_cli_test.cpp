@@ -8,7 +8,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -211,4 +213,33 @@ TEST_F(AnimationCli, BadAnimationFlags) {
     r = run({"render", "-o", out.string(), "--size", "16x16", "--time", "1"});
     EXPECT_EQ(r.exit_code, 0) << show(r);
     EXPECT_NE(r.err.find("no animations"), std::string::npos) << show(r);
+}
+
+// The GPU path (vertex shader skinning and morphing, --posing gpu, the default) against the
+// CPU reference (fresnel/scene/pose.h, --posing cpu) on the same frames.
+TEST_F(AnimationCli, GpuAndCpuPosingAgree) {
+    int found = 0;
+    for (const auto& m : kAnimated) {
+        fs::path model = kModels / m.file;
+        if (!fs::exists(model)) continue;
+        ++found;
+        SCOPED_TRACE(m.file);
+        for (float t : {m.times[0], m.times[2]}) {
+            std::string time = std::to_string(t);
+            fresnel::ImageF gpu = render(model, "gpu", {"--time", time, "--posing", "gpu", "--tonemap", "neutral"});
+            fresnel::ImageF cpu = render(model, "cpu", {"--time", time, "--posing", "cpu", "--tonemap", "neutral"});
+            ASSERT_EQ(gpu.pixels.size(), cpu.pixels.size());
+            // PSNR of the clamped linear frames (alpha included).
+            double se = 0;
+            for (std::size_t i = 0; i < gpu.pixels.size(); ++i) {
+                double d = std::clamp(double(gpu.pixels[i]), 0.0, 1.0) - std::clamp(double(cpu.pixels[i]), 0.0, 1.0);
+                se += d * d;
+            }
+            double mse = se / double(gpu.pixels.size());
+            double psnr = mse > 0 ? 10 * std::log10(1.0 / mse) : 99.0;
+            std::printf("%s t=%s: GPU vs CPU posing %.1f dB\n", m.file, time.c_str(), psnr);
+            EXPECT_GT(psnr, 45.0) << "t = " << t;
+        }
+    }
+    if (found == 0) GTEST_SKIP() << "no animated models under " << kModels;
 }

@@ -131,7 +131,8 @@ void pose_meshes(Scene& scene) {
         Mesh posed = mesh;
         for (auto& p : posed.primitives) {
             if (morph) apply_morph_weights(p, weights);
-            if (skinned) pose_skinned(p, *mats, world[i]);  // a primitive without joints follows the node
+            // A primitive without joints follows the node; weights act normalised, as on the GPU.
+            if (skinned) pose_skinned(p, *mats, world[i], SkinWeights::Homogeneous);
         }
         scene.meshes.push_back(std::move(posed));
         node.mesh = int(scene.meshes.size()) - 1;

@@ -286,14 +286,14 @@ TEST(AnimationPose, SkinFollowsTheAnimatedJoint) {
     const Primitive& q = posed.meshes[std::size_t(n.mesh)].primitives[0];
     EXPECT_NEAR(q.positions[1].x, 0.0f, 1e-6f);  // (1, 0, 0) -> (0, 1, 0)
     EXPECT_NEAR(q.positions[1].y, 1.0f, 1e-6f);
-    // Weight 0.5 alone (glTF weights should sum to 1; the CPU path does not renormalise):
-    // 0.5 * R * (0, 1, 0) = (-0.5, 0, 0).
-    EXPECT_NEAR(q.positions[2].x, -0.5f, 1e-6f);
+    // Weight 0.5 alone (glTF weights should sum to 1): divided by the blended w, as the
+    // Khronos viewer's perspective divide does, it acts as 1: R * (0, 1, 0) = (-1, 0, 0).
+    EXPECT_NEAR(q.positions[2].x, -1.0f, 1e-6f);
     EXPECT_NEAR(q.normals[0].z, 1.0f, 1e-6f);
     // Same as pose_skinned with the joint matrices of the animated world matrices.
     std::vector<glm::mat4> world = world_matrices(posed.nodes);
     auto mats = joint_matrices(world, posed.skins[0].joints, posed.skins[0].inverse_bind);
     Primitive r = s.meshes[0].primitives[0];
-    pose_skinned(r, mats, world[0]);
+    pose_skinned(r, mats, world[0], SkinWeights::Homogeneous);
     for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(glm::length(r.positions[i] - q.positions[i]), 0.0f, 1e-6f);
 }
