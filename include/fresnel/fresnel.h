@@ -14,8 +14,10 @@
 #include "fresnel/core/parallel.h"
 #include "fresnel/core/sampler.h"
 
+#include "fresnel/scene/animation.h"
 #include "fresnel/scene/gltf_loader.h"
 #include "fresnel/scene/mesh_ops.h"
+#include "fresnel/scene/pose.h"
 #include "fresnel/scene/procedural.h"
 #include "fresnel/scene/scene.h"
 #include "fresnel/scene/tangents.h"
