@@ -5,6 +5,26 @@ in vec4 a_tangent;
 in vec2 a_uv0;
 in vec2 a_uv1;
 in vec4 a_color;
+#ifdef SKINNED
+// glTF skinning: joint matrices world[joint] * inverse_bind (at most MAX_JOINTS, which is
+// fresnel::kMaxShaderJoints); u_model is the node's world matrix, which vertices without
+// weight follow (as fresnel::pose_skinned does).
+#define MAX_JOINTS 32
+in vec4 a_joints;  // joint indices as floats (exact below 2^24)
+in vec4 a_weights;
+uniform mat4 u_joints[MAX_JOINTS];
+#endif
+#ifdef MORPH_TARGETS
+// Two morph targets (fresnel::kMaxShaderMorphTargets); u_morph_weights are the weights to
+// add to those the vertex data already holds (fresnel::Primitive::applied_weights).
+in vec3 a_morph_position0;
+in vec3 a_morph_normal0;
+in vec3 a_morph_tangent0;
+in vec3 a_morph_position1;
+in vec3 a_morph_normal1;
+in vec3 a_morph_tangent1;
+uniform float u_morph_weights[2];
+#endif
 
 uniform mat4 u_model;
 uniform mat3 u_normal_matrix;   // inverse transpose of the model's upper 3x3
@@ -21,15 +41,52 @@ out vec2 v_uv1;
 out vec4 v_color;
 
 void main() {
-    vec4 world = u_model * vec4(a_position, 1.0);
+    vec3 position = a_position;
+    vec3 normal = vec3(0.0, 0.0, 1.0);
+    vec3 tangent = vec3(1.0, 0.0, 0.0);
+#ifdef HAS_NORMAL
+    normal = a_normal;
+#endif
+#ifdef HAS_TANGENT
+    tangent = a_tangent.xyz;
+#endif
+#ifdef MORPH_TARGETS
+    position += u_morph_weights[0] * a_morph_position0 + u_morph_weights[1] * a_morph_position1;
+    normal += u_morph_weights[0] * a_morph_normal0 + u_morph_weights[1] * a_morph_normal1;
+    tangent += u_morph_weights[0] * a_morph_tangent0 + u_morph_weights[1] * a_morph_tangent1;
+#endif
+    mat4 model = u_model;
+    mat3 normal_matrix = u_normal_matrix;
+    float handedness = u_handedness;
+#ifdef SKINNED
+    mat4 skin = mat4(0.0);
+    float weight_sum = 0.0;
+    for (int c = 0; c < 4; ++c) {
+        int j = int(a_joints[c] + 0.5);
+        float w = a_weights[c];
+        if (w != 0.0 && j >= 0 && j < MAX_JOINTS) {
+            skin += w * u_joints[j];
+            weight_sum += w;
+        }
+    }
+    if (weight_sum > 0.0) {
+        model = skin;
+        normal_matrix = transpose(inverse(mat3(skin)));
+        handedness = determinant(mat3(skin)) < 0.0 ? -1.0 : 1.0;
+    }
+#endif
+    vec4 world = model * vec4(position, 1.0);
+#ifdef SKINNED
+    world /= world.w;  // w = the sum of the weights: they act normalised (as the Khronos viewer's divide)
+#endif
     v_position = world.xyz;
 #ifdef HAS_NORMAL
-    v_normal = normalize(u_normal_matrix * a_normal);
+    v_normal = normalize(normal_matrix * normal);
 #else
     v_normal = vec3(0.0, 0.0, 1.0);
 #endif
 #ifdef HAS_TANGENT
-    v_tangent = vec4(normalize(mat3(u_model) * a_tangent.xyz), a_tangent.w * u_handedness);
+    v_tangent = vec4(normalize(mat3(model) * tangent), a_tangent.w * handedness);
     v_bitangent = cross(v_normal, v_tangent.xyz) * v_tangent.w;
 #else
     v_tangent = vec4(1.0, 0.0, 0.0, 1.0);

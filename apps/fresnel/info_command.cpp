@@ -106,6 +106,11 @@ int run_info(const InfoOptions& o) {
         j["bounds"] = {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}},
                        {"center", {b.center().x, b.center().y, b.center().z}}, {"radius", b.radius()}};
     }
+    j["skins"] = scene.skins.size();
+    j["animations"] = nlohmann::json::array();
+    for (const auto& a : scene.animations)
+        j["animations"].push_back({{"name", a.name}, {"start", a.start()}, {"end", a.end()}, {"duration", a.duration()},
+                                   {"channels", a.channels.size()}});
     j["extensions_used"] = scene.extensions_used;
     j["extensions_required"] = scene.extensions_required;
     // Every extension the file names, with how fresnel handles it.
@@ -137,6 +142,13 @@ int run_info(const InfoOptions& o) {
     if (!b.empty)
         std::printf("  %-11s min (%g, %g, %g) max (%g, %g, %g)\n", "bounds", b.min.x, b.min.y, b.min.z, b.max.x, b.max.y,
                     b.max.z);
+    std::printf("  %-11s %zu\n", "skins", scene.skins.size());
+    std::printf("  %-11s %zu\n", "animations", scene.animations.size());
+    for (std::size_t k = 0; k < scene.animations.size(); ++k) {
+        const Animation& a = scene.animations[k];
+        std::printf("    %zu %-20s %.3f s (%g to %g), %zu channels\n", k, a.name.empty() ? "(unnamed)" : a.name.c_str(),
+                    a.duration(), a.start(), a.end(), a.channels.size());
+    }
     auto list = [](const std::vector<std::string>& v) {
         std::string s;
         for (const auto& e : v) s += (s.empty() ? "" : ", ") + e;

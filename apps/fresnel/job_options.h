@@ -16,7 +16,11 @@ struct RenderOptions {
     std::string output;
     int turntable = 0;       // render --turntable N
     std::string video;       // render --video FILE.mp4
-    int fps = 24;
+    int fps = 24;            // render --fps: of --frames and --video
+    std::optional<float> time;       // render --time: seconds on the animations' timeline
+    std::optional<int> animation;    // render --animation: which one (default: all)
+    std::optional<int> frames;       // render --frames: numbered images from --time
+    std::string posing = "gpu";      // render --posing: skins and morph targets on the gpu or the cpu
     std::string size = "1024x768";
     float yaw = 0, pitch = 0;
     std::optional<float> distance;

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
@@ -21,6 +22,8 @@
 #include "fresnel/render/job.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/render/scene_file.h"
+#include "fresnel/render/shader_features.h"
+#include "fresnel/scene/pose.h"
 #include "job_options.h"
 #include "progress.h"
 
@@ -334,6 +337,17 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
         print_error("--turntable: turns the orbit camera; not with --camera or a scene file's lookAt/model camera");
         return kExitUsage;
     }
+    const bool animated = o.time || o.animation || o.frames;
+    if (o.turntable > 0 && o.frames) {
+        print_error("--turntable and --frames: one frame sequence at a time (--turntable N --time T turns an animated model posed at T)");
+        return kExitUsage;
+    }
+    if (o.time && !std::isfinite(*o.time)) {
+        print_error("--time: must be finite");
+        return kExitUsage;
+    }
+    // An animated frame is posed from the bind pose (skins by the animated joints).
+    if (animated) job.source.pose_skins = false;
 
     // Scene, then the rules of README.md's "Lighting rules" (libs/render/job.h).
     auto t_load = Clock::now();
@@ -341,6 +355,17 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
     double load_ms = ms_since(t_load);
     print_warnings(diag);
     ResolvedJob resolved = resolve(job, scene);
+    const std::string model_name = o.models.empty() ? std::string("demo") : o.models[0];
+    if (animated) {
+        if (scene.animations.empty()) {
+            Diagnostics none;
+            none.warn(model_name, "", "the file has no animations; rendering its rest pose posed on the CPU");
+            print_warnings(none);
+        }
+        if (o.animation && (*o.animation < 0 || std::size_t(*o.animation) >= scene.animations.size()))
+            throw Error(model_name, "--animation " + std::to_string(*o.animation),
+                        "the file has " + std::to_string(scene.animations.size()) + " animations");
+    }
     std::string label = "baking " + (resolved.environment ? resolved.environment->describe() : std::string());
     ProgressBar bar(label);
     JobLighting lighting = load_lighting(resolved, [&](double f) { bar.update(f); });
@@ -355,26 +380,65 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
     co.log = [](const std::string& m) { std::fprintf(stderr, "fresnel: %s\n", m.c_str()); };
     auto context = gpu::create_headless_context(co);
     Renderer renderer(*context);
-    renderer.set_scene(scene, resolved.scene_index);
-    double upload_ms = ms_since(t_gpu);
+    double upload_ms = 0.0;
 
+    // Frames: one, a turntable (the orbit camera's yaw advances by 360/N degrees), or an
+    // animation (--frames N at --fps from --time; --time alone poses one frame). Animated
+    // frames keep the camera fitted to the rest pose, so they line up. GPU posing uploads the
+    // bind pose once and moves only the nodes; CPU posing (the reference) uploads each
+    // frame's posed meshes.
     RenderSettings rs = lighting.settings(resolved);
-    auto t_frame = Clock::now();
+    const bool gpu_posing = animated && o.posing == "gpu" && gpu_animatable(scene);
+    if (animated && o.posing == "gpu" && !gpu_posing) {
+        Diagnostics note;
+        note.warn(model_name, "--posing gpu",
+                  "a skin has more than " + std::to_string(kMaxShaderJoints) + " joints or a primitive more than " +
+                      std::to_string(kMaxShaderMorphTargets) + " morph targets; posing on the CPU");
+        print_warnings(note);
+    }
+    rs.gpu_animation = gpu_posing;
+    Scene posed;  // the frame being drawn (the renderer keeps a pointer to it)
+    if (gpu_posing) posed = scene;
+    const int frames = o.turntable > 0 ? o.turntable : o.frames.value_or(1);
+    const bool numbered = o.turntable > 0 || o.frames.has_value();
+    std::vector<float> times;
+    std::vector<std::string> outputs;
+    double draw_ms = 0.0;
     FrameStats stats;
-    const int frames = std::max(o.turntable, 1);
     for (int i = 0; i < frames; ++i) {
+        ResolvedJob frame_job = resolved;
+        const Scene* draw = &scene;
+        if (animated) {
+            float t = o.time.value_or(0.0f) + (o.frames ? float(i) / float(o.fps) : 0.0f);
+            times.push_back(t);
+            if (gpu_posing) {
+                posed.nodes = scene.nodes;
+                animate(posed, o.animation.value_or(-1), t);
+            } else {
+                posed = animated_scene(scene, o.animation.value_or(-1), t);
+            }
+            frame_job = resolve(job, posed);  // the lights follow their nodes
+            if (!job.camera.scene_camera) frame_job.camera = resolved.camera;
+            draw = &posed;
+        }
         if (o.turntable > 0) {
-            // N frames around the model: the orbit camera's yaw advances by 360/N degrees.
             Job frame = job;
             frame.camera.yaw_deg = job.camera.yaw_deg + 360.0f * float(i) / float(frames);
-            resolved.camera = resolve(frame, scene).camera;
+            frame_job.camera = resolve(frame, scene).camera;
         }
+        auto t_upload = Clock::now();
+        if (i == 0 || (animated && !gpu_posing)) renderer.set_scene(*draw, frame_job.scene_index);
+        else if (gpu_posing) renderer.update_transforms();
+        upload_ms += ms_since(i == 0 ? t_gpu : t_upload);
+        auto t_draw = Clock::now();
         stats = FrameStats{};
-        ImageF image = renderer.render(resolved.camera, resolved.lights, rs, &stats);
+        ImageF image = renderer.render(frame_job.camera, frame_job.lights, rs, &stats);
+        draw_ms += ms_since(t_draw);
         if (!stats.gl_errors.empty()) throw Error("OpenGL", "", "the frame raised " + stats.gl_errors);
-        write_image_atomically(o.turntable > 0 ? frame_path(output, i, frames) : output, image, resolved.transparent());
+        outputs.push_back(numbered ? frame_path(output, i, frames) : output);
+        write_image_atomically(outputs.back(), image, resolved.transparent());
     }
-    double frame_ms = ms_since(t_frame) / frames;
+    double frame_ms = draw_ms / frames;
     if (!o.video.empty()) encode_video(ffmpeg, output, frames, o.fps, o.video);
 
     if (o.json) {
@@ -382,7 +446,9 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
         const auto& environment = lighting.environment;
         nlohmann::json j;
         j["output"] = output;
-        if (o.turntable > 0) j["frames"] = frames;
+        if (numbered) j["frames"] = frames;
+        if (animated) j["times"] = times;
+        if (numbered) j["outputs"] = outputs;
         if (!o.video.empty()) j["video"] = o.video;
         j["model"] = o.models.empty() ? "(demo)" : o.models.size() == 1 ? nlohmann::json(o.models[0]) : nlohmann::json(o.models);
         j["width"] = rs.width;
@@ -428,7 +494,20 @@ Runner add_render_command(CLI::App& app) {
                     "printf pattern in -o, e.g. frame_%04d.png)")
         ->check(CLI::Range(1, 100000));
     cmd->add_option("--video", o->video, "With --turntable: also encode the PNG frames into this MP4 (H.264) with ffmpeg");
-    cmd->add_option("--fps", o->fps, "Frames per second of --video")->capture_default_str()->check(CLI::Range(1, 240));
+    cmd->add_option("--fps", o->fps, "Frames per second of --frames (the animation's time step) and of --video")
+        ->capture_default_str()->check(CLI::Range(1, 240));
+    cmd->add_option("--time", o->time,
+                    "Pose the scene at T seconds of its animations (clamped to each one's keyframes); skins and "
+                    "morph targets follow. Default: the rest pose");
+    cmd->add_option("--animation", o->animation, "Play only animation K (0-based; `fresnel info` lists them). Default: all");
+    cmd->add_option("--frames", o->frames,
+                    "Write N frames from --time (default 0) at --fps, numbered as --turntable's: OUT-000.png ...")
+        ->check(CLI::Range(1, 100000));
+    cmd->add_option("--posing", o->posing,
+                    "Where animated frames are skinned and morphed: gpu (vertex shader; skins of up to 32 joints, "
+                    "2 morph targets a primitive, else the CPU) or cpu (the reference)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"gpu", "cpu"}));
     cmd->add_flag("--json", o->json, "Print timings, camera and counts as one JSON line");
     add_job_flags(cmd, *o);
     return [o, cmd] { return run_render(*o, cmd); };

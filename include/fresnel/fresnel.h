@@ -14,11 +14,13 @@
 #include "fresnel/core/parallel.h"
 #include "fresnel/core/sampler.h"
 
+#include "fresnel/scene/animation.h"
 #include "fresnel/scene/gltf_loader.h"
 #include "fresnel/scene/merge.h"
 #include "fresnel/scene/mesh_ops.h"
 #include "fresnel/scene/obj_loader.h"
 #include "fresnel/scene/paths.h"
+#include "fresnel/scene/pose.h"
 #include "fresnel/scene/procedural.h"
 #include "fresnel/scene/scene_writer.h"
 #include "fresnel/scene/scene.h"

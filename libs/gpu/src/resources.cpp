@@ -277,8 +277,12 @@ Program::Program(const std::string& name, const std::string& vs, const std::stri
     glAttachShader(id_, v);
     glAttachShader(id_, f);
     // Fixed attribute locations shared by every mesh shader.
-    const char* attributes[] = {"a_position", "a_normal", "a_tangent", "a_uv0", "a_uv1", "a_color"};
-    for (unsigned i = 0; i < 6; ++i) glBindAttribLocation(id_, i, attributes[i]);
+    // Skinning (6, 7) and two morph targets' displacements (8 .. 13) follow; 14 of the 16
+    // attributes OpenGL ES 3.0 guarantees.
+    const char* attributes[] = {"a_position", "a_normal", "a_tangent", "a_uv0", "a_uv1", "a_color", "a_joints", "a_weights",
+                                "a_morph_position0", "a_morph_normal0", "a_morph_tangent0",
+                                "a_morph_position1", "a_morph_normal1", "a_morph_tangent1"};
+    for (unsigned i = 0; i < 14; ++i) glBindAttribLocation(id_, i, attributes[i]);
     glLinkProgram(id_);
     glDeleteShader(v);
     glDeleteShader(f);
@@ -319,6 +323,12 @@ void Program::set(const std::string& n, std::span<const glm::vec4> v) const {
 }
 void Program::set(const std::string& n, std::span<const glm::vec3> v) const {
     if (!v.empty()) glUniform3fv(location(n), GLsizei(v.size()), glm::value_ptr(v[0]));
+}
+void Program::set(const std::string& n, std::span<const glm::mat4> v) const {
+    if (!v.empty()) glUniformMatrix4fv(location(n), GLsizei(v.size()), GL_FALSE, glm::value_ptr(v[0]));
+}
+void Program::set(const std::string& n, std::span<const float> v) const {
+    if (!v.empty()) glUniform1fv(location(n), GLsizei(v.size()), v.data());
 }
 
 }  // namespace fresnel::gpu

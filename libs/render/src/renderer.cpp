@@ -15,6 +15,7 @@
 #include "fresnel/render/material_uniforms.h"
 #include "fresnel/render/shader_features.h"
 #include "fresnel/render/shader_library.h"
+#include "fresnel/scene/mesh_ops.h"
 
 namespace fresnel {
 
@@ -48,7 +49,10 @@ enum class TextureUnit : int {
     IrradianceEnvironment = 15,
 };
 
-enum Attr : unsigned { kPosition = 0, kNormal, kTangent, kUv0, kUv1, kColor };
+enum Attr : unsigned {
+    kPosition = 0, kNormal, kTangent, kUv0, kUv1, kColor, kJoints, kWeights,
+    kMorphPosition0, kMorphNormal0, kMorphTangent0,  // target k at kMorphPosition0 + 3k (gpu::Program's names)
+};
 
 struct GpuPrimitive {
     gpu::VertexArray vao;
@@ -60,12 +64,20 @@ struct GpuPrimitive {
     bool has_normal = false, has_tangent = false, has_uv0 = false, has_uv1 = false, has_color = false;
     glm::vec3 center{0.0f};
     std::size_t triangles = 0;
+    // GPU animation inputs (used with RenderSettings::gpu_animation): JOINTS_0/WEIGHTS_0, and
+    // the displacements of up to kMaxShaderMorphTargets targets with the weights they hold.
+    bool has_skin = false;
+    int morph_targets = 0;
+    std::array<float, kMaxShaderMorphTargets> applied_weights{};
 };
 
 struct Draw {
     const GpuPrimitive* prim;
     glm::mat4 model;
     float depth;  // view-space distance, for sorting blended draws
+    const std::vector<glm::mat4>* joints = nullptr;  // skinned on the GPU by these joint matrices
+    bool morph = false;                              // morphed on the GPU by these weight changes:
+    std::array<float, kMaxShaderMorphTargets> morph_weights{};
 };
 
 gpu::Primitive to_gpu(Topology t) {
@@ -97,6 +109,7 @@ struct Renderer::Impl {
     gpu::Device device;
     ShaderLibrary shaders;
     const Scene* scene = nullptr;
+    int scene_index = -1;
     std::vector<NodeInstance> instances;
     std::vector<std::vector<GpuPrimitive>> meshes;
 
@@ -222,6 +235,30 @@ struct Renderer::Impl {
                 if ((g.has_uv0 = !p.uv0.empty())) add(kUv0, p.uv0.data(), p.uv0.size(), 2);
                 if ((g.has_uv1 = !p.uv1.empty())) add(kUv1, p.uv1.data(), p.uv1.size(), 2);
                 if ((g.has_color = !p.colors.empty())) add(kColor, p.colors.data(), p.colors.size(), 4);
+                if (!p.joints.empty() && p.weights.size() == p.joints.size()) {
+                    std::vector<glm::vec4> joints(p.joints.size());
+                    for (std::size_t v = 0; v < joints.size(); ++v) joints[v] = glm::vec4(p.joints[v]);
+                    add(kJoints, joints.data(), joints.size(), 4);
+                    add(kWeights, p.weights.data(), p.weights.size(), 4);
+                    g.has_skin = true;
+                }
+                // Morph targets on the GPU: up to two, and not where flat normals were generated
+                // (they follow the faces, which only the CPU path recomputes).
+                if (!p.targets.empty() && p.targets.size() <= std::size_t(kMaxShaderMorphTargets) && !p.generated_normals) {
+                    std::vector<glm::vec3> zeros(p.positions.size(), glm::vec3(0.0f));
+                    for (std::size_t k = 0; k < std::size_t(kMaxShaderMorphTargets); ++k) {
+                        const MorphTarget* t = k < p.targets.size() ? &p.targets[k] : nullptr;
+                        auto pick = [&](const std::vector<glm::vec3>* a) {
+                            return a && a->size() == p.positions.size() ? a->data() : zeros.data();
+                        };
+                        unsigned base = kMorphPosition0 + 3 * unsigned(k);
+                        add(Attr(base), pick(t ? &t->positions : nullptr), p.positions.size(), 3);
+                        add(Attr(base + 1), pick(t ? &t->normals : nullptr), p.positions.size(), 3);
+                        add(Attr(base + 2), pick(t ? &t->tangents : nullptr), p.positions.size(), 3);
+                        g.applied_weights[k] = k < p.applied_weights.size() ? p.applied_weights[k] : 0.0f;
+                    }
+                    g.morph_targets = int(p.targets.size());
+                }
                 if (!p.indices.empty()) {
                     g.buffers.emplace_back(gpu::BufferKind::Index, p.indices.data(), p.indices.size() * 4);
                     g.vao.set_indices(g.buffers.back());
@@ -418,6 +455,8 @@ struct Renderer::Impl {
         if (p.has_color) raw |= feature::HasColor;
         if (settings.debug != DebugChannel::None) raw |= feature::DebugView;
         if (settings.environment) raw |= feature::UseIbl;
+        if (d.joints) raw |= feature::Skinned;
+        if (d.morph) raw |= feature::MorphTargets;
 
         // Map i takes texture unit i (feature bit kFirstMap + i); the image-based light uses the
         // named units above them (TextureUnit).
@@ -456,6 +495,8 @@ struct Renderer::Impl {
         float det = glm::determinant(glm::mat3(d.model));
         prog.set("u_handedness", det < 0 ? -1.0f : 1.0f);
         prog.set("u_point_size", 1.0f);
+        if (d.joints) prog.set("u_joints", std::span<const glm::mat4>(*d.joints));
+        if (d.morph) prog.set("u_morph_weights", std::span<const float>(d.morph_weights));
         prog.set("u_camera_position", cam.eye);
         prog.set("u_debug", int(settings.debug));
         prog.set("u_ambient", settings.ambient);
@@ -503,9 +544,24 @@ Renderer::~Renderer() = default;
 
 void Renderer::set_scene(const Scene& scene, int scene_index) {
     impl_->scene = &scene;
+    impl_->scene_index = scene_index;
     impl_->instances = flatten(scene, scene_index);
     impl_->upload(scene);
     impl_->upload_textures();
+}
+
+void Renderer::update_transforms() {
+    if (impl_->scene) impl_->instances = flatten(*impl_->scene, impl_->scene_index);
+}
+
+bool gpu_animatable(const Scene& scene) {
+    for (const auto& s : scene.skins)
+        if (s.joints.size() > std::size_t(kMaxShaderJoints)) return false;
+    for (const auto& m : scene.meshes)
+        for (const auto& p : m.primitives)
+            if (p.targets.size() > std::size_t(kMaxShaderMorphTargets) || (!p.targets.empty() && p.generated_normals))
+                return false;
+    return true;
 }
 
 std::size_t Renderer::program_count() const { return impl_->shaders.size(); }
@@ -552,13 +608,37 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
 
     if (r.scene) {
         std::vector<Draw> opaque, blended;
+        // GPU animation: joint matrices from the nodes' current world matrices.
+        std::vector<std::vector<glm::mat4>> skin_matrices;
+        if (settings.gpu_animation) {
+            std::vector<glm::mat4> world = world_matrices(r.scene->nodes);
+            skin_matrices.resize(r.scene->skins.size());
+            for (std::size_t k = 0; k < r.scene->skins.size(); ++k) {
+                const Skin& s = r.scene->skins[k];
+                bool ok = !s.joints.empty() && s.joints.size() <= std::size_t(kMaxShaderJoints);
+                for (int j : s.joints) ok = ok && j >= 0 && std::size_t(j) < world.size();
+                if (ok) skin_matrices[k] = joint_matrices(world, s.joints, s.inverse_bind);
+            }
+        }
         for (const auto& inst : r.instances) {
             const Node& node = r.scene->nodes[std::size_t(inst.node)];
             if (node.mesh < 0) continue;
+            const Mesh& mesh = r.scene->meshes[std::size_t(node.mesh)];
             for (const auto& p : r.meshes[std::size_t(node.mesh)]) {
                 glm::mat4 model = node.world_space_mesh ? glm::mat4(1.0f) : inst.world;
                 glm::vec4 c = cam.view * model * glm::vec4(p.center, 1.0f);
                 Draw d{&p, model, -c.z};
+                if (settings.gpu_animation && !node.world_space_mesh) {
+                    if (p.has_skin && node.skin >= 0 && std::size_t(node.skin) < skin_matrices.size() &&
+                        !skin_matrices[std::size_t(node.skin)].empty())
+                        d.joints = &skin_matrices[std::size_t(node.skin)];
+                    const std::vector<float>& weights = node.weights.empty() ? mesh.weights : node.weights;
+                    for (int k = 0; k < p.morph_targets; ++k) {
+                        float w = std::size_t(k) < weights.size() ? weights[std::size_t(k)] : 0.0f;
+                        d.morph_weights[std::size_t(k)] = w - p.applied_weights[std::size_t(k)];
+                        d.morph = d.morph || d.morph_weights[std::size_t(k)] != 0.0f;
+                    }
+                }
                 const Material* m = p.material >= 0 ? &r.scene->materials[std::size_t(p.material)] : nullptr;
                 if (m && m->alpha_mode == AlphaMode::Blend) blended.push_back(d);
                 else opaque.push_back(d);

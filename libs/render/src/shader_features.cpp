@@ -28,6 +28,8 @@ constexpr FeatureInfo kFeatures[kCount] = {
     {ClearcoatMap, "HAS_CLEARCOAT_MAP"},
     {ClearcoatRoughnessMap, "HAS_CLEARCOAT_ROUGHNESS_MAP"},
     {ClearcoatNormalMap, "HAS_CLEARCOAT_NORMAL_MAP"},
+    {Skinned, "SKINNED"},
+    {MorphTargets, "MORPH_TARGETS"},
 };
 
 // The maps a draw with these attributes and this material model may bind.

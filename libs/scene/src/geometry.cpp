@@ -133,6 +133,40 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
         apply("NORMAL", p.normals);
         apply("TANGENT", p.tangents);
     }
+    // Every target's displacements, kept for animation. A target the rest pose leaves at
+    // weight 0 was never read before: one that cannot be read drops the targets with a
+    // warning, so such files still load in their rest pose.
+    if (!targets.empty()) {
+        try {
+            for (std::size_t k = 0; k < targets.size(); ++k) {
+                std::string tp = ptr + "/targets/" + std::to_string(k);
+                if (!targets[k].is_object()) r.fail(tp, "must be an object");
+                MorphTarget mt;
+                auto keep = [&](const char* name, std::size_t base_size, std::vector<glm::vec3>& out) {
+                    int idx = r.index(targets[k], name, tp, accessors.accessor_count(), "accessor");
+                    if (idx < 0 || base_size == 0) return;
+                    AccessorData d = accessors.read(idx);
+                    if (d.count != vertex_count || d.components < 3)
+                        r.fail(tp + "/" + name, "does not match the primitive's vertices");
+                    out.resize(d.count);
+                    for (std::size_t i = 0; i < d.count; ++i) {
+                        for (int c = 0; c < 3; ++c) out[i][c] = float(d.values[i * std::size_t(d.components) + std::size_t(c)]);
+                        if (!finite(out[i])) r.fail(tp + "/" + name, "non-finite displacement");
+                    }
+                };
+                keep("POSITION", p.positions.size(), mt.positions);
+                keep("NORMAL", p.normals.size(), mt.normals);
+                keep("TANGENT", p.tangents.size(), mt.tangents);
+                p.targets.push_back(std::move(mt));
+            }
+            p.applied_weights.assign(targets.size(), 0.0f);
+            for (std::size_t k = 0; k < targets.size() && k < morph_weights.size(); ++k) p.applied_weights[k] = morph_weights[k];
+        } catch (const Error& e) {
+            warn(e.where(), e.reason() + "; morph targets cannot be animated");
+            p.targets.clear();
+            p.applied_weights.clear();
+        }
+    }
 
     if (!std::all_of(p.positions.begin(), p.positions.end(), finite)) {
         warn(ap + "/POSITION", "non-finite vertex positions; primitive skipped");

@@ -146,7 +146,9 @@ public:
         load_lights();
         load_nodes();
         load_scenes();
-        pose_skins(accessors);
+        load_skins(accessors);
+        load_animations(accessors);
+        pose_skins();
         return std::move(scene_);
     }
 
@@ -633,6 +635,7 @@ private:
                     mesh.primitives.push_back(std::move(*prim));
                 }
             }
+            mesh.weights = std::move(weights);
             scene_.meshes.push_back(std::move(mesh));
         }
     }
@@ -796,6 +799,7 @@ private:
                     if (!std::isfinite(v[k])) r_.fail(ptr + "/matrix/" + std::to_string(k), "must be finite");
                 }
                 node.local = glm::make_mat4(v);  // column-major, as glTF stores it
+                node.has_trs = false;
             } else {
                 auto t = r_.numbers<3>(n, "translation", ptr, {0, 0, 0});
                 auto q = r_.numbers<4>(n, "rotation", ptr, {0, 0, 0, 1});
@@ -805,6 +809,9 @@ private:
                 rot = len > 0 ? rot / len : glm::quat(1, 0, 0, 0);
                 node.local = glm::translate(glm::mat4(1.0f), glm::vec3(t[0], t[1], t[2])) * glm::mat4_cast(rot) *
                              glm::scale(glm::mat4(1.0f), glm::vec3(s[0], s[1], s[2]));
+                node.translation = glm::vec3(float(t[0]), float(t[1]), float(t[2]));
+                node.rotation = rot;
+                node.scale = glm::vec3(float(s[0]), float(s[1]), float(s[2]));
             }
         }
         // With at most one parent per node, a cycle means a set of nodes none of which is a root.
@@ -831,36 +838,163 @@ private:
     }
     std::vector<int> roots_parents_;
 
+    // Skins into Scene::skins. Skins were read only to pose them (GltfLoadOptions::pose_skins):
+    // without that option, a skin that cannot be read is dropped with a warning (its joints
+    // left empty) so that such files still load in their bind pose.
+    void load_skins(const gltf::AccessorDecoder& accessors) {
+        const json& skins = r_.array(doc_, "skins", "");
+        scene_.skins.resize(skins.size());
+        for (std::size_t k = 0; k < skins.size(); ++k) {
+            try {
+                scene_.skins[k] = load_skin(accessors, skins[k], "/skins/" + std::to_string(k));
+            } catch (const Error& e) {
+                if (opt_.pose_skins) throw;
+                warn(e.where(), e.reason() + "; skin ignored");
+            }
+        }
+    }
+
+    Skin load_skin(const gltf::AccessorDecoder& accessors, const json& skin, const std::string& ptr) {
+        if (!skin.is_object()) r_.fail(ptr, "must be an object");
+        Skin out;
+        out.name = r_.string(skin, "name", ptr);
+        const json& joints = r_.array(skin, "joints", ptr);
+        if (joints.empty()) r_.fail(ptr + "/joints", "a skin needs at least one joint");
+        std::vector<glm::mat4> ibm(joints.size(), glm::mat4(1.0f));
+        int ibm_index = r_.index(skin, "inverseBindMatrices", ptr, accessors.accessor_count(), "accessor");
+        if (ibm_index >= 0) {
+            gltf::AccessorData d = accessors.read(ibm_index);
+            if (d.components != 16 || d.count < joints.size())
+                r_.fail(ptr + "/inverseBindMatrices", "must be MAT4 with one matrix per joint");
+            for (std::size_t j = 0; j < joints.size(); ++j)
+                for (int c = 0; c < 16; ++c) ibm[j][c / 4][c % 4] = float(d.values[j * 16 + std::size_t(c)]);
+        }
+        for (std::size_t j = 0; j < joints.size(); ++j)
+            out.joints.push_back(int(r_.index_value(joints[j], ptr + "/joints/" + std::to_string(j), scene_.nodes.size(), "node")));
+        out.inverse_bind = std::move(ibm);
+        return out;
+    }
+
+    // Animations into Scene::animations. They do not change the rest pose, so an animation
+    // that cannot be used is dropped with a warning, never failing the file: accessors in
+    // range and of the right type, keyframe times finite and strictly increasing, output
+    // counts matching the times, channels naming nodes with TRS (not matrices).
+    void load_animations(const gltf::AccessorDecoder& accessors) {
+        const json& arr = r_.array(doc_, "animations", "");
+        for (std::size_t i = 0; i < arr.size(); ++i) {
+            std::string ptr = "/animations/" + std::to_string(i);
+            try {
+                Animation a = load_animation(accessors, arr[i], ptr);
+                scene_.animations.push_back(std::move(a));
+            } catch (const Error& e) {
+                warn(e.where(), e.reason() + "; animation ignored");
+            }
+        }
+    }
+
+    Animation load_animation(const gltf::AccessorDecoder& accessors, const json& a, const std::string& ptr) {
+        if (!a.is_object()) r_.fail(ptr, "must be an object");
+        Animation out;
+        out.name = r_.string(a, "name", ptr);
+        const json& samplers = r_.array(a, "samplers", ptr);
+        const json& channels = r_.array(a, "channels", ptr);
+        for (std::size_t k = 0; k < samplers.size(); ++k) {
+            std::string sp = ptr + "/samplers/" + std::to_string(k);
+            const json& sj = samplers[k];
+            if (!sj.is_object()) r_.fail(sp, "must be an object");
+            AnimationSampler s;
+            std::string interp = r_.string(sj, "interpolation", sp, "LINEAR");
+            if (interp == "LINEAR") s.interpolation = Interpolation::Linear;
+            else if (interp == "STEP") s.interpolation = Interpolation::Step;
+            else if (interp == "CUBICSPLINE") s.interpolation = Interpolation::CubicSpline;
+            else r_.fail(sp + "/interpolation", "unknown interpolation '" + interp + "'");
+            int in = r_.index(sj, "input", sp, accessors.accessor_count(), "accessor", true);
+            int outi = r_.index(sj, "output", sp, accessors.accessor_count(), "accessor", true);
+            gltf::AccessorData din = accessors.read(in);
+            if (din.components != 1 || din.component_type != 5126)
+                r_.fail(sp + "/input", "keyframe times must be SCALAR FLOAT");
+            if (din.count == 0) r_.fail(sp + "/input", "a sampler needs at least one keyframe");
+            s.input.resize(din.count);
+            for (std::size_t t = 0; t < din.count; ++t) {
+                s.input[t] = float(din.values[t]);
+                if (!std::isfinite(s.input[t])) r_.fail(sp + "/input", "keyframe time " + std::to_string(t) + " is not finite");
+                if (t > 0 && !(s.input[t] > s.input[t - 1]))
+                    r_.fail(sp + "/input", "keyframe times must be strictly increasing (time " + std::to_string(t) + ")");
+            }
+            gltf::AccessorData dout = accessors.read(outi);
+            if (dout.component_type != 5126 && !dout.normalized)
+                r_.fail(sp + "/output", "keyframe values must be FLOAT or normalized integers");
+            std::size_t per = s.interpolation == Interpolation::CubicSpline ? 3 : 1;
+            std::size_t elements = din.count * per;
+            if (dout.components == 1) {  // morph weights: one value per target per element
+                if (dout.count % elements != 0 || dout.count == 0)
+                    r_.fail(sp + "/output", std::to_string(dout.count) + " values are not a whole number per keyframe (" +
+                                                std::to_string(elements) + ")");
+                s.width = int(std::min<std::size_t>(dout.count / elements, 1u << 16));
+                if (std::size_t(s.width) * elements != dout.count) r_.fail(sp + "/output", "too many morph weights");
+            } else if (dout.components == 3 || dout.components == 4) {
+                if (dout.count != elements)
+                    r_.fail(sp + "/output", "has " + std::to_string(dout.count) + " values for " + std::to_string(elements) +
+                                                " keyframe elements");
+                s.width = dout.components;
+            } else {
+                r_.fail(sp + "/output", "keyframe values must be SCALAR, VEC3 or VEC4");
+            }
+            s.output.resize(dout.values.size());
+            for (std::size_t v = 0; v < dout.values.size(); ++v) {
+                s.output[v] = float(dout.values[v]);
+                if (!std::isfinite(s.output[v])) r_.fail(sp + "/output", "keyframe value " + std::to_string(v) + " is not finite");
+            }
+            out.samplers.push_back(std::move(s));
+        }
+        for (std::size_t k = 0; k < channels.size(); ++k) {
+            std::string cp = ptr + "/channels/" + std::to_string(k);
+            const json& cj = channels[k];
+            if (!cj.is_object()) r_.fail(cp, "must be an object");
+            AnimationChannel c;
+            c.sampler = r_.index(cj, "sampler", cp, out.samplers.size(), "sampler", true);
+            const json& target = r_.object(cj, "target", cp);
+            std::string tp = cp + "/target";
+            std::string path = r_.string(target, "path", tp);
+            c.node = r_.index(target, "node", tp, scene_.nodes.size(), "node");
+            if (path == "pointer") {
+                warn(tp, "KHR_animation_pointer channels are not played; channel ignored");
+                continue;
+            }
+            if (c.node < 0) continue;  // no target node: ignored, as the specification says
+            int width = out.samplers[std::size_t(c.sampler)].width;
+            if (path == "translation") c.path = AnimationPath::Translation;
+            else if (path == "rotation") c.path = AnimationPath::Rotation;
+            else if (path == "scale") c.path = AnimationPath::Scale;
+            else if (path == "weights") c.path = AnimationPath::Weights;
+            else r_.fail(tp + "/path", "unknown path '" + path + "'");
+            int want = c.path == AnimationPath::Rotation ? 4 : c.path == AnimationPath::Weights ? 0 : 3;
+            if (want != 0 && width != want)
+                r_.fail(cp + "/sampler", "the sampler's values do not fit path '" + path + "'");
+            if (c.path == AnimationPath::Weights && scene_.nodes[std::size_t(c.node)].mesh < 0) {
+                warn(tp + "/node", "morph weights animated on a node without a mesh; channel ignored");
+                continue;
+            }
+            if (!scene_.nodes[std::size_t(c.node)].has_trs && c.path != AnimationPath::Weights) {
+                warn(tp + "/node", "node " + std::to_string(c.node) + " has a matrix and cannot be animated; channel ignored");
+                continue;
+            }
+            out.channels.push_back(c);
+        }
+        return out;
+    }
+
     // With GltfLoadOptions::pose_skins, skinned meshes are posed at rest: each vertex moved
     // by its joints' world matrices times their inverse bind matrices (glTF 2.0 skinning, no
     // animation). The posed copy lives in world space; the node keeps its matrix for the
     // camera bounds. Without it (the default) they stay in their bind pose.
-    void pose_skins(const gltf::AccessorDecoder& accessors) {
-        const json& skins = r_.array(doc_, "skins", "");
-        if (skins.empty() || !opt_.pose_skins) return;
+    void pose_skins() {
+        if (scene_.skins.empty() || !opt_.pose_skins) return;
         // The hierarchy is a forest (checked in load_nodes).
         std::vector<glm::mat4> world = world_matrices(scene_.nodes);
-        std::vector<std::vector<glm::mat4>> skin_matrices(skins.size());
-        for (std::size_t k = 0; k < skins.size(); ++k) {
-            std::string ptr = "/skins/" + std::to_string(k);
-            const json& skin = skins[k];
-            if (!skin.is_object()) r_.fail(ptr, "must be an object");
-            const json& joints = r_.array(skin, "joints", ptr);
-            if (joints.empty()) r_.fail(ptr + "/joints", "a skin needs at least one joint");
-            std::vector<glm::mat4> ibm(joints.size(), glm::mat4(1.0f));
-            int ibm_index = r_.index(skin, "inverseBindMatrices", ptr, accessors.accessor_count(), "accessor");
-            if (ibm_index >= 0) {
-                gltf::AccessorData d = accessors.read(ibm_index);
-                if (d.components != 16 || d.count < joints.size())
-                    r_.fail(ptr + "/inverseBindMatrices", "must be MAT4 with one matrix per joint");
-                for (std::size_t j = 0; j < joints.size(); ++j)
-                    for (int c = 0; c < 16; ++c) ibm[j][c / 4][c % 4] = float(d.values[j * 16 + std::size_t(c)]);
-            }
-            std::vector<int> joint_nodes;
-            for (std::size_t j = 0; j < joints.size(); ++j)
-                joint_nodes.push_back(int(r_.index_value(joints[j], ptr + "/joints/" + std::to_string(j), scene_.nodes.size(), "node")));
-            skin_matrices[k] = joint_matrices(world, joint_nodes, ibm);
-        }
+        std::vector<std::vector<glm::mat4>> skin_matrices(scene_.skins.size());
+        for (std::size_t k = 0; k < scene_.skins.size(); ++k)
+            skin_matrices[k] = joint_matrices(world, scene_.skins[k].joints, scene_.skins[k].inverse_bind);
         for (std::size_t i = 0; i < scene_.nodes.size(); ++i) {
             Node& node = scene_.nodes[i];
             if (node.skin < 0 || node.mesh < 0) continue;

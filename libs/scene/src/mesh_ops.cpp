@@ -144,6 +144,11 @@ void remap_vertices(Primitive& p, std::span<const std::uint32_t> remap) {
     remap_array(p.colors, remap);
     remap_array(p.joints, remap);
     remap_array(p.weights, remap);
+    for (auto& t : p.targets) {
+        remap_array(t.positions, remap);
+        remap_array(t.normals, remap);
+        remap_array(t.tangents, remap);
+    }
 }
 
 bool drop_identity_indices(Primitive& p) {
@@ -222,7 +227,8 @@ void transform_primitive(Primitive& p, const glm::mat4& m) {
     for (auto& t : p.tangents) t = glm::vec4(glm::normalize(glm::mat3(m) * glm::vec3(t)), t.w);
 }
 
-void pose_skinned(Primitive& p, std::span<const glm::mat4> joint_matrices, const glm::mat4& node_world) {
+void pose_skinned(Primitive& p, std::span<const glm::mat4> joint_matrices, const glm::mat4& node_world,
+                  SkinWeights mode) {
     if (p.joints.empty()) {
         transform_primitive(p, node_world);
         return;
@@ -239,7 +245,8 @@ void pose_skinned(Primitive& p, std::span<const glm::mat4> joint_matrices, const
             wsum += w;
         }
         if (wsum <= 0.0f) m = node_world;  // unweighted vertices follow the node
-        p.positions[v] = glm::vec3(m * glm::vec4(p.positions[v], 1.0f));
+        glm::vec4 h = m * glm::vec4(p.positions[v], 1.0f);
+        p.positions[v] = mode == SkinWeights::Homogeneous && h.w != 0.0f ? glm::vec3(h) / h.w : glm::vec3(h);
         glm::mat3 m3(m);
         if (v < p.normals.size()) p.normals[v] = glm::normalize(glm::transpose(glm::inverse(m3)) * p.normals[v]);
         if (v < p.tangents.size()) p.tangents[v] = glm::vec4(glm::normalize(m3 * glm::vec3(p.tangents[v])), p.tangents[v].w);

@@ -1809,3 +1809,171 @@ TEST(GltfMorphTargets, DefaultWeightsApplied) {
     const Primitive& p = s.meshes.at(0).primitives.at(0);
     EXPECT_FLOAT_EQ(p.positions[1].z, 0.5f);
 }
+
+// ---- animations ---------------------------------------------------------------------------
+
+namespace {
+// One triangle node (0) with a morph target and a TRS node (1); animation samplers are added
+// by the tests.
+Doc animated_doc() {
+    Doc doc;
+    int pos = doc.positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    int delta = doc.positions({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
+    doc.mesh({{"attributes", {{"POSITION", pos}}}, {"targets", json::array({{{"POSITION", delta}}})}});
+    doc.j["nodes"].push_back({{"translation", {1, 2, 3}}});
+    doc.j["scenes"][0]["nodes"].push_back(1);
+    return doc;
+}
+}  // namespace
+
+TEST(GltfAnimations, SamplersAndChannelsAreRead) {
+    Doc doc = animated_doc();
+    int times = doc.attribute(FLOAT, "SCALAR", {0, 1, 2});
+    int trans = doc.attribute(FLOAT, "VEC3", {0, 0, 0, 1, 0, 0, 2, 0, 0});
+    int rot = doc.attribute(SHORT, "VEC4", {0, 0, 0, 32767, 0, 0, 32767, 0, 0, 0, 0, 32767}, true);  // normalized
+    int wts = doc.attribute(FLOAT, "SCALAR", {0, 0, 0.5, 0, 1, 0, 0, 0, 0});  // cubic: 3 per key, 1 target
+    doc.j["animations"] = json::array({{{"name", "walk"},
+                                        {"samplers", json::array({{{"input", times}, {"output", trans}},
+                                                                  {{"input", times}, {"output", rot}, {"interpolation", "STEP"}},
+                                                                  {{"input", times}, {"output", wts}, {"interpolation", "CUBICSPLINE"}}})},
+                                        {"channels", json::array({{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}},
+                                                                  {{"sampler", 1}, {"target", {{"node", 1}, {"path", "rotation"}}}},
+                                                                  {{"sampler", 2}, {"target", {{"node", 0}, {"path", "weights"}}}}})}}});
+    Diagnostics d;
+    Scene s = load(doc.gltf(), d);
+    EXPECT_EQ(d.lines().size(), 0u);
+    ASSERT_EQ(s.animations.size(), 1u);
+    const Animation& a = s.animations[0];
+    EXPECT_EQ(a.name, "walk");
+    EXPECT_FLOAT_EQ(a.duration(), 2.0f);
+    ASSERT_EQ(a.samplers.size(), 3u);
+    EXPECT_EQ(a.samplers[0].width, 3);
+    EXPECT_EQ(a.samplers[1].width, 4);
+    EXPECT_EQ(a.samplers[1].interpolation, Interpolation::Step);
+    EXPECT_NEAR(a.samplers[1].output[6], 1.0f, 1e-6f);  // dequantised
+    EXPECT_EQ(a.samplers[2].width, 1);
+    EXPECT_EQ(a.samplers[2].interpolation, Interpolation::CubicSpline);
+    ASSERT_EQ(a.channels.size(), 3u);
+    EXPECT_EQ(a.channels[2].path, AnimationPath::Weights);
+    EXPECT_EQ(a.channels[2].node, 0);
+    // The rest pose keeps its TRS and morph data for animation.
+    EXPECT_EQ(s.nodes[1].translation, glm::vec3(1, 2, 3));
+    EXPECT_TRUE(s.nodes[1].has_trs);
+    const Primitive& p = s.meshes[0].primitives[0];
+    ASSERT_EQ(p.targets.size(), 1u);
+    EXPECT_EQ(p.targets[0].positions[2], glm::vec3(0, 0, 1));
+    EXPECT_EQ(p.applied_weights, std::vector<float>{0.0f});
+}
+
+TEST(GltfAnimations, HostileAnimationsAreDroppedWithWarnings) {
+    struct Case {
+        const char* what;
+        std::vector<double> times;
+        std::vector<double> values;
+        const char* type;
+        const char* interpolation;
+        const char* path;
+    };
+    std::vector<Case> cases = {
+        {"times not increasing", {0, 1, 1}, {0, 0, 0, 1, 1, 1, 2, 2, 2}, "VEC3", "LINEAR", "translation"},
+        {"times decreasing", {0, 2, 1}, {0, 0, 0, 1, 1, 1, 2, 2, 2}, "VEC3", "LINEAR", "translation"},
+        {"non-finite time", {0, std::numeric_limits<double>::infinity()}, {0, 0, 0, 1, 1, 1}, "VEC3", "LINEAR", "scale"},
+        {"too few values", {0, 1, 2}, {0, 0, 0, 1, 1, 1}, "VEC3", "LINEAR", "translation"},
+        {"cubic needs three per key", {0, 1}, {0, 0, 0, 1, 1, 1}, "VEC3", "CUBICSPLINE", "translation"},
+        {"non-finite value", {0, 1}, {0, 0, 0, std::nan(""), 1, 1}, "VEC3", "LINEAR", "translation"},
+        {"rotation from vec3", {0, 1}, {0, 0, 0, 1, 1, 1}, "VEC3", "LINEAR", "rotation"},
+        {"unknown interpolation", {0, 1}, {0, 0, 0, 1, 1, 1}, "VEC3", "SMOOTH", "translation"},
+        {"unknown path", {0, 1}, {0, 0, 0, 1, 1, 1}, "VEC3", "LINEAR", "colour"},
+        {"weights not whole", {0, 1}, {0, 1, 2}, "SCALAR", "LINEAR", "weights"},
+    };
+    for (const auto& c : cases) {
+        Doc doc = animated_doc();
+        int times = doc.attribute(FLOAT, "SCALAR", c.times);
+        int values = doc.attribute(FLOAT, c.type, c.values);
+        doc.j["animations"] = json::array(
+            {{{"samplers", json::array({{{"input", times}, {"output", values}, {"interpolation", c.interpolation}}})},
+              {"channels", json::array({{{"sampler", 0}, {"target", {{"node", 1}, {"path", c.path}}}}})}}});
+        Diagnostics d;
+        Scene s;
+        ASSERT_NO_THROW(s = load(doc.gltf(), d)) << c.what;
+        EXPECT_TRUE(s.animations.empty()) << c.what;
+        EXPECT_GE(d.lines().size(), 1u) << c.what;
+        EXPECT_EQ(s.meshes.size(), 1u) << c.what;  // the rest pose still loads
+    }
+    // Accessor and sampler indices out of range, missing input.
+    for (json bad : {json{{"samplers", json::array({{{"input", 99}, {"output", 0}}})}, {"channels", json::array()}},
+                     json{{"samplers", json::array({{{"output", 0}}})}, {"channels", json::array()}},
+                     json{{"samplers", json::array()}, {"channels", json::array({{{"sampler", 3}, {"target", {{"node", 1}, {"path", "scale"}}}}})}},
+                     json{{"samplers", json::array()}, {"channels", json::array({{{"sampler", 0}, {"target", {{"node", 42}, {"path", "scale"}}}}})}},
+                     json("not an object")}) {
+        Doc doc = animated_doc();
+        doc.j["animations"] = json::array({bad});
+        Diagnostics d;
+        Scene s;
+        ASSERT_NO_THROW(s = load(doc.gltf(), d)) << bad.dump();
+        EXPECT_TRUE(s.animations.empty()) << bad.dump();
+        EXPECT_GE(d.lines().size(), 1u);
+    }
+}
+
+TEST(GltfAnimations, MatrixNodesAndPointerChannelsAreSkipped) {
+    Doc doc = animated_doc();
+    doc.j["nodes"][1].erase("translation");
+    doc.j["nodes"][1]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    int times = doc.attribute(FLOAT, "SCALAR", {0, 1});
+    int values = doc.attribute(FLOAT, "VEC3", {0, 0, 0, 1, 1, 1});
+    doc.j["animations"] = json::array(
+        {{{"samplers", json::array({{{"input", times}, {"output", values}}})},
+          {"channels", json::array({{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}},
+                                    {{"sampler", 0}, {"target", {{"path", "pointer"}}}},
+                                    {{"sampler", 0}, {"target", {{"path", "scale"}}}} /* no node: ignored */})}}});
+    Diagnostics d;
+    Scene s = load(doc.gltf(), d);
+    ASSERT_EQ(s.animations.size(), 1u);
+    EXPECT_TRUE(s.animations[0].channels.empty());
+    EXPECT_EQ(d.lines().size(), 2u);  // the matrix node, the pointer channel
+    EXPECT_FALSE(s.nodes[1].has_trs);
+}
+
+TEST(GltfAnimations, UnreadableSkinIsIgnoredWithoutPosing) {
+    Doc doc = animated_doc();
+    doc.j["skins"] = json::array({{{"joints", {1}}, {"inverseBindMatrices", 0}}});  // accessor 0 is VEC3
+    doc.j["nodes"][0]["skin"] = 0;
+    Diagnostics d;
+    Scene s;
+    ASSERT_NO_THROW(s = load(doc.gltf(), d));
+    ASSERT_EQ(s.skins.size(), 1u);
+    EXPECT_TRUE(s.skins[0].joints.empty());
+    EXPECT_EQ(d.lines().size(), 1u);
+    GltfLoadOptions opt;
+    opt.pose_skins = true;
+    Diagnostics d2;
+    EXPECT_THROW(load(doc.gltf(), d2, opt), Error);
+}
+
+TEST(GltfAnimations, SharedModelsHaveTheirAnimations) {
+    const fs::path root = fs::path(FRESNEL_SHARED_DIR) / "assets" / "models";
+    struct Model { const char* file; std::size_t skins; bool morph; };
+    int found = 0;
+    for (Model m : {Model{"CesiumMan/CesiumMan.glb", 1, false}, Model{"BrainStem/BrainStem.glb", 1, false},
+                    Model{"AnimatedMorphCube/AnimatedMorphCube.glb", 0, true}}) {
+        fs::path path = root / m.file;
+        if (!fs::exists(path)) continue;
+        ++found;
+        Diagnostics d;
+        GltfLoadOptions opt;
+        opt.decode_images = false;
+        Scene s = load_gltf(path, d, opt);
+        ASSERT_GE(s.animations.size(), 1u) << m.file;
+        EXPECT_GT(s.animations[0].duration(), 0.0f) << m.file;
+        EXPECT_GE(s.skins.size(), m.skins) << m.file;
+        for (const auto& a : s.animations)
+            for (const auto& smp : a.samplers) EXPECT_TRUE(smp.consistent()) << m.file;
+        bool has_targets = false;
+        for (const auto& mesh : s.meshes)
+            for (const auto& p : mesh.primitives) has_targets = has_targets || !p.targets.empty();
+        EXPECT_EQ(has_targets, m.morph) << m.file;
+        EXPECT_EQ(d.lines().size(), 0u) << m.file;
+    }
+    if (found == 0) GTEST_SKIP() << "no animated models under " << root;
+}

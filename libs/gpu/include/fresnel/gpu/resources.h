@@ -179,6 +179,8 @@ public:
     void set(const std::string& name, const glm::mat4& v) const;
     void set(const std::string& name, std::span<const glm::vec4> v) const;
     void set(const std::string& name, std::span<const glm::vec3> v) const;
+    void set(const std::string& name, std::span<const glm::mat4> v) const;  // a mat4 array (joint matrices)
+    void set(const std::string& name, std::span<const float> v) const;      // a float array (morph weights)
 
 private:
     mutable std::map<std::string, int> locations_;

@@ -57,7 +57,19 @@ struct RenderSettings {
     // environment's table is used, else compensation is off.
     const ImageF* brdf_lut = nullptr;
     bool energy_compensation = true;
+    // Skin and morph on the GPU, from the scene's current nodes (fresnel::animate, then
+    // Renderer::update_transforms): skinned meshes by their joints' world matrices times the
+    // inverse bind matrices (skins of at most kMaxShaderJoints joints), morph targets (at most
+    // kMaxShaderMorphTargets per primitive) at the node's weights. Off (the default): meshes
+    // are drawn as uploaded, skins in their bind pose (the Khronos reference images'
+    // convention) or as posed on the CPU (fresnel/scene/pose.h). gpu_animatable() says
+    // whether a scene fits the limits.
+    bool gpu_animation = false;
 };
+
+// Whether every skin and morphed primitive of `scene` fits RenderSettings::gpu_animation's
+// limits (otherwise pose it on the CPU: fresnel::animated_scene).
+bool gpu_animatable(const Scene& scene);
 
 // Where a frame goes. Every frame is drawn into the renderer's own multisampled HDR target;
 // the output pass (resolve, un-premultiply, NaN check) then writes it to the offscreen
@@ -86,6 +98,9 @@ public:
     // Uploads meshes and textures of `scene` (index -1: its default scene). The scene
     // must outlive the renderer's use of it.
     void set_scene(const Scene& scene, int scene_index = -1);
+    // Reads the scene's node transforms again (after fresnel::animate changed them in place);
+    // meshes and textures stay uploaded.
+    void update_transforms();
 
     // Renders one frame. The result: RGBA floats, rows top to bottom; display-encoded
     // values in [0,1] when settings.encoding is set, linear otherwise.

@@ -41,8 +41,11 @@ enum : FeatureMask {
     ClearcoatMap = 1u << 20,
     ClearcoatRoughnessMap = 1u << 21,
     ClearcoatNormalMap = 1u << 22,
+    // Animation on the GPU (vertex shader only; RenderSettings::gpu_animation).
+    Skinned = 1u << 23,       // JOINTS_0 / WEIGHTS_0 by the joint matrices u_joints
+    MorphTargets = 1u << 24,  // two morph targets' displacements by u_morph_weights
 };
-constexpr int kCount = 23;
+constexpr int kCount = 25;
 constexpr int kFirstMap = 12;
 constexpr int kMapCount = 11;
 constexpr FeatureMask kAll = (1u << kCount) - 1;
@@ -53,6 +56,10 @@ constexpr FeatureMask map_bit(int i) { return FeatureMask(1) << (kFirstMap + i);
 
 // Bound lights: the size of the shaders' light arrays (MAX_LIGHTS).
 constexpr int kMaxShaderLights = 16;
+// GPU animation limits (pbr.vert's MAX_JOINTS and its two morph target attribute sets): a
+// skin with more joints, or a primitive with more morph targets, is posed on the CPU.
+constexpr int kMaxShaderJoints = 32;
+constexpr int kMaxShaderMorphTargets = 2;
 
 struct FeatureInfo {
     FeatureMask bit;

@@ -118,6 +118,11 @@ void transform_primitive(Primitive& p, const glm::mat4& m);
 // transform_primitive. Vertices with no weight follow `node_world`; a primitive without
 // JOINTS_0 is transformed by `node_world` as a whole. The result is in world space. Weighted
 // joints out of range (see find_invalid_joint) are ignored.
-void pose_skinned(Primitive& p, std::span<const glm::mat4> joint_matrices, const glm::mat4& node_world);
+// SkinWeights::Homogeneous divides each position by the blended matrix's w (the sum of the
+// weights), as the Khronos Sample Viewer's vertex shader does through the perspective divide:
+// weights that do not sum to 1 then act normalised (animated poses use it, fresnel/scene/pose.h).
+enum class SkinWeights { AsGiven, Homogeneous };
+void pose_skinned(Primitive& p, std::span<const glm::mat4> joint_matrices, const glm::mat4& node_world,
+                  SkinWeights mode = SkinWeights::AsGiven);
 
 }  // namespace fresnel

@@ -20,6 +20,7 @@
 #include "fresnel/core/image.h"
 #include "fresnel/core/sampler.h"
 #include "fresnel/material/material.h"
+#include "fresnel/scene/animation.h"
 
 namespace fresnel {
 
@@ -50,6 +51,11 @@ struct SceneImage {
 
 enum class Topology { Points, Lines, LineLoop, LineStrip, Triangles };
 
+// A morph target's displacements (glTF `targets`): each array empty or one per vertex.
+struct MorphTarget {
+    std::vector<glm::vec3> positions, normals, tangents;
+};
+
 struct Primitive {
     Topology topology = Topology::Triangles;
     std::vector<glm::vec3> positions;
@@ -62,6 +68,10 @@ struct Primitive {
     // with GltfLoadOptions::pose_skins (default: the bind pose).
     std::vector<glm::uvec4> joints;
     std::vector<glm::vec4> weights;
+    // Morph targets, kept for animation; positions, normals and tangents above already hold
+    // them at `applied_weights` (the mesh's default weights, the rest pose).
+    std::vector<MorphTarget> targets;
+    std::vector<float> applied_weights;
     int material = -1;                   // -1 = the glTF default material
     // The POSITION accessor's min/max (used by the camera convention); falls back to the data.
     glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
@@ -78,6 +88,14 @@ struct Primitive {
 struct Mesh {
     std::string name;
     std::vector<Primitive> primitives;
+    std::vector<float> weights;  // default morph weights (glTF mesh.weights)
+};
+
+// glTF skin: joint nodes and their inverse bind matrices (identity where the file has none).
+struct Skin {
+    std::string name;
+    std::vector<int> joints;
+    std::vector<glm::mat4> inverse_bind;  // one per joint
 };
 
 struct Camera {
@@ -105,8 +123,14 @@ struct Node {
     std::string name;
     glm::mat4 local{1.0f};
     int mesh = -1, camera = -1, light = -1;
-    int skin = -1;
+    int skin = -1;  // index into Scene::skins
     std::vector<int> children;
+    // The local transform as T * R * S (what animations drive); has_trs is false when the
+    // file gave a matrix (animations then cannot target the node). `local` is their product.
+    glm::vec3 translation{0.0f}, scale{1.0f};
+    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+    bool has_trs = true;
+    std::vector<float> weights;  // morph weights set by an animation (empty: the mesh's)
     // The node's mesh is skinned and already posed in world space (rest pose): draw it with
     // the identity, not the node's world matrix (which still places its bounds, as the
     // camera convention uses the POSITION accessor's box).
@@ -122,6 +146,8 @@ struct Scene {
     std::vector<SceneImage> images;
     std::vector<Camera> cameras;
     std::vector<Light> lights;
+    std::vector<Skin> skins;
+    std::vector<Animation> animations;
     std::vector<std::vector<int>> scenes;  // root nodes of each scene
     int default_scene = 0;                 // the file's `scene`, else 0
     std::vector<std::string> extensions_used, extensions_required;
