@@ -122,8 +122,10 @@ legacy::BlinnPhongMaterial blinn_phong_material(const Material& m) {
     }
     b.base_color = clamp01(glm::vec3(m.base_color_factor));
     b.shininess = roughness_to_phong_shininess(clamp01(m.roughness_factor));
-    b.fresnel = m.specular ? 0.04f * clamp01(m.specular->specular_factor) : 0.04f;
     b.metalness = clamp01(m.metallic_factor);
+    // The model's metal term is F base: a metal reflects its base colour at R0 = 1.
+    const float f0 = m.specular ? 0.04f * clamp01(m.specular->specular_factor) : 0.04f;
+    b.fresnel = f0 + (1.0f - f0) * b.metalness;
     b.reflectivity = 1.0f;
     return b;
 }

@@ -54,7 +54,8 @@ bool is_classic_phong(const Material& m);
 // The normalized Blinn-Phong model's inputs for a Phong material:
 //   base colour = Kd, shininess = Ns (not clamped), fresnel R0 = max(Ks), reflectivity 1,
 //   metalness = Pm (0 without the PBR extension); for a material without an MTL block, the
-//   glTF values: base colour, roughness_to_phong_shininess(roughness), F0 and metallic.
+//   glTF values: base colour, roughness_to_phong_shininess(roughness), metalness = metallic and
+//   R0 = mix(F0, 1, metallic) (the model's metal term is F x base colour).
 legacy::BlinnPhongMaterial blinn_phong_material(const Material& m);
 
 }  // namespace fresnel
