@@ -92,7 +92,11 @@ bool parse_legacy_options(const RenderOptions& o, Job::Output& out) {
     }
     out.shading = *model;
     auto colour = [](const std::string& flag, const std::string& text, glm::vec3& into) {
-        auto v = parse_floats(text, flag);
+        std::vector<float> v;
+        try {
+            v = parse_floats(text, flag);
+        } catch (const CLI::ValidationError&) {
+        }
         if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) {
             print_error(flag + ": expected R,G,B, got '" + text + "'");
             return false;

@@ -1,5 +1,6 @@
 #include "fresnel/render/job.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "fresnel/scene/gltf_loader.h"
@@ -56,8 +57,9 @@ ResolvedJob resolve(const Job& job, const Scene& scene) {
     // OpenGL 1 frames: every material (the default one when the scene has none) in its model.
     {
         static const Material kDefault{};
-        r.ogl1_frame = is_ogl1(material_shading(out.shading, kDefault)) || !scene.materials.empty();
-        for (const auto& m : scene.materials) r.ogl1_frame = r.ogl1_frame && is_ogl1(material_shading(out.shading, m));
+        auto ogl1 = [&](const Material& m) { return is_ogl1(material_shading(out.shading, m)); };
+        r.ogl1_frame = scene.materials.empty() ? ogl1(kDefault)
+                                               : std::all_of(scene.materials.begin(), scene.materials.end(), ogl1);
     }
 
     // Lights: the scene's, then the job's.

@@ -90,7 +90,7 @@ struct Job {
         // The shading model for the frame, or Auto: per material (RenderSettings::shading).
         ShadingModel shading = ShadingModel::Auto;
         glm::vec3 ambient{0.0f};  // uniform ambient light (OpenGL 1: GL_LIGHT_MODEL_AMBIENT)
-        // OpenGL 1 fog (Ogl1 models); its colour unset: the background colour, as rgl does.
+        // OpenGL 1 fog (Ogl1 models). Its colour is fog_color, else the background colour (as rgl).
         Fog fog;
         std::optional<glm::vec3> fog_color;
         bool operator==(const Output&) const = default;
