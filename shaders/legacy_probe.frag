@@ -4,7 +4,8 @@ in vec2 v_texcoord;
 out vec4 frag_color;
 uniform sampler2D u_inputs;
 // 0: ogl1 diffuse part, 1: ogl1 specular part, 2: normalized Blinn-Phong, 3: fog factor,
-// 4: ogl1_combine (single colour; separate specular in .a's case), 5: IBL roughness and shininess clamp
+// 4: ogl1_combine (single colour; separate specular in .a's case), 5: IBL roughness and shininess clamp,
+// 6: the normalized Blinn-Phong model's image-based path
 uniform int u_mode;
 
 #include "common.glsl"
@@ -31,6 +32,9 @@ void main() {
     } else if (u_mode == 4) {
         // a = (primary, separate), b = secondary, c = texel
         frag_color = vec4(ogl1_combine(a.rgb, b.rgb, c.rgb, a.w > 0.5), 1.0);
+    } else if (u_mode == 6) {
+        // a = (base, metalness), b = (irradiance, fresnel), c = (prefiltered, reflectivity), d.x = n.v
+        frag_color = vec4(blinn_phong_normalized_ibl(a.rgb, b.w, a.w, c.w, d.x, b.rgb, c.rgb), 1.0);
     } else {
         frag_color = vec4(blinn_phong_ibl_roughness(a.x), ogl1_shininess(a.x), blinn_phong_d(a.y, a.x), 1.0);
     }

@@ -82,3 +82,16 @@ vec3 blinn_phong_normalized(vec3 base_color, float shininess, float fresnel_r0, 
 }
 
 float blinn_phong_ibl_roughness(float shininess) { return pow(2.0 / (max(shininess, 0.0) + 2.0), 0.25); }
+
+// The image-based path: `irradiance` = the cosine-convolved environment / pi at n (what the
+// Lambert term reflects), `prefiltered` = the GGX-prefiltered environment along reflect(-v, n)
+// at blinn_phong_ibl_roughness(s); Fresnel at n.v.
+vec3 blinn_phong_normalized_ibl(vec3 base_color, float fresnel_r0, float metalness, float reflectivity, float n_dot_v,
+                                vec3 irradiance, vec3 prefiltered) {
+    float f = blinn_phong_fresnel(fresnel_r0, clamp(n_dot_v, 0.0, 1.0));
+    vec3 diffuse = base_color * irradiance;
+    vec3 dielectric = f * prefiltered + (1.0 - f) * diffuse;
+    vec3 metal = f * base_color * prefiltered;
+    vec3 micro = metalness * metal + (1.0 - metalness) * dielectric;
+    return reflectivity * micro + (1.0 - reflectivity) * diffuse;
+}

@@ -51,6 +51,10 @@ struct RenderOptions {
     bool no_energy_compensation = false;
     int env_samples = 1024;
     int env_size = 256;
+    std::string shading = "auto";  // --shading, --ambient, --fog, --fog-color (legacy models)
+    std::string ambient;
+    std::string fog;
+    std::string fog_color;
 };
 
 // Which flags apply. Without a command (`cmd` null) every flag does, defaults included: the

@@ -51,6 +51,72 @@ std::vector<float> parse_floats(const std::string& s, const std::string& what) {
 }
 
 
+// --shading, --ambient, --fog, --fog-color into `out` (the same meanings as
+// ../shared/tools/ogl1-ref/render's), those given; false after printing a usage error.
+bool parse_legacy_options(const RenderOptions& o, Job::Output& out, const GivenFlags& given) {
+    auto model = parse_shading_model(o.shading);
+    if (!model) {
+        print_error("--shading: expected auto, gltf, ogl1, ogl1-pixel or blinn-phong-normalized, got '" + o.shading + "'");
+        return false;
+    }
+    if (given("--shading")) out.shading = *model;
+    auto colour = [](const std::string& flag, const std::string& text, glm::vec3& into) {
+        std::vector<float> v;
+        try {
+            v = parse_floats(text, flag);
+        } catch (const CLI::ValidationError&) {
+        }
+        if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) {
+            print_error(flag + ": expected R,G,B, got '" + text + "'");
+            return false;
+        }
+        into = glm::vec3(v[0], v[1], v[2]);
+        return true;
+    };
+    if (!o.ambient.empty() && !colour("--ambient", o.ambient, out.ambient)) return false;
+    if (!o.fog_color.empty()) {
+        glm::vec3 c;
+        if (!colour("--fog-color", o.fog_color, c)) return false;
+        out.fog_color = c;
+    }
+    if (o.fog.empty()) return true;
+    const std::string usage = "--fog: expected linear:START,END (numbers or the words near, far), exp:DENSITY or "
+                              "exp2:DENSITY, got '" + o.fog + "'";
+    auto colon = o.fog.find(':');
+    std::string kind = o.fog.substr(0, colon), args = colon == std::string::npos ? "" : o.fog.substr(colon + 1);
+    if (kind == "linear") {
+        auto comma = args.find(',');
+        if (comma == std::string::npos) return print_error(usage), false;
+        auto edge = [&](const std::string& t, const char* word, std::optional<float>& into) {
+            if (t == word) return true;  // the camera's clip distance
+            try {
+                std::size_t used = 0;
+                float f = std::stof(t, &used);
+                if (used != t.size() || !std::isfinite(f)) return false;
+                into = f;
+                return true;
+            } catch (const std::logic_error&) {
+                return false;
+            }
+        };
+        if (!edge(args.substr(0, comma), "near", out.fog.start) || !edge(args.substr(comma + 1), "far", out.fog.end))
+            return print_error(usage), false;
+        out.fog.mode = legacy::FogMode::Linear;
+    } else if (kind == "exp" || kind == "exp2") {
+        std::vector<float> v;
+        try {
+            v = parse_floats(args, "--fog");
+        } catch (const CLI::ValidationError&) {
+        }
+        if (v.size() != 1 || !std::isfinite(v[0]) || v[0] < 0) return print_error(usage), false;
+        out.fog.mode = kind == "exp" ? legacy::FogMode::Exp : legacy::FogMode::Exp2;
+        out.fog.density = v[0];
+    } else {
+        return print_error(usage), false;
+    }
+    return true;
+}
+
 }  // namespace
 
 
@@ -80,6 +146,7 @@ std::optional<Job> job_from_options(const RenderOptions& o, Job job, const Given
         print_error("--debug: unknown channel '" + o.debug + "'");
         return std::nullopt;
     }
+    if (!parse_legacy_options(o, out, given)) return std::nullopt;
     using Mode = Job::Background::Mode;
     if (!given("--background")) {
     } else if (o.background == "env") {
@@ -576,6 +643,21 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
     cmd->add_flag("--pose-skins", o->pose_skins,
                   "Pose skinned meshes by their joints' rest transforms (default: the bind pose, as the Khronos "
                   "Sample Renderer's reference images show)");
+    if (raster) {
+        cmd->add_option("--shading", o->shading,
+                        "Shading model: auto (per material: OpenGL 1 for OBJ/MTL Phong materials, glTF for the rest), "
+                        "gltf, ogl1 (OpenGL 1 fixed function per vertex, no tone mapping or encoding), ogl1-pixel (the "
+                        "same per fragment) or blinn-phong-normalized (with its image-based path). In the legacy models "
+                        "a light of intensity I is an OpenGL light of colour I")
+            ->capture_default_str();
+        cmd->add_option("--ambient", o->ambient,
+                        "Global ambient light R,G,B (OpenGL 1's GL_LIGHT_MODEL_AMBIENT x Ka; glTF: ambient radiance x "
+                        "diffuse colour). Default 0,0,0");
+        cmd->add_option("--fog", o->fog,
+                        "OpenGL 1 fog on the eye-plane distance (ogl1 models): linear:START,END (START/END may be near, "
+                        "far: the clip distances), exp:DENSITY or exp2:DENSITY");
+        cmd->add_option("--fog-color", o->fog_color, "Fog colour R,G,B (display values; default: the background colour)");
+    }
     cmd->add_option("--variant", o->variant,
                     "KHR_materials_variants: render with the material variant NAME (`fresnel info` lists them)");
 }

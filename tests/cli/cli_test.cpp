@@ -177,6 +177,20 @@ TEST_F(Cli, OtherUsageErrorsExitTwo) {
     EXPECT_EQ(r.err.rfind("fresnel: error:", 0), 0u) << show(r);
 }
 
+// The legacy shading flags: malformed values are usage errors naming the flag.
+TEST_F(Cli, LegacyShadingFlagsAreChecked) {
+    const std::string out = (dir_ / "x.png").string();
+    for (std::vector<std::string> bad : {std::vector<std::string>{"--shading", "phong"}, {"--fog", "linear:1"},
+                                         {"--fog", "exp:-1"}, {"--fog", "mist:1"}, {"--fog", "linear:near,nope"},
+                                         {"--ambient", "1,2"}, {"--fog-color", "a,b,c"}}) {
+        std::vector<std::string> args = {"render", "-o", out};
+        args.insert(args.end(), bad.begin(), bad.end());
+        Result r = run(args);
+        EXPECT_EQ(r.exit_code, 2) << bad[0] << " " << bad[1] << "\n" << show(r);
+        EXPECT_NE(r.err.find(bad[0]), std::string::npos) << show(r);
+    }
+}
+
 // The files under `dir` (recursively), as paths relative to it.
 std::vector<std::string> files_under(const fs::path& dir) {
     std::vector<std::string> out;

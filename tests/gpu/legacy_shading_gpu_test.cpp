@@ -30,7 +30,7 @@ namespace {
 
 namespace legacy = fresnel::legacy;
 
-enum Mode { kOgl1Diffuse = 0, kOgl1Specular = 1, kBlinnPhong = 2, kFog = 3, kCombine = 4, kScalars = 5 };
+enum Mode { kOgl1Diffuse = 0, kOgl1Specular = 1, kBlinnPhong = 2, kFog = 3, kCombine = 4, kScalars = 5, kBlinnPhongIbl = 6 };
 
 constexpr int kGrid = 64;
 constexpr float kRelTol = 1e-3f;
@@ -232,6 +232,43 @@ TEST_F(LegacyProbe, BlinnPhongNormalizedMatchesCpp) {
     }
     EXPECT_EQ(bad.count, 0) << bad.count << " channels differ:\n" << bad.first.str();
     EXPECT_GT(nonzero, kGrid * kGrid / 3);
+}
+
+// The image-based path (pre-convolved irradiance and prefiltered radiance as inputs).
+TEST_F(LegacyProbe, BlinnPhongNormalizedIblMatchesCpp) {
+    Rng r(kSeed + 3);
+    std::vector<Case> cases;
+    std::vector<std::pair<legacy::BlinnPhongMaterial, std::array<glm::vec3, 3>>> ins;
+    for (int i = 0; i < kGrid * kGrid; ++i) {
+        legacy::BlinnPhongMaterial m;
+        m.base_color = r.color();
+        m.fresnel = r.pick(3) == 0 ? 0.04f : r();
+        m.metalness = r.pick(3) == 0 ? float(r.pick(2)) : r();
+        m.reflectivity = r.pick(3) == 0 ? 1.0f : r();
+        glm::vec3 irradiance = r.color(2.0f), prefiltered = r.color(4.0f);
+        float n_dot_v = r.pick(10) == 0 ? 0.0f : r();
+        ins.push_back({m, {irradiance, prefiltered, glm::vec3(n_dot_v)}});
+        cases.push_back({glm::vec4(m.base_color, m.metalness), glm::vec4(irradiance, m.fresnel),
+                         glm::vec4(prefiltered, m.reflectivity), glm::vec4(n_dot_v, 0, 0, 0)});
+    }
+    auto gpu = probe(kBlinnPhongIbl, cases);
+    Mismatches bad;
+    int positive = 0;
+    for (std::size_t i = 0; i < ins.size(); ++i) {
+        const auto& [m, in] = ins[i];
+        glm::vec3 cpu = legacy::blinn_phong_normalized_ibl(m, in[2].x, in[0], in[1]);
+        positive += cpu.x > 0;
+        for (int k = 0; k < 3; ++k)
+            if (!close(gpu[i][k], cpu[k])) bad.add("ibl", gpu[i][k], cpu[k], "n.v " + std::to_string(in[2].x));
+    }
+    EXPECT_EQ(bad.count, 0) << bad.count << " channels differ:\n" << bad.first.str();
+    EXPECT_GT(positive, kGrid * kGrid / 2);
+    // Closed form: a white mirror-like metal at normal incidence reflects R0 of the prefiltered light.
+    legacy::BlinnPhongMaterial metal;
+    metal.fresnel = 0.9f;
+    metal.metalness = 1.0f;
+    glm::vec3 f = legacy::blinn_phong_normalized_ibl(metal, 1.0f, glm::vec3(5.0f), glm::vec3(2.0f));
+    EXPECT_NEAR(f.x, 0.9f * 2.0f, 1e-5f);
 }
 
 TEST_F(LegacyProbe, FogCombineAndScalarsMatchCpp) {

@@ -117,6 +117,25 @@ TEST(ShaderFeatures, RulesAreCanonicalAndEnumerated) {
     std::printf("feature sets: %zu\n", all.size());
 }
 
+TEST(ShaderFeatures, LegacyRules) {
+    using namespace legacy_feature;
+    const std::vector<FeatureMask> all = all_legacy_feature_sets();
+    for (FeatureMask m = 0; m <= kAll; ++m) {
+        FeatureMask c = canonical_legacy_features(m);
+        EXPECT_EQ(canonical_legacy_features(c), c) << m;
+        if (m & kModels) {
+            EXPECT_TRUE(valid_legacy_features(c)) << m;
+        }
+    }
+    for (FeatureMask m : all) EXPECT_EQ(__builtin_popcount(m & kModels), 1) << m;  // exactly one model
+    EXPECT_FALSE(valid_legacy_features(HasNormal));                     // no model
+    EXPECT_FALSE(valid_legacy_features(Ogl1Vertex | DiffuseMap));       // the map needs UV0
+    EXPECT_FALSE(valid_legacy_features(Ogl1Pixel | UseIbl));            // OpenGL 1 has no image-based light
+    EXPECT_FALSE(valid_legacy_features(BlinnPhong | Fogged));           // fog is OpenGL 1's
+    EXPECT_TRUE(valid_legacy_features(Ogl1Vertex | HasNormal | HasUv0 | DiffuseMap | Fogged));
+    EXPECT_TRUE(valid_legacy_features(BlinnPhong | HasNormal | HasUv0 | DiffuseMap | UseIbl));
+}
+
 TEST(ShaderVariants, EveryVariantCompilesAsEs300AndGl330) {
     GlslangProcess process;
     const auto t0 = std::chrono::steady_clock::now();
@@ -132,6 +151,14 @@ TEST(ShaderVariants, EveryVariantCompilesAsEs300AndGl330) {
         per_target += distinct.size();
         for (GlslTarget t : {GlslTarget::Es30, GlslTarget::Gl33})
             for (FeatureMask m : distinct) jobs.push_back({file, m, true, t});
+    }
+    // The legacy models' shaders (legacy.vert / legacy.frag): every legacy feature set.
+    const std::vector<FeatureMask> legacy = all_legacy_feature_sets();
+    EXPECT_GT(legacy.size(), 10u);
+    for (const char* file : {"legacy.vert", "legacy.frag"}) {
+        per_target += legacy.size();
+        for (GlslTarget t : {GlslTarget::Es30, GlslTarget::Gl33})
+            for (FeatureMask m : legacy) jobs.push_back({file, 0, false, t, legacy_feature_defines(m)});
     }
     for (const char* file : {"fullscreen.vert", "post.frag", "sky.frag", "brdf_probe.frag", "legacy_probe.frag"}) {
         ++per_target;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/common.hpp>
 
 namespace fresnel {
 
@@ -83,6 +84,50 @@ Material phong_to_metallic_roughness(const PhongExt& p, const std::string& name)
     }
     m.phong = p;
     return m;
+}
+
+PhongExt legacy_phong(const Material& m) {
+    if (m.phong) return *m.phong;
+    PhongExt p;
+    const glm::vec3 base = clamp01(glm::vec3(m.base_color_factor));
+    const float metallic = clamp01(m.metallic_factor);
+    float f0 = 0.04f;
+    glm::vec3 f0_color(f0);
+    if (m.specular) f0_color = glm::vec3(f0 * clamp01(m.specular->specular_factor)) * clamp01(m.specular->specular_color_factor);
+    p.diffuse = base * (1.0f - metallic);
+    p.ambient = p.diffuse;
+    p.specular = glm::mix(f0_color, base, metallic);
+    p.shininess = roughness_to_phong_shininess(clamp01(m.roughness_factor));
+    float strength = m.emissive_strength ? m.emissive_strength->emissive_strength : 1.0f;
+    p.emission = glm::max(glm::vec3(0.0f), m.emissive_factor * finite_or(strength, 1.0f));
+    p.dissolve = clamp01(m.base_color_factor.w);
+    p.diffuse_map.slot = m.base_color;
+    p.emission_map.slot = m.emissive;
+    return p;
+}
+
+bool is_classic_phong(const Material& m) { return m.phong && !m.phong->has_pbr(); }
+
+legacy::BlinnPhongMaterial blinn_phong_material(const Material& m) {
+    legacy::BlinnPhongMaterial b;
+    if (m.phong) {
+        const PhongExt& p = *m.phong;
+        b.base_color = clamp01(p.diffuse);
+        b.shininess = std::max(0.0f, finite_or(p.shininess, 0.0f));
+        glm::vec3 ks = clamp01(p.specular);
+        b.fresnel = std::max(ks.x, std::max(ks.y, ks.z));
+        b.metalness = p.metallic ? clamp01(*p.metallic) : 0.0f;
+        b.reflectivity = 1.0f;
+        return b;
+    }
+    b.base_color = clamp01(glm::vec3(m.base_color_factor));
+    b.shininess = roughness_to_phong_shininess(clamp01(m.roughness_factor));
+    b.metalness = clamp01(m.metallic_factor);
+    // The model's metal term is F base: a metal reflects its base colour at R0 = 1.
+    const float f0 = m.specular ? 0.04f * clamp01(m.specular->specular_factor) : 0.04f;
+    b.fresnel = f0 + (1.0f - f0) * b.metalness;
+    b.reflectivity = 1.0f;
+    return b;
 }
 
 }  // namespace fresnel

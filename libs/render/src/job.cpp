@@ -1,5 +1,6 @@
 #include "fresnel/render/job.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "fresnel/scene/gltf_loader.h"
@@ -70,6 +71,14 @@ ResolvedJob resolve(const Job& job, const Scene& scene) {
         r.camera = orbit_camera(r.bounds, op, out.width, out.height);
     }
 
+    // OpenGL 1 frames: every material (the default one when the scene has none) in its model.
+    {
+        static const Material kDefault{};
+        auto ogl1 = [&](const Material& m) { return is_ogl1(material_shading(out.shading, m)); };
+        r.ogl1_frame = scene.materials.empty() ? ogl1(kDefault)
+                                               : std::all_of(scene.materials.begin(), scene.materials.end(), ogl1);
+    }
+
     // Lights: the scene's, then the job's.
     if (job.lights.scene_lights) r.lights = scene_lights(scene, r.instances);
     r.lights.insert(r.lights.end(), job.lights.extra.begin(), job.lights.extra.end());
@@ -85,7 +94,7 @@ ResolvedJob resolve(const Job& job, const Scene& scene) {
         r.environment = ibl::EnvironmentSource{};
         r.environment->kind = ibl::EnvironmentSource::Kind::Uniform;
         r.environment->color = env.color;
-    } else if (env.kind == Kind::Studio || (env.kind == Kind::Automatic && r.lights.empty())) {
+    } else if (env.kind == Kind::Studio || (env.kind == Kind::Automatic && r.lights.empty() && !r.ogl1_frame)) {
         r.environment = ibl::EnvironmentSource{};  // the studio
     }
     r.bake_options.samples = env.bake_samples;
@@ -94,8 +103,17 @@ ResolvedJob resolve(const Job& job, const Scene& scene) {
 
     // The default pair of directional lights only when nothing else lights the scene.
     r.default_lights = r.lights.empty() && !r.environment;
-    if (r.default_lights) r.lights = default_lights();
-    r.needs_brdf_lut = !r.environment && out.energy_compensation;
+    if (r.default_lights) {
+        if (r.ogl1_frame) {
+            LightInstance key;
+            key.direction = direction_from_angles(30.0f, 45.0f);
+            key.radiance = glm::vec3(1.0f);
+            r.lights = {key};
+        } else {
+            r.lights = default_lights();
+        }
+    }
+    r.needs_brdf_lut = !r.environment && out.energy_compensation && !r.ogl1_frame;
 
     RenderSettings& rs = r.settings;
     rs.width = out.width;
@@ -108,6 +126,9 @@ ResolvedJob resolve(const Job& job, const Scene& scene) {
     rs.env_intensity = env.intensity;
     rs.env_rotation_deg = env.rotation_deg;
     rs.energy_compensation = out.energy_compensation;
+    rs.shading = out.shading;
+    rs.ambient = out.ambient;
+    rs.fog = out.fog;
     if (out.float_output) {
         rs.encoding.reset();
         rs.straight_alpha = false;  // EXR convention: premultiplied alpha
@@ -125,6 +146,7 @@ ResolvedJob resolve(const Job& job, const Scene& scene) {
         if (bg.mode == Mode::Automatic || bg.mode == Mode::Blurred)
             rs.background_mode = RenderSettings::Background::Blurred;
     }
+    rs.fog.color = out.fog_color ? *out.fog_color : glm::vec3(rs.background);
     return r;
 }
 

@@ -12,6 +12,7 @@
 #include "fresnel/gpu/context.h"
 #include "fresnel/gpu/device.h"
 #include "fresnel/gpu/resources.h"
+#include "fresnel/material/phong.h"
 #include "fresnel/render/material_uniforms.h"
 #include "fresnel/render/shader_features.h"
 #include "fresnel/render/shader_library.h"
@@ -98,6 +99,32 @@ std::optional<DebugChannel> parse_debug_channel(const std::string& name) {
         if (name == c.name) return c.channel;
     return std::nullopt;
 }
+namespace {
+struct NamedModel {
+    const char* name;
+    ShadingModel model;
+};
+constexpr NamedModel kModels[] = {
+    {"auto", ShadingModel::Auto}, {"gltf", ShadingModel::Gltf}, {"ogl1", ShadingModel::Ogl1},
+    {"ogl1-pixel", ShadingModel::Ogl1Pixel}, {"blinn-phong-normalized", ShadingModel::BlinnPhongNormalized},
+};
+}  // namespace
+
+std::optional<ShadingModel> parse_shading_model(const std::string& name) {
+    for (const auto& m : kModels)
+        if (name == m.name) return m.model;
+    return std::nullopt;
+}
+const char* shading_model_name(ShadingModel model) {
+    for (const auto& m : kModels)
+        if (model == m.model) return m.name;
+    return "auto";
+}
+ShadingModel material_shading(ShadingModel frame, const Material& material) {
+    if (frame != ShadingModel::Auto) return frame;
+    return is_classic_phong(material) ? ShadingModel::Ogl1 : ShadingModel::Gltf;
+}
+
 std::vector<std::string> debug_channel_names() {
     std::vector<std::string> out;
     for (const auto& c : kChannels) out.push_back(c.name);
@@ -440,11 +467,107 @@ struct Renderer::Impl {
                 p.cone[std::size_t(i)] = glm::vec4(0.0f);
     }
 
+    void set_light_uniforms(const gpu::Program& prog) const {
+        prog.set("u_light_count", frame_lights.count);
+        prog.set("u_light_position_type", std::span<const glm::vec4>(frame_lights.position_type));
+        prog.set("u_light_direction_range", std::span<const glm::vec4>(frame_lights.direction_range));
+        prog.set("u_light_color", std::span<const glm::vec4>(frame_lights.color));
+        prog.set("u_light_cone", std::span<const glm::vec4>(frame_lights.cone));
+    }
+
+    // One primitive in a legacy model (legacy.vert / legacy.frag, ShadingModel in renderer.h)
+    // with the material's Phong values (legacy_phong, blinn_phong_material in phong.h).
+    void draw_legacy(const Draw& d, const CameraSetup& cam, const RenderSettings& settings, const Material& m,
+                     ShadingModel model, FrameStats& stats) {
+        namespace lf = legacy_feature;
+        const GpuPrimitive& p = *d.prim;
+        const PhongExt ph = legacy_phong(m);
+        const bool blinn = model == ShadingModel::BlinnPhongNormalized;
+        FeatureMask raw = model == ShadingModel::Ogl1        ? lf::Ogl1Vertex
+                          : model == ShadingModel::Ogl1Pixel ? lf::Ogl1Pixel
+                                                             : lf::BlinnPhong;
+        if (p.has_normal) raw |= lf::HasNormal;
+        if (p.has_uv0) raw |= lf::HasUv0;
+        if (settings.environment) raw |= lf::UseIbl;
+        if (settings.fog.mode != legacy::FogMode::None) raw |= lf::Fogged;
+        // OpenGL 1 modulates by the texels as stored (no sRGB decode, no anisotropic
+        // filtering); Blinn-Phong reads map_Kd as the base colour, sRGB.
+        const gpu::Texture* map = nullptr;
+        const TextureSlot& slot = ph.diffuse_map.slot;
+        if (p.has_uv0 && slot.tex_coord == 0) map = texture_for(slot, blinn, blinn, settings.anisotropy);
+        if (map) raw |= lf::DiffuseMap;
+        const FeatureMask features = canonical_legacy_features(raw);
+        const gpu::Program& prog = shaders.get("legacy.vert", "legacy.frag", legacy_feature_defines(features));
+        prog.use();
+        prog.set("u_model", d.model);
+        prog.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(d.model)));
+        prog.set("u_view", cam.view);
+        prog.set("u_view_projection", cam.projection * cam.view);
+        prog.set("u_point_size", 1.0f);
+        prog.set("u_camera_position", cam.eye);
+        prog.set("u_ka", ph.ambient);
+        prog.set("u_kd", glm::vec4(ph.diffuse, std::clamp(ph.dissolve, 0.0f, 1.0f)));
+        prog.set("u_ks", ph.specular);
+        prog.set("u_ke", ph.emission);
+        prog.set("u_shininess", legacy::ogl1_shininess(ph.shininess));
+        prog.set("u_global_ambient", settings.ambient);
+        prog.set("u_separate_specular", map ? 1 : 0);  // as rgl: separate specular for textured materials
+        set_light_uniforms(prog);
+        if (map) {
+            device.bind_texture(0, *map);
+            prog.set("u_diffuse_map", 0);
+            prog.set("u_diffuse_transform", slot.transform);
+        }
+        if (features & lf::Fogged) {
+            const fresnel::Fog& f = settings.fog;
+            prog.set("u_fog_mode", int(f.mode));
+            prog.set("u_fog", glm::vec4(f.start.value_or(cam.znear), f.end.value_or(cam.zfar), f.density, 0.0f));
+            prog.set("u_fog_color", f.color);
+        }
+        if (blinn) {
+            const legacy::BlinnPhongMaterial bp = blinn_phong_material(m);
+            prog.set("u_bp_base_color", bp.base_color);
+            prog.set("u_bp_shininess", bp.shininess);
+            prog.set("u_bp_fresnel", bp.fresnel);
+            prog.set("u_bp_metalness", bp.metalness);
+            prog.set("u_bp_reflectivity", bp.reflectivity);
+            prog.set("u_exposure", exposure_scale(settings.exposure_ev));
+            prog.set("u_tonemap", int(settings.tone_mapper));
+            prog.set("u_encoding", settings.encoding ? int(*settings.encoding) : -1);
+            prog.set("u_brdf_lut", int(TextureUnit::BrdfLut));
+            if (settings.environment) {
+                device.bind_texture(int(TextureUnit::SpecularEnvironment), env_specular);
+                prog.set("u_specular_env", int(TextureUnit::SpecularEnvironment));
+                device.bind_texture(int(TextureUnit::IrradianceEnvironment), env_irradiance);
+                prog.set("u_irradiance_env", int(TextureUnit::IrradianceEnvironment));
+                set_ibl_uniforms(prog, settings);
+            }
+        }
+        gpu::PipelineState state;
+        const float det = glm::determinant(glm::mat3(d.model));
+        state.cull = m.double_sided ? gpu::Cull::None : gpu::Cull::Back;
+        state.front_ccw = det >= 0;
+        if (m.alpha_mode == AlphaMode::Blend) {
+            state.blend = gpu::Blend::AlphaOver;
+            state.depth_write = false;
+        }
+        device.apply(state);
+        device.draw(p.vao, to_gpu(p.topology), p.count, p.indexed);
+        ++stats.draw_calls;
+        stats.triangles += p.triangles;
+    }
+
     void draw_primitive(const Draw& d, const CameraSetup& cam, const std::vector<LightInstance>& lights,
                         const RenderSettings& settings, FrameStats& stats) {
         static const Material kDefaultMaterial{};
         const GpuPrimitive& p = *d.prim;
         const Material& m = p.material >= 0 ? scene->materials[std::size_t(p.material)] : kDefaultMaterial;
+        // The legacy models draw with their own shaders (the debug view shows glTF's channels).
+        const ShadingModel model = material_shading(settings.shading, m);
+        if (model != ShadingModel::Gltf && settings.debug == DebugChannel::None) {
+            draw_legacy(d, cam, settings, m, model, stats);
+            return;
+        }
         // The draw's raw features; canonical_features() turns them into the variant (shader_features.h).
         const MaterialUniforms mu = material_uniforms(m);
         FeatureMask raw = material_features(m);
@@ -519,11 +642,7 @@ struct Renderer::Impl {
             if (bound[i]) device.bind_texture(i, *bound[i]);
         set_material_uniforms(prog, mu, is_bound);
         // Lights, packed once per frame (pack_lights).
-        prog.set("u_light_count", frame_lights.count);
-        prog.set("u_light_position_type", std::span<const glm::vec4>(frame_lights.position_type));
-        prog.set("u_light_direction_range", std::span<const glm::vec4>(frame_lights.direction_range));
-        prog.set("u_light_color", std::span<const glm::vec4>(frame_lights.color));
-        prog.set("u_light_cone", std::span<const glm::vec4>(frame_lights.cone));
+        set_light_uniforms(prog);
 
         gpu::PipelineState state;
         state.cull = m.double_sided ? gpu::Cull::None : gpu::Cull::Back;

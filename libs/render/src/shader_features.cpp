@@ -80,4 +80,43 @@ std::vector<FeatureMask> all_feature_sets() {
     return out;
 }
 
+namespace {
+constexpr FeatureInfo kLegacyFeatures[legacy_feature::kCount] = {
+    {legacy_feature::Ogl1Vertex, "LEGACY_OGL1_VERTEX"}, {legacy_feature::Ogl1Pixel, "LEGACY_OGL1_PIXEL"},
+    {legacy_feature::BlinnPhong, "LEGACY_BLINN_PHONG"}, {legacy_feature::HasNormal, "HAS_NORMAL"},
+    {legacy_feature::HasUv0, "HAS_UV0"},                {legacy_feature::DiffuseMap, "HAS_DIFFUSE_MAP"},
+    {legacy_feature::UseIbl, "USE_IBL"},                {legacy_feature::Fogged, "LEGACY_FOG"},
+};
+}  // namespace
+
+std::vector<std::string> legacy_feature_defines(FeatureMask mask) {
+    std::vector<std::string> out;
+    for (const auto& f : kLegacyFeatures)
+        if (mask & f.bit) out.emplace_back(f.define);
+    out.push_back("MAX_LIGHTS " + std::to_string(kMaxShaderLights));
+    return out;
+}
+
+FeatureMask canonical_legacy_features(FeatureMask m) {
+    namespace lf = legacy_feature;
+    m &= lf::kAll;
+    if (m & lf::Ogl1Vertex) m &= ~FeatureMask(lf::Ogl1Pixel | lf::BlinnPhong);
+    else if (m & lf::Ogl1Pixel) m &= ~FeatureMask(lf::BlinnPhong);
+    if (!(m & lf::HasUv0)) m &= ~FeatureMask(lf::DiffuseMap);
+    if (!(m & lf::BlinnPhong)) m &= ~FeatureMask(lf::UseIbl);
+    else m &= ~FeatureMask(lf::Fogged);
+    return m;
+}
+
+bool valid_legacy_features(FeatureMask mask) {
+    return (mask & legacy_feature::kModels) != 0 && canonical_legacy_features(mask) == mask;
+}
+
+std::vector<FeatureMask> all_legacy_feature_sets() {
+    std::vector<FeatureMask> out;
+    for (FeatureMask m = 0; m <= legacy_feature::kAll; ++m)
+        if (valid_legacy_features(m)) out.push_back(m);
+    return out;
+}
+
 }  // namespace fresnel

@@ -361,3 +361,54 @@ TEST(JobTest, LightingSettingsPointAtTheLoadedData) {
     EXPECT_EQ(rs.brdf_lut, nullptr);
     EXPECT_EQ(rs.background_mode, Bg::Blurred);
 }
+
+// The legacy shading rules: a frame drawn all in OpenGL 1's model (classic MTL materials under
+// --shading auto, or any material under ogl1) has no automatic environment and ogl1-ref's
+// default light; glTF materials under auto keep the glTF rules; fog takes the background colour.
+TEST(JobTest, OpenGl1FramesTakeTheReferenceDefaults) {
+    Scene s = sphere_scene();
+    s.materials.push_back(Material{});  // a glTF material
+    Job job;
+    ResolvedJob r = resolve(job, s);
+    EXPECT_FALSE(r.ogl1_frame);
+    EXPECT_TRUE(r.environment.has_value());  // the studio, as before
+
+    job.output.shading = ShadingModel::Ogl1Pixel;
+    job.background.mode = Mode::Color;
+    job.background.color = glm::vec3(0.2f, 0.3f, 0.4f);
+    r = resolve(job, s);
+    EXPECT_TRUE(r.ogl1_frame);
+    EXPECT_FALSE(r.environment.has_value());
+    EXPECT_FALSE(r.needs_brdf_lut);
+    ASSERT_EQ(r.lights.size(), 1u);
+    EXPECT_TRUE(r.default_lights);
+    EXPECT_EQ(r.lights[0].radiance, glm::vec3(1.0f));
+    EXPECT_NEAR(glm::dot(-r.lights[0].direction, direction_from_angles(30.0f, 45.0f)), -1.0f, 1e-6f);
+    EXPECT_EQ(r.settings.shading, ShadingModel::Ogl1Pixel);
+    EXPECT_EQ(r.settings.fog.color, glm::vec3(0.2f, 0.3f, 0.4f));
+
+    // Auto: an MTL material without the PBR extension is OpenGL 1's, one with Pm is glTF's.
+    job = Job{};
+    s.materials[0].phong = PhongExt{};
+    r = resolve(job, s);
+    EXPECT_TRUE(r.ogl1_frame);
+    EXPECT_EQ(material_shading(ShadingModel::Auto, s.materials[0]), ShadingModel::Ogl1);
+    s.materials[0].phong->metallic = 0.5f;
+    EXPECT_EQ(material_shading(ShadingModel::Auto, s.materials[0]), ShadingModel::Gltf);
+    EXPECT_FALSE(resolve(job, s).ogl1_frame);
+    // A given environment stays; lights given stay.
+    s.materials[0].phong->metallic.reset();
+    job.lights.extra.push_back(parse_light("dir:0,0,2"));
+    r = resolve(job, s);
+    ASSERT_EQ(r.lights.size(), 1u);
+    EXPECT_EQ(r.lights[0].radiance, glm::vec3(2.0f));
+    EXPECT_FALSE(r.default_lights);
+}
+
+TEST(JobTest, ShadingModelNames) {
+    for (ShadingModel m : {ShadingModel::Auto, ShadingModel::Gltf, ShadingModel::Ogl1, ShadingModel::Ogl1Pixel,
+                           ShadingModel::BlinnPhongNormalized})
+        EXPECT_EQ(parse_shading_model(shading_model_name(m)), m);
+    EXPECT_EQ(parse_shading_model("ogl1-pixel"), ShadingModel::Ogl1Pixel);
+    EXPECT_FALSE(parse_shading_model("phong").has_value());
+}

@@ -150,4 +150,19 @@ inline float blinn_phong_ibl_roughness(float shininess) {
     return std::pow(2.0f / (std::max(shininess, 0.0f) + 2.0f), 0.25f);
 }
 
+// The image-based path (as the course lab): `irradiance` = the cosine-convolved environment
+// / pi at n (what the Lambert term reflects), `prefiltered` = the GGX-prefiltered environment
+// along reflect(-v, n) read at blinn_phong_ibl_roughness(s); Fresnel at n.v:
+//   dielectric = F prefiltered + (1 - F) base irradiance,  metal = F base prefiltered,
+//   result = r (m metal + (1 - m) dielectric) + (1 - r) base irradiance.
+inline glm::vec3 blinn_phong_normalized_ibl(const BlinnPhongMaterial& m, float n_dot_v, const glm::vec3& irradiance,
+                                            const glm::vec3& prefiltered) {
+    float f = blinn_phong_fresnel(m.fresnel, std::clamp(n_dot_v, 0.0f, 1.0f));
+    glm::vec3 diffuse = m.base_color * irradiance;
+    glm::vec3 dielectric = f * prefiltered + (1.0f - f) * diffuse;
+    glm::vec3 metal = f * m.base_color * prefiltered;
+    glm::vec3 micro = m.metalness * metal + (1.0f - m.metalness) * dielectric;
+    return m.reflectivity * micro + (1.0f - m.reflectivity) * diffuse;
+}
+
 }  // namespace fresnel::legacy

@@ -27,6 +27,7 @@
 // Scalar maps whose channels differ from glTF's (map_d, map_Pr, map_Pm, map_Ns) are packed
 // into images by the loader, which owns the pixels; this function leaves those slots empty.
 // Every material from an OBJ file is double-sided (OBJ has no culling; OpenGL 1 draws both).
+#include "fresnel/material/legacy_shading.h"
 #include "fresnel/material/material.h"
 
 namespace fresnel {
@@ -37,5 +38,24 @@ float phong_shininess_to_roughness(float ns);
 float roughness_to_phong_shininess(float roughness);
 
 Material phong_to_metallic_roughness(const PhongExt& phong, const std::string& name = {});
+
+// The Phong values the legacy shading models (legacy_shading.h) draw a material with: an OBJ
+// material's own MTL block (Material::phong) as read, else a formula-based view of the
+// metallic-roughness material, the reverse of the conversion above:
+//   Kd = base colour (1 - metallic), map_Kd = the base colour texture, d = base colour alpha,
+//   Ks = mix(F0, base colour, metallic) with F0 = 0.04 x specularFactor x specularColorFactor,
+//   Ns = roughness_to_phong_shininess(roughness), Ka = Kd, Ke = emissive (x strength).
+PhongExt legacy_phong(const Material& m);
+
+// True when the material is a classic Phong-era one (an MTL block without the PBR extension):
+// `--shading auto` draws such materials with OpenGL 1's model, every other with glTF's.
+bool is_classic_phong(const Material& m);
+
+// The normalized Blinn-Phong model's inputs for a Phong material:
+//   base colour = Kd, shininess = Ns (not clamped), fresnel R0 = max(Ks), reflectivity 1,
+//   metalness = Pm (0 without the PBR extension); for a material without an MTL block, the
+//   glTF values: base colour, roughness_to_phong_shininess(roughness), metalness = metallic and
+//   R0 = mix(F0, 1, metallic) (the model's metal term is F x base colour).
+legacy::BlinnPhongMaterial blinn_phong_material(const Material& m);
 
 }  // namespace fresnel

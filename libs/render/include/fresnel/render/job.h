@@ -9,6 +9,11 @@
 //   - background: blurred environment by default when there is one, else the colour
 //     (black unless given); env/blur need an environment, colour and transparent do not;
 //   - without an environment, energy compensation takes the BRDF table alone.
+//   - a frame every material of which is drawn with OpenGL 1's model (ShadingModel::Ogl1,
+//     Ogl1Pixel, or Auto on classic MTL materials) has no automatic environment (OpenGL 1
+//     has no image-based light) and, when nothing else lights it, the OpenGL 1 reference's
+//     default light instead of the default pair: one white light of colour 1 from
+//     azimuth 30, elevation 45 (../shared/tools/ogl1-ref).
 #include <optional>
 #include <string>
 #include <vector>
@@ -118,6 +123,12 @@ struct Job {
         bool float_output = false;
         DebugChannel debug = DebugChannel::None;
         bool energy_compensation = true;  // multiple-scattering compensation of the specular lobe
+        // The shading model for the frame, or Auto: per material (RenderSettings::shading).
+        ShadingModel shading = ShadingModel::Auto;
+        glm::vec3 ambient{0.0f};  // uniform ambient light (OpenGL 1: GL_LIGHT_MODEL_AMBIENT)
+        // OpenGL 1 fog (Ogl1 models). Its colour is fog_color, else the background colour (as rgl).
+        Fog fog;
+        std::optional<glm::vec3> fog_color;
         bool operator==(const Output&) const = default;
     };
 
@@ -145,7 +156,8 @@ struct ResolvedJob {
     Bounds bounds;
     CameraSetup camera;
     std::vector<LightInstance> lights;  // the scene's, the job's extra ones, or the default pair
-    bool default_lights = false;        // `lights` is default_lights()
+    bool default_lights = false;        // `lights` is default_lights() (or the OpenGL 1 default light)
+    bool ogl1_frame = false;            // every material is drawn with OpenGL 1's model
     // The environment to load or bake (load_lighting()); nullopt: no image-based light.
     std::optional<ibl::EnvironmentSource> environment;
     ibl::BakeOptions bake_options;

@@ -13,6 +13,8 @@
 #include "fresnel/core/color.h"
 #include "fresnel/core/image.h"
 #include "fresnel/ibl/bake.h"
+#include "fresnel/material/legacy_shading.h"
+#include "fresnel/material/material.h"
 #include "fresnel/render/camera.h"
 #include "fresnel/render/lights.h"
 #include "fresnel/scene/scene.h"
@@ -30,6 +32,34 @@ enum class DebugChannel {
 std::optional<DebugChannel> parse_debug_channel(const std::string& name);
 std::vector<std::string> debug_channel_names();
 
+// The shading model (`fresnel render --shading`), for the whole frame or per material:
+//   Gltf: the glTF specification's BRDF (pbr.frag), tone mapped and display-encoded.
+//   Ogl1: OpenGL 1's fixed-function lighting exactly, per vertex (Gouraud), with texture
+//     modulation (texels as stored) and fog, written straight to the display (no tone
+//     mapping, no encoding); a light of intensity I acts as an OpenGL light of colour I.
+//   Ogl1Pixel: the same per fragment.
+//   BlinnPhongNormalized: the normalized Blinn-Phong microfacet model (legacy_shading.h)
+//     with its image-based path, tone mapped and encoded like Gltf.
+//   Auto: per material, Ogl1 for classic Phong (MTL) materials, Gltf for the rest.
+// The legacy models (legacy.vert / legacy.frag) take their inputs from legacy_phong() and
+// blinn_phong_material() (fresnel/material/phong.h).
+enum class ShadingModel { Auto = 0, Gltf, Ogl1, Ogl1Pixel, BlinnPhongNormalized };
+std::optional<ShadingModel> parse_shading_model(const std::string& name);
+const char* shading_model_name(ShadingModel model);
+// The model a material is drawn with when the frame asks for `frame`.
+ShadingModel material_shading(ShadingModel frame, const Material& material);
+inline bool is_ogl1(ShadingModel m) { return m == ShadingModel::Ogl1 || m == ShadingModel::Ogl1Pixel; }
+
+// OpenGL 1 fog (GL_FOG on the eye-plane distance |z_eye|, legacy_shading.h), drawn by the
+// Ogl1 models only. start/end unset: the camera's near/far clip distances.
+struct Fog {
+    legacy::FogMode mode = legacy::FogMode::None;
+    std::optional<float> start, end;  // linear
+    float density = 1.0f;             // exp, exp2
+    glm::vec3 color{0.0f};            // display-referred, as written
+    bool operator==(const Fog&) const = default;
+};
+
 struct RenderSettings {
     int width = 1024, height = 768;
     int msaa = 4;
@@ -44,7 +74,9 @@ struct RenderSettings {
     glm::vec4 background{0.0f, 0.0f, 0.0f, 1.0f};  // display-referred RGB; a = 0: transparent
     bool straight_alpha = true;  // transparent frames: un-premultiply (PNG); false keeps premultiplied (EXR)
     DebugChannel debug = DebugChannel::None;
-    glm::vec3 ambient{0.0f};  // uniform ambient radiance added to diffuse (default none)
+    glm::vec3 ambient{0.0f};  // uniform ambient radiance added to diffuse (default none); Ogl1: GL_LIGHT_MODEL_AMBIENT
+    ShadingModel shading = ShadingModel::Auto;
+    Fog fog;  // Ogl1 models only
 
     // Image-based light (nullptr = none). Baked by libs/ibl; must outlive the call.
     const ibl::BakedIbl* environment = nullptr;

@@ -95,4 +95,32 @@ bool valid_features(FeatureMask mask);
 // Every valid mask, ascending (tens of thousands; each stage source depends on fewer bits).
 std::vector<FeatureMask> all_feature_sets();
 
+// ---- The legacy shading models' variants (legacy.vert / legacy.frag) --------------------
+// A separate, small set: the models of ShadingModel other than glTF share no variant with
+// pbr.*, so their bits do not multiply the mesh shaders' tens of thousands of sets.
+namespace legacy_feature {
+enum : FeatureMask {
+    Ogl1Vertex = 1u << 0,    // OpenGL 1 per vertex (Gouraud)
+    Ogl1Pixel = 1u << 1,     // OpenGL 1 per fragment
+    BlinnPhong = 1u << 2,    // normalized Blinn-Phong
+    HasNormal = 1u << 3,
+    HasUv0 = 1u << 4,
+    DiffuseMap = 1u << 5,    // map_Kd (OpenGL 1: GL_MODULATE; Blinn-Phong: base colour, sRGB)
+    UseIbl = 1u << 6,        // Blinn-Phong only: pre-convolved maps
+    Fogged = 1u << 7,        // OpenGL 1 only: GL_FOG
+};
+constexpr int kCount = 8;
+constexpr FeatureMask kAll = (1u << kCount) - 1;
+constexpr FeatureMask kModels = Ogl1Vertex | Ogl1Pixel | BlinnPhong;
+}  // namespace legacy_feature
+
+// The #defines of a legacy variant (LEGACY_OGL1_VERTEX, ..., then "MAX_LIGHTS 16").
+std::vector<std::string> legacy_feature_defines(FeatureMask mask);
+// The rules: exactly one model (none: nothing is drawn, so the mask is not valid); the
+// diffuse map needs UV0; the environment belongs to Blinn-Phong and fog to OpenGL 1.
+FeatureMask canonical_legacy_features(FeatureMask mask);
+bool valid_legacy_features(FeatureMask mask);
+// Every valid legacy mask, ascending (a few dozen).
+std::vector<FeatureMask> all_legacy_feature_sets();
+
 }  // namespace fresnel
