@@ -11,5 +11,6 @@ using Runner = std::function<int()>;
 Runner add_render_command(CLI::App& app);
 Runner add_info_command(CLI::App& app);
 Runner add_bake_command(CLI::App& app);
+Runner add_view_command(CLI::App& app);
 
 }  // namespace fresnel::cli

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
     auto render = fresnel::cli::add_render_command(app);
     auto info = fresnel::cli::add_info_command(app);
     auto bake = fresnel::cli::add_bake_command(app);
+    auto view = fresnel::cli::add_view_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("render")) return render();
         if (app.got_subcommand("info")) return info();
         if (app.got_subcommand("bake")) return bake();
+        if (app.got_subcommand("view")) return view();
     } catch (const fresnel::Error& e) {
         fresnel::cli::print_error(e);
         return fresnel::cli::kExitBadInput;

@@ -1,0 +1,35 @@
+// `fresnel view [MODEL|FOLDER] ...`: the interactive viewer. It takes `render`'s camera,
+// environment and tone-mapping flags (job_flags.h) and opens on the frame `render` would
+// write for them; the window and its loop are in viewer.cpp.
+#include "cli_common.h"
+#include "commands.h"
+#include "viewer.h"
+
+namespace fresnel::cli {
+
+Runner add_view_command(CLI::App& app) {
+    auto o = std::make_shared<ViewOptions>();
+    o->job->size = "1280x720";
+    CLI::App* cmd = app.add_subcommand("view", "Open a glTF model in a window: orbit, swap models and environments, inspect channels");
+    cmd->add_option("model", o->job->model,
+                    "glTF 2.0 file (.gltf/.glb), or a folder of them (PageUp/PageDown step through it); omitted: the "
+                    "built-in demo");
+    add_job_flags(cmd, o->job, "Window size WxH (screen coordinates; frames are rendered at the framebuffer's pixels)");
+    cmd->add_option("--screenshot", o->screenshot,
+                    "Write the frame as presented (the 3D view, without the GUI) to this PNG after --frames frames, then "
+                    "exit 0");
+    cmd->add_option("--frames", o->frames,
+                    "Exit after this many frames with the scene and its lighting ready (default with --screenshot: 2)")
+        ->check(CLI::Range(1, 100000));
+    add_input_flags(cmd, o->job);
+    return [o]() -> int {
+#ifdef FRESNEL_HAVE_VIEWER
+        return run_viewer(*o);
+#else
+        print_error("this build of fresnel has no viewer (it needs GLFW and Dear ImGui: libglfw3-dev, libimgui-dev)");
+        return kExitBadInput;
+#endif
+    };
+}
+
+}  // namespace fresnel::cli

@@ -1,0 +1,19 @@
+#pragma once
+// `fresnel view`: the interactive viewer (viewer.cpp, built when libs/gui is).
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "job_flags.h"
+
+namespace fresnel::cli {
+
+struct ViewOptions {
+    std::shared_ptr<JobFlags> job = std::make_shared<JobFlags>();
+    std::string screenshot;     // write the presented frame (without the GUI) to this PNG, then exit
+    std::optional<int> frames;  // exit after this many frames with the scene and its lighting ready
+};
+
+int run_viewer(const ViewOptions& options);
+
+}  // namespace fresnel::cli
