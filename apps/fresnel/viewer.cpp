@@ -49,17 +49,31 @@ bool is_environment(const fs::path& p) {
     return e == ".hdr" || e == ".exr" || (fs::is_directory(p) && fs::exists(p / "manifest.json"));
 }
 
-// The models under `folder` (three levels deep, sorted by path).
+// The models under `folder` (three levels deep; absolute paths, sorted).
 std::vector<std::string> list_models(const fs::path& folder) {
     std::vector<std::string> out;
     std::error_code ec;
     fs::recursive_directory_iterator it(folder, fs::directory_options::skip_permission_denied, ec), end;
     for (; !ec && it != end; it.increment(ec)) {
         if (it.depth() > 3) it.disable_recursion_pending();
-        if (it->is_regular_file(ec) && is_model(it->path())) out.push_back(it->path().string());
+        if (it->is_regular_file(ec) && is_model(it->path()))
+            out.push_back(fs::absolute(it->path()).lexically_normal().string());
     }
     std::sort(out.begin(), out.end());
     return out;
+}
+
+// The models PageUp/PageDown step through from `model`: those under its folder, or under
+// the folder above when the model is alone in its own (models/NAME/NAME.glb,
+// models/NAME/glTF-Binary/NAME.glb), up to two levels.
+std::vector<std::string> sibling_models(const std::string& model) {
+    fs::path folder = fs::absolute(model).parent_path();
+    std::vector<std::string> models = list_models(folder);
+    for (int up = 0; up < 2 && models.size() <= 1 && folder.has_parent_path() && folder != folder.root_path(); ++up) {
+        folder = folder.parent_path();
+        models = list_models(folder);
+    }
+    return models;
 }
 
 // The key under which a resolved job's lighting is loaded: a new one only when it changes.
@@ -102,8 +116,7 @@ public:
             job_.source.model = folder_models_.empty() ? std::string() : folder_models_.front();
             if (folder_models_.empty()) error_ = f.model + ": no .gltf or .glb files in this folder";
         } else if (!f.model.empty()) {
-            folder_models_ = list_models(fs::path(f.model).parent_path().empty() ? fs::path(".")
-                                                                                   : fs::path(f.model).parent_path());
+            folder_models_ = sibling_models(f.model);
         }
         browser_dir_ = job_.source.model.empty() ? fs::current_path() : fs::absolute(job_.source.model).parent_path();
         load_recent();
@@ -158,12 +171,13 @@ private:
             if (batch && !bake_ && bake_failed_) return kExitBadInput;  // printed by update_lighting()
             if (ready && scene_) ++ready_frames;
             if (batch && ready && ready_frames >= frames_wanted) {
+                if (options_.with_gui) window.end_frame();
                 if (!options_.screenshot.empty()) {
                     write_png(options_.screenshot, read_frame(fb_.width, fb_.height, last_transparent_));
                     std::fprintf(stderr, "fresnel: wrote %s (%dx%d)\n", options_.screenshot.c_str(), fb_.width,
                                  fb_.height);
                 }
-                window.end_frame();
+                if (!options_.with_gui) window.end_frame();
                 window.swap_buffers();
                 return kExitOk;
             }
@@ -244,13 +258,15 @@ private:
             open_environment(path);
         } else {
             // Models by extension; anything else goes to the loader, which says what is wrong.
-            if (open_model(path, false)) folder_models_ = list_models(fs::path(path).parent_path());
+            if (open_model(path, false)) folder_models_ = sibling_models(path);
         }
     }
 
     void step_folder(int delta) {
         if (folder_models_.empty()) return;
-        auto it = std::find(folder_models_.begin(), folder_models_.end(), job_.source.model);
+        std::string current =
+            job_.source.model.empty() ? std::string() : fs::absolute(job_.source.model).lexically_normal().string();
+        auto it = std::find(folder_models_.begin(), folder_models_.end(), current);
         long i = it == folder_models_.end() ? 0 : long(it - folder_models_.begin()) + delta;
         long n = long(folder_models_.size());
         i = ((i % n) + n) % n;
@@ -320,7 +336,9 @@ private:
             if (window_->key_pressed(gui::Key::PageUp)) step_folder(-1), changed = true;
             if (window_->key_pressed(gui::Key::F12)) screenshot_requested_ = true, changed = true;
             if (window_->key_pressed(gui::Key::O)) browser_open_ = true, changed = true;
-            if (window_->key_pressed(gui::Key::C) && io.KeyCtrl) copy_command_line(), changed = true;
+            if (window_->key_pressed(gui::Key::C, /*ctrl=*/true)) copy_command_line(), changed = true;
+            if (window_->key_pressed(gui::Key::Escape)) window_->request_close();
+            if (window_->key_pressed(gui::Key::Tab)) gui_visible_ = !gui_visible_, changed = true;
         }
         return changed;
     }
@@ -360,9 +378,11 @@ private:
     }
 
     void draw_gui() {
+        if (!gui_visible_) return;
         ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-        ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
-        ImGui::Begin("fresnel view");
+        ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowBgAlpha(0.8f);
+        ImGui::Begin("fresnel view (Tab hides)");
         if (!error_.empty()) {
             ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.4f, 0.35f, 1.0f));
             ImGui::TextWrapped("%s", error_.c_str());
@@ -424,7 +444,7 @@ private:
             if (!command_line_.empty()) ImGui::TextWrapped("%s", command_line_.c_str());
             ImGui::TextDisabled("left drag: orbit; right/middle or shift+left: pan; wheel: dolly");
         }
-        if (ImGui::CollapsingHeader("Environment", ImGuiTreeNodeFlags_DefaultOpen)) {
+        if (ImGui::CollapsingHeader("Environment")) {
             using Kind = Job::Environment::Kind;
             Job::Environment& e = job_.environment;
             combo<Kind>("light", e.kind,
@@ -441,7 +461,7 @@ private:
             if (job_.background.mode == Mode::Color) ImGui::ColorEdit3("background colour", &job_.background.color.x);
             ImGui::Checkbox("scene lights", &job_.lights.scene_lights);
         }
-        if (ImGui::CollapsingHeader("Output", ImGuiTreeNodeFlags_DefaultOpen)) {
+        if (ImGui::CollapsingHeader("Output")) {
             Job::Output& o = job_.output;
             combo<ToneMapper>("tone mapper", o.tone_mapper,
                               {{ToneMapper::Neutral, "neutral"}, {ToneMapper::Aces, "aces"},
@@ -610,7 +630,7 @@ private:
     double frame_ms_ = 0.0;
     std::vector<std::string> folder_models_, recent_, warnings_;
     std::string error_, status_, command_line_;
-    bool screenshot_requested_ = false, browser_open_ = false;
+    bool screenshot_requested_ = false, browser_open_ = false, gui_visible_ = true;
     fs::path browser_dir_;
 };
 

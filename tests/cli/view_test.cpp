@@ -83,6 +83,18 @@ protected:
         return r;
     }
 
+    Result run_shell(const std::string& command) {
+        fs::path err = dir_ / "shell_stderr.txt";
+        std::string cmd = command;
+        cmd.append(" >/dev/null 2>");
+        cmd.append(quote(err.string()));
+        int status = std::system(cmd.c_str());
+        Result r;
+        r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+        r.err = slurp(err);
+        return r;
+    }
+
     // Renders `args` with `fresnel render` and `fresnel view --screenshot`; returns the PSNR.
     double view_against_render(const std::vector<std::string>& args) {
         fs::path rendered = dir_ / "render.png", viewed = dir_ / "view.png";
@@ -107,6 +119,7 @@ protected:
         EXPECT_TRUE(varied) << "the viewer's frame is one colour";
         fresnel::ImageMetrics m = fresnel::compare_images(a, b, /*mask_background=*/false);
         EXPECT_EQ(m.pixels, std::size_t(a.width) * std::size_t(a.height));
+        std::printf("view --screenshot vs render: %.1f dB\n", m.psnr_db);
         return m.psnr_db;
     }
 
@@ -134,6 +147,72 @@ TEST_F(View, ScreenshotThroughTheFilesCameraEqualsRender) {
     if (!fs::exists(model)) GTEST_SKIP() << "needs " << model;
     EXPECT_GE(view_against_render({model.string(), "--size", "160x120", "--camera", "0", "--background", "0.2,0.3,0.4"}),
               40.0);
+}
+
+TEST_F(View, GuiIsDrawnOverTheFrame) {
+    fs::path plain = dir_ / "plain.png", gui = dir_ / "gui.png";
+    std::vector<std::string> args = {"view", "--size", "320x240", "--frames", "2", "--screenshot"};
+    auto a = args, b = args;
+    a.push_back(plain.string());
+    b.insert(b.end(), {gui.string(), "--with-gui"});
+    ASSERT_EQ(run(a, true).exit_code, 0);
+    ASSERT_EQ(run(b, true).exit_code, 0);
+    fresnel::ImageMetrics m = fresnel::compare_images(fresnel::read_image8(plain), fresnel::read_image8(gui), false);
+    // The panel covers a good part of the window's top left.
+    EXPECT_LT(m.psnr_db, 25.0);
+    EXPECT_GT(m.max_abs, 100.0);
+}
+
+// A person's session, played by xdotool: drag to orbit, Ctrl+C copies (and prints) the
+// `fresnel render` command of the view, F12 saves a screenshot, Escape quits. The command,
+// run, writes the screenshot's picture.
+TEST_F(View, DragCopyCommandLineAndScreenshotAgreeWithRender) {
+    if (display_prefix_.empty() || std::system("command -v xdotool >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "needs xvfb-run and xdotool";
+    fs::path script = dir_ / "session.sh";
+    std::ofstream(script) << R"(set -u
+cd "$1"
+"$2" view --size 640x360 --msaa 1 --anisotropy 1 >out.txt 2>err.txt &
+pid=$!
+wait_for() { for i in $(seq 600); do eval "$1" && return 0; sleep 0.1; done; echo "timed out: $1" >>err.txt; return 1; }
+wait_for 'xdotool search --name "fresnel view" >/dev/null 2>&1'
+sleep 2
+xdotool mousemove 520 180; sleep 0.5
+xdotool mousedown 1; sleep 0.5
+xdotool mousemove 540 190; sleep 0.5
+xdotool mousemove 560 200; sleep 0.5
+xdotool mouseup 1; sleep 1
+xdotool key ctrl+c
+wait_for 'grep -q "fresnel render" out.txt'
+xdotool key F12
+wait_for 'ls fresnel-*.png >/dev/null 2>&1'
+sleep 1
+xdotool key Escape
+wait $pid
+echo "exit $?" >>err.txt
+)";
+    std::string cmd = display_prefix_ + "sh " + quote(script.string()) + " " + quote(dir_.string()) + " " +
+                      quote(FRESNEL_EXE);
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    std::string err = slurp(dir_ / "err.txt"), out = slurp(dir_ / "out.txt");
+    EXPECT_NE(err.find("exit 0"), std::string::npos) << err;
+    std::size_t at = out.find("fresnel render ");
+    ASSERT_NE(at, std::string::npos) << out << err;
+    std::string line = out.substr(at, out.find('\n', at) - at);
+    // The drag turned the camera: 40 px right, 20 px down.
+    EXPECT_NE(line.find("--yaw -12 --pitch 6"), std::string::npos) << line;
+    fs::path screenshot;
+    for (const auto& e : fs::directory_iterator(dir_))
+        if (e.path().filename().string().starts_with("fresnel-")) screenshot = e.path();
+    ASSERT_FALSE(screenshot.empty()) << err;
+    // Run the copied command (its -o view.png) with the real program.
+    std::string render = line.substr(std::string("fresnel").size());
+    Result r = run_shell("cd " + quote(dir_.string()) + " && " + quote(FRESNEL_EXE) + render);
+    ASSERT_EQ(r.exit_code, 0) << r.err << line;
+    fresnel::ImageMetrics m =
+        fresnel::compare_images(fresnel::read_image8(dir_ / "view.png"), fresnel::read_image8(screenshot), false);
+    std::printf("copied command vs F12 screenshot: %.1f dB\n", m.psnr_db);
+    EXPECT_GE(m.psnr_db, 40.0) << line;
 }
 
 TEST_F(View, BadModelExitsOneWithTheLoadersError) {

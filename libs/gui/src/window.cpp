@@ -1,6 +1,6 @@
 #include "fresnel/gui/window.h"
 
-#include <mutex>
+#include <algorithm>
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -17,6 +17,13 @@ struct Window::Impl {
     GLFWwindow* window = nullptr;
     ImGuiContext* imgui = nullptr;
     std::vector<std::string> dropped;
+    // Keys pressed since the last end_frame(), from GLFW's callback: ImGui 1.86 reads key
+    // state once per frame, so a press and release within one frame (a quick tap, xdotool)
+    // would be lost to ImGui::IsKeyPressed.
+    struct Press {
+        int key, mods;
+    };
+    std::vector<Press> pressed;
     bool imgui_glfw = false, imgui_gl = false;
 };
 
@@ -25,6 +32,10 @@ void on_drop(GLFWwindow* w, int count, const char** paths) {
     auto* impl = static_cast<Window::Impl*>(glfwGetWindowUserPointer(w));
     if (!impl) return;
     for (int i = 0; i < count; ++i) impl->dropped.emplace_back(paths[i]);
+}
+void on_key(GLFWwindow* w, int key, int, int action, int mods) {
+    auto* impl = static_cast<Window::Impl*>(glfwGetWindowUserPointer(w));
+    if (impl && action == GLFW_PRESS) impl->pressed.push_back({key, mods});
 }
 int glfw_key(Key k) {
     switch (k) {
@@ -36,6 +47,7 @@ int glfw_key(Key k) {
         case Key::Escape: return GLFW_KEY_ESCAPE;
         case Key::C: return GLFW_KEY_C;
         case Key::O: return GLFW_KEY_O;
+        case Key::Tab: return GLFW_KEY_TAB;
     }
     return GLFW_KEY_UNKNOWN;
 }
@@ -48,6 +60,7 @@ Window::Window(int width, int height, const std::string& title, const gpu::Conte
     if (!impl_->window) throw Error("GLFW", "", "the window context has no native window");
     glfwSetWindowUserPointer(impl_->window, impl_.get());
     glfwSetDropCallback(impl_->window, on_drop);
+    glfwSetKeyCallback(impl_->window, on_key);  // before ImGui's, which chains to it
     glfwSwapInterval(1);  // vsync
 
     IMGUI_CHECKVERSION();
@@ -59,7 +72,7 @@ Window::Window(int width, int height, const std::string& title, const gpu::Conte
         ImGui::GetStyle().ScaleAllSizes(scale);
         io.FontGlobalScale = scale;
     }
-    // Chains to the callbacks above (drop is not one ImGui installs).
+    // Chains to the key callback above (drop is not one ImGui installs).
     impl_->imgui_glfw = ImGui_ImplGlfw_InitForOpenGL(impl_->window, true);
     const bool es = options.api == gpu::Api::OpenGLES30;
     impl_->imgui_gl = ImGui_ImplOpenGL3_Init(es ? "#version 300 es" : "#version 330 core");
@@ -110,12 +123,15 @@ void Window::begin_frame() {
 void Window::end_frame() {
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    impl_->pressed.clear();
 }
 void Window::swap_buffers() { impl_->context->swap_buffers(); }
 
-bool Window::key_pressed(Key key) const {
+bool Window::key_pressed(Key key, bool ctrl) const {
     if (ImGui::GetIO().WantTextInput) return false;
-    return ImGui::IsKeyPressed(glfw_key(key), false);
+    return std::any_of(impl_->pressed.begin(), impl_->pressed.end(), [&](const Impl::Press& p) {
+        return p.key == glfw_key(key) && ((p.mods & GLFW_MOD_CONTROL) != 0) == ctrl;
+    });
 }
 
 std::vector<std::string> Window::take_dropped_paths() {

@@ -15,7 +15,7 @@ struct Size {
 };
 
 // Keys the viewer binds (GLFW's codes inside).
-enum class Key { F, R, PageUp, PageDown, F12, Escape, C, O };
+enum class Key { F, R, PageUp, PageDown, F12, Escape, C, O, Tab };
 
 class Window {
 public:
@@ -45,8 +45,9 @@ public:
     void end_frame();    // draws the GUI over the back buffer
     void swap_buffers();
 
-    // Since the last begin_frame(): pressed keys (ignored while ImGui types into a field).
-    bool key_pressed(Key key) const;
+    // Pressed since the last end_frame() (ignored while ImGui types into a field).
+    // ctrl: with Control held (and only then).
+    bool key_pressed(Key key, bool ctrl = false) const;
     // Paths dropped onto the window since the last call.
     std::vector<std::string> take_dropped_paths();
     void set_clipboard(const std::string& text);
