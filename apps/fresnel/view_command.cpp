@@ -22,6 +22,10 @@ Runner add_view_command(CLI::App& app) {
     cmd->add_option("--frames", o->frames,
                     "Exit after this many frames with the scene and its lighting ready (default with --screenshot: 2)")
         ->check(CLI::Range(1, 100000));
+    cmd->add_option("--script", o->script,
+                    "Run the commands of this file, one a line (orbit, dolly, open, env, debug, screenshot, quit, ...: "
+                    "see README), then stay open unless it says quit")
+        ->excludes("--screenshot")->excludes("--frames");
     add_input_flags(cmd, o->job);
     return [o]() -> int {
 #ifdef FRESNEL_HAVE_VIEWER

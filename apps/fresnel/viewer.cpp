@@ -27,6 +27,7 @@
 #include "fresnel/gui/window.h"
 #include "fresnel/ibl/bake.h"
 #include "fresnel/render/orbit_controller.h"
+#include "view_script.h"
 
 namespace fresnel::cli {
 namespace fs = std::filesystem;
@@ -106,7 +107,8 @@ struct Bake {
 
 class Viewer {
 public:
-    Viewer(const ViewOptions& options, Job job) : options_(options), job_(std::move(job)) {
+    Viewer(const ViewOptions& options, Job job, std::vector<ScriptCommand> script)
+        : options_(options), job_(std::move(job)), script_(std::move(script)) {
         initial_camera_ = job_.camera;
         good_environment_ = job_.environment;
         const JobFlags& f = *options.job;
@@ -146,12 +148,13 @@ private:
 
     int loop(gui::Window& window) {
         const bool batch = options_.frames || !options_.screenshot.empty();
+        const bool scripted = !options_.script.empty();
         const int frames_wanted = options_.frames.value_or(2);
         if (!open_model(job_.source.model, /*keep_camera=*/true) && batch) return kExitBadInput;  // printed
         int ready_frames = 0, redraw = 3;
         while (!window.should_close()) {
             if (bake_) window.wait_events(0.05);  // progress
-            else if (redraw > 0 || batch) window.poll_events();
+            else if (redraw > 0 || batch || script_pos_ < script_.size()) window.poll_events();
             else {
                 window.wait_events();  // idle: no CPU until something happens
                 redraw = 3;             // ImGui settles over a few frames
@@ -170,6 +173,14 @@ private:
             }
             if (batch && !bake_ && bake_failed_) return kExitBadInput;  // printed by update_lighting()
             if (ready && scene_) ++ready_frames;
+            if (scripted && script_pos_ < script_.size()) {
+                redraw = 3;
+                if (run_script(ready)) {
+                    window.end_frame();
+                    window.swap_buffers();
+                    return script_failed_ ? kExitBadInput : kExitOk;
+                }
+            }
             if (batch && ready && ready_frames >= frames_wanted) {
                 if (options_.with_gui) window.end_frame();
                 if (!options_.screenshot.empty()) {
@@ -199,6 +210,104 @@ private:
         return kExitOk;
     }
 
+    // --- scripts (view_script.h) -----------------------------------------------------
+
+    // Runs script commands until one changes what is drawn (the next frame shows it), a
+    // wait or a screenshot that needs the lighting; true at `quit`.
+    bool run_script(bool ready) {
+        if (script_wait_ > 0) {
+            --script_wait_;
+            return false;
+        }
+        while (script_pos_ < script_.size()) {
+            const ScriptCommand& c = script_[script_pos_];
+            auto failed = [&](const std::string& what) {
+                std::fprintf(stderr, "fresnel: error: %s: line %d: %s\n", options_.script.c_str(), c.line, what.c_str());
+                script_failed_ = true;
+            };
+            OrbitViewport view{bounds_, std::max(fb_.width, 1), std::max(fb_.height, 1)};
+            if (job_.camera.scene_camera && last_camera_ &&
+                (c.name == "orbit" || c.name == "pan" || c.name == "dolly"))
+                job_.camera = orbit_from_setup(*last_camera_, bounds_, last_camera_->yfov_deg);
+            if (c.name == "screenshot") {
+                if (!ready || !scene_) return false;  // after the bake, with the frame drawn
+                try {
+                    write_png(c.args[0], read_frame(fb_.width, fb_.height, last_transparent_));
+                    std::fprintf(stderr, "fresnel: wrote %s (%dx%d)\n", c.args[0].c_str(), fb_.width, fb_.height);
+                } catch (const std::exception& e) {
+                    failed(e.what());
+                }
+                ++script_pos_;
+                continue;
+            }
+            ++script_pos_;
+            if (c.name == "quit") return true;
+            if (c.name == "wait") {
+                script_wait_ = int(c.number(0));
+                return false;
+            }
+            if (c.name == "print") {
+                std::printf("%s\n", render_command_line(job_, "view.png").c_str());
+                std::fflush(stdout);
+                continue;
+            }
+            if (c.name == "orbit") job_.camera = orbit(job_.camera, -c.number(0), c.number(1), 1.0f);
+            else if (c.name == "pan") job_.camera = pan(job_.camera, view, c.number(0), c.number(1));
+            else if (c.name == "dolly") job_.camera = dolly(job_.camera, view, c.number(0));
+            else if (c.name == "reset") job_.camera = initial_camera_;
+            else if (c.name == "frame") job_.camera = frame_all(job_.camera);
+            else if (c.name == "camera" && c.args[0] == "orbit") {
+                if (job_.camera.scene_camera && last_camera_)
+                    job_.camera = orbit_from_setup(*last_camera_, bounds_, last_camera_->yfov_deg);
+            } else if (c.name == "camera") {
+                job_.camera.scene_camera = int(c.number(0));
+            }
+            else if (c.name == "open") {
+                if (!open_model(c.args[0], false)) failed("open " + c.args[0] + ": " + error_);
+            } else if (c.name == "env") {
+                env_line_ = c.line;
+                using Kind = Job::Environment::Kind;
+                const std::string& a = c.args[0];
+                if (a == "none") {
+                    job_.environment.kind = Kind::None;
+                } else {
+                    try {
+                        ibl::EnvironmentSource src = ibl::parse_environment(a);
+                        switch (src.kind) {
+                            case ibl::EnvironmentSource::Kind::File: open_environment(src.path.string()); break;
+                            case ibl::EnvironmentSource::Kind::Uniform:
+                                job_.environment.kind = Kind::Color;
+                                job_.environment.color = src.color;
+                                break;
+                            case ibl::EnvironmentSource::Kind::Studio: job_.environment.kind = Kind::Studio; break;
+                        }
+                    } catch (const std::exception& e) {
+                        failed(e.what());
+                    }
+                }
+            } else if (c.name == "env-rotation") job_.environment.rotation_deg = c.number(0);
+            else if (c.name == "env-intensity") job_.environment.intensity = c.number(0);
+            else if (c.name == "exposure") job_.output.exposure_ev = c.number(0);
+            else if (c.name == "tonemap") job_.output.tone_mapper = *parse_tone_mapper(c.args[0]);
+            else if (c.name == "debug") job_.output.debug = *parse_debug_channel(c.args[0]);
+            else if (c.name == "background") {
+                using Mode = Job::Background::Mode;
+                const std::string& a = c.args[0];
+                if (a == "env") job_.background.mode = Mode::Environment;
+                else if (a == "blur") job_.background.mode = Mode::Blurred;
+                else if (a == "transparent") job_.background.mode = Mode::Transparent;
+                else {
+                    float r = 0, g = 0, b = 0;
+                    std::sscanf(a.c_str(), "%f,%f,%f", &r, &g, &b);
+                    job_.background.mode = Mode::Color;
+                    job_.background.color = {r, g, b};
+                }
+            }
+            return false;  // the next frame shows the change
+        }
+        return false;
+    }
+
     // --- content ---------------------------------------------------------------------
 
     // Loads `path` (empty: the demo) as the scene; on failure the current one stays and
@@ -210,10 +319,12 @@ private:
             job.camera = initial_camera_;
             job.camera.scene_camera.reset();
         }
+        bool uploading = false;
         try {
             Diagnostics diag;
             auto scene = std::make_unique<Scene>(load_scene(job, diag));
             ResolvedJob resolved = resolve(job, *scene);  // e.g. --camera or --scene out of range
+            uploading = true;
             renderer_->set_scene(*scene, resolved.scene_index);
             scene_ = std::move(scene);
             job_ = job;
@@ -227,12 +338,14 @@ private:
         } catch (const std::exception& e) {
             error_ = e.what();
             std::fprintf(stderr, "fresnel: error: %s\n", e.what());
-            if (scene_) {  // the renderer still holds the current scene (set_scene failing mid-way: upload it again)
+            if (uploading && scene_) {  // set_scene failed mid-way: upload the current scene again
                 try {
                     renderer_->set_scene(*scene_, resolve(job_, *scene_).scene_index);
                 } catch (const std::exception&) {
                     scene_.reset();
                 }
+            } else if (uploading) {
+                scene_.reset();
             }
             return false;
         }
@@ -561,6 +674,8 @@ private:
                 error_ = e.what();
                 std::fprintf(stderr, "fresnel: error: %s\n", e.what());
                 bake_failed_ = true;
+                script_failed_ = true;
+                if (env_line_) std::fprintf(stderr, "fresnel: error: %s: line %d: env failed\n", options_.script.c_str(), env_line_);
                 failed_key_ = bake_->key;
                 if (key == bake_->key) {  // keep the environment that worked
                     job_.environment = good_environment_;
@@ -631,6 +746,10 @@ private:
     std::vector<std::string> folder_models_, recent_, warnings_;
     std::string error_, status_, command_line_;
     bool screenshot_requested_ = false, browser_open_ = false, gui_visible_ = true;
+    std::vector<ScriptCommand> script_;
+    std::size_t script_pos_ = 0;
+    int script_wait_ = 0, env_line_ = 0;
+    bool script_failed_ = false;
     fs::path browser_dir_;
 };
 
@@ -639,7 +758,9 @@ private:
 int run_viewer(const ViewOptions& options) {
     std::optional<Job> job = job_from_flags(*options.job);
     if (!job) return kExitUsage;
-    Viewer viewer(options, *job);
+    std::vector<ScriptCommand> script;
+    if (!options.script.empty()) script = read_view_script(options.script);  // FILE: line N: ... (exit 1)
+    Viewer viewer(options, *job, std::move(script));
     return viewer.run();
 }
 

@@ -12,7 +12,8 @@ struct ViewOptions {
     std::shared_ptr<JobFlags> job = std::make_shared<JobFlags>();
     std::string screenshot;     // write the presented frame (without the GUI) to this PNG, then exit
     bool with_gui = false;      // --screenshot includes the GUI drawn over the frame
-    std::optional<int> frames;  // exit after this many frames with the scene and its lighting ready
+    std::optional<int> frames;
+    std::string script;         // view_script.h  // exit after this many frames with the scene and its lighting ready
 };
 
 int run_viewer(const ViewOptions& options);
