@@ -33,7 +33,7 @@ const std::map<std::string, Signature>& commands() {
         {"frame", {0, 0}},        {"camera", {1, 0}},        {"open", {-1, 0}},        {"env", {-1, 0}},
         {"env-rotation", {1, 1}}, {"env-intensity", {1, 1}}, {"exposure", {1, 1}},     {"tonemap", {1, 0}},
         {"debug", {1, 0}},        {"background", {1, 0}},    {"wait", {1, 1}},         {"screenshot", {-1, 0}},
-        {"print", {0, 0}},        {"quit", {0, 0}},
+        {"print", {0, 0}},        {"stats", {0, 0}},        {"quit", {0, 0}},
     };
     return c;
 }

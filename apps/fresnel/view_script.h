@@ -13,6 +13,7 @@
 //   wait FRAMES            let FRAMES frames pass
 //   screenshot PATH        write the frame (as --screenshot) once the lighting is ready
 //   print                  print the `fresnel render` command line of the view
+//   stats                  print frame time, draw calls, triangles and resident memory as one JSON line
 //   quit                   exit: 0, or 1 when an open/env/screenshot of the script failed
 // Paths are relative to the current folder. A malformed line is reported as FILE:LINE and
 // the viewer exits 1 before opening its window.

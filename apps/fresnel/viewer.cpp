@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -96,6 +97,14 @@ Image8 read_frame(int width, int height, bool alpha) {
             for (int c = 0; c < img.channels; ++c) d[c] = s[c];
         }
     return img;
+}
+
+// Resident memory of this process (VmRSS), kB; -1 when unknown.
+long resident_kb() {
+    std::ifstream in("/proc/self/status");
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("VmRSS:", 0) == 0) return std::atol(line.c_str() + 6);
+    return -1;
 }
 
 struct Bake {
@@ -245,6 +254,14 @@ private:
             if (c.name == "wait") {
                 script_wait_ = int(c.number(0));
                 return false;
+            }
+            if (c.name == "stats") {
+                std::printf("{\"frame_ms\":%.2f,\"width\":%d,\"height\":%d,\"draw_calls\":%d,\"triangles\":%zu,"
+                            "\"programs\":%zu,\"rss_kb\":%ld}\n",
+                            frame_ms_, fb_.width, fb_.height, stats_.draw_calls, stats_.triangles,
+                            renderer_->program_count(), resident_kb());
+                std::fflush(stdout);
+                continue;
             }
             if (c.name == "print") {
                 std::printf("%s\n", render_command_line(job_, "view.png").c_str());
@@ -591,6 +608,7 @@ private:
         }
         if (ImGui::CollapsingHeader("Statistics")) {
             ImGui::Text("%dx%d pixels, frame %.1f ms (CPU, draw + finish)", fb_.width, fb_.height, frame_ms_);
+            ImGui::Text("resident memory %.1f MiB", double(resident_kb()) / 1024.0);
             ImGui::Text("%d draw calls, %zu triangles, %zu programs", stats_.draw_calls, stats_.triangles,
                         renderer_->program_count());
             ImGui::TextWrapped("%s", window_->context().renderer().c_str());
