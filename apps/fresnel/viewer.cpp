@@ -162,8 +162,11 @@ private:
         if (!open_model(job_.source.model, /*keep_camera=*/true) && batch) return kExitBadInput;  // printed
         int ready_frames = 0, redraw = 3;
         while (!window.should_close()) {
-            if (bake_) window.wait_events(0.05);  // progress
-            else if (redraw > 0 || batch || script_pos_ < script_.size()) window.poll_events();
+            if (bake_ && redraw <= 0 && !batch && script_pos_ >= script_.size()) {
+                window.wait_events(0.5);  // the progress bar twice a second (or sooner on input)
+                redraw = 1;
+            }
+            else if (bake_ || redraw > 0 || batch || script_pos_ < script_.size()) window.poll_events();
             else {
                 window.wait_events();  // idle: no CPU until something happens
                 redraw = 3;             // ImGui settles over a few frames
@@ -264,7 +267,7 @@ private:
                 continue;
             }
             if (c.name == "print") {
-                std::printf("%s\n", render_command_line(job_, "view.png").c_str());
+                std::printf("%s\n", render_command_line(shown_job(), "view.png").c_str());
                 std::fflush(stdout);
                 continue;
             }
@@ -473,8 +476,16 @@ private:
         return changed;
     }
 
+    // The job as the window shows it: at the framebuffer's size.
+    Job shown_job() const {
+        Job job = job_;
+        job.output.width = std::max(fb_.width, 1);
+        job.output.height = std::max(fb_.height, 1);
+        return job;
+    }
+
     void copy_command_line() {
-        command_line_ = render_command_line(job_, "view.png");
+        command_line_ = render_command_line(shown_job(), "view.png");
         window_->set_clipboard(command_line_);
         std::printf("%s\n", command_line_.c_str());
         std::fflush(stdout);
@@ -671,9 +682,7 @@ private:
     bool update_lighting() {
         if (!scene_) return false;
         fb_ = window_->framebuffer_size();
-        Job job = job_;
-        job.output.width = std::max(fb_.width, 1);
-        job.output.height = std::max(fb_.height, 1);
+        Job job = shown_job();
         try {
             resolved_ = resolve(job, *scene_);
         } catch (const std::exception& e) {  // e.g. a scene camera no node uses
@@ -711,10 +720,7 @@ private:
                 struct Wake {  // wake the loop when done, whether it worked or threw
                     ~Wake() { gui::Window::wake(); }
                 } wake;
-                return load_lighting(r, [progress](double f) {
-                    progress->store(float(f));
-                    gui::Window::wake();
-                });
+                return load_lighting(r, [progress](double f) { progress->store(float(f)); });
             });
         }
         if (key != failed_key_) failed_key_.clear();
@@ -724,7 +730,8 @@ private:
     void draw_scene() {
         fb_ = window_->framebuffer_size();
         if (fb_.width <= 0 || fb_.height <= 0) return;  // minimised
-        if (!scene_) {
+        // No scene, or its first lighting still baking: a plain background under the progress bar.
+        if (!scene_ || lighting_key_ == kNoLighting) {
             gpu::Device device;
             device.bind_framebuffer(nullptr);
             device.viewport(0, 0, fb_.width, fb_.height);
@@ -756,7 +763,8 @@ private:
     std::optional<CameraSetup> last_camera_;
     bool last_transparent_ = false;
     JobLighting lighting_;
-    std::string lighting_key_ = "(none yet)", failed_key_;
+    static constexpr const char* kNoLighting = "(none yet)";
+    std::string lighting_key_ = kNoLighting, failed_key_;
     std::unique_ptr<Bake> bake_;
     bool bake_failed_ = false;
     FrameStats stats_;

@@ -170,14 +170,14 @@ TEST_F(View, GuiIsDrawnOverTheFrame) {
     EXPECT_GT(m.max_abs, 100.0);
 }
 
-// A person's session, played by xdotool: drag to orbit, Ctrl+C copies (and prints) the
+// A person's session, played by xdotool: drag to orbit, resize, Ctrl+C copies (and prints) the
 // `fresnel render` command of the view, F12 saves a screenshot, Escape quits. The command,
 // run, writes the screenshot's picture.
 TEST_F(View, DragCopyCommandLineAndScreenshotAgreeWithRender) {
     if (display_prefix_.empty() || std::system("command -v xdotool >/dev/null 2>&1") != 0)
         GTEST_SKIP() << "needs xvfb-run and xdotool";
     fs::path script = dir_ / "session.sh";
-    std::ofstream(script) << R"(set -u
+    std::ofstream(script) << R"SH(set -u
 cd "$1"
 "$2" view --size 640x360 --msaa 1 --anisotropy 1 >out.txt 2>err.txt &
 pid=$!
@@ -189,6 +189,8 @@ xdotool mousedown 1; sleep 0.5
 xdotool mousemove 540 190; sleep 0.5
 xdotool mousemove 560 200; sleep 0.5
 xdotool mouseup 1; sleep 1
+xdotool windowsize "$(xdotool search --name "fresnel view" | head -1)" 600 340; sleep 2
+xdotool mousemove 500 200; sleep 0.5
 xdotool key ctrl+c
 wait_for 'grep -q "fresnel render" out.txt'
 xdotool key F12
@@ -197,7 +199,7 @@ sleep 1
 xdotool key Escape
 wait $pid
 echo "exit $?" >>err.txt
-)";
+)SH";
     std::string cmd = display_prefix_ + "sh " + quote(script.string()) + " " + quote(dir_.string()) + " " +
                       quote(FRESNEL_EXE);
     std::system(cmd.c_str());  // its status: see run()
@@ -206,8 +208,9 @@ echo "exit $?" >>err.txt
     std::size_t at = out.find("fresnel render ");
     ASSERT_NE(at, std::string::npos) << out << err;
     std::string line = out.substr(at, out.find('\n', at) - at);
-    // The drag turned the camera: 40 px right, 20 px down.
+    // The drag turned the camera (40 px right, 20 px down), and the window was resized.
     EXPECT_NE(line.find("--yaw -12 --pitch 6"), std::string::npos) << line;
+    EXPECT_NE(line.find("--size 600x340"), std::string::npos) << line;
     fs::path screenshot;
     for (const auto& e : fs::directory_iterator(dir_))
         if (e.path().filename().string().starts_with("fresnel-")) screenshot = e.path();
