@@ -49,8 +49,10 @@ protected:
         GTEST_SKIP() << "this build has no viewer (GLFW or Dear ImGui missing)";
 #endif
         if (std::system("command -v xvfb-run >/dev/null 2>&1") == 0) {
-            // -a: a free server number (tests may run in parallel); 24-bit colour.
-            display_prefix_ = "xvfb-run -a -s '-screen 0 1280x1024x24' ";
+            // -a: a free server number from -n on (an own start per process, so that runs in
+            // parallel rarely race for one); 24-bit colour.
+            display_prefix_ = "xvfb-run -a -n " + std::to_string(100 + ::getpid() % 20000) +
+                              " -s '-screen 0 1280x1024x24' ";
         } else if (!std::getenv("DISPLAY")) {
             GTEST_SKIP() << "neither xvfb-run nor a DISPLAY";
         }
@@ -183,8 +185,11 @@ cd "$1"
 pid=$!
 wait_for() { for i in $(seq 600); do eval "$1" && return 0; sleep 0.1; done; echo "timed out: $1" >>err.txt; return 1; }
 wait_for 'xdotool search --name "fresnel view" >/dev/null 2>&1'
-sleep 2
+# Ready when it answers: the first Ctrl+C prints the opening view.
 xdotool mousemove 520 180; sleep 0.5
+xdotool key ctrl+c
+wait_for '[ "$(grep -c "fresnel render" out.txt)" -ge 1 ]'
+sleep 0.5
 xdotool mousedown 1; sleep 0.5
 xdotool mousemove 540 190; sleep 0.5
 xdotool mousemove 560 200; sleep 0.5
@@ -192,7 +197,7 @@ xdotool mouseup 1; sleep 1
 xdotool windowsize "$(xdotool search --name "fresnel view" | head -1)" 600 340; sleep 2
 xdotool mousemove 500 200; sleep 0.5
 xdotool key ctrl+c
-wait_for 'grep -q "fresnel render" out.txt'
+wait_for '[ "$(grep -c "fresnel render" out.txt)" -ge 2 ]'
 xdotool key F12
 wait_for 'ls fresnel-*.png >/dev/null 2>&1'
 sleep 1
@@ -205,7 +210,7 @@ echo "exit $?" >>err.txt
     std::system(cmd.c_str());  // its status: see run()
     std::string err = slurp(dir_ / "err.txt"), out = slurp(dir_ / "out.txt");
     EXPECT_NE(err.find("exit 0"), std::string::npos) << err;
-    std::size_t at = out.find("fresnel render ");
+    std::size_t at = out.rfind("fresnel render ");  // the second: after the drag and the resize
     ASSERT_NE(at, std::string::npos) << out << err;
     std::string line = out.substr(at, out.find('\n', at) - at);
     // The drag turned the camera (40 px right, 20 px down), and the window was resized.
