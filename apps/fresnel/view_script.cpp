@@ -33,12 +33,46 @@ const std::map<std::string, Signature>& commands() {
         {"frame", {0, 0}},        {"camera", {1, 0}},        {"open", {-1, 0}},        {"env", {-1, 0}},
         {"env-rotation", {1, 1}}, {"env-intensity", {1, 1}}, {"exposure", {1, 1}},     {"tonemap", {1, 0}},
         {"debug", {1, 0}},        {"background", {1, 0}},    {"wait", {1, 1}},         {"screenshot", {-1, 0}},
-        {"print", {0, 0}},        {"stats", {0, 0}},        {"quit", {0, 0}},
+        {"print", {0, 0}},        {"stats", {0, 0}},        {"set", {-2, 0}},        {"quit", {0, 0}},
     };
     return c;
 }
 
 }  // namespace
+
+int material_field_size(const std::string& field) {
+    static const std::map<std::string, int> sizes = {
+        {"baseColorFactor", 4}, {"metallicFactor", 1},  {"roughnessFactor", 1}, {"emissiveFactor", 3},
+        {"alphaCutoff", 1},     {"normalScale", 1},     {"occlusionStrength", 1}, {"emissiveStrength", 1},
+        {"ior", 1},             {"specularFactor", 1},  {"clearcoatFactor", 1}, {"clearcoatRoughnessFactor", 1},
+    };
+    auto it = sizes.find(field);
+    return it == sizes.end() ? 0 : it->second;
+}
+
+bool set_material_field(Material& m, const std::string& field, const std::vector<float>& v) {
+    if (int(v.size()) != material_field_size(field)) return false;
+    if (field == "baseColorFactor") m.base_color_factor = {v[0], v[1], v[2], v[3]};
+    else if (field == "metallicFactor") m.metallic_factor = v[0];
+    else if (field == "roughnessFactor") m.roughness_factor = v[0];
+    else if (field == "emissiveFactor") m.emissive_factor = {v[0], v[1], v[2]};
+    else if (field == "alphaCutoff") m.alpha_cutoff = v[0];
+    else if (field == "normalScale") m.normal_scale = v[0];
+    else if (field == "occlusionStrength") m.occlusion_strength = v[0];
+    else if (field == "emissiveStrength") m.emissive_strength = EmissiveStrengthExt{v[0]};
+    else if (field == "ior") m.ior = IorExt{v[0]};
+    else if (field == "specularFactor") {
+        if (!m.specular) m.specular = SpecularExt{};
+        m.specular->specular_factor = v[0];
+    } else if (field == "clearcoatFactor") {
+        if (!m.clearcoat) m.clearcoat = ClearcoatExt{};
+        m.clearcoat->clearcoat_factor = v[0];
+    } else if (field == "clearcoatRoughnessFactor") {
+        if (!m.clearcoat) m.clearcoat = ClearcoatExt{};
+        m.clearcoat->clearcoat_roughness_factor = v[0];
+    }
+    return true;
+}
 
 float ScriptCommand::number(std::size_t i) const {
     float v = 0.0f;
@@ -60,6 +94,23 @@ std::vector<ScriptCommand> read_view_script(const std::string& path) {
         auto it = commands().find(c.name);
         if (it == commands().end()) fail("unknown command '" + c.name + "'");
         const Signature sig = it->second;
+        if (sig.args == -2) {  // set material INDEX FIELD VALUE...
+            for (std::string w; words >> w;) c.args.push_back(w);
+            if (c.args.size() < 3 || c.args[0] != "material") fail("set: expected set material INDEX FIELD VALUE...");
+            float index = 0.0f;
+            if (!parse_float(c.args[1], index) || index < 0 || index != float(int(index)))
+                fail("set material: '" + c.args[1] + "' is not a material index");
+            int want = material_field_size(c.args[2]);
+            if (want == 0) fail("set material: unknown field '" + c.args[2] + "'");
+            if (int(c.args.size()) - 3 != want)
+                fail("set material: " + c.args[2] + " needs " + std::to_string(want) + " number" + (want == 1 ? "" : "s"));
+            for (std::size_t i = 3; i < c.args.size(); ++i) {
+                float v = 0.0f;
+                if (!parse_float(c.args[i], v) || !std::isfinite(v)) fail("set material: '" + c.args[i] + "' is not a number");
+            }
+            out.push_back(std::move(c));
+            continue;
+        }
         if (sig.args < 0) {  // the rest of the line, trimmed
             std::string rest;
             std::getline(words >> std::ws, rest);

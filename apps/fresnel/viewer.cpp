@@ -258,6 +258,17 @@ private:
                 script_wait_ = int(c.number(0));
                 return false;
             }
+            if (c.name == "set") {
+                std::size_t index = std::size_t(c.number(1));
+                std::vector<float> values;
+                for (std::size_t i = 3; i < c.args.size(); ++i) values.push_back(c.number(i));
+                if (!scene_ || index >= scene_->materials.size())
+                    failed("set material: no material " + c.args[1] + " (the scene has " +
+                           std::to_string(scene_ ? scene_->materials.size() : 0) + ")");
+                else
+                    set_material_field(scene_->materials[index], c.args[2], values), materials_edited_ = true;
+                return false;  // the next frame shows it
+            }
             if (c.name == "stats") {
                 std::printf("{\"frame_ms\":%.2f,\"width\":%d,\"height\":%d,\"draw_calls\":%d,\"triangles\":%zu,"
                             "\"programs\":%zu,\"rss_kb\":%ld}\n",
@@ -347,6 +358,8 @@ private:
             uploading = true;
             renderer_->set_scene(*scene, resolved.scene_index);
             scene_ = std::move(scene);
+            original_materials_ = scene_->materials;
+            materials_edited_ = false;
             job_ = job;
             warnings_ = diag.lines();
             if (!warnings_.empty()) print_warnings(diag);
@@ -488,6 +501,7 @@ private:
         command_line_ = render_command_line(shown_job(), "view.png");
         window_->set_clipboard(command_line_);
         std::printf("%s\n", command_line_.c_str());
+        if (materials_edited_) std::fprintf(stderr, "fresnel: note: the material edits are not part of the command line\n");
         std::fflush(stdout);
     }
 
@@ -617,6 +631,7 @@ private:
             ImGui::SliderInt("MSAA", &o.msaa, 1, 8);
             if (ImGui::Button("Screenshot (F12)")) screenshot_requested_ = true;
         }
+        if (scene_ && !scene_->materials.empty() && ImGui::CollapsingHeader("Materials")) draw_material_editor();
         if (ImGui::CollapsingHeader("Statistics")) {
             ImGui::Text("%dx%d pixels, frame %.1f ms (CPU, draw + finish)", fb_.width, fb_.height, frame_ms_);
             ImGui::Text("resident memory %.1f MiB", double(resident_kb()) / 1024.0);
@@ -627,6 +642,48 @@ private:
         if (!status_.empty()) ImGui::TextDisabled("%s", status_.c_str());
         ImGui::End();
         if (browser_open_) draw_browser();
+    }
+
+    // The factors of one material, edited in place: the renderer reads the scene's
+    // materials at every draw, so the next frame shows them. Not saved to the file.
+    void draw_material_editor() {
+        auto& mats = scene_->materials;
+        edit_material_ = std::clamp(edit_material_, 0, int(mats.size()) - 1);
+        auto label = [&](int i) {
+            return std::to_string(i) + ": " + (mats[std::size_t(i)].name.empty() ? "(unnamed)" : mats[std::size_t(i)].name);
+        };
+        if (ImGui::BeginCombo("material", label(edit_material_).c_str())) {
+            for (int i = 0; i < int(mats.size()); ++i)
+                if (ImGui::Selectable(label(i).c_str(), i == edit_material_)) edit_material_ = i;
+            ImGui::EndCombo();
+        }
+        Material& m = mats[std::size_t(edit_material_)];
+        bool e = false;
+        e |= ImGui::ColorEdit4("baseColorFactor", &m.base_color_factor.x);
+        e |= ImGui::SliderFloat("metallicFactor", &m.metallic_factor, 0.0f, 1.0f);
+        e |= ImGui::SliderFloat("roughnessFactor", &m.roughness_factor, 0.0f, 1.0f);
+        e |= ImGui::ColorEdit3("emissiveFactor", &m.emissive_factor.x, ImGuiColorEditFlags_Float);
+        if (m.normal.valid()) e |= ImGui::SliderFloat("normal scale", &m.normal_scale, 0.0f, 2.0f);
+        if (m.occlusion.valid()) e |= ImGui::SliderFloat("occlusion strength", &m.occlusion_strength, 0.0f, 1.0f);
+        if (m.alpha_mode == AlphaMode::Mask) e |= ImGui::SliderFloat("alphaCutoff", &m.alpha_cutoff, 0.0f, 1.0f);
+        if (m.emissive_strength) e |= ImGui::DragFloat("emissiveStrength", &m.emissive_strength->emissive_strength, 0.05f, 0.0f, 1000.0f);
+        if (m.ior) e |= ImGui::DragFloat("ior", &m.ior->ior, 0.005f, 1.0f, 3.0f);
+        if (m.specular) e |= ImGui::SliderFloat("specularFactor", &m.specular->specular_factor, 0.0f, 1.0f);
+        if (m.clearcoat) {
+            e |= ImGui::SliderFloat("clearcoatFactor", &m.clearcoat->clearcoat_factor, 0.0f, 1.0f);
+            e |= ImGui::SliderFloat("clearcoatRoughness", &m.clearcoat->clearcoat_roughness_factor, 0.0f, 1.0f);
+        }
+        const std::pair<const char*, const TextureSlot*> slots[] = {
+            {"baseColor", &m.base_color}, {"metallicRoughness", &m.metallic_roughness}, {"normal", &m.normal},
+            {"occlusion", &m.occlusion}, {"emissive", &m.emissive}};
+        for (const auto& [name, slot] : slots)
+            if (slot->valid()) ImGui::TextDisabled("%s texture %d (uv%d)", name, slot->texture, slot->tex_coord);
+        if (e) materials_edited_ = true;
+        if (materials_edited_ && ImGui::Button("Revert all materials")) {
+            mats = original_materials_;
+            materials_edited_ = false;
+        }
+        if (materials_edited_) ImGui::TextDisabled("edits are live only: not saved, not in the command line");
     }
 
     std::string camera_label(int i) const {
@@ -776,6 +833,9 @@ private:
     std::size_t script_pos_ = 0;
     int script_wait_ = 0, env_line_ = 0;
     bool script_failed_ = false;
+    std::vector<Material> original_materials_;
+    bool materials_edited_ = false;
+    int edit_material_ = 0;
     fs::path browser_dir_;
 };
 

@@ -305,6 +305,36 @@ TEST_F(View, HundredOpensKeepResidentMemoryFlat) {
     EXPECT_LE(double(rss[1]), double(rss[0]) * 1.10 + 8192.0);
 }
 
+// `set material`: a red base colour factor reddens the helmet (and nothing else: the
+// background stays), setting it back gives `fresnel render`'s picture again.
+TEST_F(View, MaterialEditIsLiveAndRevertsExactly) {
+    fs::path model = kShared / "assets/models/DamagedHelmet/DamagedHelmet.glb";
+    if (!fs::exists(model)) GTEST_SKIP() << "needs " << model;
+    std::ofstream(dir_ / "m.txt") << "set material 0 baseColorFactor 1 0.1 0.1 1\n"
+                                     "screenshot " << (dir_ / "red.png").string() << "\n"
+                                     "set material 0 baseColorFactor 1 1 1 1\n"
+                                     "screenshot " << (dir_ / "back.png").string() << "\n"
+                                     "set material 3 roughnessFactor 0.5\n"
+                                     "quit\n";
+    Result r = run({"view", model.string(), "--size", "200x150", "--script", (dir_ / "m.txt").string()}, true);
+    EXPECT_EQ(r.exit_code, 1) << r.err;  // material 3 does not exist
+    EXPECT_NE(r.err.find("m.txt: line 5: set material: no material 3 (the scene has 1)"), std::string::npos) << r.err;
+    Result rr = run({"render", model.string(), "--size", "200x150", "-o", (dir_ / "render.png").string()}, false);
+    ASSERT_EQ(rr.exit_code, 0) << rr.err;
+    fresnel::Image8 red = fresnel::read_image8(dir_ / "red.png"), back = fresnel::read_image8(dir_ / "back.png"),
+                    ref = fresnel::read_image8(dir_ / "render.png");
+    EXPECT_GE(fresnel::compare_images(back, ref, false).psnr_db, 40.0);
+    // Red minus green over the image: the edit raises it; the corner (background) keeps its colour.
+    auto redness = [](const fresnel::Image8& im) {
+        double sum = 0;
+        for (int y = 0; y < im.height; ++y)
+            for (int x = 0; x < im.width; ++x) sum += double(im.at(x, y)[0]) - double(im.at(x, y)[1]);
+        return sum / double(im.width * im.height);
+    };
+    EXPECT_GT(redness(red), redness(ref) + 5.0);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(red.at(2, 2)[c], ref.at(2, 2)[c]) << c;
+}
+
 TEST_F(View, MalformedScriptNamesTheLineBeforeOpeningAWindow) {
     std::ofstream(dir_ / "bad.txt") << "orbit 10 0\n\nzoom 2\n";
     Result r = run({"view", "--script", (dir_ / "bad.txt").string()}, false);
