@@ -33,7 +33,7 @@ const std::map<std::string, Signature>& commands() {
         {"frame", {0, 0}},        {"camera", {1, 0}},        {"open", {-1, 0}},        {"env", {-1, 0}},
         {"env-rotation", {1, 1}}, {"env-intensity", {1, 1}}, {"exposure", {1, 1}},     {"tonemap", {1, 0}},
         {"debug", {1, 0}},        {"background", {1, 0}},    {"wait", {1, 1}},         {"screenshot", {-1, 0}},
-        {"print", {0, 0}},        {"stats", {0, 0}},        {"set", {-2, 0}},        {"quit", {0, 0}},
+        {"print", {0, 0}},        {"stats", {0, 0}},        {"set", {-2, 0}},         {"split", {-3, 0}},        {"quit", {0, 0}},
     };
     return c;
 }
@@ -108,6 +108,16 @@ std::vector<ScriptCommand> read_view_script(const std::string& path) {
                 float v = 0.0f;
                 if (!parse_float(c.args[i], v) || !std::isfinite(v)) fail("set material: '" + c.args[i] + "' is not a number");
             }
+            out.push_back(std::move(c));
+            continue;
+        }
+        if (sig.args == -3) {  // split off | split CHANNEL POS
+            for (std::string w; words >> w;) c.args.push_back(w);
+            float pos = 0.0f;
+            bool off = c.args.size() == 1 && c.args[0] == "off";
+            if (!off && (c.args.size() != 2 || !parse_debug_channel(c.args[0]) || !parse_float(c.args[1], pos) ||
+                         !(pos >= 0.0f && pos <= 1.0f)))
+                fail("split: expected off, or CHANNEL POS (a debug channel or none, the divider at 0..1)");
             out.push_back(std::move(c));
             continue;
         }

@@ -17,6 +17,7 @@
 //                          metallicFactor, roughnessFactor, emissiveFactor R G B, alphaCutoff,
 //                          normalScale, occlusionStrength, emissiveStrength, ior, specularFactor,
 //                          clearcoatFactor, clearcoatRoughnessFactor (live; not saved)
+//   split CHANNEL POS | split off   the split view: right of POS (0..1 of the width) the debug CHANNEL (or none)
 //   stats                  print frame time, draw calls, triangles and resident memory as one JSON line
 //   quit                   exit: 0, or 1 when an open/env/screenshot of the script failed
 // Paths are relative to the current folder. A malformed line is reported as FILE:LINE and

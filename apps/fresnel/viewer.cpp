@@ -269,6 +269,15 @@ private:
                     set_material_field(scene_->materials[index], c.args[2], values), materials_edited_ = true;
                 return false;  // the next frame shows it
             }
+            if (c.name == "split") {
+                split_ = c.args[0] != "off";
+                if (split_) {
+                    split_output_ = job_.output;
+                    split_output_.debug = *parse_debug_channel(c.args[0]);
+                    split_pos_ = c.number(1);
+                }
+                return false;
+            }
             if (c.name == "stats") {
                 std::printf("{\"frame_ms\":%.2f,\"width\":%d,\"height\":%d,\"draw_calls\":%d,\"triangles\":%zu,"
                             "\"programs\":%zu,\"rss_kb\":%ld}\n",
@@ -456,6 +465,15 @@ private:
             if (job_.camera.scene_camera && last_camera_)
                 job_.camera = orbit_from_setup(*last_camera_, bounds_, last_camera_->yfov_deg);
         };
+        if (split_ && !io.WantCaptureMouse) {
+            float x = io.MousePos.x * to_pixels;
+            if (io.MouseClicked[0] && std::abs(x - float(divider_pixels())) <= 6.0f * to_pixels) dragging_divider_ = true;
+            if (!io.MouseDown[0]) dragging_divider_ = false;
+            if (dragging_divider_) {
+                split_pos_ = std::clamp(io.MousePos.x / float(std::max(win.width, 1)), 0.0f, 1.0f);
+                return true;
+            }
+        }
         if (!io.WantCaptureMouse) {
             float dx = io.MouseDelta.x, dy = io.MouseDelta.y;
             bool moved = (dx != 0.0f || dy != 0.0f) && io.MouseDelta.x > -1e6f;
@@ -532,7 +550,15 @@ private:
         return changed;
     }
 
+    int divider_pixels() const { return std::clamp(int(split_pos_ * float(fb_.width) + 0.5f), 0, fb_.width); }
+
     void draw_gui() {
+        if (split_) {  // the divider, over the frame and under the panels
+            gui::Size win = window_->window_size();
+            float x = split_pos_ * float(win.width);
+            ImDrawList* d = ImGui::GetBackgroundDrawList();
+            d->AddLine(ImVec2(x, 0.0f), ImVec2(x, float(win.height)), IM_COL32(255, 255, 255, 200), 2.0f);
+        }
         if (!gui_visible_) return;
         ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
         ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
@@ -630,6 +656,21 @@ private:
             ImGui::Checkbox("energy compensation", &o.energy_compensation);
             ImGui::SliderInt("MSAA", &o.msaa, 1, 8);
             if (ImGui::Button("Screenshot (F12)")) screenshot_requested_ = true;
+        }
+        if (ImGui::CollapsingHeader("Split view")) {
+            if (ImGui::Checkbox("split (drag the divider)", &split_) && split_) split_output_ = job_.output;
+            if (split_) {
+                ImGui::TextDisabled("right of the divider:");
+                std::vector<std::pair<DebugChannel, std::string>> channels{{DebugChannel::None, "none (shaded)"}};
+                for (const auto& n : debug_channel_names()) channels.emplace_back(*parse_debug_channel(n), n);
+                combo<DebugChannel>("debug##right", split_output_.debug, channels);
+                combo<ToneMapper>("tone mapper##right", split_output_.tone_mapper,
+                                  {{ToneMapper::Neutral, "neutral"}, {ToneMapper::Aces, "aces"},
+                                   {ToneMapper::AcesHill, "aces-hill"}, {ToneMapper::Reinhard, "reinhard"},
+                                   {ToneMapper::Agx, "agx"}, {ToneMapper::None, "none"}});
+                ImGui::SliderFloat("exposure##right", &split_output_.exposure_ev, -8.0f, 8.0f, "%.2f EV");
+                ImGui::Checkbox("energy compensation##right", &split_output_.energy_compensation);
+            }
         }
         if (scene_ && !scene_->materials.empty() && ImGui::CollapsingHeader("Materials")) draw_material_editor();
         if (ImGui::CollapsingHeader("Statistics")) {
@@ -800,6 +841,21 @@ private:
         rs.height = fb_.height;
         auto t = Clock::now();
         renderer_->draw(resolved_.camera, resolved_.lights, rs, RenderTarget::default_framebuffer(0, 0), &stats_);
+        if (split_) {  // the same frame with the right side's settings, over the right of the divider
+            RenderSettings right = rs;
+            right.debug = split_output_.debug;
+            right.tone_mapper = split_output_.tone_mapper;
+            right.exposure_ev = split_output_.exposure_ev;
+            right.energy_compensation = split_output_.energy_compensation;
+            RenderTarget target = RenderTarget::default_framebuffer(0, 0);
+            int x = divider_pixels();
+            target.scissor = RenderTarget::Rect{x, 0, fb_.width - x, fb_.height};
+            FrameStats more;
+            renderer_->draw(resolved_.camera, resolved_.lights, right, target, &more);
+            stats_.draw_calls += more.draw_calls;
+            stats_.triangles += more.triangles;
+            stats_.gl_errors += more.gl_errors;
+        }
         renderer_->finish();
         frame_ms_ = ms_since(t);
         last_camera_ = resolved_.camera;
@@ -836,6 +892,9 @@ private:
     std::vector<Material> original_materials_;
     bool materials_edited_ = false;
     int edit_material_ = 0;
+    bool split_ = false, dragging_divider_ = false;
+    float split_pos_ = 0.5f;
+    Job::Output split_output_;
     fs::path browser_dir_;
 };
 

@@ -335,6 +335,28 @@ TEST_F(View, MaterialEditIsLiveAndRevertsExactly) {
     for (int c = 0; c < 3; ++c) EXPECT_EQ(red.at(2, 2)[c], ref.at(2, 2)[c]) << c;
 }
 
+// The split view: left of the divider `render`'s shaded frame, right of it its roughness channel.
+TEST_F(View, SplitViewShowsBothSettings) {
+    std::ofstream(dir_ / "s.txt") << "split roughness 0.5\nscreenshot " << (dir_ / "split.png").string() << "\nquit\n";
+    Result r = run({"view", "--size", "200x150", "--script", (dir_ / "s.txt").string()}, true);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_EQ(run({"render", "--size", "200x150", "-o", (dir_ / "a.png").string()}, false).exit_code, 0);
+    ASSERT_EQ(run({"render", "--size", "200x150", "--debug", "roughness", "-o", (dir_ / "b.png").string()}, false)
+                  .exit_code, 0);
+    fresnel::Image8 split = fresnel::read_image8(dir_ / "split.png"), a = fresnel::read_image8(dir_ / "a.png"),
+                    b = fresnel::read_image8(dir_ / "b.png");
+    auto crop = [](const fresnel::Image8& im, int x0, int x1) {
+        fresnel::Image8 out(x1 - x0, im.height, 3);
+        for (int y = 0; y < im.height; ++y)
+            for (int x = x0; x < x1; ++x)
+                for (int c = 0; c < 3; ++c) out.at(x - x0, y)[c] = im.at(x, y)[c];
+        return out;
+    };
+    EXPECT_GE(fresnel::compare_images(crop(split, 0, 100), crop(a, 0, 100), false).psnr_db, 40.0);
+    EXPECT_GE(fresnel::compare_images(crop(split, 100, 200), crop(b, 100, 200), false).psnr_db, 40.0);
+    EXPECT_LT(fresnel::compare_images(crop(a, 100, 200), crop(b, 100, 200), false).psnr_db, 30.0);
+}
+
 TEST_F(View, MalformedScriptNamesTheLineBeforeOpeningAWindow) {
     std::ofstream(dir_ / "bad.txt") << "orbit 10 0\n\nzoom 2\n";
     Result r = run({"view", "--script", (dir_ / "bad.txt").string()}, false);
