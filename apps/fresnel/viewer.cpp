@@ -48,7 +48,12 @@ bool is_model(const fs::path& p) {
 }
 bool is_environment(const fs::path& p) {
     auto e = lower_extension(p);
-    return e == ".hdr" || e == ".exr" || (fs::is_directory(p) && fs::exists(p / "manifest.json"));
+    std::error_code ec;  // never throws: unreadable entries are simply not environments
+    return e == ".hdr" || e == ".exr" || (fs::is_directory(p, ec) && fs::exists(p / "manifest.json", ec));
+}
+bool is_folder(const fs::path& p) {
+    std::error_code ec;
+    return fs::is_directory(p, ec);
 }
 
 // The models under `folder` (three levels deep; absolute paths, sorted).
@@ -122,7 +127,7 @@ public:
         good_environment_ = job_.environment;
         const JobFlags& f = *options.job;
         window_size_ = {job_.output.width, job_.output.height};
-        if (!f.model.empty() && fs::is_directory(f.model)) {
+        if (!f.model.empty() && is_folder(f.model)) {
             folder_models_ = list_models(f.model);
             job_.source.model = folder_models_.empty() ? std::string() : folder_models_.front();
             if (folder_models_.empty()) error_ = f.model + ": no .gltf or .glb files in this folder";
@@ -401,7 +406,7 @@ private:
 
     // A dropped or chosen path: a model, an environment, or a folder of models.
     void open_path(const std::string& path) {
-        if (fs::is_directory(path) && !is_environment(path)) {
+        if (is_folder(path) && !is_environment(path)) {
             auto models = list_models(path);
             if (models.empty()) {
                 error_ = path + ": no .gltf or .glb files in this folder";
@@ -747,7 +752,7 @@ private:
         for (fs::directory_iterator it(browser_dir_, ec), end; !ec && it != end; it.increment(ec)) entries.push_back(*it);
         if (ec) ImGui::TextDisabled("%s", ec.message().c_str());
         std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
-            bool da = a.is_directory(), db = b.is_directory();
+            bool da = is_folder(a.path()), db = is_folder(b.path());
             return da != db ? da : a.path().filename() < b.path().filename();
         });
         fs::path next_dir;
@@ -756,7 +761,7 @@ private:
         for (const auto& e : entries) {
             const fs::path& p = e.path();
             if (p.filename().string().starts_with(".")) continue;
-            bool dir_entry = e.is_directory(ec) && !is_environment(p);
+            bool dir_entry = is_folder(p) && !is_environment(p);
             if (!dir_entry && !is_model(p) && !is_environment(p)) continue;
             std::string label = p.filename().string() + (dir_entry ? "/" : is_model(p) ? "" : "  (environment)");
             if (ImGui::Selectable(label.c_str())) {
