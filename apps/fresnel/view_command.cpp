@@ -31,7 +31,7 @@ Runner add_view_command(CLI::App& app) {
 #ifdef FRESNEL_HAVE_VIEWER
         return run_viewer(*o);
 #else
-        print_error("this build of fresnel has no viewer (it needs GLFW and Dear ImGui: libglfw3-dev, libimgui-dev)");
+        print_error("this build of fresnel has no viewer (built with FRESNEL_VIEWER=OFF, or without GLFW and Dear ImGui: libglfw3-dev, libimgui-dev)");
         return kExitBadInput;
 #endif
     };

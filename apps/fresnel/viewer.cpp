@@ -844,6 +844,13 @@ private:
         RenderSettings rs = lighting_.settings(resolved_);
         rs.width = fb_.width;
         rs.height = fb_.height;
+        // GL errors pending from the GUI's last frame (ImGui's desktop GL backend on an ES
+        // context, e.g. glPolygonMode) are not this frame's: clear them first.
+        std::string gui_errors = gpu::Device().take_errors();
+        if (!gui_errors.empty() && gui_gl_errors_.empty()) {
+            gui_gl_errors_ = gui_errors;
+            std::fprintf(stderr, "fresnel: note: the GUI's GL backend raised %s (not the frame's)\n", gui_errors.c_str());
+        }
         auto t = Clock::now();
         renderer_->draw(resolved_.camera, resolved_.lights, rs, RenderTarget::default_framebuffer(0, 0), &stats_);
         if (split_) {  // the same frame with the right side's settings, over the right of the divider
@@ -888,7 +895,7 @@ private:
     FrameStats stats_;
     double frame_ms_ = 0.0;
     std::vector<std::string> folder_models_, recent_, warnings_;
-    std::string error_, status_, command_line_;
+    std::string error_, status_, command_line_, gui_gl_errors_;
     bool screenshot_requested_ = false, browser_open_ = false, gui_visible_ = true;
     std::vector<ScriptCommand> script_;
     std::size_t script_pos_ = 0;

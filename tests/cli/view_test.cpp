@@ -141,6 +141,10 @@ TEST_F(View, ScreenshotOfTheDemoEqualsRender) {
     EXPECT_GE(psnr, 40.0);
 }
 
+TEST_F(View, ScreenshotThroughOpenGlEsEqualsRender) {
+    EXPECT_GE(view_against_render({"--size", "160x120", "--gl", "es3", "--pitch", "30"}), 40.0);
+}
+
 TEST_F(View, ScreenshotOfDamagedHelmetEqualsRender) {
     fs::path model = kShared / "assets/models/DamagedHelmet/DamagedHelmet.glb";
     if (!fs::exists(model)) GTEST_SKIP() << "needs " << model;
