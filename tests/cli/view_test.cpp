@@ -201,7 +201,16 @@ TEST_F(View, DragCopyCommandLineAndScreenshotAgreeWithRender) {
 cd "$1"
 "$2" view --size 640x360 --msaa 1 --anisotropy 1 >out.txt 2>err.txt &
 pid=$!
-wait_for() { for i in $(seq 600); do eval "$1" && return 0; sleep 0.1; done; echo "timed out: $1" >>err.txt; return 1; }
+# Waits up to 60 s for a condition; gives up at once when the viewer has gone.
+wait_for() {
+  for i in $(seq 600); do
+    eval "$1" && return 0
+    kill -0 $pid 2>/dev/null || { echo "the viewer exited early (waiting for: $1)" >>err.txt; exit 0; }
+    sleep 0.1
+  done
+  echo "timed out: $1" >>err.txt
+  kill $pid; wait $pid; exit 0
+}
 wait_for 'xdotool search --name "fresnel view" >/dev/null 2>&1'
 # Ready when it answers: the first Ctrl+C prints the opening view.
 xdotool mousemove 520 180; sleep 0.5
