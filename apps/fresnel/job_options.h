@@ -1,7 +1,7 @@
 #pragma once
-// The flags that describe a render job, shared by `render` (the job) and `batch` (every
-// job's defaults), and how they become a fresnel::Job. They are declared and documented once,
-// in render_command.cpp (add_job_flags).
+// The flags that describe a render job, shared by `render` and `trace` (the job), `view` (the
+// first frame) and `batch` (every job's defaults), and how they become a fresnel::Job. They
+// are declared and documented once, in job_options.cpp (add_job_flags).
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
@@ -25,6 +25,7 @@ struct RenderOptions {
     float yaw = 0, pitch = 0;
     std::optional<float> distance;
     float fov = 45.0f;
+    std::string target;  // --target X,Y,Z; empty = the bounds' centre
     std::optional<int> camera;
     int scene = -1;
     std::string tonemap = "neutral";

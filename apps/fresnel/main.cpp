@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     auto batch = fresnel::cli::add_batch_command(app);
     auto fit = fresnel::cli::add_fit_command(app);
     auto convert = fresnel::cli::add_convert_command(app);
+    auto view = fresnel::cli::add_view_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("batch")) return batch();
         if (app.got_subcommand("fit")) return fit();
         if (app.got_subcommand("convert")) return convert();
+        if (app.got_subcommand("view")) return view();
     } catch (const fresnel::Error& e) {
         fresnel::cli::print_error(e);
         return fresnel::cli::kExitBadInput;

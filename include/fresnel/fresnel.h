@@ -48,6 +48,7 @@
 #include "fresnel/render/camera.h"
 #include "fresnel/render/job.h"
 #include "fresnel/render/lights.h"
+#include "fresnel/render/orbit_controller.h"
 #include "fresnel/render/material_uniforms.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/render/scene_file.h"

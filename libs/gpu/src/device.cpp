@@ -6,6 +6,11 @@ namespace fresnel::gpu {
 
 void Device::bind_framebuffer(const Framebuffer* fb) { glBindFramebuffer(GL_FRAMEBUFFER, fb ? fb->id() : 0); }
 void Device::viewport(int x, int y, int w, int h) { glViewport(x, y, w, h); }
+void Device::scissor(int x, int y, int w, int h) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(x, y, w, h);
+}
+void Device::no_scissor() { glDisable(GL_SCISSOR_TEST); }
 void Device::clear(glm::vec4 c, bool depth) {
     glDepthMask(GL_TRUE);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);

@@ -12,7 +12,7 @@ CameraSetup orbit_camera(const Bounds& bounds, const OrbitParams& p, int width, 
     float aspect = float(width) / float(std::max(height, 1));
     float vfov = p.yfov_deg * deg;
     float R = bounds.empty ? 1.0f : std::max(bounds.radius(), 1e-6f);
-    glm::vec3 target = bounds.empty ? glm::vec3(0.0f) : bounds.center();
+    glm::vec3 target = p.target ? *p.target : bounds.empty ? glm::vec3(0.0f) : bounds.center();
     float a = std::min(vfov * 0.5f, std::atan(std::tan(vfov * 0.5f) * aspect));
     float k = p.distance_k.value_or(1.0f / std::sin(a));
     float D = k * R;

@@ -68,6 +68,7 @@ ResolvedJob resolve(const Job& job, const Scene& scene) {
         op.pitch_deg = job.camera.pitch_deg;
         op.distance_k = job.camera.distance_k;
         op.yfov_deg = job.camera.yfov_deg;
+        op.target = job.camera.target;
         r.camera = orbit_camera(r.bounds, op, out.width, out.height);
     }
 

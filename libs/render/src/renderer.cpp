@@ -794,7 +794,10 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
         prog.set("u_frame", 0);
     }
     prog.set("u_transparent", transparent && settings.straight_alpha ? 1 : 0);
+    const bool scissored = to_default && target.scissor;
+    if (scissored) r.device.scissor(target.scissor->x, target.scissor->y, target.scissor->width, target.scissor->height);
     r.device.draw_fullscreen();
+    if (scissored) r.device.no_scissor();
     stats.gl_errors = r.device.take_errors();
     if (stats_out) *stats_out = stats;
 }

@@ -20,6 +20,7 @@ public:
     void swap_buffers() override { glfwSwapBuffers(window_); }
     bool should_close() const override { return glfwWindowShouldClose(window_); }
     void poll_events() override { glfwPollEvents(); }
+    void* native_window() const override { return window_; }
     void init(const ContextOptions& o) { init_context(o); }
 
 private:
@@ -39,6 +40,8 @@ std::unique_ptr<Context> create_window_context(int width, int height, const std:
         glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     }
     glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, options.debug ? GLFW_TRUE : GLFW_FALSE);
+    glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
+    glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);  // high-DPI: the size is in unscaled screen units
     GLFWwindow* w = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (!w) {
         glfwTerminate();

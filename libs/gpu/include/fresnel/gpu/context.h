@@ -53,6 +53,8 @@ public:
     virtual void swap_buffers() {}
     virtual bool should_close() const { return false; }
     virtual void poll_events() {}
+    // Windowed contexts: the native window (a GLFWwindow*) for a GUI layer (libs/gui); else nullptr.
+    virtual void* native_window() const { return nullptr; }
 
     std::string renderer() const;  // GL_RENDERER
     std::string version() const;   // GL_VERSION

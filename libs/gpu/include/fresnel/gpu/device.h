@@ -26,6 +26,9 @@ class Device {
 public:
     void bind_framebuffer(const Framebuffer* fb);  // nullptr = default framebuffer
     void viewport(int x, int y, int width, int height);
+    // Limits writes to a rectangle (scissor test on) / lifts the limit.
+    void scissor(int x, int y, int width, int height);
+    void no_scissor();
     void clear(glm::vec4 color, bool depth = true);
     void apply(const PipelineState& state);
     void bind_texture(int unit, const Texture& texture);

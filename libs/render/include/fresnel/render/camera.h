@@ -5,6 +5,7 @@
 //   eye = target + D (cos p sin y, sin p, cos p cos y), up = +Y,
 //   D = K R, K default 1/sin(a), a = min(vfov/2, atan(tan(vfov/2) W/H)),
 //   far = D + 2R, near = max(D - 2R, far/1000).
+// A given target (a viewer's pan) replaces the centre; R and the rest stay.
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <optional>
@@ -28,6 +29,7 @@ struct OrbitParams {
     float pitch_deg = 0.0f;
     std::optional<float> distance_k;  // D = K * R
     float yfov_deg = 45.0f;
+    std::optional<glm::vec3> target;  // nullopt = the bounds' centre
 };
 
 CameraSetup orbit_camera(const Bounds& bounds, const OrbitParams& params, int width, int height);

@@ -83,6 +83,7 @@ struct Job {
         float yaw_deg = 0.0f, pitch_deg = 0.0f;
         std::optional<float> distance_k;  // D = K * R; nullopt = fit the bounds
         float yfov_deg = 45.0f;
+        std::optional<glm::vec3> target;  // the point orbited; nullopt = the bounds' centre (a viewer pans it)
         bool operator==(const Camera&) const = default;
     };
     struct Lights {

@@ -110,8 +110,15 @@ bool gpu_animatable(const Scene& scene);
 struct RenderTarget {
     enum class Kind { Offscreen, DefaultFramebuffer } kind = Kind::Offscreen;
     int x = 0, y = 0;  // DefaultFramebuffer: the viewport's lower-left corner (size = RenderSettings)
+    // DefaultFramebuffer: when set, only the pixels of this rectangle (x, y, width, height in
+    // framebuffer pixels, lower-left origin) are written; a split view draws a second frame
+    // with other settings over part of the first.
+    struct Rect {
+        int x = 0, y = 0, width = 0, height = 0;
+    };
+    std::optional<Rect> scissor;
     static RenderTarget offscreen() { return {}; }
-    static RenderTarget default_framebuffer(int x = 0, int y = 0) { return {Kind::DefaultFramebuffer, x, y}; }
+    static RenderTarget default_framebuffer(int x = 0, int y = 0) { return {Kind::DefaultFramebuffer, x, y, {}}; }
 };
 
 struct FrameStats {

@@ -1,0 +1,39 @@
+// `fresnel view [MODEL|FOLDER] ...`: the interactive viewer. It takes `render`'s camera,
+// environment and tone-mapping flags (job_options.h) and opens on the frame `render` would
+// write for them; the window and its loop are in viewer.cpp.
+#include "cli_common.h"
+#include "commands.h"
+#include "viewer.h"
+
+namespace fresnel::cli {
+
+Runner add_view_command(CLI::App& app) {
+    auto o = std::make_shared<ViewOptions>();
+    o->job->size = "1280x720";
+    CLI::App* cmd = app.add_subcommand("view", "Open a glTF model in a window: orbit, swap models and environments, inspect channels");
+    cmd->add_option("model", o->job->models,
+                    "glTF 2.0 file (.gltf/.glb), or a folder of them (PageUp/PageDown step through it); omitted: the "
+                    "built-in demo");
+    add_job_flags(cmd, *o->job);
+    cmd->add_option("--screenshot", o->screenshot,
+                    "Write the frame as presented (the 3D view, without the GUI) to this PNG after --frames frames, then "
+                    "exit 0");
+    cmd->add_flag("--with-gui", o->with_gui, "--screenshot: include the GUI drawn over the frame");
+    cmd->add_option("--frames", o->frames,
+                    "Exit after this many frames with the scene and its lighting ready (default with --screenshot: 2)")
+        ->check(CLI::Range(1, 100000));
+    cmd->add_option("--script", o->script,
+                    "Run the commands of this file, one a line (orbit, dolly, open, env, debug, screenshot, quit, ...: "
+                    "see README), then stay open unless it says quit")
+        ->excludes("--screenshot")->excludes("--frames");
+    return [o]() -> int {
+#ifdef FRESNEL_HAVE_VIEWER
+        return run_viewer(*o);
+#else
+        print_error("this build of fresnel has no viewer (built with FRESNEL_VIEWER=OFF, or without GLFW and Dear ImGui: libglfw3-dev, libimgui-dev)");
+        return kExitBadInput;
+#endif
+    };
+}
+
+}  // namespace fresnel::cli

@@ -1,0 +1,165 @@
+#include "view_script.h"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "fresnel/core/color.h"
+#include "fresnel/core/error.h"
+#include "fresnel/render/renderer.h"
+
+namespace fresnel::cli {
+namespace {
+
+bool parse_float(const std::string& s, float& out) {
+    try {
+        std::size_t used = 0;
+        out = std::stof(s, &used);
+        return used == s.size();
+    } catch (const std::logic_error&) {
+        return false;
+    }
+}
+
+struct Signature {
+    int args;           // -1: one or more words (a path with spaces)
+    int numbers;        // how many leading args must be numbers
+};
+
+const std::map<std::string, Signature>& commands() {
+    static const std::map<std::string, Signature> c = {
+        {"orbit", {2, 2}},        {"pan", {2, 2}},           {"dolly", {1, 1}},        {"reset", {0, 0}},
+        {"frame", {0, 0}},        {"camera", {1, 0}},        {"open", {-1, 0}},        {"env", {-1, 0}},
+        {"env-rotation", {1, 1}}, {"env-intensity", {1, 1}}, {"exposure", {1, 1}},     {"tonemap", {1, 0}},
+        {"debug", {1, 0}},        {"background", {1, 0}},    {"wait", {1, 1}},         {"screenshot", {-1, 0}},
+        {"print", {0, 0}},        {"stats", {0, 0}},        {"set", {-2, 0}},         {"split", {-3, 0}},        {"quit", {0, 0}},
+    };
+    return c;
+}
+
+}  // namespace
+
+int material_field_size(const std::string& field) {
+    static const std::map<std::string, int> sizes = {
+        {"baseColorFactor", 4}, {"metallicFactor", 1},  {"roughnessFactor", 1}, {"emissiveFactor", 3},
+        {"alphaCutoff", 1},     {"normalScale", 1},     {"occlusionStrength", 1}, {"emissiveStrength", 1},
+        {"ior", 1},             {"specularFactor", 1},  {"clearcoatFactor", 1}, {"clearcoatRoughnessFactor", 1},
+    };
+    auto it = sizes.find(field);
+    return it == sizes.end() ? 0 : it->second;
+}
+
+bool set_material_field(Material& m, const std::string& field, const std::vector<float>& v) {
+    if (int(v.size()) != material_field_size(field)) return false;
+    if (field == "baseColorFactor") m.base_color_factor = {v[0], v[1], v[2], v[3]};
+    else if (field == "metallicFactor") m.metallic_factor = v[0];
+    else if (field == "roughnessFactor") m.roughness_factor = v[0];
+    else if (field == "emissiveFactor") m.emissive_factor = {v[0], v[1], v[2]};
+    else if (field == "alphaCutoff") m.alpha_cutoff = v[0];
+    else if (field == "normalScale") m.normal_scale = v[0];
+    else if (field == "occlusionStrength") m.occlusion_strength = v[0];
+    else if (field == "emissiveStrength") m.emissive_strength = EmissiveStrengthExt{v[0]};
+    else if (field == "ior") m.ior = IorExt{v[0]};
+    else if (field == "specularFactor") {
+        if (!m.specular) m.specular = SpecularExt{};
+        m.specular->specular_factor = v[0];
+    } else if (field == "clearcoatFactor") {
+        if (!m.clearcoat) m.clearcoat = ClearcoatExt{};
+        m.clearcoat->clearcoat_factor = v[0];
+    } else if (field == "clearcoatRoughnessFactor") {
+        if (!m.clearcoat) m.clearcoat = ClearcoatExt{};
+        m.clearcoat->clearcoat_roughness_factor = v[0];
+    }
+    return true;
+}
+
+float ScriptCommand::number(std::size_t i) const {
+    float v = 0.0f;
+    parse_float(args.at(i), v);
+    return v;
+}
+
+std::vector<ScriptCommand> read_view_script(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw Error(path, "", "cannot open the script");
+    std::vector<ScriptCommand> out;
+    std::string text;
+    for (int n = 1; std::getline(in, text); ++n) {
+        std::istringstream words(text);
+        ScriptCommand c;
+        c.line = n;
+        if (!(words >> c.name) || c.name[0] == '#') continue;
+        auto fail = [&](const std::string& why) { throw Error(path, "line " + std::to_string(n), why); };
+        auto it = commands().find(c.name);
+        if (it == commands().end()) fail("unknown command '" + c.name + "'");
+        const Signature sig = it->second;
+        if (sig.args == -2) {  // set material INDEX FIELD VALUE...
+            for (std::string w; words >> w;) c.args.push_back(w);
+            if (c.args.size() < 3 || c.args[0] != "material") fail("set: expected set material INDEX FIELD VALUE...");
+            float index = 0.0f;
+            if (!parse_float(c.args[1], index) || index < 0 || index != float(int(index)))
+                fail("set material: '" + c.args[1] + "' is not a material index");
+            int want = material_field_size(c.args[2]);
+            if (want == 0) fail("set material: unknown field '" + c.args[2] + "'");
+            if (int(c.args.size()) - 3 != want)
+                fail("set material: " + c.args[2] + " needs " + std::to_string(want) + " number" + (want == 1 ? "" : "s"));
+            for (std::size_t i = 3; i < c.args.size(); ++i) {
+                float v = 0.0f;
+                if (!parse_float(c.args[i], v) || !std::isfinite(v)) fail("set material: '" + c.args[i] + "' is not a number");
+            }
+            out.push_back(std::move(c));
+            continue;
+        }
+        if (sig.args == -3) {  // split off | split CHANNEL POS
+            for (std::string w; words >> w;) c.args.push_back(w);
+            float pos = 0.0f;
+            bool off = c.args.size() == 1 && c.args[0] == "off";
+            if (!off && (c.args.size() != 2 || !parse_debug_channel(c.args[0]) || !parse_float(c.args[1], pos) ||
+                         !(pos >= 0.0f && pos <= 1.0f)))
+                fail("split: expected off, or CHANNEL POS (a debug channel or none, the divider at 0..1)");
+            out.push_back(std::move(c));
+            continue;
+        }
+        if (sig.args < 0) {  // the rest of the line, trimmed
+            std::string rest;
+            std::getline(words >> std::ws, rest);
+            while (!rest.empty() && (rest.back() == ' ' || rest.back() == '\r' || rest.back() == '\t')) rest.pop_back();
+            if (rest.empty()) fail(c.name + ": needs a path");
+            c.args.push_back(rest);
+        } else {
+            for (std::string w; words >> w;) c.args.push_back(w);
+            if (int(c.args.size()) != sig.args)
+                fail(c.name + ": needs " + std::to_string(sig.args) + " argument" + (sig.args == 1 ? "" : "s") +
+                     ", got " + std::to_string(c.args.size()));
+        }
+        for (int i = 0; i < sig.numbers; ++i) {
+            float v = 0.0f;
+            if (!parse_float(c.args[std::size_t(i)], v) || !std::isfinite(v))
+                fail(c.name + ": '" + c.args[std::size_t(i)] + "' is not a number");
+        }
+        if (c.name == "tonemap" && !parse_tone_mapper(c.args[0])) fail("tonemap: unknown tone mapper '" + c.args[0] + "'");
+        if (c.name == "debug" && !parse_debug_channel(c.args[0])) fail("debug: unknown channel '" + c.args[0] + "'");
+        if (c.name == "camera" && c.args[0] != "orbit") {
+            float v = 0.0f;
+            if (!parse_float(c.args[0], v) || v < 0 || v != float(int(v))) fail("camera: expected N (>= 0) or orbit");
+        }
+        if (c.name == "wait" && (c.number(0) < 0 || c.number(0) > 1e6f || c.number(0) != float(int(c.number(0)))))
+            fail("wait: expected a whole number of frames");
+        if (c.name == "background" && c.args[0] != "env" && c.args[0] != "blur" && c.args[0] != "transparent") {
+            std::stringstream rgb(c.args[0]);
+            int count = 0;
+            for (std::string item; std::getline(rgb, item, ',');) {
+                float v = 0.0f;
+                if (!parse_float(item, v)) count = -100;
+                ++count;
+            }
+            if (count != 3) fail("background: expected env, blur, transparent or R,G,B");
+        }
+        if (c.name == "dolly" && !(c.number(0) > 0)) fail("dolly: the factor must be positive");
+        out.push_back(std::move(c));
+    }
+    return out;
+}
+
+}  // namespace fresnel::cli

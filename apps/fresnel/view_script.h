@@ -1,0 +1,46 @@
+#pragma once
+// `fresnel view --script FILE`: one command per line, run in order by the viewer (for
+// tests and for people). Blank lines and lines starting with # are skipped.
+//   orbit DYAW DPITCH      turn the orbit camera (degrees)
+//   pan DX DY              move the target as a drag of DX, DY pixels would
+//   dolly FACTOR           distance K *= FACTOR
+//   reset | frame          R and F: the initial camera; the bounds' centre and fit distance
+//   camera N | orbit       the file's N-th camera; the orbit camera
+//   open PATH              a model (a broken file: reported, the current scene stays)
+//   env PATH|studio|none|color:R,G,B   the environment (a broken file: reported, the current one stays)
+//   env-rotation DEG | env-intensity X | exposure EV | tonemap NAME | debug CHANNEL
+//   background env|blur|transparent|R,G,B
+//   wait FRAMES            let FRAMES frames pass
+//   screenshot PATH        write the frame (as --screenshot) once the lighting is ready
+//   print                  print the `fresnel render` command line of the view
+//   set material INDEX FIELD VALUE...   a material factor, FIELD as in glTF: baseColorFactor R G B A,
+//                          metallicFactor, roughnessFactor, emissiveFactor R G B, alphaCutoff,
+//                          normalScale, occlusionStrength, emissiveStrength, ior, specularFactor,
+//                          clearcoatFactor, clearcoatRoughnessFactor (live; not saved)
+//   split CHANNEL POS | split off   the split view: right of POS (0..1 of the width) the debug CHANNEL (or none)
+//   stats                  print frame time, draw calls, triangles and resident memory as one JSON line
+//   quit                   exit: 0, or 1 when an open/env/screenshot of the script failed
+// Paths are relative to the current folder. A malformed line is reported as FILE:LINE and
+// the viewer exits 1 before opening its window.
+#include <string>
+#include <vector>
+
+#include "fresnel/material/material.h"
+
+namespace fresnel::cli {
+
+struct ScriptCommand {
+    int line = 0;
+    std::string name;
+    std::vector<std::string> args;
+    float number(std::size_t i) const;  // args[i] as a float (checked when parsed)
+};
+
+// The number of values of a material field `set material` knows (0: unknown), and setting it.
+int material_field_size(const std::string& field);
+bool set_material_field(Material& m, const std::string& field, const std::vector<float>& values);
+
+// Reads and checks `path`. Throws fresnel::Error (file: the script, where: "line N").
+std::vector<ScriptCommand> read_view_script(const std::string& path);
+
+}  // namespace fresnel::cli

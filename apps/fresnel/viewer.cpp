@@ -1,0 +1,929 @@
+// `fresnel view`: a window that shows what `fresnel render` would write for a Job and
+// lets the job change: the camera by mouse (fresnel/render/orbit_controller.h), models and
+// environments by drag and drop, a file browser, PageUp/PageDown and recent files, and the
+// tone mapping, exposure, background and debug channel from the panel.
+//
+// The frame is the renderer's, for the Job the state describes at the window's framebuffer
+// size (resolve(), the same Renderer, RenderTarget::default_framebuffer); the GUI is drawn
+// on top afterwards. Nothing is drawn while nothing changes (the loop waits for events);
+// environments bake on a worker thread while the window keeps answering. A file that does
+// not load leaves the current scene (or environment) as it was and shows the loader's error.
+#include "viewer.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <future>
+
+#include "cli_common.h"
+#include "fresnel/gpu/device.h"
+#include "fresnel/gui/window.h"
+#include "fresnel/ibl/bake.h"
+#include "fresnel/render/orbit_controller.h"
+#include "view_script.h"
+
+namespace fresnel::cli {
+namespace fs = std::filesystem;
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+std::string lower_extension(const fs::path& p) {
+    std::string e = p.extension().string();
+    for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return e;
+}
+bool is_model(const fs::path& p) {
+    auto e = lower_extension(p);
+    return e == ".gltf" || e == ".glb";
+}
+bool is_environment(const fs::path& p) {
+    auto e = lower_extension(p);
+    std::error_code ec;  // never throws: unreadable entries are simply not environments
+    return e == ".hdr" || e == ".exr" || (fs::is_directory(p, ec) && fs::exists(p / "manifest.json", ec));
+}
+bool is_folder(const fs::path& p) {
+    std::error_code ec;
+    return fs::is_directory(p, ec);
+}
+
+// The models under `folder` (three levels deep; absolute paths, sorted).
+std::vector<std::string> list_models(const fs::path& folder) {
+    std::vector<std::string> out;
+    std::error_code ec;
+    fs::recursive_directory_iterator it(folder, fs::directory_options::skip_permission_denied, ec), end;
+    for (; !ec && it != end; it.increment(ec)) {
+        if (it.depth() > 3) it.disable_recursion_pending();
+        if (it->is_regular_file(ec) && is_model(it->path()))
+            out.push_back(fs::absolute(it->path()).lexically_normal().string());
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+// The models PageUp/PageDown step through from `model`: those under its folder, or under
+// the folder above when the model is alone in its own (models/NAME/NAME.glb,
+// models/NAME/glTF-Binary/NAME.glb), up to two levels.
+std::vector<std::string> sibling_models(const std::string& model) {
+    fs::path folder = fs::absolute(model).parent_path();
+    std::vector<std::string> models = list_models(folder);
+    for (int up = 0; up < 2 && models.size() <= 1 && folder.has_parent_path() && folder != folder.root_path(); ++up) {
+        folder = folder.parent_path();
+        models = list_models(folder);
+    }
+    return models;
+}
+
+// The key under which a resolved job's lighting is loaded: a new one only when it changes.
+std::string lighting_key(const ResolvedJob& r) {
+    return (r.environment ? r.environment->describe() : std::string("none")) + "|" + r.bake_options.key() + "|" +
+           (r.use_cache ? "cache" : "no-cache") + "|" + (r.needs_brdf_lut ? "lut" : "");
+}
+
+// The frame in the window's back buffer as `fresnel render` writes it (rows top to bottom;
+// RGB, or RGBA for transparent frames).
+Image8 read_frame(int width, int height, bool alpha) {
+    gpu::Device device;
+    std::vector<std::uint8_t> px = device.read_default_rgba8(0, 0, width, height);
+    Image8 img(width, height, alpha ? 4 : 3);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const std::uint8_t* s = &px[(std::size_t(height - 1 - y) * std::size_t(width) + std::size_t(x)) * 4];
+            std::uint8_t* d = img.at(x, y);
+            for (int c = 0; c < img.channels; ++c) d[c] = s[c];
+        }
+    return img;
+}
+
+// Resident memory of this process (VmRSS), kB; -1 when unknown.
+long resident_kb() {
+    std::ifstream in("/proc/self/status");
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("VmRSS:", 0) == 0) return std::atol(line.c_str() + 6);
+    return -1;
+}
+
+struct Bake {
+    std::string key;
+    ResolvedJob resolved;
+    std::shared_ptr<std::atomic<float>> progress = std::make_shared<std::atomic<float>>(0.0f);
+    std::future<JobLighting> result;
+};
+
+class Viewer {
+public:
+    Viewer(const ViewOptions& options, Job job, std::vector<ScriptCommand> script)
+        : options_(options), job_(std::move(job)), script_(std::move(script)) {
+        initial_camera_ = job_.camera;
+        good_environment_ = job_.environment;
+        const std::string model = options.job->models.empty() ? std::string() : options.job->models.front();
+        window_size_ = {job_.output.width, job_.output.height};
+        if (!model.empty() && is_folder(model)) {
+            folder_models_ = list_models(model);
+            job_.source.model = folder_models_.empty() ? std::string() : folder_models_.front();
+            if (folder_models_.empty()) error_ = model + ": no .gltf or .glb files in this folder";
+        } else if (!model.empty()) {
+            folder_models_ = sibling_models(model);
+        }
+        browser_dir_ = job_.source.model.empty() ? fs::current_path() : fs::absolute(job_.source.model).parent_path();
+        load_recent();
+    }
+
+    int run() {
+        gui::Window window(window_size_.width, window_size_.height, "fresnel view", context_options(*options_.job));
+        window_ = &window;
+        renderer_ = std::make_unique<Renderer>(window.context());
+        int rc = kExitBadInput;
+        try {
+            rc = loop(window);
+        } catch (...) {
+            release_gpu();
+            throw;
+        }
+        release_gpu();
+        return rc;
+    }
+
+private:
+    // GL objects go before the window (and its context) does.
+    void release_gpu() {
+        renderer_.reset();
+        window_ = nullptr;
+    }
+
+    int loop(gui::Window& window) {
+        const bool batch = options_.frames || !options_.screenshot.empty();
+        const bool scripted = !options_.script.empty();
+        const int frames_wanted = options_.frames.value_or(2);
+        if (!open_model(job_.source.model, /*keep_camera=*/true) && batch) return kExitBadInput;  // printed
+        int ready_frames = 0, redraw = 3;
+        while (!window.should_close()) {
+            if (bake_ && redraw <= 0 && !batch && script_pos_ >= script_.size()) {
+                window.wait_events(0.5);  // the progress bar twice a second (or sooner on input)
+                redraw = 1;
+            }
+            else if (bake_ || redraw > 0 || batch || script_pos_ < script_.size()) window.poll_events();
+            else {
+                window.wait_events();  // idle: no CPU until something happens
+                redraw = 3;             // ImGui settles over a few frames
+            }
+            window.begin_frame();
+            bool ready = false;
+            try {
+                if (handle_input()) redraw = 3;
+                draw_gui();
+                ready = update_lighting();
+                draw_scene();
+            } catch (const std::exception& e) {  // never die on input: show it, keep the window
+                error_ = e.what();
+                std::fprintf(stderr, "fresnel: error: %s\n", e.what());
+                if (batch) return kExitBadInput;
+            }
+            if (batch && !bake_ && bake_failed_) return kExitBadInput;  // printed by update_lighting()
+            if (ready && scene_) ++ready_frames;
+            if (scripted && script_pos_ < script_.size()) {
+                redraw = 3;
+                if (run_script(ready)) {
+                    window.end_frame();
+                    window.swap_buffers();
+                    return script_failed_ ? kExitBadInput : kExitOk;
+                }
+            }
+            if (batch && ready && ready_frames >= frames_wanted) {
+                if (options_.with_gui) window.end_frame();
+                if (!options_.screenshot.empty()) {
+                    write_png(options_.screenshot, read_frame(fb_.width, fb_.height, last_transparent_));
+                    std::fprintf(stderr, "fresnel: wrote %s (%dx%d)\n", options_.screenshot.c_str(), fb_.width,
+                                 fb_.height);
+                }
+                if (!options_.with_gui) window.end_frame();
+                window.swap_buffers();
+                return kExitOk;
+            }
+            if (screenshot_requested_) {
+                screenshot_requested_ = false;
+                std::string path = screenshot_name();
+                try {
+                    write_png(path, read_frame(fb_.width, fb_.height, last_transparent_));
+                    status_ = "saved " + path;
+                    std::fprintf(stderr, "fresnel: wrote %s\n", path.c_str());
+                } catch (const std::exception& e) {
+                    error_ = e.what();
+                }
+            }
+            window.end_frame();
+            window.swap_buffers();
+            --redraw;
+        }
+        return kExitOk;
+    }
+
+    // --- scripts (view_script.h) -----------------------------------------------------
+
+    // Runs script commands until one changes what is drawn (the next frame shows it), a
+    // wait or a screenshot that needs the lighting; true at `quit`.
+    bool run_script(bool ready) {
+        if (script_wait_ > 0) {
+            --script_wait_;
+            return false;
+        }
+        while (script_pos_ < script_.size()) {
+            const ScriptCommand& c = script_[script_pos_];
+            auto failed = [&](const std::string& what) {
+                std::fprintf(stderr, "fresnel: error: %s: line %d: %s\n", options_.script.c_str(), c.line, what.c_str());
+                script_failed_ = true;
+            };
+            OrbitViewport view{bounds_, std::max(fb_.width, 1), std::max(fb_.height, 1)};
+            if (job_.camera.scene_camera && last_camera_ &&
+                (c.name == "orbit" || c.name == "pan" || c.name == "dolly"))
+                job_.camera = orbit_from_setup(*last_camera_, bounds_, last_camera_->yfov_deg);
+            if (c.name == "screenshot") {
+                if (!ready || !scene_) return false;  // after the bake, with the frame drawn
+                try {
+                    write_png(c.args[0], read_frame(fb_.width, fb_.height, last_transparent_));
+                    std::fprintf(stderr, "fresnel: wrote %s (%dx%d)\n", c.args[0].c_str(), fb_.width, fb_.height);
+                } catch (const std::exception& e) {
+                    failed(e.what());
+                }
+                ++script_pos_;
+                continue;
+            }
+            ++script_pos_;
+            if (c.name == "quit") return true;
+            if (c.name == "wait") {
+                script_wait_ = int(c.number(0));
+                return false;
+            }
+            if (c.name == "set") {
+                std::size_t index = std::size_t(c.number(1));
+                std::vector<float> values;
+                for (std::size_t i = 3; i < c.args.size(); ++i) values.push_back(c.number(i));
+                if (!scene_ || index >= scene_->materials.size())
+                    failed("set material: no material " + c.args[1] + " (the scene has " +
+                           std::to_string(scene_ ? scene_->materials.size() : 0) + ")");
+                else
+                    set_material_field(scene_->materials[index], c.args[2], values), materials_edited_ = true;
+                return false;  // the next frame shows it
+            }
+            if (c.name == "split") {
+                split_ = c.args[0] != "off";
+                if (split_) {
+                    split_output_ = job_.output;
+                    split_output_.debug = *parse_debug_channel(c.args[0]);
+                    split_pos_ = c.number(1);
+                }
+                return false;
+            }
+            if (c.name == "stats") {
+                std::printf("{\"frame_ms\":%.2f,\"width\":%d,\"height\":%d,\"draw_calls\":%d,\"triangles\":%zu,"
+                            "\"programs\":%zu,\"rss_kb\":%ld}\n",
+                            frame_ms_, fb_.width, fb_.height, stats_.draw_calls, stats_.triangles,
+                            renderer_->program_count(), resident_kb());
+                std::fflush(stdout);
+                continue;
+            }
+            if (c.name == "print") {
+                std::printf("%s\n", render_command_line(shown_job(), "view.png").c_str());
+                std::fflush(stdout);
+                continue;
+            }
+            if (c.name == "orbit") job_.camera = orbit(job_.camera, -c.number(0), c.number(1), 1.0f);
+            else if (c.name == "pan") job_.camera = pan(job_.camera, view, c.number(0), c.number(1));
+            else if (c.name == "dolly") job_.camera = dolly(job_.camera, view, c.number(0));
+            else if (c.name == "reset") job_.camera = initial_camera_;
+            else if (c.name == "frame") job_.camera = frame_all(job_.camera);
+            else if (c.name == "camera" && c.args[0] == "orbit") {
+                if (job_.camera.scene_camera && last_camera_)
+                    job_.camera = orbit_from_setup(*last_camera_, bounds_, last_camera_->yfov_deg);
+            } else if (c.name == "camera") {
+                job_.camera.scene_camera = int(c.number(0));
+            }
+            else if (c.name == "open") {
+                if (!open_model(c.args[0], false)) failed("open " + c.args[0] + ": " + error_);
+            } else if (c.name == "env") {
+                env_line_ = c.line;
+                using Kind = Job::Environment::Kind;
+                const std::string& a = c.args[0];
+                if (a == "none") {
+                    job_.environment.kind = Kind::None;
+                } else {
+                    try {
+                        ibl::EnvironmentSource src = ibl::parse_environment(a);
+                        switch (src.kind) {
+                            case ibl::EnvironmentSource::Kind::File: open_environment(src.path.string()); break;
+                            case ibl::EnvironmentSource::Kind::Uniform:
+                                job_.environment.kind = Kind::Color;
+                                job_.environment.color = src.color;
+                                break;
+                            case ibl::EnvironmentSource::Kind::Studio: job_.environment.kind = Kind::Studio; break;
+                        }
+                    } catch (const std::exception& e) {
+                        failed(e.what());
+                    }
+                }
+            } else if (c.name == "env-rotation") job_.environment.rotation_deg = c.number(0);
+            else if (c.name == "env-intensity") job_.environment.intensity = c.number(0);
+            else if (c.name == "exposure") job_.output.exposure_ev = c.number(0);
+            else if (c.name == "tonemap") job_.output.tone_mapper = *parse_tone_mapper(c.args[0]);
+            else if (c.name == "debug") job_.output.debug = *parse_debug_channel(c.args[0]);
+            else if (c.name == "background") {
+                using Mode = Job::Background::Mode;
+                const std::string& a = c.args[0];
+                if (a == "env") job_.background.mode = Mode::Environment;
+                else if (a == "blur") job_.background.mode = Mode::Blurred;
+                else if (a == "transparent") job_.background.mode = Mode::Transparent;
+                else {
+                    float r = 0, g = 0, b = 0;
+                    std::sscanf(a.c_str(), "%f,%f,%f", &r, &g, &b);
+                    job_.background.mode = Mode::Color;
+                    job_.background.color = {r, g, b};
+                }
+            }
+            return false;  // the next frame shows the change
+        }
+        return false;
+    }
+
+    // --- content ---------------------------------------------------------------------
+
+    // Loads `path` (empty: the demo) as the scene; on failure the current one stays and
+    // the error is shown. keep_camera: the job's camera stays (else: the initial orbit).
+    bool open_model(const std::string& path, bool keep_camera) {
+        Job job = job_;
+        job.source.model = path;
+        if (!keep_camera) {
+            job.camera = initial_camera_;
+            job.camera.scene_camera.reset();
+        }
+        bool uploading = false;
+        try {
+            Diagnostics diag;
+            auto scene = std::make_unique<Scene>(load_scene(job, diag));
+            ResolvedJob resolved = resolve(job, *scene);  // e.g. --camera or --scene out of range
+            uploading = true;
+            renderer_->set_scene(*scene, resolved.scene_index);
+            scene_ = std::move(scene);
+            original_materials_ = scene_->materials;
+            materials_edited_ = false;
+            job_ = job;
+            warnings_ = diag.lines();
+            if (!warnings_.empty()) print_warnings(diag);
+            error_.clear();
+            status_ = path.empty() ? "the built-in demo" : path;
+            window_->set_title("fresnel view - " + (path.empty() ? std::string("demo") : fs::path(path).filename().string()));
+            if (!path.empty()) add_recent(path);
+            return true;
+        } catch (const std::exception& e) {
+            error_ = e.what();
+            std::fprintf(stderr, "fresnel: error: %s\n", e.what());
+            if (uploading && scene_) {  // set_scene failed mid-way: upload the current scene again
+                try {
+                    renderer_->set_scene(*scene_, resolve(job_, *scene_).scene_index);
+                } catch (const std::exception&) {
+                    scene_.reset();
+                }
+            } else if (uploading) {
+                scene_.reset();
+            }
+            return false;
+        }
+    }
+
+    void open_environment(const std::string& path) {
+        job_.environment.kind = Job::Environment::Kind::File;
+        job_.environment.path = path;
+        if (!path.empty()) add_recent(path);
+    }
+
+    // A dropped or chosen path: a model, an environment, or a folder of models.
+    void open_path(const std::string& path) {
+        if (is_folder(path) && !is_environment(path)) {
+            auto models = list_models(path);
+            if (models.empty()) {
+                error_ = path + ": no .gltf or .glb files in this folder";
+                return;
+            }
+            folder_models_ = models;
+            open_model(models.front(), false);
+        } else if (is_environment(path)) {
+            open_environment(path);
+        } else {
+            // Models by extension; anything else goes to the loader, which says what is wrong.
+            if (open_model(path, false)) folder_models_ = sibling_models(path);
+        }
+    }
+
+    void step_folder(int delta) {
+        if (folder_models_.empty()) return;
+        std::string current =
+            job_.source.model.empty() ? std::string() : fs::absolute(job_.source.model).lexically_normal().string();
+        auto it = std::find(folder_models_.begin(), folder_models_.end(), current);
+        long i = it == folder_models_.end() ? 0 : long(it - folder_models_.begin()) + delta;
+        long n = long(folder_models_.size());
+        i = ((i % n) + n) % n;
+        open_model(folder_models_[std::size_t(i)], false);
+    }
+
+    fs::path recent_file() const { return ibl::cache_root() / "viewer-recent.txt"; }
+    void load_recent() {
+        if (!job_.environment.use_cache) return;
+        std::ifstream in(recent_file());
+        for (std::string line; std::getline(in, line) && recent_.size() < 12;)
+            if (!line.empty()) recent_.push_back(line);
+    }
+    void add_recent(const std::string& path) {
+        std::string p = fs::absolute(path).lexically_normal().string();
+        recent_.erase(std::remove(recent_.begin(), recent_.end(), p), recent_.end());
+        recent_.insert(recent_.begin(), p);
+        if (recent_.size() > 12) recent_.resize(12);
+        if (!job_.environment.use_cache) return;
+        std::error_code ec;
+        fs::create_directories(recent_file().parent_path(), ec);
+        std::ofstream out(recent_file());
+        for (const auto& r : recent_) out << r << "\n";
+    }
+
+    // --- input -----------------------------------------------------------------------
+
+    // Mouse and keys; true when something may have changed.
+    bool handle_input() {
+        bool changed = false;
+        for (const auto& p : window_->take_dropped_paths()) {
+            open_path(p);
+            changed = true;
+        }
+        ImGuiIO& io = ImGui::GetIO();
+        gui::Size win = window_->window_size();
+        float to_pixels = win.width > 0 ? float(fb_.width) / float(win.width) : 1.0f;  // high-DPI
+        OrbitViewport view{bounds_, std::max(fb_.width, 1), std::max(fb_.height, 1)};
+        // Orbiting away from a file's camera starts from where it looks.
+        auto orbit_camera_now = [&] {
+            if (job_.camera.scene_camera && last_camera_)
+                job_.camera = orbit_from_setup(*last_camera_, bounds_, last_camera_->yfov_deg);
+        };
+        if (split_ && !io.WantCaptureMouse) {
+            float x = io.MousePos.x * to_pixels;
+            if (io.MouseClicked[0] && std::abs(x - float(divider_pixels())) <= 6.0f * to_pixels) dragging_divider_ = true;
+            if (!io.MouseDown[0]) dragging_divider_ = false;
+            if (dragging_divider_) {
+                split_pos_ = std::clamp(io.MousePos.x / float(std::max(win.width, 1)), 0.0f, 1.0f);
+                return true;
+            }
+        }
+        if (!io.WantCaptureMouse) {
+            float dx = io.MouseDelta.x, dy = io.MouseDelta.y;
+            bool moved = (dx != 0.0f || dy != 0.0f) && io.MouseDelta.x > -1e6f;
+            bool pan_drag = io.MouseDown[1] || io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
+            if (moved && pan_drag) {
+                orbit_camera_now();
+                job_.camera = pan(job_.camera, view, dx * to_pixels, dy * to_pixels);
+                changed = true;
+            } else if (moved && io.MouseDown[0]) {
+                orbit_camera_now();
+                job_.camera = orbit(job_.camera, dx, dy);
+                changed = true;
+            }
+            if (io.MouseWheel != 0.0f) {
+                orbit_camera_now();
+                job_.camera = dolly(job_.camera, view, dolly_factor(io.MouseWheel));
+                changed = true;
+            }
+        }
+        if (!io.WantTextInput) {
+            if (window_->key_pressed(gui::Key::F)) job_.camera = frame_all(job_.camera), changed = true;
+            if (window_->key_pressed(gui::Key::R)) job_.camera = initial_camera_, changed = true;
+            if (window_->key_pressed(gui::Key::PageDown)) step_folder(+1), changed = true;
+            if (window_->key_pressed(gui::Key::PageUp)) step_folder(-1), changed = true;
+            if (window_->key_pressed(gui::Key::F12)) screenshot_requested_ = true, changed = true;
+            if (window_->key_pressed(gui::Key::O)) browser_open_ = true, changed = true;
+            if (window_->key_pressed(gui::Key::C, /*ctrl=*/true)) copy_command_line(), changed = true;
+            if (window_->key_pressed(gui::Key::Escape)) window_->request_close();
+            if (window_->key_pressed(gui::Key::Tab)) gui_visible_ = !gui_visible_, changed = true;
+        }
+        return changed;
+    }
+
+    // The job as the window shows it: at the framebuffer's size.
+    Job shown_job() const {
+        Job job = job_;
+        job.output.width = std::max(fb_.width, 1);
+        job.output.height = std::max(fb_.height, 1);
+        return job;
+    }
+
+    void copy_command_line() {
+        command_line_ = render_command_line(shown_job(), "view.png");
+        window_->set_clipboard(command_line_);
+        std::printf("%s\n", command_line_.c_str());
+        if (materials_edited_) std::fprintf(stderr, "fresnel: note: the material edits are not part of the command line\n");
+        std::fflush(stdout);
+    }
+
+    std::string screenshot_name() const {
+        std::time_t t = std::time(nullptr);
+        char buf[64];
+        std::strftime(buf, sizeof buf, "fresnel-%Y%m%d-%H%M%S.png", std::localtime(&t));
+        return buf;
+    }
+
+    // --- GUI -------------------------------------------------------------------------
+
+    template <class E>
+    static bool combo(const char* label, E& value, const std::vector<std::pair<E, std::string>>& items) {
+        std::string current;
+        for (const auto& [v, n] : items)
+            if (v == value) current = n;
+        bool changed = false;
+        if (ImGui::BeginCombo(label, current.c_str())) {
+            for (const auto& [v, n] : items) {
+                if (ImGui::Selectable(n.c_str(), v == value)) {
+                    changed = v != value;
+                    value = v;
+                }
+            }
+            ImGui::EndCombo();
+        }
+        return changed;
+    }
+
+    int divider_pixels() const { return std::clamp(int(split_pos_ * float(fb_.width) + 0.5f), 0, fb_.width); }
+
+    void draw_gui() {
+        if (split_) {  // the divider, over the frame and under the panels
+            gui::Size win = window_->window_size();
+            float x = split_pos_ * float(win.width);
+            ImDrawList* d = ImGui::GetBackgroundDrawList();
+            d->AddLine(ImVec2(x, 0.0f), ImVec2(x, float(win.height)), IM_COL32(255, 255, 255, 200), 2.0f);
+        }
+        if (!gui_visible_) return;
+        ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowBgAlpha(0.8f);
+        ImGui::Begin("fresnel view (Tab hides)");
+        if (!error_.empty()) {
+            ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.4f, 0.35f, 1.0f));
+            ImGui::TextWrapped("%s", error_.c_str());
+            ImGui::PopStyleColor();
+            if (ImGui::SmallButton("dismiss")) error_.clear();
+        }
+        if (bake_) {
+            ImGui::Text("baking %s", bake_->resolved.environment ? bake_->resolved.environment->describe().c_str() : "");
+            ImGui::ProgressBar(bake_->progress->load());
+        }
+        if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) {
+            ImGui::TextWrapped("%s", job_.source.model.empty() ? "(built-in demo)" : job_.source.model.c_str());
+            if (ImGui::Button("Open... (O)")) browser_open_ = true;
+            ImGui::SameLine();
+            if (ImGui::Button("< PgUp")) step_folder(-1);
+            ImGui::SameLine();
+            if (ImGui::Button("PgDn >")) step_folder(+1);
+            ImGui::SameLine();
+            if (ImGui::Button("Demo")) open_model("", false);
+            if (!folder_models_.empty()) ImGui::Text("%zu models in this folder", folder_models_.size());
+            if (!recent_.empty() && ImGui::TreeNode("Recent")) {
+                std::string chosen;
+                for (const auto& r : recent_)
+                    if (ImGui::Selectable(r.c_str())) chosen = r;
+                ImGui::TreePop();
+                if (!chosen.empty()) open_path(chosen);
+            }
+            if (!warnings_.empty() && ImGui::TreeNode("warnings", "%zu warnings", warnings_.size())) {
+                for (const auto& w : warnings_) ImGui::TextWrapped("%s", w.c_str());
+                ImGui::TreePop();
+            }
+            ImGui::TextDisabled("drop a model or an environment onto the window");
+        }
+        if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {
+            Job::Camera& c = job_.camera;
+            if (scene_ && !scene_->cameras.empty()) {
+                std::string current = c.scene_camera ? camera_label(*c.scene_camera) : "orbit";
+                if (ImGui::BeginCombo("view", current.c_str())) {
+                    if (ImGui::Selectable("orbit", !c.scene_camera)) {
+                        if (c.scene_camera && last_camera_) c = orbit_from_setup(*last_camera_, bounds_, last_camera_->yfov_deg);
+                    }
+                    for (int i = 0; i < int(scene_->cameras.size()); ++i)
+                        if (ImGui::Selectable(camera_label(i).c_str(), c.scene_camera == i)) c.scene_camera = i;
+                    ImGui::EndCombo();
+                }
+            }
+            if (!c.scene_camera) {
+                ImGui::DragFloat("yaw", &c.yaw_deg, 0.5f, -180.0f, 180.0f, "%.2f deg");
+                ImGui::DragFloat("pitch", &c.pitch_deg, 0.5f, -89.9f, 89.9f, "%.2f deg");
+                float k = distance_k(c, std::max(fb_.width, 1), std::max(fb_.height, 1));
+                if (ImGui::DragFloat("distance K", &k, 0.01f, 0.01f, 1e4f, "%.3f")) c.distance_k = std::max(k, 0.01f);
+                ImGui::DragFloat("fov", &c.yfov_deg, 0.2f, 1.0f, 170.0f, "%.1f deg");
+                if (c.target) ImGui::Text("target %.3f %.3f %.3f (panned)", c.target->x, c.target->y, c.target->z);
+            }
+            if (ImGui::Button("Frame all (F)")) c = frame_all(c);
+            ImGui::SameLine();
+            if (ImGui::Button("Reset (R)")) c = initial_camera_;
+            if (ImGui::Button("Copy as command line (Ctrl+C)")) copy_command_line();
+            if (!command_line_.empty()) ImGui::TextWrapped("%s", command_line_.c_str());
+            ImGui::TextDisabled("left drag: orbit; right/middle or shift+left: pan; wheel: dolly");
+        }
+        if (ImGui::CollapsingHeader("Environment")) {
+            using Kind = Job::Environment::Kind;
+            Job::Environment& e = job_.environment;
+            combo<Kind>("light", e.kind,
+                        {{Kind::Automatic, "automatic"}, {Kind::Studio, "studio"}, {Kind::File, "file"},
+                         {Kind::Color, "colour"}, {Kind::None, "none (no IBL)"}});
+            if (e.kind == Kind::File) ImGui::TextWrapped("%s", e.path.empty() ? "(drop a .hdr/.exr)" : e.path.c_str());
+            if (e.kind == Kind::Color) ImGui::ColorEdit3("colour", &e.color.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+            ImGui::SliderFloat("rotation", &e.rotation_deg, -180.0f, 180.0f, "%.1f deg");
+            ImGui::DragFloat("intensity", &e.intensity, 0.01f, 0.0f, 100.0f, "%.2f");
+            using Mode = Job::Background::Mode;
+            combo<Mode>("background", job_.background.mode,
+                        {{Mode::Automatic, "automatic"}, {Mode::Environment, "environment (sharp)"},
+                         {Mode::Blurred, "blurred"}, {Mode::Color, "colour"}, {Mode::Transparent, "transparent"}});
+            if (job_.background.mode == Mode::Color) ImGui::ColorEdit3("background colour", &job_.background.color.x);
+            ImGui::Checkbox("scene lights", &job_.lights.scene_lights);
+        }
+        if (ImGui::CollapsingHeader("Output")) {
+            Job::Output& o = job_.output;
+            combo<ToneMapper>("tone mapper", o.tone_mapper,
+                              {{ToneMapper::Neutral, "neutral"}, {ToneMapper::Aces, "aces"},
+                               {ToneMapper::AcesHill, "aces-hill"}, {ToneMapper::Reinhard, "reinhard"},
+                               {ToneMapper::Agx, "agx"}, {ToneMapper::None, "none"}});
+            ImGui::SliderFloat("exposure", &o.exposure_ev, -8.0f, 8.0f, "%.2f EV");
+            combo<Encoding>("encoding", o.encoding, {{Encoding::Srgb, "srgb"}, {Encoding::Gamma22, "gamma2.2"}});
+            std::vector<std::pair<DebugChannel, std::string>> channels{{DebugChannel::None, "none (shaded)"}};
+            for (const auto& n : debug_channel_names()) channels.emplace_back(*parse_debug_channel(n), n);
+            combo<DebugChannel>("debug", o.debug, channels);
+            ImGui::Checkbox("energy compensation", &o.energy_compensation);
+            ImGui::SliderInt("MSAA", &o.msaa, 1, 8);
+            if (ImGui::Button("Screenshot (F12)")) screenshot_requested_ = true;
+        }
+        if (ImGui::CollapsingHeader("Split view")) {
+            if (ImGui::Checkbox("split (drag the divider)", &split_) && split_) split_output_ = job_.output;
+            if (split_) {
+                ImGui::TextDisabled("right of the divider:");
+                std::vector<std::pair<DebugChannel, std::string>> channels{{DebugChannel::None, "none (shaded)"}};
+                for (const auto& n : debug_channel_names()) channels.emplace_back(*parse_debug_channel(n), n);
+                combo<DebugChannel>("debug##right", split_output_.debug, channels);
+                combo<ToneMapper>("tone mapper##right", split_output_.tone_mapper,
+                                  {{ToneMapper::Neutral, "neutral"}, {ToneMapper::Aces, "aces"},
+                                   {ToneMapper::AcesHill, "aces-hill"}, {ToneMapper::Reinhard, "reinhard"},
+                                   {ToneMapper::Agx, "agx"}, {ToneMapper::None, "none"}});
+                ImGui::SliderFloat("exposure##right", &split_output_.exposure_ev, -8.0f, 8.0f, "%.2f EV");
+                ImGui::Checkbox("energy compensation##right", &split_output_.energy_compensation);
+            }
+        }
+        if (scene_ && !scene_->materials.empty() && ImGui::CollapsingHeader("Materials")) draw_material_editor();
+        if (ImGui::CollapsingHeader("Statistics")) {
+            ImGui::Text("%dx%d pixels, frame %.1f ms (CPU, draw + finish)", fb_.width, fb_.height, frame_ms_);
+            ImGui::Text("resident memory %.1f MiB", double(resident_kb()) / 1024.0);
+            ImGui::Text("%d draw calls, %zu triangles, %zu programs", stats_.draw_calls, stats_.triangles,
+                        renderer_->program_count());
+            ImGui::TextWrapped("%s", window_->context().renderer().c_str());
+        }
+        if (!status_.empty()) ImGui::TextDisabled("%s", status_.c_str());
+        ImGui::End();
+        if (browser_open_) draw_browser();
+    }
+
+    // The factors of one material, edited in place: the renderer reads the scene's
+    // materials at every draw, so the next frame shows them. Not saved to the file.
+    void draw_material_editor() {
+        auto& mats = scene_->materials;
+        edit_material_ = std::clamp(edit_material_, 0, int(mats.size()) - 1);
+        auto label = [&](int i) {
+            return std::to_string(i) + ": " + (mats[std::size_t(i)].name.empty() ? "(unnamed)" : mats[std::size_t(i)].name);
+        };
+        if (ImGui::BeginCombo("material", label(edit_material_).c_str())) {
+            for (int i = 0; i < int(mats.size()); ++i)
+                if (ImGui::Selectable(label(i).c_str(), i == edit_material_)) edit_material_ = i;
+            ImGui::EndCombo();
+        }
+        Material& m = mats[std::size_t(edit_material_)];
+        bool e = false;
+        e |= ImGui::ColorEdit4("baseColorFactor", &m.base_color_factor.x);
+        e |= ImGui::SliderFloat("metallicFactor", &m.metallic_factor, 0.0f, 1.0f);
+        e |= ImGui::SliderFloat("roughnessFactor", &m.roughness_factor, 0.0f, 1.0f);
+        e |= ImGui::ColorEdit3("emissiveFactor", &m.emissive_factor.x, ImGuiColorEditFlags_Float);
+        if (m.normal.valid()) e |= ImGui::SliderFloat("normal scale", &m.normal_scale, 0.0f, 2.0f);
+        if (m.occlusion.valid()) e |= ImGui::SliderFloat("occlusion strength", &m.occlusion_strength, 0.0f, 1.0f);
+        if (m.alpha_mode == AlphaMode::Mask) e |= ImGui::SliderFloat("alphaCutoff", &m.alpha_cutoff, 0.0f, 1.0f);
+        if (m.emissive_strength) e |= ImGui::DragFloat("emissiveStrength", &m.emissive_strength->emissive_strength, 0.05f, 0.0f, 1000.0f);
+        if (m.ior) e |= ImGui::DragFloat("ior", &m.ior->ior, 0.005f, 1.0f, 3.0f);
+        if (m.specular) e |= ImGui::SliderFloat("specularFactor", &m.specular->specular_factor, 0.0f, 1.0f);
+        if (m.clearcoat) {
+            e |= ImGui::SliderFloat("clearcoatFactor", &m.clearcoat->clearcoat_factor, 0.0f, 1.0f);
+            e |= ImGui::SliderFloat("clearcoatRoughness", &m.clearcoat->clearcoat_roughness_factor, 0.0f, 1.0f);
+        }
+        const std::pair<const char*, const TextureSlot*> slots[] = {
+            {"baseColor", &m.base_color}, {"metallicRoughness", &m.metallic_roughness}, {"normal", &m.normal},
+            {"occlusion", &m.occlusion}, {"emissive", &m.emissive}};
+        for (const auto& [name, slot] : slots)
+            if (slot->valid()) ImGui::TextDisabled("%s texture %d (uv%d)", name, slot->texture, slot->tex_coord);
+        if (e) materials_edited_ = true;
+        if (materials_edited_ && ImGui::Button("Revert all materials")) {
+            mats = original_materials_;
+            materials_edited_ = false;
+        }
+        if (materials_edited_) ImGui::TextDisabled("edits are live only: not saved, not in the command line");
+    }
+
+    std::string camera_label(int i) const {
+        const std::string& name = scene_->cameras[std::size_t(i)].name;
+        return "camera " + std::to_string(i) + (name.empty() ? "" : ": " + name);
+    }
+
+    // A file browser in ImGui: folders, models and environments of one folder at a time.
+    void draw_browser() {
+        ImGui::SetNextWindowSize(ImVec2(480, 420), ImGuiCond_FirstUseEver);
+        if (!ImGui::Begin("Open", &browser_open_)) {
+            ImGui::End();
+            return;
+        }
+        std::string dir = browser_dir_.string();
+        if (ImGui::InputText("folder", &dir, ImGuiInputTextFlags_EnterReturnsTrue)) browser_dir_ = dir;
+        ImGui::BeginChild("entries");
+        std::error_code ec;
+        std::vector<fs::directory_entry> entries;
+        for (fs::directory_iterator it(browser_dir_, ec), end; !ec && it != end; it.increment(ec)) entries.push_back(*it);
+        if (ec) ImGui::TextDisabled("%s", ec.message().c_str());
+        std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
+            bool da = is_folder(a.path()), db = is_folder(b.path());
+            return da != db ? da : a.path().filename() < b.path().filename();
+        });
+        fs::path next_dir;
+        std::string chosen;
+        if (ImGui::Selectable("../")) next_dir = browser_dir_.parent_path();
+        for (const auto& e : entries) {
+            const fs::path& p = e.path();
+            if (p.filename().string().starts_with(".")) continue;
+            bool dir_entry = is_folder(p) && !is_environment(p);
+            if (!dir_entry && !is_model(p) && !is_environment(p)) continue;
+            std::string label = p.filename().string() + (dir_entry ? "/" : is_model(p) ? "" : "  (environment)");
+            if (ImGui::Selectable(label.c_str())) {
+                if (dir_entry) next_dir = p;
+                else chosen = p.string();
+            }
+        }
+        ImGui::EndChild();
+        ImGui::End();
+        if (!next_dir.empty()) browser_dir_ = next_dir;
+        if (!chosen.empty()) {
+            open_path(chosen);
+            browser_open_ = false;
+        }
+    }
+
+    // --- frames ----------------------------------------------------------------------
+
+    // Starts, collects or restarts the environment bake for the current job; true when the
+    // lighting the job asks for is loaded.
+    bool update_lighting() {
+        if (!scene_) return false;
+        fb_ = window_->framebuffer_size();
+        Job job = shown_job();
+        try {
+            resolved_ = resolve(job, *scene_);
+        } catch (const std::exception& e) {  // e.g. a scene camera no node uses
+            error_ = e.what();
+            job_.camera.scene_camera.reset();
+            return false;
+        }
+        bounds_ = resolved_.bounds;
+        std::string key = lighting_key(resolved_);
+        if (bake_ && bake_->result.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+            try {
+                lighting_ = bake_->result.get();
+                lighting_key_ = bake_->key;
+                good_environment_ = job_.environment;
+            } catch (const std::exception& e) {
+                error_ = e.what();
+                std::fprintf(stderr, "fresnel: error: %s\n", e.what());
+                bake_failed_ = true;
+                script_failed_ = true;
+                if (env_line_) std::fprintf(stderr, "fresnel: error: %s: line %d: env failed\n", options_.script.c_str(), env_line_);
+                failed_key_ = bake_->key;
+                if (key == bake_->key) {  // keep the environment that worked
+                    job_.environment = good_environment_;
+                }
+            }
+            bake_.reset();
+        }
+        if (!bake_ && key != lighting_key_ && key != failed_key_) {
+            bake_ = std::make_unique<Bake>();
+            bake_->key = key;
+            bake_->resolved = resolved_;
+            auto progress = bake_->progress;
+            ResolvedJob r = resolved_;
+            bake_->result = std::async(std::launch::async, [r, progress] {
+                struct Wake {  // wake the loop when done, whether it worked or threw
+                    ~Wake() { gui::Window::wake(); }
+                } wake;
+                return load_lighting(r, [progress](double f) { progress->store(float(f)); });
+            });
+        }
+        if (key != failed_key_) failed_key_.clear();
+        return !bake_ && key == lighting_key_;
+    }
+
+    void draw_scene() {
+        fb_ = window_->framebuffer_size();
+        if (fb_.width <= 0 || fb_.height <= 0) return;  // minimised
+        // No scene, or its first lighting still baking: a plain background under the progress bar.
+        if (!scene_ || lighting_key_ == kNoLighting) {
+            gpu::Device device;
+            device.bind_framebuffer(nullptr);
+            device.viewport(0, 0, fb_.width, fb_.height);
+            device.clear(glm::vec4(0.12f, 0.12f, 0.12f, 1.0f));
+            return;
+        }
+        RenderSettings rs = lighting_.settings(resolved_);
+        rs.width = fb_.width;
+        rs.height = fb_.height;
+        // GL errors pending from the GUI's last frame (ImGui's desktop GL backend on an ES
+        // context, e.g. glPolygonMode) are not this frame's: clear them first.
+        std::string gui_errors = gpu::Device().take_errors();
+        if (!gui_errors.empty() && gui_gl_errors_.empty()) {
+            gui_gl_errors_ = gui_errors;
+            std::fprintf(stderr, "fresnel: note: the GUI's GL backend raised %s (not the frame's)\n", gui_errors.c_str());
+        }
+        auto t = Clock::now();
+        renderer_->draw(resolved_.camera, resolved_.lights, rs, RenderTarget::default_framebuffer(0, 0), &stats_);
+        if (split_) {  // the same frame with the right side's settings, over the right of the divider
+            RenderSettings right = rs;
+            right.debug = split_output_.debug;
+            right.tone_mapper = split_output_.tone_mapper;
+            right.exposure_ev = split_output_.exposure_ev;
+            right.energy_compensation = split_output_.energy_compensation;
+            RenderTarget target = RenderTarget::default_framebuffer(0, 0);
+            int x = divider_pixels();
+            target.scissor = RenderTarget::Rect{x, 0, fb_.width - x, fb_.height};
+            FrameStats more;
+            renderer_->draw(resolved_.camera, resolved_.lights, right, target, &more);
+            stats_.draw_calls += more.draw_calls;
+            stats_.triangles += more.triangles;
+            stats_.gl_errors += more.gl_errors;
+        }
+        renderer_->finish();
+        frame_ms_ = ms_since(t);
+        last_camera_ = resolved_.camera;
+        last_transparent_ = resolved_.transparent();
+        if (!stats_.gl_errors.empty()) error_ = "OpenGL: the frame raised " + stats_.gl_errors;
+    }
+
+    const ViewOptions& options_;
+    Job job_;
+    Job::Camera initial_camera_;
+    Job::Environment good_environment_;
+    gui::Size window_size_, fb_;
+    gui::Window* window_ = nullptr;
+    std::unique_ptr<Renderer> renderer_;
+    std::unique_ptr<Scene> scene_;
+    ResolvedJob resolved_;
+    Bounds bounds_;
+    std::optional<CameraSetup> last_camera_;
+    bool last_transparent_ = false;
+    JobLighting lighting_;
+    static constexpr const char* kNoLighting = "(none yet)";
+    std::string lighting_key_ = kNoLighting, failed_key_;
+    std::unique_ptr<Bake> bake_;
+    bool bake_failed_ = false;
+    FrameStats stats_;
+    double frame_ms_ = 0.0;
+    std::vector<std::string> folder_models_, recent_, warnings_;
+    std::string error_, status_, command_line_, gui_gl_errors_;
+    bool screenshot_requested_ = false, browser_open_ = false, gui_visible_ = true;
+    std::vector<ScriptCommand> script_;
+    std::size_t script_pos_ = 0;
+    int script_wait_ = 0, env_line_ = 0;
+    bool script_failed_ = false;
+    std::vector<Material> original_materials_;
+    bool materials_edited_ = false;
+    int edit_material_ = 0;
+    bool split_ = false, dragging_divider_ = false;
+    float split_pos_ = 0.5f;
+    Job::Output split_output_;
+    fs::path browser_dir_;
+};
+
+}  // namespace
+
+int run_viewer(const ViewOptions& options) {
+    if (options.job->models.size() > 1) {
+        print_error("view: one model or folder at a time");
+        return kExitUsage;
+    }
+    std::optional<Job> job = job_from_options(*options.job, Job{});  // usage checks first (exit 2)
+    if (!job) return kExitUsage;
+    if (!options.job->models.empty()) job->source.model = options.job->models.front();
+    std::vector<ScriptCommand> script;
+    if (!options.script.empty()) script = read_view_script(options.script);  // FILE: line N: ... (exit 1)
+    Viewer viewer(options, *job, std::move(script));
+    return viewer.run();
+}
+
+}  // namespace fresnel::cli

@@ -1,0 +1,22 @@
+#pragma once
+// `fresnel view`: the interactive viewer (viewer.cpp, built when libs/gui is).
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "command_line.h"
+#include "job_options.h"
+
+namespace fresnel::cli {
+
+struct ViewOptions {
+    std::shared_ptr<RenderOptions> job = std::make_shared<RenderOptions>();
+    std::string screenshot;     // write the presented frame (without the GUI) to this PNG, then exit
+    bool with_gui = false;      // --screenshot includes the GUI drawn over the frame
+    std::optional<int> frames;
+    std::string script;         // view_script.h  // exit after this many frames with the scene and its lighting ready
+};
+
+int run_viewer(const ViewOptions& options);
+
+}  // namespace fresnel::cli

@@ -1,0 +1,429 @@
+// `fresnel view` end to end, in a real window under Xvfb (a server of its own per command,
+// Mesa's llvmpipe through GLX): `--screenshot` writes the frame the window presents (read back from its
+// back buffer before the GUI is drawn) and must equal `fresnel render` for the same flags
+// (PSNR >= 40 dB over every pixel, never exact bytes); bad input exits 1 with the loader's
+// error. Skips when the build has no viewer or neither Xvfb nor a DISPLAY is there.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fresnel/core/image.h"
+#include "fresnel/core/metrics.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kShared = FRESNEL_SHARED_DIR;
+
+std::string quote(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+struct Result {
+    int exit_code = -1;
+    std::string err;
+};
+
+class View : public ::testing::Test {
+protected:
+    void SetUp() override {
+#ifndef FRESNEL_HAVE_VIEWER
+        GTEST_SKIP() << "this build has no viewer (GLFW or Dear ImGui missing)";
+#endif
+        const bool xvfb = std::system("command -v Xvfb >/dev/null 2>&1") == 0;
+        if (!xvfb && !std::getenv("DISPLAY")) GTEST_SKIP() << "neither Xvfb nor a DISPLAY";
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::path(::testing::TempDir()) / (std::string("fresnel_view_") + info->name() + "_" +
+                                                 std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        if (xvfb) {
+            // Each windowed command gets its own Xvfb on a display the server picks itself
+            // (-displayfd: no race for numbers between parallel runs), stopped afterwards.
+            // Not xvfb-run: when its clean-up of the Xauthority folder fails (seen on Debian
+            // 12) it exits 5 before stopping its server, leaving it running.
+            fs::path wrapper = dir_ / "with_display.sh";
+            std::ofstream(wrapper) << R"SH(d=$(mktemp -d)
+Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp 3>"$d/n" 2>"$d/log" &
+x=$!
+i=0
+while [ ! -s "$d/n" ] && [ $i -lt 400 ]; do sleep 0.05; i=$((i + 1)); done
+if [ ! -s "$d/n" ]; then kill $x 2>/dev/null; cat "$d/log" >&2; rm -rf "$d"; exit 97; fi
+DISPLAY=:$(cat "$d/n") "$@"
+rc=$?
+kill $x 2>/dev/null
+wait $x 2>/dev/null
+rm -rf "$d"
+exit $rc
+)SH";
+            display_prefix_ = "sh " + quote(wrapper.string()) + " ";
+        }
+    }
+    void TearDown() override {
+        std::error_code ec;
+        if (!dir_.empty()) fs::remove_all(dir_, ec);
+    }
+
+    // Runs the program; `windowed`: on the display (a fresh Xvfb, or $DISPLAY). The exit
+    // status is the program's own, written to a file.
+    Result run(const std::vector<std::string>& args, bool windowed) {
+        std::string inner = quote(FRESNEL_EXE);
+        for (const auto& a : args) {
+            inner.append(" ");
+            inner.append(quote(a));
+        }
+        fs::path err = dir_ / "stderr.txt", rc = dir_ / "rc.txt";
+        fs::remove(rc);
+        inner.append(" >/dev/null 2>");  // appended piece by piece: GCC 12 warns (-Wrestrict) on a + chain here
+        inner.append(quote(err.string()));
+        inner.append(" </dev/null; echo $? >");
+        inner.append(quote(rc.string()));
+        std::string cmd = windowed ? display_prefix_ : std::string();
+        cmd.append("sh -c ");
+        cmd.append(quote(inner));
+        std::system(cmd.c_str());
+        Result r;
+        std::istringstream(slurp(rc)) >> r.exit_code;  // -1 when the program never ran
+        r.err = slurp(err);
+        return r;
+    }
+
+    Result run_shell(const std::string& command) {
+        fs::path err = dir_ / "shell_stderr.txt";
+        std::string cmd = command;
+        cmd.append(" >/dev/null 2>");
+        cmd.append(quote(err.string()));
+        int status = std::system(cmd.c_str());
+        Result r;
+        r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+        r.err = slurp(err);
+        return r;
+    }
+
+    // Renders `args` with `fresnel render` and `fresnel view --screenshot`; returns the PSNR.
+    double view_against_render(const std::vector<std::string>& args) {
+        fs::path rendered = dir_ / "render.png", viewed = dir_ / "view.png";
+        std::vector<std::string> r = {"render"}, v = {"view"};
+        r.insert(r.end(), args.begin(), args.end());
+        v.insert(v.end(), args.begin(), args.end());
+        r.insert(r.end(), {"-o", rendered.string()});
+        v.insert(v.end(), {"--screenshot", viewed.string()});
+        Result rr = run(r, false);
+        EXPECT_EQ(rr.exit_code, 0) << rr.err;
+        Result vr = run(v, true);
+        EXPECT_EQ(vr.exit_code, 0) << vr.err;
+        if (rr.exit_code != 0 || vr.exit_code != 0) return 0.0;
+        fresnel::Image8 a = fresnel::read_image8(rendered), b = fresnel::read_image8(viewed);
+        EXPECT_EQ(a.width, b.width);
+        EXPECT_EQ(a.height, b.height);
+        EXPECT_EQ(a.channels, b.channels);
+        if (a.width != b.width || a.height != b.height || a.channels != b.channels) return 0.0;
+        // Not blank: the frame has more than its background.
+        bool varied = false;
+        for (std::size_t i = 3; i < b.pixels.size() && !varied; ++i) varied = b.pixels[i] != b.pixels[i % 3];
+        EXPECT_TRUE(varied) << "the viewer's frame is one colour";
+        fresnel::ImageMetrics m = fresnel::compare_images(a, b, /*mask_background=*/false);
+        EXPECT_EQ(m.pixels, std::size_t(a.width) * std::size_t(a.height));
+        std::printf("view --screenshot vs render: %.1f dB\n", m.psnr_db);
+        return m.psnr_db;
+    }
+
+    std::string display_prefix_;
+    fs::path dir_;
+};
+
+TEST_F(View, ScreenshotOfTheDemoEqualsRender) {
+    double psnr = view_against_render({"--size", "240x180", "--yaw", "20", "--pitch", "15", "--tonemap", "aces"});
+    EXPECT_GE(psnr, 40.0);
+}
+
+TEST_F(View, ScreenshotThroughOpenGlEsEqualsRender) {
+    EXPECT_GE(view_against_render({"--size", "160x120", "--gl", "es3", "--pitch", "30"}), 40.0);
+}
+
+TEST_F(View, ScreenshotOfDamagedHelmetEqualsRender) {
+    fs::path model = kShared / "assets/models/DamagedHelmet/DamagedHelmet.glb";
+    if (!fs::exists(model)) GTEST_SKIP() << "needs " << model;
+    EXPECT_GE(view_against_render({model.string(), "--size", "256x192", "--yaw", "-35", "--pitch", "10",
+                                   "--distance", "2.5", "--target", "0.1,0,0", "--exposure", "0.5"}),
+              40.0);
+    // A debug channel and a colour background, too.
+    EXPECT_GE(view_against_render({model.string(), "--size", "200x150", "--debug", "roughness"}), 40.0);
+}
+
+TEST_F(View, ScreenshotThroughTheFilesCameraEqualsRender) {
+    fs::path model = kShared / "assets/models/Cameras/Cameras.gltf";
+    if (!fs::exists(model)) GTEST_SKIP() << "needs " << model;
+    EXPECT_GE(view_against_render({model.string(), "--size", "160x120", "--camera", "0", "--background", "0.2,0.3,0.4"}),
+              40.0);
+}
+
+TEST_F(View, GuiIsDrawnOverTheFrame) {
+    fs::path plain = dir_ / "plain.png", gui = dir_ / "gui.png";
+    std::vector<std::string> args = {"view", "--size", "320x240", "--frames", "2", "--screenshot"};
+    auto a = args, b = args;
+    a.push_back(plain.string());
+    b.insert(b.end(), {gui.string(), "--with-gui"});
+    ASSERT_EQ(run(a, true).exit_code, 0);
+    ASSERT_EQ(run(b, true).exit_code, 0);
+    fresnel::ImageMetrics m = fresnel::compare_images(fresnel::read_image8(plain), fresnel::read_image8(gui), false);
+    // The panel covers a good part of the window's top left.
+    EXPECT_LT(m.psnr_db, 25.0);
+    EXPECT_GT(m.max_abs, 100.0);
+}
+
+// A person's session, played by xdotool: drag to orbit, resize, Ctrl+C copies (and prints) the
+// `fresnel render` command of the view, F12 saves a screenshot, Escape quits. The command,
+// run, writes the screenshot's picture.
+TEST_F(View, DragCopyCommandLineAndScreenshotAgreeWithRender) {
+    if (display_prefix_.empty() || std::system("command -v xdotool >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "needs Xvfb and xdotool";
+    fs::path script = dir_ / "session.sh";
+    std::ofstream(script) << R"SH(set -u
+cd "$1"
+"$2" view --size 640x360 --msaa 1 --anisotropy 1 >out.txt 2>err.txt &
+pid=$!
+# Waits up to 60 s for a condition; gives up at once when the viewer has gone.
+wait_for() {
+  for i in $(seq 600); do
+    eval "$1" && return 0
+    kill -0 $pid 2>/dev/null || { echo "the viewer exited early (waiting for: $1)" >>err.txt; exit 0; }
+    sleep 0.1
+  done
+  echo "timed out: $1" >>err.txt
+  kill $pid; wait $pid; exit 0
+}
+wait_for 'xdotool search --name "fresnel view" >/dev/null 2>&1'
+# Ready when it answers: the first Ctrl+C prints the opening view.
+xdotool mousemove 520 180; sleep 0.5
+xdotool key ctrl+c
+wait_for '[ "$(grep -c "fresnel render" out.txt)" -ge 1 ]'
+sleep 0.5
+xdotool mousedown 1; sleep 0.5
+xdotool mousemove 540 190; sleep 0.5
+xdotool mousemove 560 200; sleep 0.5
+xdotool mouseup 1; sleep 1
+xdotool windowsize "$(xdotool search --name "fresnel view" | head -1)" 600 340; sleep 2
+xdotool mousemove 500 200; sleep 0.5
+xdotool key ctrl+c
+wait_for '[ "$(grep -c "fresnel render" out.txt)" -ge 2 ]'
+xdotool key F12
+wait_for 'ls fresnel-*.png >/dev/null 2>&1'
+sleep 1
+xdotool key Escape
+wait $pid
+echo "exit $?" >>err.txt
+)SH";
+    std::string cmd = display_prefix_ + "sh " + quote(script.string()) + " " + quote(dir_.string()) + " " +
+                      quote(FRESNEL_EXE);
+    std::system(cmd.c_str());  // checked through what it wrote
+    std::string err = slurp(dir_ / "err.txt"), out = slurp(dir_ / "out.txt");
+    EXPECT_NE(err.find("exit 0"), std::string::npos) << err;
+    std::size_t at = out.rfind("fresnel render ");  // the second: after the drag and the resize
+    ASSERT_NE(at, std::string::npos) << out << err;
+    std::string line = out.substr(at, out.find('\n', at) - at);
+    // The drag turned the camera (40 px right, 20 px down), and the window was resized.
+    EXPECT_NE(line.find("--yaw -12 --pitch 6"), std::string::npos) << line;
+    EXPECT_NE(line.find("--size 600x340"), std::string::npos) << line;
+    fs::path screenshot;
+    for (const auto& e : fs::directory_iterator(dir_))
+        if (e.path().filename().string().starts_with("fresnel-")) screenshot = e.path();
+    ASSERT_FALSE(screenshot.empty()) << err;
+    // Run the copied command (its -o view.png) with the real program.
+    std::string render = line.substr(std::string("fresnel").size());
+    Result r = run_shell("cd " + quote(dir_.string()) + " && " + quote(FRESNEL_EXE) + render);
+    ASSERT_EQ(r.exit_code, 0) << r.err << line;
+    fresnel::ImageMetrics m =
+        fresnel::compare_images(fresnel::read_image8(dir_ / "view.png"), fresnel::read_image8(screenshot), false);
+    std::printf("copied command vs F12 screenshot: %.1f dB\n", m.psnr_db);
+    EXPECT_GE(m.psnr_db, 40.0) << line;
+}
+
+// --script: orbit, a broken model (reported with its line; the scene stays), a debug
+// channel and a missing environment (reported; the lighting stays), each screenshot equal
+// to `fresnel render` for the same view.
+TEST_F(View, ScriptedSessionKeepsTheSceneOnBadFiles) {
+    fs::path model = kShared / "assets/models/DamagedHelmet/DamagedHelmet.glb";
+    if (!fs::exists(model)) GTEST_SKIP() << "needs " << model;
+    std::ofstream(dir_ / "broken.gltf") << "{\"asset\":";
+    std::ofstream(dir_ / "session.txt") << "orbit 30 10\n"
+                                           "screenshot " << (dir_ / "a.png").string() << "\n"
+                                           "open " << (dir_ / "broken.gltf").string() << "\n"
+                                           "screenshot " << (dir_ / "b.png").string() << "\n"
+                                           "# a comment\n"
+                                           "debug roughness\n"
+                                           "wait 1\n"
+                                           "screenshot " << (dir_ / "c.png").string() << "\n"
+                                           "env " << (dir_ / "missing.hdr").string() << "\n"
+                                           "wait 2\n"
+                                           "screenshot " << (dir_ / "d.png").string() << "\n"
+                                           "quit\n";
+    Result r = run({"view", model.string(), "--size", "200x150", "--script", (dir_ / "session.txt").string()}, true);
+    EXPECT_EQ(r.exit_code, 1) << r.err;  // the failed open and env
+    EXPECT_NE(r.err.find("session.txt: line 3: open"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("broken.gltf: byte"), std::string::npos) << r.err;  // the loader's own message
+    EXPECT_NE(r.err.find("session.txt: line 9: env"), std::string::npos) << r.err;
+    Result ra = run({"render", model.string(), "--size", "200x150", "--yaw", "30", "--pitch", "10", "-o",
+                     (dir_ / "ra.png").string()}, false);
+    Result rc = run({"render", model.string(), "--size", "200x150", "--yaw", "30", "--pitch", "10", "--debug",
+                     "roughness", "-o", (dir_ / "rc.png").string()}, false);
+    ASSERT_EQ(ra.exit_code, 0) << ra.err;
+    ASSERT_EQ(rc.exit_code, 0) << rc.err;
+    for (const char* f : {"a.png", "b.png", "c.png", "d.png"}) ASSERT_TRUE(fs::exists(dir_ / f)) << f << r.err;
+    auto psnr = [&](const char* x, const char* y) {
+        return fresnel::compare_images(fresnel::read_image8(dir_ / x), fresnel::read_image8(dir_ / y), false).psnr_db;
+    };
+    EXPECT_GE(psnr("a.png", "ra.png"), 40.0);
+    EXPECT_GE(psnr("b.png", "ra.png"), 40.0);  // the broken file left the helmet
+    EXPECT_GE(psnr("c.png", "rc.png"), 40.0);
+    EXPECT_GE(psnr("d.png", "rc.png"), 40.0);  // the missing environment left the lighting
+    EXPECT_LT(psnr("a.png", "c.png"), 30.0);   // and the channel did change the picture
+}
+
+// A soak: 100 models opened in a row in one session; resident memory after the 100th is
+// within 10 % (+ 8 MiB) of what it was after the 20th, and every open worked.
+TEST_F(View, HundredOpensKeepResidentMemoryFlat) {
+    std::vector<std::string> models;
+    for (const char* m : {"BoxTextured/BoxTextured.glb", "BoxInterleaved/BoxInterleaved.glb",
+                          "BoxVertexColors/BoxVertexColors.glb", "AnimatedMorphCube/AnimatedMorphCube.glb",
+                          "Duck/Duck.glb"})
+        if (fs::exists(kShared / "assets/models" / m)) models.push_back((kShared / "assets/models" / m).string());
+    if (models.size() < 2) GTEST_SKIP() << "needs the shared models";
+    {
+        std::ofstream script(dir_ / "soak.txt");
+        for (int i = 0; i < 100; ++i) {
+            script << "open " << models[std::size_t(i) % models.size()] << "\n";
+            if (i == 19) script << "stats\n";
+        }
+        script << "stats\nquit\n";
+    }
+    fs::path out = dir_ / "stats.txt";
+    std::string cmd = display_prefix_ + "sh -c " +
+                      quote(quote(FRESNEL_EXE) + " view --size 160x120 --msaa 1 --script " +
+                            quote((dir_ / "soak.txt").string()) + " >" + quote(out.string()) + " 2>" +
+                            quote((dir_ / "err.txt").string()));
+    std::system(cmd.c_str());  // checked through what it wrote
+    std::string err = slurp(dir_ / "err.txt"), stats = slurp(out);
+    EXPECT_EQ(err.find("error"), std::string::npos) << err;
+    std::vector<long> rss;
+    for (std::size_t at = stats.find("\"rss_kb\":"); at != std::string::npos; at = stats.find("\"rss_kb\":", at + 1))
+        rss.push_back(std::atol(stats.c_str() + at + 9));
+    ASSERT_EQ(rss.size(), 2u) << stats << err;
+    std::printf("resident memory after 20 opens %ld kB, after 100 %ld kB\n", rss[0], rss[1]);
+    EXPECT_GT(rss[0], 0);
+    EXPECT_LE(double(rss[1]), double(rss[0]) * 1.10 + 8192.0);
+}
+
+// `set material`: a red base colour factor reddens the helmet (and nothing else: the
+// background stays), setting it back gives `fresnel render`'s picture again.
+TEST_F(View, MaterialEditIsLiveAndRevertsExactly) {
+    fs::path model = kShared / "assets/models/DamagedHelmet/DamagedHelmet.glb";
+    if (!fs::exists(model)) GTEST_SKIP() << "needs " << model;
+    std::ofstream(dir_ / "m.txt") << "set material 0 baseColorFactor 1 0.1 0.1 1\n"
+                                     "screenshot " << (dir_ / "red.png").string() << "\n"
+                                     "set material 0 baseColorFactor 1 1 1 1\n"
+                                     "screenshot " << (dir_ / "back.png").string() << "\n"
+                                     "set material 3 roughnessFactor 0.5\n"
+                                     "quit\n";
+    Result r = run({"view", model.string(), "--size", "200x150", "--script", (dir_ / "m.txt").string()}, true);
+    EXPECT_EQ(r.exit_code, 1) << r.err;  // material 3 does not exist
+    EXPECT_NE(r.err.find("m.txt: line 5: set material: no material 3 (the scene has 1)"), std::string::npos) << r.err;
+    Result rr = run({"render", model.string(), "--size", "200x150", "-o", (dir_ / "render.png").string()}, false);
+    ASSERT_EQ(rr.exit_code, 0) << rr.err;
+    fresnel::Image8 red = fresnel::read_image8(dir_ / "red.png"), back = fresnel::read_image8(dir_ / "back.png"),
+                    ref = fresnel::read_image8(dir_ / "render.png");
+    EXPECT_GE(fresnel::compare_images(back, ref, false).psnr_db, 40.0);
+    // Red minus green over the image: the edit raises it; the corner (background) keeps its colour.
+    auto redness = [](const fresnel::Image8& im) {
+        double sum = 0;
+        for (int y = 0; y < im.height; ++y)
+            for (int x = 0; x < im.width; ++x) sum += double(im.at(x, y)[0]) - double(im.at(x, y)[1]);
+        return sum / double(im.width * im.height);
+    };
+    EXPECT_GT(redness(red), redness(ref) + 5.0);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(red.at(2, 2)[c], ref.at(2, 2)[c]) << c;
+}
+
+// The split view: left of the divider `render`'s shaded frame, right of it its roughness channel.
+TEST_F(View, SplitViewShowsBothSettings) {
+    std::ofstream(dir_ / "s.txt") << "split roughness 0.5\nscreenshot " << (dir_ / "split.png").string() << "\nquit\n";
+    Result r = run({"view", "--size", "200x150", "--script", (dir_ / "s.txt").string()}, true);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_EQ(run({"render", "--size", "200x150", "-o", (dir_ / "a.png").string()}, false).exit_code, 0);
+    ASSERT_EQ(run({"render", "--size", "200x150", "--debug", "roughness", "-o", (dir_ / "b.png").string()}, false)
+                  .exit_code, 0);
+    fresnel::Image8 split = fresnel::read_image8(dir_ / "split.png"), a = fresnel::read_image8(dir_ / "a.png"),
+                    b = fresnel::read_image8(dir_ / "b.png");
+    auto crop = [](const fresnel::Image8& im, int x0, int x1) {
+        fresnel::Image8 out(x1 - x0, im.height, 3);
+        for (int y = 0; y < im.height; ++y)
+            for (int x = x0; x < x1; ++x)
+                for (int c = 0; c < 3; ++c) out.at(x - x0, y)[c] = im.at(x, y)[c];
+        return out;
+    };
+    EXPECT_GE(fresnel::compare_images(crop(split, 0, 100), crop(a, 0, 100), false).psnr_db, 40.0);
+    EXPECT_GE(fresnel::compare_images(crop(split, 100, 200), crop(b, 100, 200), false).psnr_db, 40.0);
+    EXPECT_LT(fresnel::compare_images(crop(a, 100, 200), crop(b, 100, 200), false).psnr_db, 30.0);
+}
+
+TEST_F(View, MalformedScriptNamesTheLineBeforeOpeningAWindow) {
+    std::ofstream(dir_ / "bad.txt") << "orbit 10 0\n\nzoom 2\n";
+    Result r = run({"view", "--script", (dir_ / "bad.txt").string()}, false);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("bad.txt: line 3: unknown command 'zoom'"), std::string::npos) << r.err;
+    std::ofstream(dir_ / "bad2.txt") << "dolly -1\n";
+    r = run({"view", "--script", (dir_ / "bad2.txt").string()}, false);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("bad2.txt: line 1: dolly"), std::string::npos) << r.err;
+}
+
+TEST_F(View, BadModelExitsOneWithTheLoadersError) {
+    fs::path bad = dir_ / "broken.gltf";
+    std::ofstream(bad) << "{ \"asset\": { \"version\": \"2.0\" }, \"buffers\": [ { \"byteLength\": -4 } ] ";
+    Result r = run({"view", bad.string(), "--size", "64x48", "--screenshot", (dir_ / "x.png").string()}, true);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("fresnel: error: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("broken.gltf"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "x.png"));
+}
+
+TEST_F(View, BadEnvironmentExitsOne) {
+    fs::path bad = dir_ / "sky.hdr";
+    std::ofstream(bad) << "not a radiance file";
+    Result r = run({"view", "--env", bad.string(), "--size", "64x48", "--frames", "1"}, true);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("sky.hdr"), std::string::npos) << r.err;
+}
+
+TEST_F(View, FolderOpensItsFirstModel) {
+    fs::path folder = kShared / "assets/models";
+    if (!fs::exists(folder)) GTEST_SKIP() << "needs " << folder;
+    Result r = run({"view", folder.string(), "--size", "64x48", "--frames", "1", "--no-ibl"}, true);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST_F(View, UsageErrorsExitTwoBeforeOpeningAWindow) {
+    Result r = run({"view", "--size", "12", "--frames", "1"}, false);  // no display needed
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
+}
+
+}  // namespace
