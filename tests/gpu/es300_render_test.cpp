@@ -54,7 +54,7 @@ Result render_with(gpu::Api api, const Scene& scene, const ibl::BakedIbl& env, D
     s.background_mode = RenderSettings::Background::Blurred;
     s.debug = debug;
     auto instances = flatten(scene);
-    CameraSetup cam = orbit_camera(scene_bounds(scene, instances), OrbitParams{30.0f, 15.0f, {}, 45.0f}, s.width, s.height);
+    CameraSetup cam = orbit_camera(scene_bounds(scene, instances), OrbitParams{30.0f, 15.0f, {}, 45.0f, {}}, s.width, s.height);
     FrameStats stats;
     {
         Renderer renderer(*context);

@@ -263,7 +263,7 @@ TEST(SceneBounds, CornersOfEachBoxTransformedAndBoxedAgain) {
     Primitive prim;
     prim.bounds_min = glm::vec3(-1.0f);
     prim.bounds_max = glm::vec3(1.0f);
-    s.meshes.push_back(Mesh{"cube", {prim}});
+    s.meshes.push_back(Mesh{"cube", {prim}, {}});
     Node a, b;
     a.mesh = 0;
     a.local = glm::rotate(glm::mat4(1.0f), float(45 * kDeg), glm::vec3(0, 1, 0));
