@@ -49,8 +49,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
 // The process's resident memory now, MiB (/proc/self/statm; 0 where there is none): each
 // result line carries it, so a leak per job shows as a climb (bench/batch_bench.py checks it).

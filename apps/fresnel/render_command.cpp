@@ -31,8 +31,6 @@
 namespace fresnel::cli {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
 // `i` zero-padded to `width` digits.
 std::string padded(long long i, int width) {

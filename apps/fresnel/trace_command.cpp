@@ -30,8 +30,6 @@ struct TraceOptions : RenderOptions {
     bool no_env_visibility = false;
 };
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
 int run_trace(const TraceOptions& o, const CLI::App* cmd) {
     auto t_start = Clock::now();

@@ -34,8 +34,6 @@ namespace fresnel::cli {
 namespace fs = std::filesystem;
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
 std::string lower_extension(const fs::path& p) {
     std::string e = p.extension().string();

@@ -3,6 +3,7 @@
 // skipped when absent): frames at different times differ, stay the same size on screen,
 // hold no NaN or infinity, repeat exactly, and clamp past the last keyframe.
 // FRESNEL_EXE is the built program ($<TARGET_FILE:fresnel>).
+#include "cli_harness.h"
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -28,23 +29,9 @@ namespace {
 
 const fs::path kModels = fs::path(FRESNEL_SHARED_DIR) / "assets" / "models";
 
-struct Result {
-    int exit_code = -1;
-    std::string out, err;
-};
-
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using fresnel::test::quote;
+using fresnel::test::Result;
+using fresnel::test::slurp;
 
 std::string show(const Result& r) { return "exit " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out + "\nstderr:\n" + r.err; }
 

@@ -7,6 +7,7 @@
 //   - --resume renders only the missing outputs; a folder of models gives a thumbnail each;
 //   - render --turntable N writes N numbered frames.
 // Images are tiny (32-64 px) and the environment is baked small so the whole file takes seconds.
+#include "cli_harness.h"
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -36,23 +37,9 @@ namespace {
 
 const fs::path kShared = FRESNEL_SHARED_DIR;
 
-struct Result {
-    int exit_code = -1;
-    std::string out, err;
-};
-
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using fresnel::test::quote;
+using fresnel::test::Result;
+using fresnel::test::slurp;
 
 std::string show(const Result& r) { return "exit " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out + "\nstderr:\n" + r.err; }
 

@@ -1,6 +1,7 @@
 // The `fresnel` executable end to end: exit codes (0 ok, 1 bad input, 2 bad usage),
 // error message format, `info --json` counts and `render` output files.
 // FRESNEL_EXE is the built program ($<TARGET_FILE:fresnel>).
+#include "cli_harness.h"
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -26,23 +27,9 @@ namespace {
 
 const fs::path kShared = FRESNEL_SHARED_DIR;
 
-struct Result {
-    int exit_code = -1;
-    std::string out, err;
-};
-
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using fresnel::test::quote;
+using fresnel::test::Result;
+using fresnel::test::slurp;
 
 class Cli : public ::testing::Test {
 protected:

@@ -3,6 +3,7 @@
 // JSON and table output, masks, the heat map, EXR input (HDR-FLIP), and errors: mismatched
 // sizes and hostile files exit 1 with a message naming the file, never a crash.
 // FRESNEL_EXE is the built program; FRESNEL_SHARED_DIR the shared folder (tests needing it skip).
+#include "cli_harness.h"
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -26,23 +27,9 @@ namespace {
 
 const fs::path kShared = FRESNEL_SHARED_DIR;
 
-struct Result {
-    int exit_code = -1;
-    std::string out, err;
-};
-
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using fresnel::test::quote;
+using fresnel::test::Result;
+using fresnel::test::slurp;
 
 std::string show(const Result& r) { return "exit " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out + "\nstderr:\n" + r.err; }
 

@@ -8,6 +8,7 @@
 // (ogl1-pixel) must agree too on the finely tessellated scenes, and glTF shading must NOT
 // (the comparison can fail). Skips when the shared folder, or the tool's python3 with NumPy
 // and Pillow, is absent. The figures are printed per case.
+#include "cli_harness.h"
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -29,23 +30,9 @@ namespace {
 
 const fs::path kTool = fs::path(FRESNEL_SHARED_DIR) / "tools" / "ogl1-ref";
 
-struct Result {
-    int exit_code = -1;
-    std::string out, err;
-};
-
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using fresnel::test::quote;
+using fresnel::test::Result;
+using fresnel::test::slurp;
 
 std::string show(const Result& r) { return "exit " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out + "\nstderr:\n" + r.err; }
 
