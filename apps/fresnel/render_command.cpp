@@ -205,7 +205,10 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
             float t = o.time.value_or(0.0f) + (o.frames ? float(i) / float(o.fps) : 0.0f);
             times.push_back(t);
             if (gpu_posing) {
-                posed.nodes = scene.nodes;
+                posed.nodes = scene.nodes;  // and what KHR_animation_pointer may animate
+                posed.materials = scene.materials;
+                posed.lights = scene.lights;
+                posed.cameras = scene.cameras;
                 animate(posed, o.animation.value_or(-1), t);
             } else {
                 posed = animated_scene(scene, o.animation.value_or(-1), t);

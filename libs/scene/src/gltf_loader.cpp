@@ -16,6 +16,7 @@
 #include "accessor.h"
 #include "fresnel/core/parallel.h"
 #include "fresnel/scene/mesh_ops.h"
+#include "fresnel/scene/pose.h"
 #include "geometry.h"
 #include "json_reader.h"
 #include "meshopt_decoder.h"
@@ -33,6 +34,7 @@ const std::vector<std::string>& supported_gltf_extensions() {
         "KHR_materials_unlit", "KHR_mesh_quantization", "KHR_materials_ior", "KHR_materials_specular",
         "KHR_materials_pbrSpecularGlossiness", "KHR_materials_clearcoat",
         "EXT_meshopt_compression", "KHR_draco_mesh_compression", "EXT_texture_webp", "KHR_materials_variants",
+        "KHR_animation_pointer",
     };
     return list;
 }
@@ -879,6 +881,25 @@ private:
     // that cannot be used is dropped with a warning, never failing the file: accessors in
     // range and of the right type, keyframe times finite and strictly increasing, output
     // counts matching the times, channels naming nodes with TRS (not matrices).
+    // "/nodes/N/translation|rotation|scale|weights" -> node N and that path; false otherwise.
+    bool node_pointer(const std::string& pointer, int& node, std::string& path) const {
+        const std::string prefix = "/nodes/";
+        if (pointer.rfind(prefix, 0) != 0) return false;
+        std::size_t slash = pointer.find('/', prefix.size());
+        if (slash == std::string::npos) return false;
+        std::string index = pointer.substr(prefix.size(), slash - prefix.size());
+        std::string prop = pointer.substr(slash + 1);
+        if (index.empty() || index.size() > 9 || (index.size() > 1 && index[0] == '0') ||
+            !std::all_of(index.begin(), index.end(), [](char ch) { return ch >= '0' && ch <= '9'; }))
+            return false;
+        std::size_t n = std::stoul(index);
+        if (n >= scene_.nodes.size()) return false;
+        if (prop != "translation" && prop != "rotation" && prop != "scale" && prop != "weights") return false;
+        node = int(n);
+        path = prop;
+        return true;
+    }
+
     void load_animations(const gltf::AccessorDecoder& accessors) {
         const json& arr = r_.array(doc_, "animations", "");
         for (std::size_t i = 0; i < arr.size(); ++i) {
@@ -932,13 +953,13 @@ private:
                                                 std::to_string(elements) + ")");
                 s.width = int(std::min<std::size_t>(dout.count / elements, 1u << 16));
                 if (std::size_t(s.width) * elements != dout.count) r_.fail(sp + "/output", "too many morph weights");
-            } else if (dout.components == 3 || dout.components == 4) {
+            } else if (dout.components >= 2 && dout.components <= 4) {  // VEC2: texture transforms (pointer)
                 if (dout.count != elements)
                     r_.fail(sp + "/output", "has " + std::to_string(dout.count) + " values for " + std::to_string(elements) +
                                                 " keyframe elements");
                 s.width = dout.components;
             } else {
-                r_.fail(sp + "/output", "keyframe values must be SCALAR, VEC3 or VEC4");
+                r_.fail(sp + "/output", "keyframe values must be SCALAR, VEC2, VEC3 or VEC4");
             }
             s.output.resize(dout.values.size());
             for (std::size_t v = 0; v < dout.values.size(); ++v) {
@@ -957,12 +978,38 @@ private:
             std::string tp = cp + "/target";
             std::string path = r_.string(target, "path", tp);
             c.node = r_.index(target, "node", tp, scene_.nodes.size(), "node");
+            int width = out.samplers[std::size_t(c.sampler)].width;
             if (path == "pointer") {
-                warn(tp, "KHR_animation_pointer channels are not played; channel ignored");
-                continue;
+                // KHR_animation_pointer: a node's TRS and weights become ordinary channels (so a
+                // rotation is still interpolated on the sphere); other properties stay pointers.
+                std::string pp = tp + "/extensions/KHR_animation_pointer";
+                const json* ext = r_.find(target, "extensions");
+                const json* ap = ext && ext->is_object() ? r_.find(*ext, "KHR_animation_pointer") : nullptr;
+                if (!ap || !ap->is_object()) {
+                    warn(tp, "path 'pointer' without a KHR_animation_pointer object; channel ignored");
+                    continue;
+                }
+                std::string pointer = r_.string(*ap, "pointer", pp);
+                if (!node_pointer(pointer, c.node, path)) {
+                    std::string why;
+                    int want = animation_pointer_width(scene_, pointer, &why);
+                    if (want == 0) {
+                        warn(pp + "/pointer", "'" + pointer.substr(0, 200) + "': " + why + "; channel ignored");
+                        continue;
+                    }
+                    if (width != want) {
+                        warn(cp + "/sampler", "the sampler's values (" + std::to_string(width) + " a keyframe) do not fit '" +
+                                                  pointer.substr(0, 200) + "' (" + std::to_string(want) + "); channel ignored");
+                        continue;
+                    }
+                    c.path = AnimationPath::Pointer;
+                    c.node = -1;
+                    c.pointer = pointer;
+                    out.channels.push_back(std::move(c));
+                    continue;
+                }
             }
             if (c.node < 0) continue;  // no target node: ignored, as the specification says
-            int width = out.samplers[std::size_t(c.sampler)].width;
             if (path == "translation") c.path = AnimationPath::Translation;
             else if (path == "rotation") c.path = AnimationPath::Rotation;
             else if (path == "scale") c.path = AnimationPath::Scale;

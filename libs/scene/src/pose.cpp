@@ -19,11 +19,14 @@ glm::vec3 normalised_or(const glm::vec3& v, const glm::vec3& fallback) {
 
 void animate_one(Scene& scene, const Animation& a, float t) {
     for (const auto& c : a.channels) {
-        if (c.node < 0 || std::size_t(c.node) >= scene.nodes.size() || c.sampler < 0 ||
-            std::size_t(c.sampler) >= a.samplers.size())
-            continue;
+        if (c.sampler < 0 || std::size_t(c.sampler) >= a.samplers.size()) continue;
         const AnimationSampler& s = a.samplers[std::size_t(c.sampler)];
         if (!s.consistent()) continue;
+        if (c.path == AnimationPath::Pointer) {  // KHR_animation_pointer: values interpolated linearly
+            write_animation_pointer(scene, c.pointer, sample(s, t));
+            continue;
+        }
+        if (c.node < 0 || std::size_t(c.node) >= scene.nodes.size()) continue;
         Node& n = scene.nodes[std::size_t(c.node)];
         switch (c.path) {
             case AnimationPath::Translation:
@@ -51,6 +54,7 @@ void animate_one(Scene& scene, const Animation& a, float t) {
                 for (std::size_t k = 0; k < v.size() && k < targets; ++k) n.weights[k] = v[k];
                 break;
             }
+            case AnimationPath::Pointer: break;  // handled above
         }
     }
 }

@@ -192,8 +192,8 @@ TEST(AnimationPose, AnimateSetsTrsAndLocalMatrix) {
     for (float c : quat_z(90)) rot.push_back(c);
     a.samplers.push_back(make(Interpolation::Linear, {0, 1}, rot, 4));
     a.samplers.push_back(make(Interpolation::Step, {0}, {2, 2, 2}, 3));
-    a.channels = {{0, 1, AnimationPath::Translation}, {1, 1, AnimationPath::Rotation}, {2, 1, AnimationPath::Scale},
-                  {0, 7, AnimationPath::Translation} /* node out of range: ignored */};
+    a.channels = {{0, 1, AnimationPath::Translation, ""}, {1, 1, AnimationPath::Rotation, ""}, {2, 1, AnimationPath::Scale, ""},
+                  {0, 7, AnimationPath::Translation, ""} /* node out of range: ignored */};
     s.animations.push_back(a);
     animate(s, 0, 0.5f);
     const Node& n = s.nodes[1];
@@ -211,7 +211,7 @@ TEST(AnimationPose, MorphWeightsOnTheCpu) {
     Scene s = test_scene();
     Animation a;
     a.samplers.push_back(make(Interpolation::Linear, {0, 1}, {0, 0, 1, 0.5f}, 2));
-    a.channels = {{0, 0, AnimationPath::Weights}};
+    a.channels = {{0, 0, AnimationPath::Weights, ""}};
     s.animations.push_back(a);
     Scene posed = animated_scene(s, 0, 0.5f);  // weights (0.5, 0.25)
     const Node& n = posed.nodes[0];
@@ -278,7 +278,7 @@ TEST(AnimationPose, SkinFollowsTheAnimatedJoint) {
     std::vector<float> rot = quat_z(0);
     for (float c : quat_z(90)) rot.push_back(c);
     a.samplers.push_back(make(Interpolation::Linear, {0, 2}, rot, 4));
-    a.channels = {{0, 1, AnimationPath::Rotation}};
+    a.channels = {{0, 1, AnimationPath::Rotation, ""}};
     s.animations.push_back(a);
     Scene posed = animated_scene(s, 0, 2.0f);  // the joint turned 90 degrees about +Z
     const Node& n = posed.nodes[0];

@@ -1,6 +1,7 @@
 #pragma once
 // glTF 2.0 animations: keyframe samplers and the channels that drive a node's translation,
-// rotation, scale or morph weights, and their evaluation at a time t (glTF 2.0 section 3.11
+// rotation, scale or morph weights, or (KHR_animation_pointer) a material, light or camera
+// property named by a JSON pointer, and their evaluation at a time t (glTF 2.0 section 3.11
 // and Appendix C):
 //  - times before the first keyframe take the first value, after the last the last one;
 //  - STEP holds the value of the keyframe at or before t;
@@ -20,7 +21,9 @@
 namespace fresnel {
 
 enum class Interpolation { Linear, Step, CubicSpline };
-enum class AnimationPath { Translation, Rotation, Scale, Weights };
+// Pointer: KHR_animation_pointer on anything but a node's TRS and weights (which the loader
+// turns into the other paths); AnimationChannel::pointer names the property.
+enum class AnimationPath { Translation, Rotation, Scale, Weights, Pointer };
 
 struct AnimationSampler {
     std::vector<float> input;  // keyframe times in seconds, strictly increasing, finite
@@ -35,8 +38,11 @@ struct AnimationSampler {
 
 struct AnimationChannel {
     int sampler = -1;  // index into Animation::samplers
-    int node = -1;     // target node
+    int node = -1;     // target node (-1 for Pointer channels)
     AnimationPath path = AnimationPath::Translation;
+    // Path Pointer: the JSON pointer, e.g. "/materials/0/pbrMetallicRoughness/baseColorFactor"
+    // (fresnel/scene/pose.h: animation_pointer_width lists what fresnel animates).
+    std::string pointer;
 };
 
 struct Animation {

@@ -5,6 +5,8 @@
 // The rest pose (no animation) is what the loader produces and stays untouched: these
 // functions are only used when a time is asked for.
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -17,9 +19,30 @@ namespace fresnel {
 // Applies animation `index` of the scene (-1: all of them, in order) at time t (seconds;
 // each sampler clamps to its first and last keyframes): the targeted nodes' translation,
 // rotation, scale (and so `local`) and morph weights (Node::weights, one per target of the
-// node's mesh: a sampler with fewer values leaves the others at the mesh's weights). Throws
+// node's mesh: a sampler with fewer values leaves the others at the mesh's weights), and the
+// material, light and camera properties of KHR_animation_pointer channels. Throws
 // fresnel::Error (file: scene.source) when `index` is out of range.
 void animate(Scene& scene, int index, float t);
+
+// KHR_animation_pointer targets fresnel animates (JSON pointers into the glTF document; N is
+// an index into the scene's arrays, which follow the file's):
+//  - /materials/N/ + pbrMetallicRoughness/baseColorFactor | metallicFactor | roughnessFactor,
+//    emissiveFactor, alphaCutoff, normalTexture/scale, occlusionTexture/strength, the factors of
+//    KHR_materials_emissive_strength, _ior, _clearcoat (and clearcoatNormalTexture/scale),
+//    _specular, _sheen, _transmission, _volume, _iridescence, _anisotropy, _dispersion and
+//    _diffuse_transmission (a block the material lacks is added with the extension's defaults),
+//    and TEXTURE/extensions/KHR_texture_transform/offset | rotation | scale of each texture;
+//  - /extensions/KHR_lights_punctual/lights/N/ + color | intensity | range |
+//    spot/innerConeAngle | spot/outerConeAngle;
+//  - /cameras/N/ + perspective/yfov | znear | zfar | aspectRatio, orthographic/xmag | ymag | znear | zfar.
+// (Node translation, rotation, scale and weights become ordinary channels in the loader.)
+// The number of floats the property holds (1 to 4), or 0 with `why` set when fresnel does not
+// animate it (unknown property, index out of range, a camera of the other type, ...).
+int animation_pointer_width(const Scene& scene, std::string_view pointer, std::string* why = nullptr);
+// Writes `values` (animation_pointer_width floats) to the property; values are clamped to the
+// property's valid range (factors to [0, 1] where the specification bounds them, angles,
+// distances and ior to what the shaders accept). False when the pointer names nothing fresnel animates.
+bool write_animation_pointer(Scene& scene, std::string_view pointer, std::span<const float> values);
 
 // The local matrix of a node's TRS: T * R * S.
 glm::mat4 trs_matrix(const glm::vec3& translation, const glm::quat& rotation, const glm::vec3& scale);
