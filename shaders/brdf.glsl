@@ -28,6 +28,132 @@ float f_schlick(float f0, float f90, float v_dot_h) {
     return f0 + (f90 - f0) * (x2 * x2 * x);
 }
 
+// ---- Selectable terms (fresnel/material/brdf_model.h; `--brdf`): BRDF_D, BRDF_G, BRDF_F and
+// BRDF_DIFFUSE hold the enum values of the non-default terms. Without them: glTF's terms.
+#ifndef BRDF_D
+#define BRDF_D 0
+#endif
+#ifndef BRDF_G
+#define BRDF_G 0
+#endif
+#ifndef BRDF_F
+#define BRDF_F 0
+#endif
+#ifndef BRDF_DIFFUSE
+#define BRDF_DIFFUSE 0
+#endif
+
+#if BRDF_D == 1
+float d_beckmann(float n_dot_h, float alpha) {
+    float a2 = max(alpha * alpha, 1e-7);
+    float c2 = n_dot_h * n_dot_h;
+    if (c2 <= 0.0) return 0.0;
+    return exp((c2 - 1.0) / (a2 * c2)) / (PI * a2 * c2 * c2);
+}
+#elif BRDF_D == 2
+float d_blinn_phong(float n_dot_h, float alpha) {
+    float a2 = max(alpha * alpha, 1e-7);
+    float s = max(2.0 / a2 - 2.0, 0.0);
+    return (s + 2.0) / (2.0 * PI) * pow(max(n_dot_h, 1e-8), s);  // floored: pow(0, 0) is undefined
+}
+#endif
+
+float brdf_d(float n_dot_h, float alpha) {
+#if BRDF_D == 1
+    return d_beckmann(n_dot_h, alpha);
+#elif BRDF_D == 2
+    return d_blinn_phong(n_dot_h, alpha);
+#else
+    return d_ggx(n_dot_h, alpha);
+#endif
+}
+
+float brdf_v(float n_dot_l, float n_dot_v, float n_dot_h, float v_dot_h, float alpha, float perceptual_roughness) {
+#if BRDF_G == 1
+    float a2 = alpha * alpha;
+    float g = (n_dot_l + sqrt(a2 + (1.0 - a2) * n_dot_l * n_dot_l)) * (n_dot_v + sqrt(a2 + (1.0 - a2) * n_dot_v * n_dot_v));
+    return g > 0.0 ? 1.0 / g : 0.0;
+#elif BRDF_G == 2
+    float r = clamp(perceptual_roughness, 0.0, 1.0) + 1.0;
+    float k = r * r / 8.0;  // UE4's remapping for punctual lights
+    float g = 4.0 * (n_dot_l * (1.0 - k) + k) * (n_dot_v * (1.0 - k) + k);
+    return g > 0.0 ? 1.0 / g : 0.0;
+#elif BRDF_G == 3
+    if (n_dot_l <= 0.0 || n_dot_v <= 0.0) return 0.0;
+    float g = 1.0;
+    if (v_dot_h > 0.0) g = min(1.0, 2.0 * n_dot_h * min(n_dot_v, n_dot_l) / v_dot_h);
+    return g / (4.0 * n_dot_l * n_dot_v);
+#elif BRDF_G == 4
+    float c = max(v_dot_h, 1e-4);
+    return 0.25 / (c * c);
+#else
+    return v_smith_ggx_correlated(n_dot_l, n_dot_v, alpha);
+#endif
+}
+
+#if BRDF_F == 1
+float f_dielectric_exact(float c, float eta) {
+    c = clamp(c, 0.0, 1.0);
+    float g2 = eta * eta - 1.0 + c * c;
+    if (g2 <= 0.0) return 1.0;
+    float g = sqrt(g2);
+    float a = (g - c) / (g + c);
+    float b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+    return min(0.5 * a * a * (1.0 + b * b), 1.0);
+}
+float f_exact_channel(float f0, float f90, float v_dot_h) {
+    float s = sqrt(clamp(f0 / max(f90, 1e-6), 0.0, 0.9999));
+    float e = (1.0 + s) / (1.0 - s);
+    float f0e = f_dielectric_exact(1.0, e);
+    float t = f0e < 1.0 ? (f_dielectric_exact(v_dot_h, e) - f0e) / (1.0 - f0e) : 1.0;
+    return f0 + (f90 - f0) * t;
+}
+#endif
+#if BRDF_F == 2
+vec3 f_spherical_gaussian(vec3 f0, vec3 f90, float v_dot_h) {
+    float c = clamp(v_dot_h, 0.0, 1.0);
+    return f0 + (f90 - f0) * exp2((-5.55473 * c - 6.98316) * c);
+}
+#endif
+
+// The dielectric lobe's Fresnel (F90 = the specular weight) and the conductor's (F90 = 1).
+vec3 brdf_f_dielectric(vec3 f0, vec3 f90, float v_dot_h) {
+#if BRDF_F == 1
+    return vec3(f_exact_channel(f0.r, f90.r, v_dot_h), f_exact_channel(f0.g, f90.g, v_dot_h),
+                f_exact_channel(f0.b, f90.b, v_dot_h));
+#elif BRDF_F == 2
+    return f_spherical_gaussian(f0, f90, v_dot_h);
+#else
+    return f_schlick(f0, f90, v_dot_h);
+#endif
+}
+vec3 brdf_f_metal(vec3 base_color, float v_dot_h) {
+#if BRDF_F == 2
+    return f_spherical_gaussian(base_color, vec3(1.0), v_dot_h);
+#else
+    return f_schlick(base_color, vec3(1.0), v_dot_h);
+#endif
+}
+
+// The diffuse lobe relative to Lambert.
+float brdf_diffuse_factor(float n_dot_l, float n_dot_v, float v_dot_h, float l_dot_v, float perceptual_roughness) {
+#if BRDF_DIFFUSE == 1
+    float f90 = 0.5 + 2.0 * perceptual_roughness * v_dot_h * v_dot_h;
+    float xl = 1.0 - n_dot_l, xv = 1.0 - n_dot_v;
+    float pl = xl * xl * xl * xl * xl, pv = xv * xv * xv * xv * xv;
+    return (1.0 + (f90 - 1.0) * pl) * (1.0 + (f90 - 1.0) * pv);
+#elif BRDF_DIFFUSE == 2
+    float s2 = perceptual_roughness * perceptual_roughness;
+    float a = 1.0 - 0.5 * s2 / (s2 + 0.33);
+    float b = 0.45 * s2 / (s2 + 0.09);
+    float s = l_dot_v - n_dot_l * n_dot_v;
+    float t = max(max(n_dot_l, n_dot_v), 1e-4);
+    return a + b * max(s, 0.0) / t;
+#else
+    return 1.0;
+#endif
+}
+
 float alpha_from_roughness(float perceptual) {
     float r = clamp(perceptual, MIN_ROUGHNESS, 1.0);
     return r * r;
@@ -56,13 +182,14 @@ BrdfTerms brdf_terms(vec3 base_color, float metallic, float perceptual_roughness
     float n_dot_h = clamped_dot(n, h);
     float v_dot_h = clamped_dot(v, h);
     float alpha = alpha_from_roughness(perceptual_roughness);
-    t.d = d_ggx(n_dot_h, alpha);
-    t.v = v_smith_ggx_correlated(n_dot_l, n_dot_v, alpha);
+    t.d = brdf_d(n_dot_h, alpha);
+    t.v = brdf_v(n_dot_l, n_dot_v, n_dot_h, v_dot_h, alpha, perceptual_roughness);
     float spec = t.v * t.d;
-    vec3 f_metal = f_schlick(base_color, vec3(1.0), v_dot_h);
-    vec3 f_dielectric = f_schlick(f0_dielectric * specular_weight, vec3(specular_weight), v_dot_h);
+    vec3 f_metal = brdf_f_metal(base_color, v_dot_h);
+    vec3 f_dielectric = brdf_f_dielectric(f0_dielectric * specular_weight, vec3(specular_weight), v_dot_h);
     t.f = mix(f_dielectric, f_metal, metallic);
-    t.diffuse = (1.0 - metallic) * (1.0 - f_dielectric) * base_color / PI;
+    t.diffuse = (1.0 - metallic) * (1.0 - f_dielectric) * base_color / PI *
+                brdf_diffuse_factor(n_dot_l, n_dot_v, v_dot_h, dot(l, v), perceptual_roughness);
     t.specular_dielectric = (1.0 - metallic) * f_dielectric * spec;
     t.specular_metal = metallic * f_metal * spec;
     t.specular = t.specular_dielectric + t.specular_metal;

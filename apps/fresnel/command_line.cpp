@@ -95,6 +95,7 @@ std::string render_command_line(const Job& job, const std::string& output) {
     if (env.bake_size != defaults.environment.bake_size) add("--env-size", std::to_string(env.bake_size));
     if (!env.use_cache) add("--no-cache");
     if (!out.energy_compensation) add("--no-energy-compensation");
+    if (!out.brdf.is_default()) add("--brdf", brdf::to_string(out.brdf));
     // Extra lights come from --light, so they are directional or point lights.
     for (const LightInstance& l : job.lights.extra) {
         float lum = std::max({l.radiance.x, l.radiance.y, l.radiance.z});

@@ -46,6 +46,15 @@ bool parse_legacy_options(const RenderOptions& o, Job::Output& out, const GivenF
         return false;
     }
     if (given("--shading")) out.shading = *model;
+    if (given("--brdf")) {
+        std::string why;
+        auto terms = brdf::parse_brdf_model(o.brdf, &why);
+        if (!terms) {
+            print_error("--brdf: " + why);
+            return false;
+        }
+        out.brdf = *terms;
+    }
     auto colour = [](const std::string& flag, const std::string& text, glm::vec3& into) {
         std::vector<float> v;
         try {
@@ -370,6 +379,12 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
                         "same per fragment) or blinn-phong-normalized (with its image-based path). In the legacy models "
                         "a light of intensity I is an OpenGL light of colour I")
             ->capture_default_str();
+        cmd->add_option("--brdf", o->brdf,
+                        "BRDF terms of the glTF model for punctual lights, any of D=ggx|beckmann|blinn-phong, "
+                        "G=smith-height-correlated|smith-separable|schlick-ggx|cook-torrance|kelemen, "
+                        "F=schlick|exact-dielectric|spherical-gaussian, diffuse=lambert|burley|oren-nayar, comma-separated "
+                        "(default: the first of each, glTF's). Image-based light keeps glTF's split sum; --debug D, G, F, "
+                        "diffuse and specular show the chosen terms");
         cmd->add_option("--ambient", o->ambient,
                         "Global ambient light R,G,B (OpenGL 1's GL_LIGHT_MODEL_AMBIENT x Ka; glTF: ambient radiance x "
                         "diffuse colour). Default 0,0,0");

@@ -52,6 +52,7 @@ struct RenderOptions {
     bool no_energy_compensation = false;
     int env_samples = 1024;
     int env_size = 256;
+    std::string brdf;              // --brdf D=...,G=...,F=...,diffuse=... (empty: glTF's terms)
     std::string shading = "auto";  // --shading, --ambient, --fog, --fog-color (legacy models)
     std::string ambient;
     std::string fog;

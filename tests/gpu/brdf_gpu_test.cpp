@@ -27,6 +27,7 @@
 #include "fresnel/gpu/device.h"
 #include "fresnel/gpu/resources.h"
 #include "fresnel/material/brdf.h"
+#include "fresnel/material/brdf_model.h"
 #include "fresnel/render/shader_library.h"
 
 namespace {
@@ -65,7 +66,8 @@ protected:
 
     // Renders brdf_probe.frag in `mode` over `cases` (row-major, kGrid per row) and
     // returns one RGBA result per case. Fails the test on GL errors or unwritten pixels.
-    std::vector<glm::vec4> probe(ProbeMode mode, const std::vector<Case>& cases) {
+    std::vector<glm::vec4> probe(ProbeMode mode, const std::vector<Case>& cases,
+                                 const std::vector<std::string>& defines = {}) {
         const int w = kGrid;
         const int h = int((cases.size() + kGrid - 1) / kGrid);
         std::vector<float> texels(std::size_t(3 * w) * std::size_t(h) * 4, 0.0f);
@@ -91,7 +93,7 @@ protected:
         state.depth_write = false;
         state.cull = gpu::Cull::None;
         device.apply(state);
-        const gpu::Program& program = library_->get("fullscreen.vert", "brdf_probe.frag", {});
+        const gpu::Program& program = library_->get("fullscreen.vert", "brdf_probe.frag", defines);
         program.use();
         program.set("u_inputs", 0);
         program.set("u_mode", int(mode));
@@ -186,9 +188,9 @@ Case to_probe_case(const BrdfCase& c) {
     return {glm::vec4(s.base_color, s.metallic), glm::vec4(c.l, s.perceptual_roughness), glm::vec4(c.v, 0.0f)};
 }
 
-Terms cpu_terms(const BrdfCase& c) {
+Terms cpu_terms(const BrdfCase& c, const fresnel::brdf::BrdfModel& model = {}) {
     // The probe normalizes v and l; so does the reference (both are unit already).
-    return fresnel::brdf::evaluate_terms(c.surface, glm::vec3(0, 0, 1), glm::normalize(c.v), glm::normalize(c.l));
+    return fresnel::brdf::evaluate_terms(c.surface, glm::vec3(0, 0, 1), glm::normalize(c.v), glm::normalize(c.l), model);
 }
 
 std::string describe(const BrdfCase& c) {
@@ -282,14 +284,14 @@ std::string peak_note(const BrdfCase& c, const Terms& cpu) {
 class BrdfValues : public BrdfProbe {
 protected:
     // f(l, v) = diffuse + specular per channel.
-    void check_brdf(const std::vector<BrdfCase>& cases, bool peak) {
+    void check_brdf(const std::vector<BrdfCase>& cases, bool peak, const fresnel::brdf::BrdfModel& model = {}) {
         std::vector<Case> inputs;
         for (const auto& c : cases) inputs.push_back(to_probe_case(c));
-        std::vector<glm::vec4> gpu = probe(kModeBrdf, inputs);
+        std::vector<glm::vec4> gpu = probe(kModeBrdf, inputs, fresnel::brdf::brdf_model_defines(model));
         ASSERT_EQ(gpu.size(), cases.size());
         Mismatches bad;
         for (std::size_t i = 0; i < cases.size(); ++i) {
-            Terms t = cpu_terms(cases[i]);
+            Terms t = cpu_terms(cases[i], model);
             glm::vec3 cpu = t.diffuse + t.specular;
             for (int k = 0; k < 3; ++k)
                 if (!close_rel(gpu[i][k], cpu[k]))
@@ -301,14 +303,14 @@ protected:
                                 << " relative (worst " << bad.worst_rel << "):\n" << bad.report();
     }
     // D, V and F.r separately.
-    void check_dvf(const std::vector<BrdfCase>& cases, bool peak) {
+    void check_dvf(const std::vector<BrdfCase>& cases, bool peak, const fresnel::brdf::BrdfModel& model = {}) {
         std::vector<Case> inputs;
         for (const auto& c : cases) inputs.push_back(to_probe_case(c));
-        std::vector<glm::vec4> gpu = probe(kModeDvf, inputs);
+        std::vector<glm::vec4> gpu = probe(kModeDvf, inputs, fresnel::brdf::brdf_model_defines(model));
         ASSERT_EQ(gpu.size(), cases.size());
         Mismatches bad_d, bad_v, bad_f;
         for (std::size_t i = 0; i < cases.size(); ++i) {
-            Terms t = cpu_terms(cases[i]);
+            Terms t = cpu_terms(cases[i], model);
             std::string ctx = describe(cases[i]) + (peak ? peak_note(cases[i], t) : "");
             if (!close_rel(gpu[i].x, t.d)) bad_d.add("D", gpu[i].x, t.d, ctx);
             if (!close_rel(gpu[i].y, t.v)) bad_v.add("V", gpu[i].y, t.v, ctx);
@@ -357,6 +359,30 @@ TEST_F(BrdfValues, BrdfMatchesCpp) {
 
 TEST_F(BrdfValues, DistributionVisibilityFresnelMatchCpp) {
     check_dvf(select(make_brdf_cases(kGrid * kGrid, kBrdfSeed), Subset::AwayFromPeak), false);
+}
+
+// The selectable terms (`--brdf`, brdf_model.h): each alternative alone and all together, the
+// GLSL (BRDF_* defines) against the C++. Left out: glossy surfaces (roughness < 0.15), where
+// Beckmann's exp and Blinn-Phong's power of n.h amplify the last bit of n.h in either language,
+// and l nearly opposite to v (|l + v| < 0.1, both at the horizon), where h = normalize(l + v)
+// carries the rounding of a tiny sum into v.h, which Kelemen's 1 / (v.h)^2 and the Fresnel terms read.
+TEST_F(BrdfValues, AlternativeTermsMatchCpp) {
+    using namespace fresnel::brdf;
+    std::vector<BrdfCase> cases;
+    for (const auto& c : select(make_brdf_cases(kGrid * kGrid, kBrdfSeed), Subset::AwayFromPeak))
+        if (c.surface.perceptual_roughness >= 0.15f && glm::length(c.l + c.v) >= 0.1f) cases.push_back(c);
+    ASSERT_GT(cases.size(), 2000u);
+    std::vector<BrdfModel> models;
+    for (int i = 1; i < 3; ++i) models.push_back(BrdfModel{Distribution(i), {}, {}, {}});
+    for (int i = 1; i < 5; ++i) models.push_back(BrdfModel{{}, Geometry(i), {}, {}});
+    for (int i = 1; i < 3; ++i) models.push_back(BrdfModel{{}, {}, Fresnel(i), {}});
+    for (int i = 1; i < 3; ++i) models.push_back(BrdfModel{{}, {}, {}, Diffuse(i)});
+    models.push_back(BrdfModel{Distribution::BlinnPhong, Geometry::SchlickGgx, Fresnel::ExactDielectric, Diffuse::Burley});
+    for (const BrdfModel& m : models) {
+        SCOPED_TRACE(to_string(m));
+        check_brdf(cases, false, m);
+        check_dvf(cases, false, m);
+    }
 }
 
 TEST_F(BrdfValues, GlossyPeakBrdfMatchesCpp) {

@@ -218,11 +218,11 @@ EvaluatedMaterial evaluate(const Material& material, const TextureSource& textur
 }
 
 glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 radiance,
-                      glm::vec3 comp_dielectric, glm::vec3 comp_metal) {
+                      glm::vec3 comp_dielectric, glm::vec3 comp_metal, const brdf::BrdfModel& model) {
     float n_dot_l = std::clamp(glm::dot(m.normal, l), 0.0f, 1.0f);
     glm::vec3 lit(0.0f);
     if (n_dot_l > 0.0f) {
-        brdf::Terms t = brdf::evaluate_terms(m.surface, m.normal, v, l);
+        brdf::Terms t = brdf::evaluate_terms(m.surface, m.normal, v, l, model);
         glm::vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;
         lit = radiance * n_dot_l * (t.diffuse + specular);
     }

@@ -128,6 +128,7 @@ ResolvedJob resolve(const Job& job, const Scene& scene) {
     rs.env_rotation_deg = env.rotation_deg;
     rs.energy_compensation = out.energy_compensation;
     rs.shading = out.shading;
+    rs.brdf = out.brdf;
     rs.ambient = out.ambient;
     rs.fog = out.fog;
     if (out.float_output) {

@@ -609,7 +609,13 @@ struct Renderer::Impl {
             is_bound[std::size_t(i)] = bound[i] != nullptr;
         }
 
-        const gpu::Program& prog = shaders.get("pbr.vert", "pbr.frag", features);
+        // Alternative BRDF terms are defines on top of the feature set (rare: a string-keyed variant).
+        const gpu::Program& prog = [&]() -> const gpu::Program& {
+            if (settings.brdf.is_default()) return shaders.get("pbr.vert", "pbr.frag", features);
+            std::vector<std::string> defines = feature_defines(features);
+            for (auto& d : brdf::brdf_model_defines(settings.brdf)) defines.push_back(std::move(d));
+            return shaders.get("pbr.vert", "pbr.frag", std::move(defines));
+        }();
         prog.use();
         prog.set("u_model", d.model);
         glm::mat3 normal_matrix = glm::inverseTranspose(glm::mat3(d.model));

@@ -431,7 +431,8 @@ void read_background(const Reader& r, const json& b, Job& job) {
 void read_render(const Reader& r, const json& o, Job& job) {
     const std::string ptr = "/render";
     r.object(o, ptr);
-    r.keys(o, ptr, {"size", "msaa", "anisotropy", "toneMapping", "exposure", "encoding", "debug", "energyCompensation"});
+    r.keys(o, ptr, {"size", "msaa", "anisotropy", "toneMapping", "exposure", "encoding", "debug", "energyCompensation",
+                    "brdf"});
     Job::Output& out = job.output;
     if (auto* v = r.find(o, "size")) {
         const std::string p = at(ptr, "size");
@@ -468,6 +469,12 @@ void read_render(const Reader& r, const json& o, Job& job) {
         out.debug = *d;
     }
     if (auto* v = r.find(o, "energyCompensation")) out.energy_compensation = r.boolean(*v, at(ptr, "energyCompensation"));
+    if (auto* v = r.find(o, "brdf")) {  // "D=beckmann,G=kelemen,..." as --brdf
+        std::string why;
+        auto m = brdf::parse_brdf_model(r.string(*v, at(ptr, "brdf")), &why);
+        if (!m) r.fail(at(ptr, "brdf"), why);
+        out.brdf = *m;
+    }
 }
 
 // The deepest nesting of arrays and objects in `text` (strings skipped), stopping past `limit`.

@@ -24,6 +24,7 @@
 #include <glm/vec4.hpp>
 
 #include "fresnel/material/brdf.h"
+#include "fresnel/material/brdf_model.h"
 #include "fresnel/material/material.h"
 #include "fresnel/material/texture.h"
 
@@ -132,9 +133,10 @@ Material to_metallic_roughness(const Material& material, bool* lost_glossiness_m
 // KHR_materials_clearcoat layering of one punctual light (pbr.frag's light loop):
 //   base = (f_diffuse + f_specular_dielectric * comp_dielectric + f_specular_metal * comp_metal) n.l
 //   result = radiance * mix(base, clearcoat_specular, clearcoat_mix)
-// comp_* are the energy-compensation factors (1 without). The twin of shade_light in
-// shaders/brdf.glsl.
+// comp_* are the energy-compensation factors (1 without); `model` selects the BRDF's terms
+// (brdf_model.h; the default is glTF's). The twin of shade_light in shaders/material_inputs.glsl.
 glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 radiance,
-                      glm::vec3 comp_dielectric = glm::vec3(1.0f), glm::vec3 comp_metal = glm::vec3(1.0f));
+                      glm::vec3 comp_dielectric = glm::vec3(1.0f), glm::vec3 comp_metal = glm::vec3(1.0f),
+                      const brdf::BrdfModel& model = {});
 
 }  // namespace fresnel

@@ -126,6 +126,7 @@ struct Job {
         bool energy_compensation = true;  // multiple-scattering compensation of the specular lobe
         // The shading model for the frame, or Auto: per material (RenderSettings::shading).
         ShadingModel shading = ShadingModel::Auto;
+        brdf::BrdfModel brdf;  // the glTF BRDF's terms for punctual lights (RenderSettings::brdf)
         glm::vec3 ambient{0.0f};  // uniform ambient light (OpenGL 1: GL_LIGHT_MODEL_AMBIENT)
         // OpenGL 1 fog (Ogl1 models). Its colour is fog_color, else the background colour (as rgl).
         Fog fog;

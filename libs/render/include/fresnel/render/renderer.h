@@ -13,6 +13,7 @@
 #include "fresnel/core/color.h"
 #include "fresnel/core/image.h"
 #include "fresnel/ibl/bake.h"
+#include "fresnel/material/brdf_model.h"
 #include "fresnel/material/legacy_shading.h"
 #include "fresnel/material/material.h"
 #include "fresnel/render/camera.h"
@@ -77,6 +78,9 @@ struct RenderSettings {
     glm::vec3 ambient{0.0f};  // uniform ambient radiance added to diffuse (default none); Ogl1: GL_LIGHT_MODEL_AMBIENT
     ShadingModel shading = ShadingModel::Auto;
     Fog fog;  // Ogl1 models only
+    // The glTF model's BRDF terms for punctual lights (`--brdf`; brdf_model.h). The default
+    // is the specification's; image-based light always uses the split sum of the default.
+    brdf::BrdfModel brdf;
 
     // Image-based light (nullptr = none). Baked by libs/ibl; must outlive the call.
     const ibl::BakedIbl* environment = nullptr;
