@@ -25,6 +25,7 @@
 #include <thread>
 #include <vector>
 
+#include "fresnel/material/brdf_model.h"
 #include "fresnel/render/shader_features.h"
 #include "fresnel/render/shader_library.h"
 
@@ -163,6 +164,29 @@ TEST(ShaderVariants, EveryVariantCompilesAsEs300AndGl330) {
     for (const char* file : {"fullscreen.vert", "post.frag", "sky.frag", "brdf_probe.frag", "legacy_probe.frag"}) {
         ++per_target;
         for (GlslTarget t : {GlslTarget::Es30, GlslTarget::Gl33}) jobs.push_back({file, 0, false, t});
+    }
+    // The alternative BRDF terms (`--brdf`, BRDF_* defines) on the richest feature set and in
+    // the probe shader: every value of every term, and all of them at once.
+    {
+        FeatureMask richest = *std::max_element(all.begin(), all.end(), [](FeatureMask a, FeatureMask b) {
+            return __builtin_popcount(a) < __builtin_popcount(b);
+        });
+        std::vector<fresnel::brdf::BrdfModel> models;
+        for (int i = 1; i < 3; ++i) models.push_back({fresnel::brdf::Distribution(i), {}, {}, {}});
+        for (int i = 1; i < 5; ++i) models.push_back({{}, fresnel::brdf::Geometry(i), {}, {}});
+        for (int i = 1; i < 3; ++i) models.push_back({{}, {}, fresnel::brdf::Fresnel(i), {}});
+        for (int i = 1; i < 3; ++i) models.push_back({{}, {}, {}, fresnel::brdf::Diffuse(i)});
+        models.push_back({fresnel::brdf::Distribution::Beckmann, fresnel::brdf::Geometry::Kelemen,
+                          fresnel::brdf::Fresnel::ExactDielectric, fresnel::brdf::Diffuse::OrenNayar});
+        for (const auto& model : models) {
+            std::vector<std::string> defines = feature_defines(richest);
+            for (const auto& d : fresnel::brdf::brdf_model_defines(model)) defines.push_back(d);
+            per_target += 2;
+            for (GlslTarget t : {GlslTarget::Es30, GlslTarget::Gl33}) {
+                jobs.push_back({"pbr.frag", 0, false, t, defines});
+                jobs.push_back({"brdf_probe.frag", 0, false, t, fresnel::brdf::brdf_model_defines(model)});
+            }
+        }
     }
     // The output pass that resolves the multisampled frame itself: desktop GL only (GLSL ES
     // 3.00 has no sampler2DMS; the renderer blits there).
