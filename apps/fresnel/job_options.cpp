@@ -372,6 +372,12 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
     cmd->add_flag("--pose-skins", o->pose_skins,
                   "Pose skinned meshes by their joints' rest transforms (default: the bind pose, as the Khronos "
                   "Sample Renderer's reference images show)");
+    cmd->add_option("--brdf", o->brdf,
+                    "BRDF terms of the glTF model, any of D=ggx|beckmann|blinn-phong, "
+                    "G=smith-height-correlated|smith-separable|schlick-ggx|cook-torrance|kelemen, "
+                    "F=schlick|exact-dielectric|spherical-gaussian, diffuse=lambert|burley|oren-nayar, comma-separated "
+                    "(default: the first of each, glTF's). render: punctual lights only (image-based light keeps glTF's "
+                    "split sum; --debug D, G, F, diffuse, specular show the terms); trace: every light and bounce");
     if (raster) {
         cmd->add_option("--shading", o->shading,
                         "Shading model: auto (per material: OpenGL 1 for OBJ/MTL Phong materials, glTF for the rest), "
@@ -379,12 +385,6 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
                         "same per fragment) or blinn-phong-normalized (with its image-based path). In the legacy models "
                         "a light of intensity I is an OpenGL light of colour I")
             ->capture_default_str();
-        cmd->add_option("--brdf", o->brdf,
-                        "BRDF terms of the glTF model for punctual lights, any of D=ggx|beckmann|blinn-phong, "
-                        "G=smith-height-correlated|smith-separable|schlick-ggx|cook-torrance|kelemen, "
-                        "F=schlick|exact-dielectric|spherical-gaussian, diffuse=lambert|burley|oren-nayar, comma-separated "
-                        "(default: the first of each, glTF's). Image-based light keeps glTF's split sum; --debug D, G, F, "
-                        "diffuse and specular show the chosen terms");
         cmd->add_option("--ambient", o->ambient,
                         "Global ambient light R,G,B (OpenGL 1's GL_LIGHT_MODEL_AMBIENT x Ka; glTF: ambient radiance x "
                         "diffuse colour). Default 0,0,0");

@@ -77,6 +77,7 @@ int run_trace(const TraceOptions& o, const CLI::App* cmd) {
     ts.seed = o.seed;
     ts.threads = o.threads;
     ts.env_visibility = !o.no_env_visibility;
+    ts.brdf = rs.brdf;
     // env and blur backgrounds both show the environment (sharp: the tracer has no blurred copy).
     ts.env_background = rs.background_mode != RenderSettings::Background::Color;
 

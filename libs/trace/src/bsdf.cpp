@@ -32,7 +32,8 @@ BsdfLobes lobe_probabilities(const EvaluatedMaterial& m, glm::vec3 v) {
     return p;
 }
 
-Bsdf::Bsdf(const EvaluatedMaterial& m, glm::vec3 v) : m_(m), v_(v), lobes_(lobe_probabilities(m, v)) {
+Bsdf::Bsdf(const EvaluatedMaterial& m, glm::vec3 v, const brdf::BrdfModel& model)
+    : m_(m), v_(v), model_(model), lobes_(lobe_probabilities(m, v)) {
     base_.n = m.normal;
     sampling::basis(base_.n, base_.t, base_.b);
     v_base_ = base_.to_local(v);
@@ -45,7 +46,9 @@ Bsdf::Bsdf(const EvaluatedMaterial& m, glm::vec3 v) : m_(m), v_(v), lobes_(lobe_
     }
 }
 
-glm::vec3 Bsdf::eval(glm::vec3 l) const { return shade_light(m_, v_, l, glm::vec3(1.0f)); }
+glm::vec3 Bsdf::eval(glm::vec3 l) const {
+    return shade_light(m_, v_, l, glm::vec3(1.0f), glm::vec3(1.0f), glm::vec3(1.0f), model_);
+}
 
 float Bsdf::pdf(glm::vec3 l) const {
     float pdf = 0.0f;

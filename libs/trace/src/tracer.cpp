@@ -501,7 +501,7 @@ struct Integrator {
             m.surface.perceptual_roughness = std::max(m.surface.perceptual_roughness, kMinTraceRoughness);
             m.clearcoat_roughness = std::max(m.clearcoat_roughness, kMinTraceRoughness);
 
-            const Bsdf bsdf(m, wo);
+            const Bsdf bsdf(m, wo, settings.brdf);
             // Next-event estimation: every punctual light, then one sample of the environment.
             glm::vec3 p_out = offset_ray(p, ng);
             for (const LightInstance& light : lights) {
@@ -509,7 +509,7 @@ struct Integrator {
                 float dist = 0;
                 glm::vec3 li = light_incident(light, p, l, dist);
                 if (li.x + li.y + li.z <= 0.0f || glm::dot(l, ng) <= 0.0f) continue;
-                glm::vec3 f = shade_light(m, wo, l, li);
+                glm::vec3 f = shade_light(m, wo, l, li, glm::vec3(1.0f), glm::vec3(1.0f), settings.brdf);
                 if (f.x + f.y + f.z <= 0.0f) continue;
                 ++rays;
                 float tmax = std::isfinite(dist) ? dist * (1.0f - 1e-4f) : INFINITY;

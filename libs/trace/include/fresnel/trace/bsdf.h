@@ -35,7 +35,9 @@ struct BsdfSample {
 // the several queries a path vertex makes. `m` must outlive it.
 class Bsdf {
 public:
-    Bsdf(const EvaluatedMaterial& m, glm::vec3 v);
+    // `model`: the BRDF's terms (brdf_model.h) that eval() uses; sampling stays GGX's (any
+    // pdf that covers the lobe keeps the estimate unbiased).
+    Bsdf(const EvaluatedMaterial& m, glm::vec3 v, const brdf::BrdfModel& model = {});
     BsdfSample sample(glm::vec3 u) const;  // u uniform in [0,1)^3: lobe, then direction
     float pdf(glm::vec3 l) const;
     glm::vec3 eval(glm::vec3 l) const;  // f cos
@@ -49,6 +51,7 @@ private:
     };
     const EvaluatedMaterial& m_;
     glm::vec3 v_;
+    brdf::BrdfModel model_;
     BsdfLobes lobes_;
     Frame base_, coat_;
     glm::vec3 v_base_{0.0f}, v_coat_{0.0f};  // v in each frame

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "fresnel/core/image.h"
+#include "fresnel/material/brdf_model.h"
 #include "fresnel/render/camera.h"
 #include "fresnel/render/lights.h"
 #include "fresnel/render/renderer.h"
@@ -45,6 +46,7 @@ struct TraceSettings {
     bool env_visibility = true;    // false: environment light is never shadowed (real-time IBL)
     bool env_background = true;    // camera rays that miss see the environment (else coverage 0)
     int russian_roulette_start = 3;  // bounces before Russian roulette may end a path
+    brdf::BrdfModel brdf;            // the BRDF's terms (`--brdf`), for every light and bounce
 };
 
 struct TraceStats {
