@@ -27,6 +27,7 @@
 #include "fresnel/scene/tangents.h"
 
 #include "fresnel/material/brdf.h"
+#include "fresnel/material/brdf_model.h"
 #include "fresnel/material/evaluate.h"
 #include "fresnel/material/fit.h"
 #include "fresnel/material/material.h"

@@ -79,7 +79,7 @@ Scene skinned_scene() {
     a.samplers.push_back(linear({0, 1}, {0, 0, 0, 1, 0, 0, std::sin(h), std::cos(h)}, 4));  // 0 -> 60 degrees about z
     a.samplers.push_back(linear({0, 1}, {0, 0, 0, 0.1f, -0.2f, 0.3f}, 3));
     a.samplers.push_back(linear({0, 1}, {0, 1}, 1));
-    a.channels = {{0, 2, AnimationPath::Rotation}, {1, 1, AnimationPath::Translation}, {2, 0, AnimationPath::Weights}};
+    a.channels = {{0, 2, AnimationPath::Rotation, ""}, {1, 1, AnimationPath::Translation, ""}, {2, 0, AnimationPath::Weights, ""}};
     s.animations.push_back(a);
     return s;
 }
