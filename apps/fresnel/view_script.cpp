@@ -34,6 +34,7 @@ const std::map<std::string, Signature>& commands() {
         {"env-rotation", {1, 1}}, {"env-intensity", {1, 1}}, {"exposure", {1, 1}},     {"tonemap", {1, 0}},
         {"debug", {1, 0}},        {"background", {1, 0}},    {"wait", {1, 1}},         {"screenshot", {-1, 0}},
         {"print", {0, 0}},        {"stats", {0, 0}},        {"set", {-2, 0}},         {"split", {-3, 0}},        {"quit", {0, 0}},
+        {"save", {-1, 0}},        {"save-scene", {-1, 0}},   {"auto-rotate", {2, 0}},
     };
     return c;
 }
@@ -157,6 +158,8 @@ std::vector<ScriptCommand> read_view_script(const std::string& path) {
             if (count != 3) fail("background: expected env, blur, transparent or R,G,B");
         }
         if (c.name == "dolly" && !(c.number(0) > 0)) fail("dolly: the factor must be positive");
+        if (c.name == "auto-rotate" && ((c.args[0] != "camera" && c.args[0] != "env") || (c.args[1] != "on" && c.args[1] != "off")))
+            fail("auto-rotate: expected camera|env on|off");
         out.push_back(std::move(c));
     }
     return out;
