@@ -20,6 +20,9 @@ Runner add_view_command(CLI::App& app) {
                     "Write the frame as presented (the 3D view, without the GUI) to this PNG after --frames frames, then "
                     "exit 0");
     cmd->add_flag("--with-gui", o->with_gui, "--screenshot: include the GUI drawn over the frame");
+    cmd->add_option("--shaders", o->shaders,
+                    "Development: read the shader files from this folder (a copy of the source's shaders/) instead "
+                    "of the built-in ones; F5 reloads them, a compile error is shown and the running shaders stay");
     cmd->add_option("--frames", o->frames,
                     "Exit after this many frames with the scene and its lighting ready (default with --screenshot: 2)")
         ->check(CLI::Range(1, 100000));

@@ -21,6 +21,8 @@
 //                          file itself), keeping everything else byte for byte (scene_writer.h)
 //   save-scene PATH        the view as a scene file (*.fresnel.json) that `fresnel render PATH` renders
 //   auto-rotate camera|env on|off   turn the camera or the environment, 30 degrees a second
+//   reload-shaders [DIR]   F5: read the shader files again (from DIR, else --shaders) and recompile;
+//                          a compile error is reported and the shaders in use stay
 //   split CHANNEL POS | split off   the split view: right of POS (0..1 of the width) the debug CHANNEL (or none)
 //   stats                  print frame time, draw calls, triangles and resident memory as one JSON line
 //   quit                   exit: 0, or 1 when an open/env/screenshot of the script failed

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstdio>
 #include <cstring>
@@ -26,6 +27,7 @@
 
 #include "cli_common.h"
 #include "fresnel/gpu/device.h"
+#include "fresnel/gpu/resources.h"
 #include "fresnel/gui/window.h"
 #include "fresnel/ibl/bake.h"
 #include "fresnel/render/orbit_controller.h"
@@ -164,6 +166,7 @@ public:
         gui::Window window(window_size_.width, window_size_.height, "fresnel view", context_options(*options_.job));
         window_ = &window;
         renderer_ = std::make_unique<Renderer>(window.context());
+        if (!options_.shaders.empty()) renderer_->set_shader_folder(options_.shaders);
         int rc = kExitBadInput;
         try {
             rc = loop(window);
@@ -178,6 +181,7 @@ public:
 private:
     // GL objects go before the window (and its context) does.
     void release_gpu() {
+        timer_.reset();
         renderer_.reset();
         window_ = nullptr;
     }
@@ -316,14 +320,19 @@ private:
                 if (!save_scene(c.args[0])) failed("save-scene " + c.args[0] + ": " + error_);
                 continue;
             }
+            if (c.name == "reload-shaders") {
+                if (!reload_shaders(c.args.empty() ? std::string() : c.args[0])) failed("reload-shaders: " + error_);
+                return false;  // the next frame draws with them
+            }
             if (c.name == "auto-rotate") {
                 (c.args[0] == "env" ? spin_environment_ : spin_camera_) = c.args[1] == "on";
                 return false;
             }
             if (c.name == "stats") {
-                std::printf("{\"frame_ms\":%.2f,\"width\":%d,\"height\":%d,\"draw_calls\":%d,\"triangles\":%zu,"
-                            "\"programs\":%zu,\"rss_kb\":%ld}\n",
-                            frame_ms_, fb_.width, fb_.height, stats_.draw_calls, stats_.triangles,
+                std::string gpu = gpu_ms_ >= 0.0 ? std::to_string(gpu_ms_) : std::string("null");
+                std::printf("{\"frame_ms\":%.2f,\"gpu_ms\":%s,\"width\":%d,\"height\":%d,\"draw_calls\":%d,"
+                            "\"triangles\":%zu,\"programs\":%zu,\"rss_kb\":%ld}\n",
+                            frame_ms_, gpu.c_str(), fb_.width, fb_.height, stats_.draw_calls, stats_.triangles,
                             renderer_->program_count(), resident_kb());
                 std::fflush(stdout);
                 continue;
@@ -635,6 +644,21 @@ private:
         }
     }
 
+    // F5: the shader files read again (from `folder`, else --shaders, else the built-in ones)
+    // and every program recompiled; on an error the running shaders stay and it is shown.
+    bool reload_shaders(const std::string& folder) {
+        if (!folder.empty()) renderer_->set_shader_folder(folder);
+        std::string e = renderer_->reload_shaders();
+        if (!e.empty()) {
+            error_ = "shader reload failed (the previous shaders stay): " + e;
+            std::fprintf(stderr, "fresnel: error: %s\n", error_.c_str());
+            return false;
+        }
+        status_ = "shaders reloaded";
+        std::fprintf(stderr, "fresnel: shaders reloaded (%zu programs)\n", renderer_->program_count());
+        return true;
+    }
+
     // --- auto-rotate -----------------------------------------------------------------
 
     bool spinning() const { return spin_camera_ || spin_environment_; }
@@ -710,6 +734,7 @@ private:
             if (window_->key_pressed(gui::Key::Tab)) gui_visible_ = !gui_visible_, changed = true;
             if (window_->key_pressed(gui::Key::S, /*ctrl=*/true)) save_scene(scene_save_path_), changed = true;
             if (window_->key_pressed(gui::Key::A)) spin_camera_ = !spin_camera_, changed = true;
+            if (window_->key_pressed(gui::Key::F5)) reload_shaders(""), changed = true;
         }
         return changed;
     }
@@ -889,6 +914,8 @@ private:
         if (scene_ && !scene_->materials.empty() && ImGui::CollapsingHeader("Materials")) draw_material_editor();
         if (ImGui::CollapsingHeader("Statistics")) {
             ImGui::Text("%dx%d pixels, frame %.1f ms (CPU, draw + finish)", fb_.width, fb_.height, frame_ms_);
+            if (gpu_ms_ >= 0.0) ImGui::Text("GPU %.2f ms (timer query)", gpu_ms_);
+            else ImGui::TextDisabled("GPU time: this context has no timer queries (OpenGL ES 3.0)");
             ImGui::Text("resident memory %.1f MiB", double(resident_kb()) / 1024.0);
             ImGui::Text("%d draw calls, %zu triangles, %zu programs", stats_.draw_calls, stats_.triangles,
                         renderer_->program_count());
@@ -1067,6 +1094,9 @@ private:
             std::fprintf(stderr, "fresnel: note: the GUI's GL backend raised %s (not the frame's)\n", gui_errors.c_str());
         }
         auto t = Clock::now();
+        // GPU time by a timer query, where the context has them (OpenGL 3.3, not ES 3.0).
+        if (!timer_ && window_->context().capabilities().timer_queries) timer_ = std::make_unique<gpu::TimerQuery>();
+        if (timer_) timer_->begin();
         renderer_->draw(resolved_.camera, resolved_.lights, rs, RenderTarget::default_framebuffer(0, 0), &stats_);
         if (split_) {  // the same frame with the right side's settings, over the right of the divider
             RenderSettings right = rs;
@@ -1083,8 +1113,10 @@ private:
             stats_.triangles += more.triangles;
             stats_.gl_errors += more.gl_errors;
         }
+        if (timer_) timer_->end();
         renderer_->finish();
         frame_ms_ = ms_since(t);
+        if (double ms = 0.0; timer_ && timer_->result_ms(ms)) gpu_ms_ = ms;
         last_camera_ = resolved_.camera;
         last_transparent_ = resolved_.transparent();
         if (!stats_.gl_errors.empty()) error_ = "OpenGL: the frame raised " + stats_.gl_errors;
@@ -1112,7 +1144,8 @@ private:
     std::unique_ptr<Bake> bake_;
     bool bake_failed_ = false;
     FrameStats stats_;
-    double frame_ms_ = 0.0;
+    double frame_ms_ = 0.0, gpu_ms_ = -1.0;  // gpu_ms_ < 0: no timer queries (or no result yet)
+    std::unique_ptr<gpu::TimerQuery> timer_;
     std::vector<std::string> folder_models_, recent_, warnings_;
     std::string error_, status_, command_line_, gui_gl_errors_;
     bool screenshot_requested_ = false, browser_open_ = false, gui_visible_ = true;

@@ -15,6 +15,7 @@ struct ViewOptions {
     bool with_gui = false;      // --screenshot includes the GUI drawn over the frame
     std::optional<int> frames;  // exit after this many frames with the scene and its lighting ready
     std::string script;         // view_script.h
+    std::string shaders;        // --shaders DIR: shader files from DIR (F5 reloads them)
     const CLI::App* cmd = nullptr;  // the view subcommand: which flags were given (they override a scene file)
 };
 

@@ -468,6 +468,60 @@ TEST_F(View, MaterialSaveChangesTheFactorAndNothingElse) {
                    (dir_ / "q.png").string()}, false).exit_code, 0);
 }
 
+// The statistics' GPU time comes from a timer query on OpenGL 3.3, and is null (not made up)
+// on OpenGL ES 3.0, which has none.
+TEST_F(View, GpuTimeOnlyWhereTimerQueriesExist) {
+    std::ofstream(dir_ / "t.txt") << "wait 2\nstats\nquit\n";
+    for (const char* api : {"gl33", "es3"}) {
+        fs::path out = dir_ / (std::string(api) + ".txt");
+        std::string cmd = display_prefix_ + "sh -c " +
+                          quote(quote(FRESNEL_EXE) + " view --size 96x64 --gl " + api + " --script " +
+                                quote((dir_ / "t.txt").string()) + " >" + quote(out.string()) + " 2>/dev/null");
+        std::system(cmd.c_str());  // checked through what it wrote
+        nlohmann::json stats = nlohmann::json::parse(slurp(out), nullptr, false);
+        ASSERT_TRUE(stats.is_object() && stats.contains("gpu_ms")) << api << ": " << slurp(out);
+        if (std::string(api) == "gl33") {
+            ASSERT_TRUE(stats["gpu_ms"].is_number()) << stats.dump();
+            EXPECT_GT(stats["gpu_ms"].get<double>(), 0.0);
+            std::printf("GPU time of a 96x64 demo frame (llvmpipe): %.2f ms, CPU %.2f ms\n",
+                        stats["gpu_ms"].get<double>(), stats["frame_ms"].get<double>());
+        } else {
+            EXPECT_TRUE(stats["gpu_ms"].is_null()) << stats.dump();
+        }
+    }
+}
+
+// Shader reload (F5, the script's reload-shaders): a folder whose post pass fails to compile
+// is reported and the frame stays as it was; a folder whose post pass inverts the colours
+// shows the inverted frame.
+TEST_F(View, ShaderReloadKeepsTheShadersOnErrorsAndShowsTheNewOnes) {
+    const fs::path src = fs::path(FRESNEL_SOURCE_DIR) / "shaders";
+    for (const char* d : {"bad", "inverted"}) fs::copy(src, dir_ / d, fs::copy_options::recursive);
+    std::ofstream(dir_ / "bad" / "post.frag", std::ios::app) << "\nthis is not GLSL\n";
+    std::string post = slurp(src / "post.frag");
+    const std::string from = "frag_color = c;";
+    ASSERT_NE(post.find(from), std::string::npos) << "post.frag changed: update this test";
+    post.replace(post.find(from), from.size(), "frag_color = vec4(1.0 - c.rgb, c.a);");
+    std::ofstream(dir_ / "inverted" / "post.frag") << post;
+    std::ofstream(dir_ / "r.txt") << "screenshot " << (dir_ / "a.png").string() << "\n"
+                                  << "reload-shaders " << (dir_ / "bad").string() << "\n"
+                                  << "screenshot " << (dir_ / "b.png").string() << "\n"
+                                  << "reload-shaders " << (dir_ / "inverted").string() << "\n"
+                                  << "screenshot " << (dir_ / "c.png").string() << "\nquit\n";
+    Result r = run({"view", "--size", "96x64", "--msaa", "1", "--script", (dir_ / "r.txt").string()}, true);
+    EXPECT_EQ(r.exit_code, 1) << r.err;  // the bad folder
+    EXPECT_NE(r.err.find("r.txt: line 2: reload-shaders"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("post.frag"), std::string::npos) << r.err;  // the compiler's log names the file
+    for (const char* f : {"a.png", "b.png", "c.png"}) ASSERT_TRUE(fs::exists(dir_ / f)) << f << "\n" << r.err;
+    fresnel::Image8 a = fresnel::read_image8(dir_ / "a.png"), b = fresnel::read_image8(dir_ / "b.png"),
+                    c = fresnel::read_image8(dir_ / "c.png");
+    EXPECT_GE(fresnel::compare_images(a, b, false).psnr_db, 50.0);
+    ASSERT_EQ(a.pixels.size(), c.pixels.size());
+    int worst = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) worst = std::max(worst, std::abs(255 - int(a.pixels[i]) - int(c.pixels[i])));
+    EXPECT_LE(worst, 2);  // the inverted post pass (8-bit rounding)
+}
+
 // The split view: left of the divider `render`'s shaded frame, right of it its roughness channel.
 TEST_F(View, SplitViewShowsBothSettings) {
     std::ofstream(dir_ / "s.txt") << "split roughness 0.5\nscreenshot " << (dir_ / "split.png").string() << "\nquit\n";

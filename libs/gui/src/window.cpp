@@ -50,6 +50,7 @@ int glfw_key(Key k) {
         case Key::Tab: return GLFW_KEY_TAB;
         case Key::S: return GLFW_KEY_S;
         case Key::A: return GLFW_KEY_A;
+        case Key::F5: return GLFW_KEY_F5;
     }
     return GLFW_KEY_UNKNOWN;
 }
