@@ -10,7 +10,7 @@ namespace fresnel::cli {
 Runner add_view_command(CLI::App& app) {
     auto o = std::make_shared<ViewOptions>();
     o->job->size = "1280x720";
-    CLI::App* cmd = app.add_subcommand("view", "Open a glTF model in a window: orbit, swap models and environments, inspect channels");
+    CLI::App* cmd = app.add_subcommand("view", "Open a model or a scene file in a window: orbit, swap models and environments, inspect channels, save");
     o->cmd = cmd;
     cmd->add_option("model", o->job->models,
                     "A model (.gltf, .glb, .obj), a scene file (.fresnel.json; flags given override it), or a folder "

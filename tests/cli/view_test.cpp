@@ -471,7 +471,7 @@ TEST_F(View, MaterialSaveChangesTheFactorAndNothingElse) {
 // The statistics' GPU time comes from a timer query on OpenGL 3.3, and is null (not made up)
 // on OpenGL ES 3.0, which has none.
 TEST_F(View, GpuTimeOnlyWhereTimerQueriesExist) {
-    std::ofstream(dir_ / "t.txt") << "wait 2\nstats\nquit\n";
+    std::ofstream(dir_ / "t.txt") << "screenshot " << (dir_ / "t.png").string() << "\nstats\nquit\n";  // after a frame
     for (const char* api : {"gl33", "es3"}) {
         fs::path out = dir_ / (std::string(api) + ".txt");
         std::string cmd = display_prefix_ + "sh -c " +
@@ -518,8 +518,13 @@ TEST_F(View, ShaderReloadKeepsTheShadersOnErrorsAndShowsTheNewOnes) {
     EXPECT_GE(fresnel::compare_images(a, b, false).psnr_db, 50.0);
     ASSERT_EQ(a.pixels.size(), c.pixels.size());
     int worst = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) worst = std::max(worst, std::abs(255 - int(a.pixels[i]) - int(c.pixels[i])));
-    EXPECT_LE(worst, 2);  // the inverted post pass (8-bit rounding)
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        if (a.channels == 4 && i % 4 == 3) continue;  // alpha is 255 in both
+        int d = std::abs(255 - int(a.pixels[i]) - int(c.pixels[i]));
+        if (d > worst) worst = d, at = i;
+    }
+    EXPECT_LE(worst, 2) << "byte " << at << ": " << int(a.pixels[at]) << " and " << int(c.pixels[at]);  // 8-bit rounding
 }
 
 // The split view: left of the divider `render`'s shaded frame, right of it its roughness channel.

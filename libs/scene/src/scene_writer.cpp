@@ -697,6 +697,8 @@ int save_gltf_material_edits(const fs::path& source, const fs::path& dest, const
 
     fs::path dest_dir = dest.parent_path().empty() ? fs::path(".") : dest.parent_path();
     fs::path src_dir = source.parent_path().empty() ? fs::path(".") : source.parent_path();
+    if (std::error_code ec; !fs::is_directory(dest_dir, ec))
+        throw Error(dst_name, "", "cannot write: the folder " + dest_dir.string() + " does not exist");
     if (glb) {
         while (text.size() % 4) text += ' ';  // the JSON chunk is padded with spaces
         std::vector<std::uint8_t> out;
