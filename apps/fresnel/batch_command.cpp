@@ -151,9 +151,12 @@ std::vector<std::vector<std::pair<std::string, double>>> expand_sweep(const json
     return frames;
 }
 
+// What folder mode renders: every format the loaders read, and scene files (*.fresnel.json;
+// other .json files in a folder of models are not jobs).
+bool is_folder_scene_file(const fs::path& p) { return p.filename().string().ends_with(".fresnel.json"); }
 bool is_model_file(const fs::path& p) {
     std::string e = lower_extension(p.string());
-    return e == ".gltf" || e == ".glb";
+    return e == ".gltf" || e == ".glb" || e == ".obj" || is_folder_scene_file(p);
 }
 
 // The whole job list (every shard reads the same list, so indices and names agree).
@@ -173,10 +176,11 @@ std::vector<BatchJob> read_job_list(const BatchOptions& o) {
         std::sort(models.begin(), models.end());
         for (const auto& m : models) {
             BatchJob j;
-            j.model = m.string();
-            j.label = fs::relative(m, src, ec).string();
+            if (is_folder_scene_file(m)) j.scene_path = m.string();  // read as a scene-file job line
+            else j.model = m.string();
             fs::path rel = fs::relative(m, src, ec);
-            j.output = rel.replace_extension(ext).string();
+            j.label = rel.string();
+            j.output = (rel.parent_path() / (stem_of(rel.string()) + ext)).string();  // shot.fresnel.json -> shot.png
             jobs.push_back(std::move(j));
         }
     } else {
@@ -694,7 +698,8 @@ Runner add_batch_command(CLI::App& app) {
         "batch", "Render many jobs in one process: a JSON Lines job list or a folder of models (docs/batch.md)");
     cmd->add_option("jobs", o->jobs,
                     "A .jsonl file (one job a line: a scene file, a model, or a model with scene-file keys inline, "
-                    "plus \"output\" and \"sweep\") or a folder of models (.gltf/.glb: a thumbnail each)")
+                    "plus \"output\" and \"sweep\") or a folder of models (.gltf, .glb, .obj and .fresnel.json "
+                    "scene files: a thumbnail each)")
         ->required();
     cmd->add_option("--out", o->out, "Output folder; job outputs are named after their scene file or model")
         ->capture_default_str();

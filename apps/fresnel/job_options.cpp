@@ -229,8 +229,8 @@ std::optional<Job> job_from_options(const RenderOptions& o, Job job, const Given
     return job;
 }
 
-std::optional<Job> job_from_command(const RenderOptions& o, const CLI::App* cmd, Diagnostics& diag,
-                                    std::string& output) {
+std::optional<Job> job_from_sources(const RenderOptions& o, const CLI::App* cmd, Diagnostics& diag, const Job& defaults,
+                                    std::string* scene_output) {
     // A scene file read onto the default job, then the flags the user gave; or the flags
     // alone (every one, defaults included) for models and the demo.
     bool scene_file = o.models.size() == 1 && is_scene_file(o.models[0]);
@@ -241,17 +241,16 @@ std::optional<Job> job_from_command(const RenderOptions& o, const CLI::App* cmd,
                 return std::nullopt;
             }
     std::optional<Job> parsed;
-    output = o.output;
     if (scene_file) {
         SceneFileOptions so;
         so.allow_external_files = o.allow_external;
         // Usage checks of the flags first (exit 2), before the file is read.
-        if (!job_from_options(o, Job{}, GivenFlags{cmd})) return std::nullopt;
-        SceneFile sf = load_scene_file(o.models[0], Job{}, diag, so);
+        if (!job_from_options(o, defaults, GivenFlags{cmd})) return std::nullopt;
+        SceneFile sf = load_scene_file(o.models[0], defaults, diag, so);
         parsed = job_from_options(o, sf.job, GivenFlags{cmd});
-        if (output.empty() && sf.output) output = sf.output->string();
+        if (scene_output && sf.output) *scene_output = sf.output->string();
     } else {
-        parsed = job_from_options(o, Job{});  // usage checks first (exit 2), before touching files
+        parsed = job_from_options(o, defaults);  // usage checks first (exit 2), before touching files
         if (parsed && o.models.size() == 1) parsed->source.model = o.models[0];
         if (parsed && o.models.size() > 1)
             for (const auto& m : o.models) {
@@ -260,6 +259,14 @@ std::optional<Job> job_from_command(const RenderOptions& o, const CLI::App* cmd,
                 parsed->source.models.push_back(model);
             }
     }
+    return parsed;
+}
+
+std::optional<Job> job_from_command(const RenderOptions& o, const CLI::App* cmd, Diagnostics& diag,
+                                    std::string& output) {
+    std::string scene_output;
+    std::optional<Job> parsed = job_from_sources(o, cmd, diag, Job{}, &scene_output);
+    output = o.output.empty() ? scene_output : o.output;
     if (!parsed) return std::nullopt;
     if (output.empty()) {
         print_error("-o,--output is required (or an \"output\" in the scene file)");

@@ -97,6 +97,10 @@ ContextFlags context_flags(const RenderOptions& o);
 // default job, then the flags the user gave; or the flags alone for models and the demo.
 // `output` is -o, else the scene file's "output". Usage errors are printed and give nullopt
 // (exit 2); a bad scene file throws fresnel::Error (exit 1).
+// The same without the output rule, read onto `defaults` (the viewer's window size):
+// `scene_output` gets the scene file's "output" when there is one.
+std::optional<Job> job_from_sources(const RenderOptions& o, const CLI::App* cmd, Diagnostics& diag, const Job& defaults,
+                                    std::string* scene_output = nullptr);
 std::optional<Job> job_from_command(const RenderOptions& o, const CLI::App* cmd, Diagnostics& diag,
                                     std::string& output);
 

@@ -10,21 +10,25 @@ namespace fresnel::cli {
 Runner add_view_command(CLI::App& app) {
     auto o = std::make_shared<ViewOptions>();
     o->job->size = "1280x720";
-    CLI::App* cmd = app.add_subcommand("view", "Open a glTF model in a window: orbit, swap models and environments, inspect channels");
+    CLI::App* cmd = app.add_subcommand("view", "Open a model or a scene file in a window: orbit, swap models and environments, inspect channels, save");
+    o->cmd = cmd;
     cmd->add_option("model", o->job->models,
-                    "glTF 2.0 file (.gltf/.glb), or a folder of them (PageUp/PageDown step through it); omitted: the "
-                    "built-in demo");
+                    "A model (.gltf, .glb, .obj), a scene file (.fresnel.json; flags given override it), or a folder "
+                    "of them (PageUp/PageDown step through it); omitted: the built-in demo");
     add_job_flags(cmd, *o->job);
     cmd->add_option("--screenshot", o->screenshot,
                     "Write the frame as presented (the 3D view, without the GUI) to this PNG after --frames frames, then "
                     "exit 0");
     cmd->add_flag("--with-gui", o->with_gui, "--screenshot: include the GUI drawn over the frame");
+    cmd->add_option("--shaders", o->shaders,
+                    "Development: read the shader files from this folder (a copy of the source's shaders/) instead "
+                    "of the built-in ones; F5 reloads them, a compile error is shown and the running shaders stay");
     cmd->add_option("--frames", o->frames,
                     "Exit after this many frames with the scene and its lighting ready (default with --screenshot: 2)")
         ->check(CLI::Range(1, 100000));
     cmd->add_option("--script", o->script,
-                    "Run the commands of this file, one a line (orbit, dolly, open, env, debug, screenshot, quit, ...: "
-                    "see README), then stay open unless it says quit")
+                    "Run the commands of this file, one a line (orbit, dolly, open, env, debug, screenshot, save, "
+                    "save-scene, quit, ...: see README), then stay open unless it says quit")
         ->excludes("--screenshot")->excludes("--frames");
     return [o]() -> int {
 #ifdef FRESNEL_HAVE_VIEWER

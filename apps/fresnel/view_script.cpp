@@ -23,7 +23,7 @@ bool parse_float(const std::string& s, float& out) {
 }
 
 struct Signature {
-    int args;           // -1: one or more words (a path with spaces)
+    int args;           // -1: one or more words (a path with spaces); -4: the same, or nothing
     int numbers;        // how many leading args must be numbers
 };
 
@@ -34,6 +34,7 @@ const std::map<std::string, Signature>& commands() {
         {"env-rotation", {1, 1}}, {"env-intensity", {1, 1}}, {"exposure", {1, 1}},     {"tonemap", {1, 0}},
         {"debug", {1, 0}},        {"background", {1, 0}},    {"wait", {1, 1}},         {"screenshot", {-1, 0}},
         {"print", {0, 0}},        {"stats", {0, 0}},        {"set", {-2, 0}},         {"split", {-3, 0}},        {"quit", {0, 0}},
+        {"save", {-1, 0}},        {"save-scene", {-1, 0}},   {"auto-rotate", {2, 0}},  {"reload-shaders", {-4, 0}},
     };
     return c;
 }
@@ -125,8 +126,8 @@ std::vector<ScriptCommand> read_view_script(const std::string& path) {
             std::string rest;
             std::getline(words >> std::ws, rest);
             while (!rest.empty() && (rest.back() == ' ' || rest.back() == '\r' || rest.back() == '\t')) rest.pop_back();
-            if (rest.empty()) fail(c.name + ": needs a path");
-            c.args.push_back(rest);
+            if (rest.empty() && sig.args != -4) fail(c.name + ": needs a path");
+            if (!rest.empty()) c.args.push_back(rest);
         } else {
             for (std::string w; words >> w;) c.args.push_back(w);
             if (int(c.args.size()) != sig.args)
@@ -157,6 +158,8 @@ std::vector<ScriptCommand> read_view_script(const std::string& path) {
             if (count != 3) fail("background: expected env, blur, transparent or R,G,B");
         }
         if (c.name == "dolly" && !(c.number(0) > 0)) fail("dolly: the factor must be positive");
+        if (c.name == "auto-rotate" && ((c.args[0] != "camera" && c.args[0] != "env") || (c.args[1] != "on" && c.args[1] != "off")))
+            fail("auto-rotate: expected camera|env on|off");
         out.push_back(std::move(c));
     }
     return out;

@@ -6,7 +6,7 @@
 //   dolly FACTOR           distance K *= FACTOR
 //   reset | frame          R and F: the initial camera; the bounds' centre and fit distance
 //   camera N | orbit       the file's N-th camera; the orbit camera
-//   open PATH              a model (a broken file: reported, the current scene stays)
+//   open PATH              a model or a scene file (a broken file: reported, the current scene stays)
 //   env PATH|studio|none|color:R,G,B   the environment (a broken file: reported, the current one stays)
 //   env-rotation DEG | env-intensity X | exposure EV | tonemap NAME | debug CHANNEL
 //   background env|blur|transparent|R,G,B
@@ -16,7 +16,13 @@
 //   set material INDEX FIELD VALUE...   a material factor, FIELD as in glTF: baseColorFactor R G B A,
 //                          metallicFactor, roughnessFactor, emissiveFactor R G B, alphaCutoff,
 //                          normalScale, occlusionStrength, emissiveStrength, ior, specularFactor,
-//                          clearcoatFactor, clearcoatRoughnessFactor (live; not saved)
+//                          clearcoatFactor, clearcoatRoughnessFactor (live; saved by save and save-scene)
+//   save PATH              the material edits written into a copy of the model's glTF file (or the
+//                          file itself), keeping everything else byte for byte (scene_writer.h)
+//   save-scene PATH        the view as a scene file (*.fresnel.json) that `fresnel render PATH` renders
+//   auto-rotate camera|env on|off   turn the camera or the environment, 30 degrees a second
+//   reload-shaders [DIR]   F5: read the shader files again (from DIR, else --shaders) and recompile;
+//                          a compile error is reported and the shaders in use stay
 //   split CHANNEL POS | split off   the split view: right of POS (0..1 of the width) the debug CHANNEL (or none)
 //   stats                  print frame time, draw calls, triangles and resident memory as one JSON line
 //   quit                   exit: 0, or 1 when an open/env/screenshot of the script failed

@@ -16,8 +16,10 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -25,9 +27,12 @@
 
 #include "cli_common.h"
 #include "fresnel/gpu/device.h"
+#include "fresnel/gpu/resources.h"
 #include "fresnel/gui/window.h"
 #include "fresnel/ibl/bake.h"
 #include "fresnel/render/orbit_controller.h"
+#include "fresnel/render/scene_file.h"
+#include "fresnel/scene/scene_writer.h"
 #include "view_script.h"
 
 namespace fresnel::cli {
@@ -40,9 +45,22 @@ std::string lower_extension(const fs::path& p) {
     for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
     return e;
 }
+// What `open` takes as a scene: a model the loaders read, or a scene file (*.fresnel.json;
+// other .json files are not listed, but open as scene files when named).
 bool is_model(const fs::path& p) {
     auto e = lower_extension(p);
+    return e == ".gltf" || e == ".glb" || e == ".obj" || p.filename().string().ends_with(".fresnel.json");
+}
+bool is_gltf(const fs::path& p) {
+    auto e = lower_extension(p);
     return e == ".gltf" || e == ".glb";
+}
+// The image beside a scene file that `fresnel render SCENE` writes: shot.fresnel.json -> shot.png.
+fs::path image_beside(const fs::path& scene) {
+    std::string name = scene.filename().string();
+    for (const char* suffix : {".json", ".fresnel"})
+        if (name.size() > std::strlen(suffix) && name.ends_with(suffix)) name.resize(name.size() - std::strlen(suffix));
+    return scene.parent_path() / (name + ".png");
 }
 bool is_environment(const fs::path& p) {
     auto e = lower_extension(p);
@@ -119,16 +137,24 @@ struct Bake {
 
 class Viewer {
 public:
-    Viewer(const ViewOptions& options, Job job, std::vector<ScriptCommand> script)
-        : options_(options), job_(std::move(job)), script_(std::move(script)) {
+    // `defaults`: the job of the flags alone (scene files opened later are read onto it, then
+    // the flags given override them, as on the command line).
+    Viewer(const ViewOptions& options, Job job, Job defaults, std::vector<ScriptCommand> script)
+        : options_(options), job_(std::move(job)), defaults_(std::move(defaults)), script_(std::move(script)) {
         initial_camera_ = job_.camera;
         good_environment_ = job_.environment;
         const std::string model = options.job->models.empty() ? std::string() : options.job->models.front();
         window_size_ = {job_.output.width, job_.output.height};
+        opened_ = model;
         if (!model.empty() && is_folder(model)) {
             folder_models_ = list_models(model);
             job_.source.model = folder_models_.empty() ? std::string() : folder_models_.front();
-            if (folder_models_.empty()) error_ = model + ": no .gltf or .glb files in this folder";
+            opened_ = job_.source.model;
+            if (folder_models_.empty()) error_ = model + ": no models (.gltf, .glb, .obj, .fresnel.json) in this folder";
+            if (!opened_.empty() && is_scene_file(opened_)) {  // a folder that starts with a scene file
+                job_.source.model.clear();
+                first_scene_file_ = opened_;
+            }
         } else if (!model.empty()) {
             folder_models_ = sibling_models(model);
         }
@@ -140,6 +166,7 @@ public:
         gui::Window window(window_size_.width, window_size_.height, "fresnel view", context_options(*options_.job));
         window_ = &window;
         renderer_ = std::make_unique<Renderer>(window.context());
+        if (!options_.shaders.empty()) renderer_->set_shader_folder(options_.shaders);
         int rc = kExitBadInput;
         try {
             rc = loop(window);
@@ -154,6 +181,7 @@ public:
 private:
     // GL objects go before the window (and its context) does.
     void release_gpu() {
+        timer_.reset();
         renderer_.reset();
         window_ = nullptr;
     }
@@ -162,14 +190,15 @@ private:
         const bool batch = options_.frames || !options_.screenshot.empty();
         const bool scripted = !options_.script.empty();
         const int frames_wanted = options_.frames.value_or(2);
-        if (!open_model(job_.source.model, /*keep_camera=*/true) && batch) return kExitBadInput;  // printed
+        bool opened = first_scene_file_.empty() ? load_job(job_, opened_) : open_scene_file(first_scene_file_);
+        if (!opened && batch) return kExitBadInput;  // printed
         int ready_frames = 0, redraw = 3;
         while (!window.should_close()) {
             if (bake_ && redraw <= 0 && !batch && script_pos_ >= script_.size()) {
                 window.wait_events(0.5);  // the progress bar twice a second (or sooner on input)
                 redraw = 1;
             }
-            else if (bake_ || redraw > 0 || batch || script_pos_ < script_.size()) window.poll_events();
+            else if (bake_ || redraw > 0 || batch || script_pos_ < script_.size() || spinning()) window.poll_events();
             else {
                 window.wait_events();  // idle: no CPU until something happens
                 redraw = 3;             // ImGui settles over a few frames
@@ -178,6 +207,8 @@ private:
             bool ready = false;
             try {
                 if (handle_input()) redraw = 3;
+                if (spinning()) spin();
+                else spin_last_.reset();
                 draw_gui();
                 ready = update_lighting();
                 draw_scene();
@@ -281,10 +312,27 @@ private:
                 }
                 return false;
             }
+            if (c.name == "save") {  // the material edits into a glTF file
+                if (!save_model(c.args[0])) failed("save " + c.args[0] + ": " + error_);
+                continue;
+            }
+            if (c.name == "save-scene") {
+                if (!save_scene(c.args[0])) failed("save-scene " + c.args[0] + ": " + error_);
+                continue;
+            }
+            if (c.name == "reload-shaders") {
+                if (!reload_shaders(c.args.empty() ? std::string() : c.args[0])) failed("reload-shaders: " + error_);
+                return false;  // the next frame draws with them
+            }
+            if (c.name == "auto-rotate") {
+                (c.args[0] == "env" ? spin_environment_ : spin_camera_) = c.args[1] == "on";
+                return false;
+            }
             if (c.name == "stats") {
-                std::printf("{\"frame_ms\":%.2f,\"width\":%d,\"height\":%d,\"draw_calls\":%d,\"triangles\":%zu,"
-                            "\"programs\":%zu,\"rss_kb\":%ld}\n",
-                            frame_ms_, fb_.width, fb_.height, stats_.draw_calls, stats_.triangles,
+                std::string gpu = gpu_ms_ >= 0.0 ? std::to_string(gpu_ms_) : std::string("null");
+                std::printf("{\"frame_ms\":%.2f,\"gpu_ms\":%s,\"width\":%d,\"height\":%d,\"draw_calls\":%d,"
+                            "\"triangles\":%zu,\"programs\":%zu,\"rss_kb\":%ld}\n",
+                            frame_ms_, gpu.c_str(), fb_.width, fb_.height, stats_.draw_calls, stats_.triangles,
                             renderer_->program_count(), resident_kb());
                 std::fflush(stdout);
                 continue;
@@ -355,13 +403,48 @@ private:
 
     // Loads `path` (empty: the demo) as the scene; on failure the current one stays and
     // the error is shown. keep_camera: the job's camera stays (else: the initial orbit).
+    // A scene file (is_scene_file) opens as open_scene_file does.
     bool open_model(const std::string& path, bool keep_camera) {
+        if (!path.empty() && is_scene_file(path)) return open_scene_file(path);
         Job job = job_;
         job.source.model = path;
+        job.source.models.clear();
         if (!keep_camera) {
             job.camera = initial_camera_;
             job.camera.scene_camera.reset();
         }
+        return load_job(std::move(job), path);
+    }
+
+    // A scene file: its job read onto the flags' job, then the flags given on the command line
+    // (as `fresnel render SCENE` does); its camera becomes the one R returns to.
+    bool open_scene_file(const std::string& path) {
+        Job job;
+        Diagnostics diag;
+        try {
+            SceneFileOptions so;
+            so.allow_external_files = options_.job->allow_external;
+            SceneFile sf = load_scene_file(path, defaults_, diag, so);
+            std::optional<Job> flagged = job_from_options(*options_.job, sf.job, GivenFlags{options_.cmd});
+            if (!flagged) throw Error(path, "", "the command line's flags do not apply to it");
+            job = *flagged;
+        } catch (const std::exception& e) {
+            error_ = e.what();
+            std::fprintf(stderr, "fresnel: error: %s\n", e.what());
+            return false;
+        }
+        if (diag.total()) print_warnings(diag);
+        std::vector<std::string> file_warnings = diag.lines();
+        if (!load_job(std::move(job), path)) return false;
+        warnings_.insert(warnings_.begin(), file_warnings.begin(), file_warnings.end());
+        initial_camera_ = job_.camera;
+        return true;
+    }
+
+    // Loads the job's scene (`label`: the file opened, empty for the demo); on failure the
+    // current scene stays and the error is shown.
+    bool load_job(Job job, const std::string& label) {
+        const std::string& path = label;
         bool uploading = false;
         try {
             Diagnostics diag;
@@ -373,6 +456,12 @@ private:
             original_materials_ = scene_->materials;
             materials_edited_ = false;
             job_ = job;
+            opened_ = path;
+            if (job_.source.models.empty() && is_gltf(job_.source.model)) {
+                fs::path p(job_.source.model);
+                model_save_path_ = (p.parent_path() / (p.stem().string() + "-edited" + p.extension().string())).string();
+            }
+            if (!path.empty() && is_scene_file(path)) scene_save_path_ = path;
             warnings_ = diag.lines();
             if (!warnings_.empty()) print_warnings(diag);
             error_.clear();
@@ -407,7 +496,7 @@ private:
         if (is_folder(path) && !is_environment(path)) {
             auto models = list_models(path);
             if (models.empty()) {
-                error_ = path + ": no .gltf or .glb files in this folder";
+                error_ = path + ": no models (.gltf, .glb, .obj, .fresnel.json) in this folder";
                 return;
             }
             folder_models_ = models;
@@ -422,8 +511,7 @@ private:
 
     void step_folder(int delta) {
         if (folder_models_.empty()) return;
-        std::string current =
-            job_.source.model.empty() ? std::string() : fs::absolute(job_.source.model).lexically_normal().string();
+        std::string current = opened_.empty() ? std::string() : fs::absolute(opened_).lexically_normal().string();
         auto it = std::find(folder_models_.begin(), folder_models_.end(), current);
         long i = it == folder_models_.end() ? 0 : long(it - folder_models_.begin()) + delta;
         long n = long(folder_models_.size());
@@ -448,6 +536,144 @@ private:
         fs::create_directories(recent_file().parent_path(), ec);
         std::ofstream out(recent_file());
         for (const auto& r : recent_) out << r << "\n";
+    }
+
+    // --- saving ----------------------------------------------------------------------
+
+    // The view as a scene file (fresnel/render/scene_file.h): the job at the window's size,
+    // the material edits as overrides of their models, "output" the .png beside it, so
+    // `fresnel render PATH` renders this frame. Atomic; false (error_ set) when it fails.
+    bool save_scene(const std::string& path) {
+        try {
+            if (path.empty()) throw Error("", "", "save scene: no file name");
+            Job job = shown_job();
+            std::vector<std::string> lost = material_overrides(job);
+            Diagnostics diag;
+            save_scene_file(path, job, diag, image_beside(path));
+            for (const auto& l : lost) diag.warn(path, "", l);
+            if (diag.total()) print_warnings(diag);
+            status_ = "saved " + path;
+            std::fprintf(stderr, "fresnel: wrote %s\n", path.c_str());
+            return true;
+        } catch (const std::exception& e) {
+            error_ = e.what();
+            std::fprintf(stderr, "fresnel: error: %s\n", e.what());
+            return false;
+        }
+    }
+
+    // The material edits into `job` as material overrides (by index) of the models they belong
+    // to; what a scene file cannot hold, as one line each.
+    std::vector<std::string> material_overrides(Job& job) const {
+        std::vector<std::string> lost;
+        if (!scene_ || !materials_edited_ || scene_->materials.size() != original_materials_.size()) return lost;
+        if (job.source.models.empty()) {
+            Job::Source::Model m;
+            m.path = job.source.model;
+            m.scene = job.source.scene;
+            job.source.models.push_back(m);
+            job.source.model.clear();
+            job.source.scene = -1;
+        }
+        std::vector<std::size_t> visible;  // the scene's parts are the visible models, in order
+        for (std::size_t i = 0; i < job.source.models.size(); ++i)
+            if (job.source.models[i].visible) visible.push_back(i);
+        for (std::size_t i = 0; i < scene_->materials.size(); ++i) {
+            const Material &now = scene_->materials[i], &was = original_materials_[i];
+            std::size_t model = 0;
+            int local = int(i);
+            for (std::size_t k = 0; k < scene_->parts.size() && k < visible.size(); ++k) {
+                const auto& part = scene_->parts[k];
+                if (int(i) >= part.first_material && int(i) < part.first_material + part.material_count) {
+                    model = visible[k];
+                    local = int(i) - part.first_material;
+                }
+            }
+            Job::Source::MaterialOverride mo;
+            mo.index = local;
+            bool any = false;
+            auto put = [&](auto& field, auto value) { field = value, any = true; };
+            if (now.base_color_factor != was.base_color_factor)
+                put(mo.base_color_factor, glm::clamp(now.base_color_factor, 0.0f, 1.0f));
+            if (now.metallic_factor != was.metallic_factor) put(mo.metallic_factor, std::clamp(now.metallic_factor, 0.0f, 1.0f));
+            if (now.roughness_factor != was.roughness_factor) put(mo.roughness_factor, std::clamp(now.roughness_factor, 0.0f, 1.0f));
+            if (now.emissive_factor != was.emissive_factor) put(mo.emissive_factor, glm::clamp(now.emissive_factor, 0.0f, 1.0f));
+            if (now.emissive_strength &&
+                (!was.emissive_strength || now.emissive_strength->emissive_strength != was.emissive_strength->emissive_strength))
+                put(mo.emissive_strength, now.emissive_strength->emissive_strength);
+            if (now.alpha_cutoff != was.alpha_cutoff) put(mo.alpha_cutoff, now.alpha_cutoff);
+            if (now.ior && (!was.ior || now.ior->ior != was.ior->ior)) put(mo.ior, now.ior->ior);
+            if (any) job.source.models[model].materials.push_back(mo);
+            const bool other = now.normal_scale != was.normal_scale || now.occlusion_strength != was.occlusion_strength ||
+                               (now.specular && (!was.specular || now.specular->specular_factor != was.specular->specular_factor)) ||
+                               (now.clearcoat && (!was.clearcoat || now.clearcoat->clearcoat_factor != was.clearcoat->clearcoat_factor ||
+                                                  now.clearcoat->clearcoat_roughness_factor != was.clearcoat->clearcoat_roughness_factor));
+            if (other)
+                lost.push_back("material " + std::to_string(i) + ": normal scale, occlusion strength, specular and clearcoat "
+                               "edits are not scene-file overrides (not written; save the model as glTF to keep them)");
+        }
+        return lost;
+    }
+
+    // The material edits written back into the model's glTF file (or a copy of it) without
+    // losing what fresnel does not read (fresnel/scene/scene_writer.h). Atomic.
+    bool save_model(const std::string& path) {
+        try {
+            std::string why;
+            if (!scene_) why = "no scene is loaded";
+            else if (!job_.source.models.empty()) why = "the scene holds several models (a scene file): save the scene";
+            else if (job_.source.model.empty()) why = "the built-in demo has no file";
+            else if (!is_gltf(job_.source.model)) why = "only glTF models (.gltf, .glb) are saved";
+            else if (!job_.source.variant.empty()) why = "a material variant (--variant) replaces the file's materials";
+            if (!why.empty()) throw Error(path, "", "cannot save the materials: " + why);
+            Diagnostics diag;
+            int n = save_gltf_material_edits(job_.source.model, path, original_materials_, scene_->materials, diag);
+            if (diag.total()) print_warnings(diag);
+            std::error_code ec;
+            if (fs::equivalent(path, job_.source.model, ec)) {  // the file now holds the edits
+                original_materials_ = scene_->materials;
+                materials_edited_ = false;
+            }
+            status_ = "saved " + path + " (" + std::to_string(n) + " value" + (n == 1 ? "" : "s") + " changed)";
+            std::fprintf(stderr, "fresnel: wrote %s (%d material value%s changed)\n", path.c_str(), n, n == 1 ? "" : "s");
+            return true;
+        } catch (const std::exception& e) {
+            error_ = e.what();
+            std::fprintf(stderr, "fresnel: error: %s\n", e.what());
+            return false;
+        }
+    }
+
+    // F5: the shader files read again (from `folder`, else --shaders, else the built-in ones)
+    // and every program recompiled; on an error the running shaders stay and it is shown.
+    bool reload_shaders(const std::string& folder) {
+        if (!folder.empty()) renderer_->set_shader_folder(folder);
+        std::string e = renderer_->reload_shaders();
+        if (!e.empty()) {
+            error_ = "shader reload failed (the previous shaders stay): " + e;
+            std::fprintf(stderr, "fresnel: error: %s\n", error_.c_str());
+            return false;
+        }
+        status_ = "shaders reloaded";
+        std::fprintf(stderr, "fresnel: shaders reloaded (%zu programs)\n", renderer_->program_count());
+        return true;
+    }
+
+    // --- auto-rotate -----------------------------------------------------------------
+
+    bool spinning() const { return spin_camera_ || spin_environment_; }
+    // Turns the camera (about the target) and/or the environment by 30 degrees a second.
+    void spin() {
+        auto now = Clock::now();
+        double dt = spin_last_ ? std::chrono::duration<double>(now - *spin_last_).count() : 0.0;
+        spin_last_ = now;
+        float step = float(std::min(dt, 0.25) * 30.0);
+        if (spin_camera_) {
+            if (job_.camera.scene_camera && last_camera_)
+                job_.camera = orbit_from_setup(*last_camera_, bounds_, last_camera_->yfov_deg);
+            job_.camera.yaw_deg = std::remainder(job_.camera.yaw_deg + step, 360.0f);
+        }
+        if (spin_environment_) job_.environment.rotation_deg = std::remainder(job_.environment.rotation_deg + step, 360.0f);
     }
 
     // --- input -----------------------------------------------------------------------
@@ -506,6 +732,9 @@ private:
             if (window_->key_pressed(gui::Key::C, /*ctrl=*/true)) copy_command_line(), changed = true;
             if (window_->key_pressed(gui::Key::Escape)) window_->request_close();
             if (window_->key_pressed(gui::Key::Tab)) gui_visible_ = !gui_visible_, changed = true;
+            if (window_->key_pressed(gui::Key::S, /*ctrl=*/true)) save_scene(scene_save_path_), changed = true;
+            if (window_->key_pressed(gui::Key::A)) spin_camera_ = !spin_camera_, changed = true;
+            if (window_->key_pressed(gui::Key::F5)) reload_shaders(""), changed = true;
         }
         return changed;
     }
@@ -522,7 +751,8 @@ private:
         command_line_ = render_command_line(shown_job(), "view.png");
         window_->set_clipboard(command_line_);
         std::printf("%s\n", command_line_.c_str());
-        if (materials_edited_) std::fprintf(stderr, "fresnel: note: the material edits are not part of the command line\n");
+        if (materials_edited_)
+            std::fprintf(stderr, "fresnel: note: the material edits are not part of the command line (save the scene: Ctrl+S)\n");
         std::fflush(stdout);
     }
 
@@ -598,7 +828,10 @@ private:
                 for (const auto& w : warnings_) ImGui::TextWrapped("%s", w.c_str());
                 ImGui::TreePop();
             }
-            ImGui::TextDisabled("drop a model or an environment onto the window");
+            ImGui::TextDisabled("drop a model, a scene file or an environment onto the window");
+            ImGui::InputText("##scene-file", &scene_save_path_);
+            ImGui::SameLine();
+            if (ImGui::Button("Save scene (Ctrl+S)")) save_scene(scene_save_path_);
         }
         if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {
             Job::Camera& c = job_.camera;
@@ -624,6 +857,7 @@ private:
             if (ImGui::Button("Frame all (F)")) c = frame_all(c);
             ImGui::SameLine();
             if (ImGui::Button("Reset (R)")) c = initial_camera_;
+            if (ImGui::Checkbox("auto-rotate (A)", &spin_camera_) && spin_camera_) spin_last_.reset();
             if (ImGui::Button("Copy as command line (Ctrl+C)")) copy_command_line();
             if (!command_line_.empty()) ImGui::TextWrapped("%s", command_line_.c_str());
             ImGui::TextDisabled("left drag: orbit; right/middle or shift+left: pan; wheel: dolly");
@@ -637,6 +871,8 @@ private:
             if (e.kind == Kind::File) ImGui::TextWrapped("%s", e.path.empty() ? "(drop a .hdr/.exr)" : e.path.c_str());
             if (e.kind == Kind::Color) ImGui::ColorEdit3("colour", &e.color.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
             ImGui::SliderFloat("rotation", &e.rotation_deg, -180.0f, 180.0f, "%.1f deg");
+            ImGui::SameLine();
+            ImGui::Checkbox("spin", &spin_environment_);
             ImGui::DragFloat("intensity", &e.intensity, 0.01f, 0.0f, 100.0f, "%.2f");
             using Mode = Job::Background::Mode;
             combo<Mode>("background", job_.background.mode,
@@ -678,6 +914,8 @@ private:
         if (scene_ && !scene_->materials.empty() && ImGui::CollapsingHeader("Materials")) draw_material_editor();
         if (ImGui::CollapsingHeader("Statistics")) {
             ImGui::Text("%dx%d pixels, frame %.1f ms (CPU, draw + finish)", fb_.width, fb_.height, frame_ms_);
+            if (gpu_ms_ >= 0.0) ImGui::Text("GPU %.2f ms (timer query)", gpu_ms_);
+            else ImGui::TextDisabled("GPU time: this context has no timer queries (OpenGL ES 3.0)");
             ImGui::Text("resident memory %.1f MiB", double(resident_kb()) / 1024.0);
             ImGui::Text("%d draw calls, %zu triangles, %zu programs", stats_.draw_calls, stats_.triangles,
                         renderer_->program_count());
@@ -727,7 +965,13 @@ private:
             mats = original_materials_;
             materials_edited_ = false;
         }
-        if (materials_edited_) ImGui::TextDisabled("edits are live only: not saved, not in the command line");
+        if (materials_edited_)
+            ImGui::TextDisabled("edits: in a saved scene (as overrides) and saved to glTF below; not in the command line");
+        if (scene_ && job_.source.models.empty() && is_gltf(job_.source.model)) {
+            ImGui::InputText("##model-file", &model_save_path_);
+            ImGui::SameLine();
+            if (ImGui::Button("Save to glTF")) save_model(model_save_path_);
+        }
     }
 
     std::string camera_label(int i) const {
@@ -850,6 +1094,9 @@ private:
             std::fprintf(stderr, "fresnel: note: the GUI's GL backend raised %s (not the frame's)\n", gui_errors.c_str());
         }
         auto t = Clock::now();
+        // GPU time by a timer query, where the context has them (OpenGL 3.3, not ES 3.0).
+        if (!timer_ && window_->context().capabilities().timer_queries) timer_ = std::make_unique<gpu::TimerQuery>();
+        if (timer_) timer_->begin();
         renderer_->draw(resolved_.camera, resolved_.lights, rs, RenderTarget::default_framebuffer(0, 0), &stats_);
         if (split_) {  // the same frame with the right side's settings, over the right of the divider
             RenderSettings right = rs;
@@ -866,15 +1113,21 @@ private:
             stats_.triangles += more.triangles;
             stats_.gl_errors += more.gl_errors;
         }
+        if (timer_) timer_->end();
         renderer_->finish();
         frame_ms_ = ms_since(t);
+        if (double ms = 0.0; timer_ && timer_->result_ms(ms)) gpu_ms_ = ms;
         last_camera_ = resolved_.camera;
         last_transparent_ = resolved_.transparent();
         if (!stats_.gl_errors.empty()) error_ = "OpenGL: the frame raised " + stats_.gl_errors;
     }
 
     const ViewOptions& options_;
-    Job job_;
+    Job job_, defaults_;
+    std::string opened_, first_scene_file_;  // the model or scene file shown; a folder's first scene file
+    std::string scene_save_path_ = "view.fresnel.json", model_save_path_;
+    bool spin_camera_ = false, spin_environment_ = false;
+    std::optional<Clock::time_point> spin_last_;
     Job::Camera initial_camera_;
     Job::Environment good_environment_;
     gui::Size window_size_, fb_;
@@ -891,7 +1144,8 @@ private:
     std::unique_ptr<Bake> bake_;
     bool bake_failed_ = false;
     FrameStats stats_;
-    double frame_ms_ = 0.0;
+    double frame_ms_ = 0.0, gpu_ms_ = -1.0;  // gpu_ms_ < 0: no timer queries (or no result yet)
+    std::unique_ptr<gpu::TimerQuery> timer_;
     std::vector<std::string> folder_models_, recent_, warnings_;
     std::string error_, status_, command_line_, gui_gl_errors_;
     bool screenshot_requested_ = false, browser_open_ = false, gui_visible_ = true;
@@ -915,12 +1169,17 @@ int run_viewer(const ViewOptions& options) {
         print_error("view: one model or folder at a time");
         return kExitUsage;
     }
-    std::optional<Job> job = job_from_options(*options.job, Job{});  // usage checks first (exit 2)
+    std::optional<Job> defaults = job_from_options(*options.job, Job{});  // usage checks first (exit 2)
+    if (!defaults) return kExitUsage;
+    // A model, or a scene file read onto the flags' job with the flags given over it (a broken
+    // scene file: exit 1 before the window opens).
+    Diagnostics diag;
+    std::optional<Job> job = job_from_sources(*options.job, options.cmd, diag, *defaults);
     if (!job) return kExitUsage;
-    if (!options.job->models.empty()) job->source.model = options.job->models.front();
+    if (diag.total()) print_warnings(diag);
     std::vector<ScriptCommand> script;
     if (!options.script.empty()) script = read_view_script(options.script);  // FILE: line N: ... (exit 1)
-    Viewer viewer(options, *job, std::move(script));
+    Viewer viewer(options, *job, *defaults, std::move(script));
     return viewer.run();
 }
 

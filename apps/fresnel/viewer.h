@@ -13,8 +13,10 @@ struct ViewOptions {
     std::shared_ptr<RenderOptions> job = std::make_shared<RenderOptions>();
     std::string screenshot;     // write the presented frame (without the GUI) to this PNG, then exit
     bool with_gui = false;      // --screenshot includes the GUI drawn over the frame
-    std::optional<int> frames;
-    std::string script;         // view_script.h  // exit after this many frames with the scene and its lighting ready
+    std::optional<int> frames;  // exit after this many frames with the scene and its lighting ready
+    std::string script;         // view_script.h
+    std::string shaders;        // --shaders DIR: shader files from DIR (F5 reloads them)
+    const CLI::App* cmd = nullptr;  // the view subcommand: which flags were given (they override a scene file)
 };
 
 int run_viewer(const ViewOptions& options);

@@ -398,6 +398,26 @@ TEST_F(BatchCli, FolderOfModelsGivesAThumbnailEach) {
     EXPECT_EQ(fresnel::read_image8(dir_ / "thumbs" / "red.png").width, 24);
 }
 
+// Folder mode takes every format the loaders read (.gltf, .glb, .obj) and scene files
+// (*.fresnel.json, with their own settings), but not other .json files.
+TEST_F(BatchCli, FolderTakesObjAndSceneFiles) {
+    std::ofstream(dir_ / "models" / "tri.obj") << "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
+    std::ofstream(dir_ / "models" / "side.fresnel.json")
+        << R"({"fresnel": 1, "model": "red.gltf", "background": [1, 1, 1], "output": "ignored.png"})";
+    std::ofstream(dir_ / "models" / "notes.json") << R"({"not": "a job"})";
+    Result r = run({"batch", "models", "--out", "thumbs", "--size", "24x24", "--no-ibl", "--json"});
+    ASSERT_EQ(r.exit_code, 0) << show(r);
+    for (const char* name : {"red.png", "sub/blue.png", "tri.png", "side.png"})
+        EXPECT_TRUE(fs::exists(dir_ / "thumbs" / name)) << name << "\n" << show(r);
+    EXPECT_FALSE(fs::exists(dir_ / "thumbs" / "notes.png"));
+    EXPECT_FALSE(fs::exists(dir_ / "thumbs" / "ignored.png"));
+    EXPECT_EQ(lines(r).size(), 4u) << show(r);
+    // The scene file's settings apply: the same model on a white background.
+    EXPECT_LT(psnr(dir_ / "thumbs" / "side.png", dir_ / "thumbs" / "red.png"), 20.0);
+    const auto corner = fresnel::read_image8(dir_ / "thumbs" / "side.png");
+    EXPECT_EQ(int(corner.at(0, 0)[0]), 255);
+}
+
 TEST_F(BatchCli, SweepAndTurntableNumberTheirFrames) {
     write("jobs.jsonl", "{\"model\": \"models/red.gltf\", \"environment\": \"sky.hdr\", \"sweep\": {\"env-rotation\": [0, 360, 4]}}\n");
     Result r = run({"batch", "jobs.jsonl", "--out", "sweep", "--size", "24x24", "--env-size", "16", "--env-samples", "32"});

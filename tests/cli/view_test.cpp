@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "fresnel/core/image.h"
 #include "fresnel/core/metrics.h"
 
@@ -360,6 +362,169 @@ TEST_F(View, MaterialEditIsLiveAndRevertsExactly) {
     };
     EXPECT_GT(redness(red), redness(ref) + 5.0);
     for (int c = 0; c < 3; ++c) EXPECT_EQ(red.at(2, 2)[c], ref.at(2, 2)[c]) << c;
+}
+
+// "Save scene": a scripted session moves the camera, the environment and the tone mapping,
+// edits two materials and saves the view as a scene file; `fresnel render SCENE` renders the
+// frame the window showed (>= 40 dB), and `fresnel view SCENE` opens on it again.
+TEST_F(View, SavedSceneRendersWhatTheWindowShowed) {
+    fs::path scene = dir_ / "shots" / "shot.fresnel.json", scene2 = dir_ / "shots" / "normals.fresnel.json";
+    fs::create_directories(dir_ / "shots");
+    std::ofstream(dir_ / "s.txt") << "orbit 40 -15\npan 10 5\ndolly 0.8\nenv-rotation 70\nexposure 0.5\ntonemap aces\n"
+                                     "set material 3 baseColorFactor 1 0.2 0.1 1\n"
+                                     "set material 5 roughnessFactor 0.05\n"
+                                     "screenshot " << (dir_ / "window.png").string() << "\n"
+                                     "save-scene " << scene.string() << "\n"
+                                     "debug normal\n"
+                                     "screenshot " << (dir_ / "window2.png").string() << "\n"
+                                     "save-scene " << scene2.string() << "\n"
+                                     "quit\n";
+    Result v = run({"view", "--size", "200x150", "--light", "dir:30,45,2", "--script", (dir_ / "s.txt").string()}, true);
+    ASSERT_EQ(v.exit_code, 0) << v.err;
+    const std::string text = slurp(scene);
+    EXPECT_NE(text.find("\"materials\""), std::string::npos) << text;  // the edits, as overrides
+    EXPECT_NE(text.find("\"directional\""), std::string::npos) << text;
+    EXPECT_NE(text.find("\"aces\""), std::string::npos) << text;
+    EXPECT_NE(slurp(scene2).find("\"normal\""), std::string::npos);
+    // `render SCENE` writes the file's "output", shot.png beside it.
+    Result r = run({"render", scene.string()}, false);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    Result r2 = run({"render", scene2.string(), "-o", (dir_ / "render2.png").string()}, false);
+    ASSERT_EQ(r2.exit_code, 0) << r2.err;
+    auto psnr = [&](const fs::path& x, const fs::path& y) {
+        fresnel::Image8 a = fresnel::read_image8(x), b = fresnel::read_image8(y);
+        EXPECT_EQ(a.width, b.width);
+        EXPECT_EQ(a.height, b.height);
+        if (a.width != b.width || a.height != b.height) return 0.0;
+        return fresnel::compare_images(a, b, false).psnr_db;
+    };
+    const double shaded = psnr(dir_ / "shots" / "shot.png", dir_ / "window.png");
+    const double normals = psnr(dir_ / "render2.png", dir_ / "window2.png");
+    std::printf("saved scene rendered vs the window: %.1f dB shaded, %.1f dB normals\n", shaded, normals);
+    EXPECT_GE(shaded, 40.0);
+    EXPECT_GE(normals, 40.0);
+    // The same scene without the material overrides is another picture: the edits were saved.
+    nlohmann::json doc = nlohmann::json::parse(text);
+    ASSERT_TRUE(doc.contains("models")) << text;
+    doc.erase("models");
+    doc["model"] = "demo";
+    std::ofstream(dir_ / "shots" / "plain.fresnel.json") << doc.dump();
+    ASSERT_EQ(run({"render", (dir_ / "shots" / "plain.fresnel.json").string(), "-o", (dir_ / "plain.png").string()},
+                  false).exit_code, 0);
+    EXPECT_LT(psnr(dir_ / "plain.png", dir_ / "window.png"), 38.0);
+    // The viewer opens the scene file on the same frame.
+    Result o = run({"view", scene.string(), "--screenshot", (dir_ / "reopened.png").string()}, true);
+    ASSERT_EQ(o.exit_code, 0) << o.err;
+    EXPECT_GE(psnr(dir_ / "reopened.png", dir_ / "window.png"), 40.0);
+}
+
+// "Save" of material edits: the edited factor is written into a copy of the glTF file and
+// nothing else changes: unknown extensions, extras, other materials, key order, accessors, and
+// the .bin file byte for byte. A save into a folder that does not exist fails, naming the line.
+TEST_F(View, MaterialSaveChangesTheFactorAndNothingElse) {
+    const float pos[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+    const std::uint16_t idx[] = {0, 1, 2, 0, 2, 3};
+    {
+        std::ofstream bin(dir_ / "quad.bin", std::ios::binary);
+        bin.write(reinterpret_cast<const char*>(pos), sizeof pos);
+        bin.write(reinterpret_cast<const char*>(idx), sizeof idx);
+    }
+    const std::string gltf = R"({
+  "asset": {"version": "2.0", "extras": {"author": "someone"}},
+  "extensionsUsed": ["VENDOR_thing"],
+  "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0, "extras": {"tag": [1, 2, 3]}}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+  "materials": [
+    {"name": "edited", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "roughnessFactor": 0.8},
+     "extensions": {"VENDOR_thing": {"x": 1}}},
+    {"name": "other", "extras": {"keep": "me"}, "pbrMetallicRoughness": {"metallicFactor": 0.25}}
+  ],
+  "buffers": [{"uri": "quad.bin", "byteLength": 60}],
+  "bufferViews": [{"buffer": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, -1, 0], "max": [1, 1, 0]},
+    {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}
+  ]
+})";
+    std::ofstream(dir_ / "quad.gltf") << gltf;
+    fs::create_directories(dir_ / "saved");
+    std::ofstream(dir_ / "e.txt") << "set material 0 roughnessFactor 0.2\n"
+                                     "save " << (dir_ / "saved" / "quad.gltf").string() << "\n"
+                                     "save " << (dir_ / "no" / "such" / "folder.gltf").string() << "\n"
+                                     "quit\n";
+    Result v = run({"view", (dir_ / "quad.gltf").string(), "--size", "64x64", "--script", (dir_ / "e.txt").string()}, true);
+    EXPECT_EQ(v.exit_code, 1) << v.err;  // the second save
+    EXPECT_NE(v.err.find("e.txt: line 3: save"), std::string::npos) << v.err;
+    using ojson = nlohmann::ordered_json;
+    ojson before = ojson::parse(gltf), after = ojson::parse(slurp(dir_ / "saved" / "quad.gltf"));
+    EXPECT_EQ(after["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"], 0.2);
+    before["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"] = 0.2;
+    EXPECT_EQ(after, before);  // everything else as it was, keys in their order
+    EXPECT_EQ(slurp(dir_ / "saved" / "quad.bin"), slurp(dir_ / "quad.bin"));
+    EXPECT_FALSE(fs::exists(dir_ / "no"));
+    // The saved file renders.
+    EXPECT_EQ(run({"render", (dir_ / "saved" / "quad.gltf").string(), "--size", "32x32", "-o",
+                   (dir_ / "q.png").string()}, false).exit_code, 0);
+}
+
+// The statistics' GPU time comes from a timer query on OpenGL 3.3, and is null (not made up)
+// on OpenGL ES 3.0, which has none.
+TEST_F(View, GpuTimeOnlyWhereTimerQueriesExist) {
+    std::ofstream(dir_ / "t.txt") << "screenshot " << (dir_ / "t.png").string() << "\nstats\nquit\n";  // after a frame
+    for (const char* api : {"gl33", "es3"}) {
+        fs::path out = dir_ / (std::string(api) + ".txt");
+        std::string cmd = display_prefix_ + "sh -c " +
+                          quote(quote(FRESNEL_EXE) + " view --size 96x64 --gl " + api + " --script " +
+                                quote((dir_ / "t.txt").string()) + " >" + quote(out.string()) + " 2>/dev/null");
+        std::system(cmd.c_str());  // checked through what it wrote
+        nlohmann::json stats = nlohmann::json::parse(slurp(out), nullptr, false);
+        ASSERT_TRUE(stats.is_object() && stats.contains("gpu_ms")) << api << ": " << slurp(out);
+        if (std::string(api) == "gl33") {
+            ASSERT_TRUE(stats["gpu_ms"].is_number()) << stats.dump();
+            EXPECT_GT(stats["gpu_ms"].get<double>(), 0.0);
+            std::printf("GPU time of a 96x64 demo frame (llvmpipe): %.2f ms, CPU %.2f ms\n",
+                        stats["gpu_ms"].get<double>(), stats["frame_ms"].get<double>());
+        } else {
+            EXPECT_TRUE(stats["gpu_ms"].is_null()) << stats.dump();
+        }
+    }
+}
+
+// Shader reload (F5, the script's reload-shaders): a folder whose post pass fails to compile
+// is reported and the frame stays as it was; a folder whose post pass inverts the colours
+// shows the inverted frame.
+TEST_F(View, ShaderReloadKeepsTheShadersOnErrorsAndShowsTheNewOnes) {
+    const fs::path src = fs::path(FRESNEL_SOURCE_DIR) / "shaders";
+    for (const char* d : {"bad", "inverted"}) fs::copy(src, dir_ / d, fs::copy_options::recursive);
+    std::ofstream(dir_ / "bad" / "post.frag", std::ios::app) << "\nthis is not GLSL\n";
+    std::string post = slurp(src / "post.frag");
+    const std::string from = "frag_color = c;";
+    ASSERT_NE(post.find(from), std::string::npos) << "post.frag changed: update this test";
+    post.replace(post.find(from), from.size(), "frag_color = vec4(1.0 - c.rgb, c.a);");
+    std::ofstream(dir_ / "inverted" / "post.frag") << post;
+    std::ofstream(dir_ / "r.txt") << "screenshot " << (dir_ / "a.png").string() << "\n"
+                                  << "reload-shaders " << (dir_ / "bad").string() << "\n"
+                                  << "screenshot " << (dir_ / "b.png").string() << "\n"
+                                  << "reload-shaders " << (dir_ / "inverted").string() << "\n"
+                                  << "screenshot " << (dir_ / "c.png").string() << "\nquit\n";
+    Result r = run({"view", "--size", "96x64", "--msaa", "1", "--script", (dir_ / "r.txt").string()}, true);
+    EXPECT_EQ(r.exit_code, 1) << r.err;  // the bad folder
+    EXPECT_NE(r.err.find("r.txt: line 2: reload-shaders"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("post.frag"), std::string::npos) << r.err;  // the compiler's log names the file
+    for (const char* f : {"a.png", "b.png", "c.png"}) ASSERT_TRUE(fs::exists(dir_ / f)) << f << "\n" << r.err;
+    fresnel::Image8 a = fresnel::read_image8(dir_ / "a.png"), b = fresnel::read_image8(dir_ / "b.png"),
+                    c = fresnel::read_image8(dir_ / "c.png");
+    EXPECT_GE(fresnel::compare_images(a, b, false).psnr_db, 50.0);
+    ASSERT_EQ(a.pixels.size(), c.pixels.size());
+    int worst = 0;
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        if (a.channels == 4 && i % 4 == 3) continue;  // alpha is 255 in both
+        int d = std::abs(255 - int(a.pixels[i]) - int(c.pixels[i]));
+        if (d > worst) worst = d, at = i;
+    }
+    EXPECT_LE(worst, 2) << "byte " << at << ": " << int(a.pixels[at]) << " and " << int(c.pixels[at]);  // 8-bit rounding
 }
 
 // The split view: left of the divider `render`'s shaded frame, right of it its roughness channel.

@@ -206,6 +206,22 @@ Renderbuffer::~Renderbuffer() {
     if (id_) glDeleteRenderbuffers(1, &id_);
 }
 
+TimerQuery::TimerQuery() { glGenQueries(1, &id_); }
+TimerQuery::~TimerQuery() {
+    if (id_) glDeleteQueries(1, &id_);
+}
+void TimerQuery::begin() { glBeginQuery(GL_TIME_ELAPSED, id_); }
+void TimerQuery::end() { glEndQuery(GL_TIME_ELAPSED); }
+bool TimerQuery::result_ms(double& ms) const {
+    GLint available = 0;
+    glGetQueryObjectiv(id_, GL_QUERY_RESULT_AVAILABLE, &available);
+    if (!available) return false;
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(id_, GL_QUERY_RESULT, &ns);
+    ms = double(ns) * 1e-6;
+    return true;
+}
+
 Framebuffer::Framebuffer() { glGenFramebuffers(1, &id_); }
 Framebuffer::~Framebuffer() {
     if (id_) glDeleteFramebuffers(1, &id_);

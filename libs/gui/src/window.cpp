@@ -48,6 +48,9 @@ int glfw_key(Key k) {
         case Key::C: return GLFW_KEY_C;
         case Key::O: return GLFW_KEY_O;
         case Key::Tab: return GLFW_KEY_TAB;
+        case Key::S: return GLFW_KEY_S;
+        case Key::A: return GLFW_KEY_A;
+        case Key::F5: return GLFW_KEY_F5;
     }
     return GLFW_KEY_UNKNOWN;
 }

@@ -690,6 +690,8 @@ bool gpu_animatable(const Scene& scene) {
 }
 
 std::size_t Renderer::program_count() const { return impl_->shaders.size(); }
+void Renderer::set_shader_folder(const std::string& folder) { impl_->shaders.set_source_folder(folder); }
+std::string Renderer::reload_shaders() { return impl_->shaders.reload(); }
 
 ImageF Renderer::render(const CameraSetup& cam, const std::vector<LightInstance>& lights,
                         const RenderSettings& settings, FrameStats* stats_out) {

@@ -4,7 +4,13 @@
 // silently do nothing). Paths go through the models' URI policy (fresnel/scene/paths.h).
 #include "fresnel/render/scene_file.h"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -245,7 +251,7 @@ void read_camera(const Reader& r, const json& c, Job& job) {
         for (const char* k : keys)
             if (r.find(c, k)) r.warn(at(ptr, k), std::string("not used by a camera of type ") + type + " (ignored)");
     };
-    if (type == "orbit") unused({"eye", "target", "up", "model", "index"});
+    if (type == "orbit") unused({"eye", "up", "model", "index"});
     if (type == "lookAt") unused({"yaw", "pitch", "distance", "model", "index"});
     if (type == "model") unused({"yaw", "pitch", "distance", "fov", "eye", "target", "up"});
     auto fov = [&] {
@@ -257,6 +263,7 @@ void read_camera(const Reader& r, const json& c, Job& job) {
         if (auto* v = r.find(c, "yaw")) cam.yaw_deg = float(r.number(*v, at(ptr, "yaw"), -1e6, 1e6));
         if (auto* v = r.find(c, "pitch")) cam.pitch_deg = float(r.number(*v, at(ptr, "pitch"), -90, 90));
         if (auto* v = r.find(c, "distance")) cam.distance_k = float(r.number(*v, at(ptr, "distance"), 1e-6, 1e6));
+        if (auto* v = r.find(c, "target")) cam.target = r.vec<3>(*v, at(ptr, "target"));  // a panned orbit
         fov();
     } else if (type == "lookAt") {
         cam.scene_camera.reset();
@@ -432,7 +439,7 @@ void read_render(const Reader& r, const json& o, Job& job) {
     const std::string ptr = "/render";
     r.object(o, ptr);
     r.keys(o, ptr, {"size", "msaa", "anisotropy", "toneMapping", "exposure", "encoding", "debug", "energyCompensation",
-                    "brdf"});
+                    "shading", "brdf"});
     Job::Output& out = job.output;
     if (auto* v = r.find(o, "size")) {
         const std::string p = at(ptr, "size");
@@ -474,6 +481,11 @@ void read_render(const Reader& r, const json& o, Job& job) {
         auto m = brdf::parse_brdf_model(r.string(*v, at(ptr, "brdf")), &why);
         if (!m) r.fail(at(ptr, "brdf"), why);
         out.brdf = *m;
+    }
+    if (auto* v = r.find(o, "shading")) {
+        auto m = parse_shading_model(r.string(*v, at(ptr, "shading")));
+        if (!m) r.fail(at(ptr, "shading"), "must be auto, gltf, ogl1, ogl1-pixel or blinn-phong-normalized");
+        out.shading = *m;
     }
 }
 
@@ -525,7 +537,7 @@ SceneFile parse_scene_document(const json& doc, const std::string& name, const f
     Reader r(name, base_dir, diag, options);
     if (!doc.is_object()) r.fail("", "a scene file is a JSON object");
     r.keys(doc, "", {"fresnel", "$schema", "description", "model", "models", "camera", "lights", "sceneLights",
-                     "environment", "background", "render", "output", "poseSkins"},
+                     "environment", "background", "render", "output", "poseSkins", "variant"},
            ignore);
     if (auto* v = r.find(doc, "fresnel")) {
         int version = r.integer(*v, "/fresnel", 1, 1 << 30);
@@ -543,6 +555,7 @@ SceneFile parse_scene_document(const json& doc, const std::string& name, const f
     Job& job = sf.job;
     read_models(r, doc, job);
     if (auto* v = r.find(doc, "poseSkins")) job.source.pose_skins = r.boolean(*v, "/poseSkins");
+    if (auto* v = r.find(doc, "variant")) job.source.variant = r.string(*v, "/variant");
     if (auto* v = r.find(doc, "camera")) read_camera(r, *v, job);
     if (auto* v = r.find(doc, "lights")) {
         r.array(*v, "/lights", kMaxLights);
@@ -579,6 +592,254 @@ SceneFile load_scene_file(const fs::path& path, const Job& defaults, Diagnostics
     json doc = parse_json_limited(text, name, options);
     fs::path base = path.parent_path();
     return parse_scene_document(doc, name, base.empty() ? fs::path(".") : base, defaults, diag, options);
+}
+
+
+// --- writing -------------------------------------------------------------------------
+
+namespace {
+
+// A float as the JSON number that reads back to the same float: its shortest decimal form
+// (0.2f is written 0.2, not 0.20000000298023224).
+json num(float v) {
+    char buf[32];
+    auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return json(std::strtod(std::string(buf, r.ptr).c_str(), nullptr));
+}
+template <int N>
+json nums(const glm::vec<N, float>& v) {
+    json a = json::array();
+    for (int i = 0; i < N; ++i) a.push_back(num(v[i]));
+    return a;
+}
+
+class Writer {
+public:
+    Writer(const fs::path& base, SceneDocumentReport& report) : report_(report) {
+        std::error_code ec;
+        base_ = fs::weakly_canonical(fs::absolute(base.empty() ? fs::path(".") : base), ec);
+        if (ec) base_ = fs::absolute(base).lexically_normal();
+    }
+    // `p` relative to the base folder, as the reader's URI policy reads it back ('%' and ':'
+    // percent-encoded, '/' separators).
+    std::string path(const std::string& p) const {
+        std::error_code ec;
+        fs::path full = fs::weakly_canonical(fs::absolute(p), ec);
+        if (ec) full = fs::absolute(p).lexically_normal();
+        fs::path rel = full.lexically_relative(base_);
+        std::string out;
+        if (rel.empty()) {
+            out = full.generic_string();
+            report_.outside.push_back(p);
+        } else {
+            if (*rel.begin() == "..") report_.outside.push_back(p);
+            out = rel.generic_string();
+        }
+        std::string encoded;
+        for (char c : out) encoded += c == '%' ? std::string("%25") : c == ':' ? std::string("%3A") : std::string(1, c);
+        return encoded;
+    }
+
+private:
+    fs::path base_;
+    SceneDocumentReport& report_;
+};
+
+json material_override_json(const Job::Source::MaterialOverride& mo) {
+    json o = json::object();
+    if (mo.name) o["name"] = *mo.name;
+    if (mo.index) o["index"] = *mo.index;
+    if (mo.base_color_factor) o["baseColorFactor"] = nums<4>(*mo.base_color_factor);
+    if (mo.metallic_factor) o["metallicFactor"] = num(*mo.metallic_factor);
+    if (mo.roughness_factor) o["roughnessFactor"] = num(*mo.roughness_factor);
+    if (mo.emissive_factor) o["emissiveFactor"] = nums<3>(*mo.emissive_factor);
+    if (mo.emissive_strength) o["emissiveStrength"] = num(*mo.emissive_strength);
+    if (mo.alpha_mode)
+        o["alphaMode"] = *mo.alpha_mode == AlphaMode::Mask ? "MASK" : *mo.alpha_mode == AlphaMode::Blend ? "BLEND" : "OPAQUE";
+    if (mo.alpha_cutoff) o["alphaCutoff"] = num(*mo.alpha_cutoff);
+    if (mo.double_sided) o["doubleSided"] = *mo.double_sided;
+    if (mo.ior) o["ior"] = num(*mo.ior);
+    return o;
+}
+
+json light_json(const LightInstance& l) {
+    json o = json::object();
+    float intensity = std::max({l.radiance.x, l.radiance.y, l.radiance.z});
+    glm::vec3 color = intensity > 0.0f ? l.radiance / intensity : glm::vec3(1.0f);
+    switch (l.type) {
+        case Light::Type::Directional: o["type"] = "directional"; break;
+        case Light::Type::Point: o["type"] = "point"; break;
+        case Light::Type::Spot: o["type"] = "spot"; break;
+    }
+    if (color != glm::vec3(1.0f)) o["color"] = nums<3>(color);
+    o["intensity"] = num(intensity);
+    if (l.type != Light::Type::Directional) o["position"] = nums<3>(l.position);
+    if (l.type != Light::Type::Point) o["direction"] = nums<3>(l.direction);
+    if (l.type != Light::Type::Directional && l.range > 0.0f) o["range"] = num(l.range);
+    if (l.type == Light::Type::Spot) {
+        o["innerConeAngle"] = num(l.inner_cone);
+        o["outerConeAngle"] = num(l.outer_cone);
+    }
+    return o;
+}
+
+}  // namespace
+
+json scene_document(const Job& job, const fs::path& base_dir, const std::optional<fs::path>& output,
+                    SceneDocumentReport* report) {
+    SceneDocumentReport local;
+    SceneDocumentReport& rep = report ? *report : local;
+    Writer w(base_dir, rep);
+    const Job defaults;
+    json doc = json::object();
+    doc["fresnel"] = kSceneFileVersion;
+    auto model_path = [&](const std::string& p) { return p.empty() ? std::string("demo") : w.path(p); };
+
+    // Models: one at the origin as "model" (a plain `render MODEL`), else the list.
+    if (job.source.models.empty() && job.source.scene < 0) {
+        doc["model"] = model_path(job.source.model);
+    } else {
+        std::vector<Job::Source::Model> models = job.source.models;
+        if (models.empty()) {
+            Job::Source::Model m;
+            m.path = job.source.model;
+            m.scene = job.source.scene;
+            models.push_back(m);
+        }
+        json list = json::array();
+        for (const auto& m : models) {
+            json o = json::object();
+            o["path"] = model_path(m.path);
+            if (m.scene >= 0) o["scene"] = m.scene;
+            if (!m.visible) o["visible"] = false;
+            if (m.transform != glm::mat4(1.0f)) {
+                json a = json::array();
+                const float* f = glm::value_ptr(m.transform);  // column-major, as glTF
+                for (int i = 0; i < 16; ++i) a.push_back(num(f[i]));
+                o["matrix"] = a;
+            }
+            if (!m.materials.empty()) {
+                json mats = json::array();
+                for (const auto& mo : m.materials) mats.push_back(material_override_json(mo));
+                o["materials"] = mats;
+            }
+            list.push_back(o);
+        }
+        doc["models"] = list;
+    }
+    if (!job.source.variant.empty()) doc["variant"] = job.source.variant;
+    if (job.source.pose_skins) doc["poseSkins"] = true;
+
+    // Camera.
+    const Job::Camera& c = job.camera;
+    json cam = json::object();
+    if (c.scene_camera) {
+        cam["type"] = "model";
+        cam["index"] = *c.scene_camera;
+        if (c.scene_camera_model != 0) cam["model"] = c.scene_camera_model;
+    } else if (c.look_at) {
+        cam["type"] = "lookAt";
+        cam["eye"] = nums<3>(c.look_at->eye);
+        cam["target"] = nums<3>(c.look_at->target);
+        cam["up"] = nums<3>(c.look_at->up);
+        cam["fov"] = num(c.yfov_deg);
+    } else {
+        cam["type"] = "orbit";
+        cam["yaw"] = num(c.yaw_deg);
+        cam["pitch"] = num(c.pitch_deg);
+        if (c.distance_k) cam["distance"] = num(*c.distance_k);
+        cam["fov"] = num(c.yfov_deg);
+        if (c.target) cam["target"] = nums<3>(*c.target);
+    }
+    doc["camera"] = cam;
+
+    // Lights: the job's extra lights (given, they replace the defaults, as the reader reads them).
+    if (!job.lights.extra.empty()) {
+        json lights = json::array();
+        for (const auto& l : job.lights.extra) lights.push_back(light_json(l));
+        doc["lights"] = lights;
+    }
+    doc["sceneLights"] = job.lights.scene_lights;
+
+    // Environment, background.
+    using Kind = Job::Environment::Kind;
+    const Job::Environment& e = job.environment;
+    json env = json::object();
+    switch (e.kind) {
+        case Kind::Automatic: env["type"] = "automatic"; break;
+        case Kind::File: env["type"] = "file"; env["file"] = w.path(e.path); break;
+        case Kind::Color: env["type"] = "color"; env["color"] = nums<3>(e.color); break;
+        case Kind::Studio: env["type"] = "studio"; break;
+        case Kind::None: env["type"] = "none"; break;
+    }
+    env["rotation"] = num(e.rotation_deg);
+    env["intensity"] = num(e.intensity);
+    if (e.bake_samples != defaults.environment.bake_samples) env["bakeSamples"] = e.bake_samples;
+    if (e.bake_size != defaults.environment.bake_size) env["bakeSize"] = e.bake_size;
+    doc["environment"] = env;
+    using Mode = Job::Background::Mode;
+    switch (job.background.mode) {
+        case Mode::Automatic: doc["background"] = "automatic"; break;
+        case Mode::Environment: doc["background"] = "environment"; break;
+        case Mode::Blurred: doc["background"] = "blur"; break;
+        case Mode::Transparent: doc["background"] = "transparent"; break;
+        case Mode::Color: doc["background"] = json{{"type", "color"}, {"color", nums<3>(job.background.color)}}; break;
+    }
+
+    // Render settings.
+    const Job::Output& o = job.output;
+    json r = json::object();
+    r["size"] = json::array({o.width, o.height});
+    r["msaa"] = o.msaa;
+    r["anisotropy"] = num(o.anisotropy);
+    r["toneMapping"] = std::string(tone_mapper_name(o.tone_mapper));
+    r["exposure"] = num(o.exposure_ev);
+    r["encoding"] = o.encoding == Encoding::Gamma22 ? "gamma2.2" : "srgb";
+    std::string debug = "none";
+    for (const std::string& n : debug_channel_names())
+        if (parse_debug_channel(n) == o.debug) debug = n;
+    r["debug"] = debug;
+    r["energyCompensation"] = o.energy_compensation;
+    r["shading"] = shading_model_name(o.shading);
+    if (!o.brdf.is_default()) r["brdf"] = brdf::to_string(o.brdf);
+    doc["render"] = r;
+    if (o.ambient != defaults.output.ambient) rep.dropped.push_back("ambient");
+    if (o.fog.mode != defaults.output.fog.mode) rep.dropped.push_back("fog");
+    if (o.fog_color) rep.dropped.push_back("fog colour");
+    if (output) doc["output"] = w.path(output->string());
+    return doc;
+}
+
+void save_scene_file(const fs::path& path, const Job& job, Diagnostics& diag, const std::optional<fs::path>& output) {
+    const std::string name = path.string();
+    SceneDocumentReport report;
+    fs::path base = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    json doc = scene_document(job, base, output, &report);
+    std::string text = doc.dump(2) + "\n";
+    for (const auto& p : report.outside)
+        diag.warn(name, "", "names '" + p + "', outside the file's folder: read it with --allow-external-files");
+    for (const auto& d : report.dropped) diag.warn(name, "", "a scene file holds no " + d + " (not written)");
+    // Atomically: a temporary file beside the target, flushed and closed, renamed over it.
+    fs::path tmp = path;
+    tmp += ".partial-" + std::to_string(::getpid());
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) throw Error(name, "", std::string("cannot write the scene file (") + std::strerror(errno) + ")");
+        out.write(text.data(), std::streamsize(text.size()));
+        out.flush();
+        out.close();
+        if (!out) {
+            std::error_code ec;
+            fs::remove(tmp, ec);
+            throw Error(name, "", "writing the scene file failed");
+        }
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw Error(name, "", "cannot rename the scene file into place: " + ec.message());
+    }
 }
 
 }  // namespace fresnel

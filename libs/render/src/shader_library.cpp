@@ -1,6 +1,8 @@
 #include "fresnel/render/shader_library.h"
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -65,9 +67,42 @@ const gpu::Program& ShaderLibrary::get(const std::string& vertex, const std::str
     for (const auto& d : defines) key += "|" + d;
     auto it = programs_.find(key);
     if (it != programs_.end()) return *it->second;
-    auto program = std::make_unique<gpu::Program>(key, assemble_shader(vertex, defines, target_),
-                                                  assemble_shader(fragment, defines, target_));
+    auto program = std::make_unique<gpu::Program>(key, source(vertex, defines), source(fragment, defines));
+    sources_[key] = Sources{vertex, fragment, defines};
     return *programs_.emplace(key, std::move(program)).first->second;
+}
+
+std::string ShaderLibrary::source(const std::string& file, const std::vector<std::string>& defines) {
+    if (folder_.empty()) return assemble_shader(file, defines, target_);
+    return assemble_shader(file, defines, target_, [this](const std::string& name) -> std::string_view {
+        auto it = disk_.find(name);
+        if (it == disk_.end()) {
+            std::ifstream in(std::filesystem::path(folder_) / name, std::ios::binary);
+            std::string text;
+            if (in) text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+            it = disk_.emplace(name, std::move(text)).first;
+        }
+        return it->second;
+    });
+}
+
+void ShaderLibrary::set_source_folder(const std::string& folder) {
+    folder_ = folder;
+    disk_.clear();
+}
+
+std::string ShaderLibrary::reload() {
+    disk_.clear();
+    std::map<std::string, std::unique_ptr<gpu::Program>> fresh;
+    try {
+        for (const auto& [key, s] : sources_)
+            fresh.emplace(key, std::make_unique<gpu::Program>(key, source(s.vertex, s.defines), source(s.fragment, s.defines)));
+    } catch (const std::exception& e) {
+        return e.what();  // `fresh` goes; the programs in use stay
+    }
+    programs_ = std::move(fresh);
+    variants_.clear();  // they pointed into the old programs
+    return "";
 }
 
 }  // namespace fresnel

@@ -7,7 +7,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "fresnel/core/error.h"
 #include "fresnel/render/job.h"
@@ -352,6 +354,182 @@ TEST_F(SceneFileTest, LookAtCameraLooksAtTheTarget) {
 namespace {
 
 // The example of docs/scene-file.md reads without a warning (the docs keep up with the parser).
+// The way back (the viewer's "save scene"): a job written as a scene file reads back to the
+// same job, every field a scene file holds, floats exactly (lights within rounding: the
+// reader normalises directions).
+TEST_F(SceneFileTest, SavedJobReadsBackTheSame) {
+    Job job;
+    Job::Source::Model a, b;
+    a.path = fs::weakly_canonical(dir_ / "models" / "a.gltf").string();
+    a.transform = glm::mat4(1.0f);
+    a.transform[3] = glm::vec4(0.1f, -2.5f, 3.3f, 1.0f);
+    a.transform[0][0] = 0.7f;
+    Job::Source::MaterialOverride mo;
+    mo.index = 0;
+    mo.base_color_factor = glm::vec4(0.1f, 0.2f, 0.3f, 0.9f);
+    mo.roughness_factor = 0.37f;
+    mo.metallic_factor = 0.1f;
+    mo.emissive_factor = glm::vec3(0.5f, 0.25f, 0.125f);
+    mo.emissive_strength = 3.0f;
+    mo.alpha_mode = AlphaMode::Mask;
+    mo.alpha_cutoff = 0.4f;
+    mo.double_sided = true;
+    mo.ior = 1.45f;
+    a.materials.push_back(mo);
+    b.path = fs::weakly_canonical(dir_ / "models" / "b.gltf").string();
+    b.visible = false;
+    b.scene = 0;
+    job.source.models = {a, b};
+    job.source.variant = "night";
+    job.source.pose_skins = true;
+    job.camera.yaw_deg = 123.456f;
+    job.camera.pitch_deg = -33.3f;
+    job.camera.distance_k = 1.7f;
+    job.camera.yfov_deg = 38.5f;
+    job.camera.target = glm::vec3(0.1f, 0.2f, -0.3f);
+    job.lights.extra = {parse_light("dir:30,45,3,1,0.5,0.25"), parse_light("point:1,2,-3,40")};
+    LightInstance spot;
+    spot.type = Light::Type::Spot;
+    spot.position = {0, 3, 2};
+    spot.direction = glm::normalize(glm::vec3(0, -3, -2));
+    spot.radiance = {200, 100, 50};
+    spot.range = 12.0f;
+    spot.inner_cone = 0.2f;
+    spot.outer_cone = 0.5f;
+    job.lights.extra.push_back(spot);
+    job.lights.scene_lights = false;
+    job.environment.kind = Job::Environment::Kind::File;
+    job.environment.path = fs::weakly_canonical(dir_ / "sky.hdr").string();
+    job.environment.rotation_deg = 33.3f;
+    job.environment.intensity = 0.7f;
+    job.environment.bake_samples = 64;
+    job.environment.bake_size = 128;
+    job.background.mode = Job::Background::Mode::Color;
+    job.background.color = {0.1f, 0.2f, 0.3f};
+    job.output.width = 640;
+    job.output.height = 360;
+    job.output.msaa = 2;
+    job.output.anisotropy = 4.0f;
+    job.output.tone_mapper = ToneMapper::AcesHill;
+    job.output.exposure_ev = -1.25f;
+    job.output.encoding = Encoding::Gamma22;
+    job.output.debug = DebugChannel::Roughness;
+    job.output.energy_compensation = false;
+    job.output.shading = ShadingModel::Gltf;
+
+    fs::path saved = dir_ / "saved.fresnel.json";
+    Diagnostics wd;
+    save_scene_file(saved, job, wd, dir_ / "out.png");
+    EXPECT_EQ(wd.total(), 0u) << (wd.lines().empty() ? "" : wd.lines().front());
+    // The paths are relative to the file's folder (the file can move with its folder).
+    json doc = json::parse(std::ifstream(saved));
+    EXPECT_EQ(doc["models"][0]["path"], "models/a.gltf");
+    EXPECT_EQ(doc["environment"]["file"], "sky.hdr");
+    EXPECT_EQ(doc["camera"]["pitch"].dump(), "-33.3");  // floats in their shortest form
+
+    SceneFile back = load_scene_file(saved, Job{}, diag_);
+    EXPECT_EQ(diag_.total(), 0u) << (diag_.lines().empty() ? "" : diag_.lines().front());
+    EXPECT_EQ(back.job.source, job.source);
+    EXPECT_EQ(back.job.camera, job.camera);
+    EXPECT_EQ(back.job.environment, job.environment);
+    EXPECT_EQ(back.job.background, job.background);
+    Job::Output want = job.output;
+    want.float_output = false;  // out.png
+    EXPECT_EQ(back.job.output, want);
+    ASSERT_TRUE(back.output);
+    EXPECT_EQ(back.output->filename(), "out.png");
+    EXPECT_EQ(back.job.lights.scene_lights, false);
+    ASSERT_EQ(back.job.lights.extra.size(), job.lights.extra.size());
+    for (std::size_t i = 0; i < job.lights.extra.size(); ++i) {
+        const LightInstance &x = job.lights.extra[i], &y = back.job.lights.extra[i];
+        EXPECT_EQ(x.type, y.type) << i;
+        EXPECT_LT(glm::length(x.position - y.position), 1e-6f) << i;
+        EXPECT_LT(glm::length(x.radiance - y.radiance), 1e-4f) << i;
+        EXPECT_EQ(x.range, y.range) << i;
+        EXPECT_EQ(x.inner_cone, y.inner_cone) << i;
+        EXPECT_EQ(x.outer_cone, y.outer_cone) << i;
+        if (x.type != Light::Type::Point) {
+            EXPECT_LT(glm::length(x.direction - y.direction), 1e-6f) << i;
+        }
+    }
+}
+
+TEST_F(SceneFileTest, SavedFormsReadBack) {
+    // One model at the origin is a plain "model"; the file's camera; a look-at camera; the other
+    // environment and background kinds.
+    Job job;
+    job.source.model = fs::weakly_canonical(dir_ / "models" / "a.gltf").string();
+    job.camera.scene_camera = 0;
+    job.environment.kind = Job::Environment::Kind::Color;
+    job.environment.color = {0.5f, 0.25f, 2.0f};
+    job.background.mode = Job::Background::Mode::Transparent;
+    fs::path saved = dir_ / "one.fresnel.json";
+    Diagnostics wd;
+    save_scene_file(saved, job, wd);
+    json doc = json::parse(std::ifstream(saved));
+    EXPECT_EQ(doc["model"], "models/a.gltf");
+    SceneFile back = load_scene_file(saved, Job{}, diag_);
+    EXPECT_EQ(back.job, job);
+    EXPECT_FALSE(back.output);
+
+    job.camera = Job::Camera{};
+    job.camera.look_at = Job::Camera::LookAt{{1, 2, 3}, {0, 0.5f, 0}, {0, 1, 0}};
+    job.camera.yfov_deg = 30.0f;
+    job.environment = Job::Environment{};
+    job.environment.kind = Job::Environment::Kind::None;
+    job.background.mode = Job::Background::Mode::Blurred;
+    job.source.model.clear();  // the demo
+    save_scene_file(saved, job, wd);
+    EXPECT_EQ(json::parse(std::ifstream(saved))["model"], "demo");
+    EXPECT_EQ(load_scene_file(saved, Job{}, diag_).job, job);
+    for (auto kind : {Job::Environment::Kind::Studio, Job::Environment::Kind::Automatic}) {
+        job.environment.kind = kind;
+        job.background.mode = Job::Background::Mode::Environment;
+        save_scene_file(saved, job, wd);
+        EXPECT_EQ(load_scene_file(saved, Job{}, diag_).job, job);
+    }
+    EXPECT_EQ(wd.total(), 0u);
+}
+
+// Files outside the scene file's folder are written with "..", and reported: the reader
+// refuses them unless external files are allowed.
+TEST_F(SceneFileTest, SavedPathsOutsideTheFolderWarn) {
+    fs::create_directories(dir_ / "shots");
+    Job job;
+    job.source.model = fs::weakly_canonical(dir_ / "models" / "a.gltf").string();
+    fs::path saved = dir_ / "shots" / "s.fresnel.json";
+    Diagnostics wd;
+    save_scene_file(saved, job, wd);
+    ASSERT_EQ(wd.total(), 1u);
+    EXPECT_NE(wd.lines().front().find("--allow-external-files"), std::string::npos) << wd.lines().front();
+    EXPECT_EQ(json::parse(std::ifstream(saved))["model"], "../models/a.gltf");
+    EXPECT_THROW(load_scene_file(saved, Job{}, diag_), Error);
+    SceneFileOptions allow;
+    allow.allow_external_files = true;
+    EXPECT_EQ(load_scene_file(saved, Job{}, diag_, allow).job.source.model, job.source.model);
+}
+
+// A write that cannot complete leaves what was there and no temporary file behind.
+TEST_F(SceneFileTest, SaveIsAtomic) {
+    Job job;
+    fs::path saved = dir_ / "keep.fresnel.json";
+    Diagnostics wd;
+    save_scene_file(saved, job, wd);
+    const std::string before = [&] { std::stringstream ss; ss << std::ifstream(saved).rdbuf(); return ss.str(); }();
+    // The target is a folder that is not empty: the rename fails, the folder stays.
+    fs::create_directories(dir_ / "busy.fresnel.json" / "inside");
+    EXPECT_THROW(save_scene_file(dir_ / "busy.fresnel.json", job, wd), Error);
+    EXPECT_TRUE(fs::is_directory(dir_ / "busy.fresnel.json" / "inside"));
+    EXPECT_THROW(save_scene_file(dir_ / "no" / "such" / "folder.fresnel.json", job, wd), Error);
+    for (const auto& e : fs::directory_iterator(dir_))
+        EXPECT_EQ(e.path().filename().string().find(".partial"), std::string::npos) << e.path();
+    // Saving again over a file replaces it whole.
+    job.camera.yaw_deg = 10.0f;
+    save_scene_file(saved, job, wd);
+    EXPECT_EQ(load_scene_file(saved, Job{}, diag_).job.camera.yaw_deg, 10.0f);
+    EXPECT_NE(before.size(), 0u);
+}
+
 TEST(SceneFileDocs, ExampleReadsCleanly) {
     fs::path example = fs::path(FRESNEL_SOURCE_DIR) / "docs" / "examples" / "demo.fresnel.json";
     Diagnostics diag;

@@ -3,7 +3,10 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -12,6 +15,8 @@
 #include <set>
 
 #include <glm/gtc/type_ptr.hpp>
+
+#include "fresnel/scene/paths.h"
 
 namespace fresnel {
 
@@ -504,6 +509,238 @@ void write_obj(const Scene& scene, const fs::path& path, Diagnostics& diagnostic
     }
     write_atomically(folder / (stem + ".mtl"), mtl);
     write_atomically(path, obj);
+}
+
+
+// --- material edits written back (the viewer's "save") --------------------------------------
+//
+// Not write_gltf: that writes what the Scene holds, and a Scene does not hold what fresnel
+// does not understand. Here the file itself is the model: its JSON is parsed with its keys in
+// order (nlohmann::ordered_json), only the edited values are replaced, and it is written back;
+// binary data is copied byte for byte.
+
+namespace {
+
+using ojson = nlohmann::ordered_json;
+constexpr std::uint32_t kGlbMagic = 0x46546C67, kChunkJson = 0x4E4F534A;
+
+std::uint32_t u32_at(const std::vector<std::uint8_t>& b, std::size_t at) {
+    return std::uint32_t(b[at]) | std::uint32_t(b[at + 1]) << 8 | std::uint32_t(b[at + 2]) << 16 |
+           std::uint32_t(b[at + 3]) << 24;
+}
+void put_u32(std::vector<std::uint8_t>& b, std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) b.push_back(std::uint8_t(v >> (8 * i)));
+}
+
+// A float as the JSON number of its shortest decimal form (0.2f is 0.2, not 0.20000000298...).
+ojson number_of(float v) {
+    char buf[32];
+    auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return ojson(std::strtod(std::string(buf, r.ptr).c_str(), nullptr));
+}
+template <int N>
+ojson numbers_of(const glm::vec<N, float>& v) {
+    ojson a = ojson::array();
+    for (int i = 0; i < N; ++i) a.push_back(number_of(v[i]));
+    return a;
+}
+
+class MaterialPatcher {
+public:
+    MaterialPatcher(ojson& doc, const std::string& file, Diagnostics& diag) : doc_(doc), file_(file), diag_(diag) {}
+
+    void patch(std::size_t i, const Material& was, const Material& now) {
+        ojson& m = doc_["materials"][i];
+        const std::string ptr = "/materials/" + std::to_string(i);
+        auto pbr = [&]() -> ojson& { return object(m, "pbrMetallicRoughness"); };
+        if (now.base_color_factor != was.base_color_factor) set(pbr(), "baseColorFactor", numbers_of<4>(now.base_color_factor));
+        if (now.metallic_factor != was.metallic_factor) set(pbr(), "metallicFactor", number_of(now.metallic_factor));
+        if (now.roughness_factor != was.roughness_factor) set(pbr(), "roughnessFactor", number_of(now.roughness_factor));
+        if (was.specular_glossiness &&
+            (now.base_color_factor != was.base_color_factor || now.metallic_factor != was.metallic_factor ||
+             now.roughness_factor != was.roughness_factor))
+            diag_.warn(file_, ptr, "uses KHR_materials_pbrSpecularGlossiness: the edit is written to "
+                                   "pbrMetallicRoughness, which viewers that read the extension ignore");
+        if (now.emissive_factor != was.emissive_factor) set(m, "emissiveFactor", numbers_of<3>(now.emissive_factor));
+        if (now.alpha_mode != was.alpha_mode)
+            set(m, "alphaMode", now.alpha_mode == AlphaMode::Mask ? "MASK" : now.alpha_mode == AlphaMode::Blend ? "BLEND" : "OPAQUE");
+        if (now.alpha_cutoff != was.alpha_cutoff) set(m, "alphaCutoff", number_of(now.alpha_cutoff));
+        if (now.double_sided != was.double_sided) set(m, "doubleSided", now.double_sided);
+        if (now.normal_scale != was.normal_scale) {
+            if (m.contains("normalTexture") && m["normalTexture"].is_object()) set(m["normalTexture"], "scale", number_of(now.normal_scale));
+            else diag_.warn(file_, ptr, "has no normalTexture: its scale is not written");
+        }
+        if (now.occlusion_strength != was.occlusion_strength) {
+            if (m.contains("occlusionTexture") && m["occlusionTexture"].is_object())
+                set(m["occlusionTexture"], "strength", number_of(now.occlusion_strength));
+            else diag_.warn(file_, ptr, "has no occlusionTexture: its strength is not written");
+        }
+        auto ext = [&](const char* name) -> ojson& {
+            used(name);
+            return object(object(m, "extensions"), name);
+        };
+        // An extension value: written when the block is new or the value changed.
+        auto value = [&](const char* name, bool had, bool changed, const char* key, const ojson& v) {
+            if (!had || changed) set(ext(name), key, v);
+        };
+        if (const auto& n = now.emissive_strength; n)
+            value("KHR_materials_emissive_strength", bool(was.emissive_strength),
+                  !was.emissive_strength || n->emissive_strength != was.emissive_strength->emissive_strength,
+                  "emissiveStrength", number_of(n->emissive_strength));
+        if (const auto& n = now.ior; n)
+            value("KHR_materials_ior", bool(was.ior), !was.ior || n->ior != was.ior->ior, "ior", number_of(n->ior));
+        if (const auto& n = now.specular; n) {
+            const SpecularExt o = was.specular.value_or(SpecularExt{});
+            value("KHR_materials_specular", bool(was.specular), n->specular_factor != o.specular_factor, "specularFactor",
+                  number_of(n->specular_factor));
+            value("KHR_materials_specular", bool(was.specular), n->specular_color_factor != o.specular_color_factor,
+                  "specularColorFactor", numbers_of<3>(n->specular_color_factor));
+        }
+        if (const auto& n = now.clearcoat; n) {
+            const ClearcoatExt o = was.clearcoat.value_or(ClearcoatExt{});
+            value("KHR_materials_clearcoat", bool(was.clearcoat), n->clearcoat_factor != o.clearcoat_factor,
+                  "clearcoatFactor", number_of(n->clearcoat_factor));
+            value("KHR_materials_clearcoat", bool(was.clearcoat),
+                  n->clearcoat_roughness_factor != o.clearcoat_roughness_factor, "clearcoatRoughnessFactor",
+                  number_of(n->clearcoat_roughness_factor));
+        }
+    }
+    // True when any value patch() writes differs between the two.
+    static bool differs(const Material& a, const Material& b) {
+        auto opt = [](const auto& x, const auto& y, auto field) {
+            return bool(x) != bool(y) || (x && field(*x) != field(*y));
+        };
+        return a.base_color_factor != b.base_color_factor || a.metallic_factor != b.metallic_factor ||
+               a.roughness_factor != b.roughness_factor || a.emissive_factor != b.emissive_factor ||
+               a.alpha_mode != b.alpha_mode || a.alpha_cutoff != b.alpha_cutoff || a.double_sided != b.double_sided ||
+               a.normal_scale != b.normal_scale || a.occlusion_strength != b.occlusion_strength ||
+               opt(a.emissive_strength, b.emissive_strength, [](const auto& e) { return e.emissive_strength; }) ||
+               opt(a.ior, b.ior, [](const auto& e) { return e.ior; }) ||
+               opt(a.specular, b.specular, [](const auto& e) { return e.specular_factor; }) ||
+               opt(a.specular, b.specular, [](const auto& e) { return e.specular_color_factor; }) ||
+               opt(a.clearcoat, b.clearcoat, [](const auto& e) { return e.clearcoat_factor; }) ||
+               opt(a.clearcoat, b.clearcoat, [](const auto& e) { return e.clearcoat_roughness_factor; });
+    }
+    int changed() const { return changed_; }
+
+private:
+    ojson& object(ojson& parent, const char* key) {
+        if (!parent.contains(key) || !parent[key].is_object()) parent[key] = ojson::object();
+        return parent[key];
+    }
+    void set(ojson& parent, const char* key, const ojson& value) {
+        parent[key] = value;
+        ++changed_;
+    }
+    void used(const char* name) {
+        ojson& list = doc_["extensionsUsed"];
+        if (!list.is_array()) list = ojson::array();
+        for (const auto& e : list)
+            if (e == name) return;
+        list.push_back(name);
+    }
+    ojson& doc_;
+    std::string file_;
+    Diagnostics& diag_;
+    int changed_ = 0;
+};
+
+}  // namespace
+
+int save_gltf_material_edits(const fs::path& source, const fs::path& dest, const std::vector<Material>& original,
+                             const std::vector<Material>& edited, Diagnostics& diagnostics) {
+    const std::string src_name = source.string(), dst_name = dest.string();
+    auto ext_of = [](const fs::path& p) {
+        std::string e = p.extension().string();
+        for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+        return e;
+    };
+    const std::string ext = ext_of(source);
+    if (ext != ".gltf" && ext != ".glb") throw Error(src_name, "", "only glTF files (.gltf, .glb) save material edits");
+    if (ext_of(dest) != ext) throw Error(dst_name, "", "saving keeps the container: " + ext + " to " + ext);
+    if (original.size() != edited.size())
+        throw Error(src_name, "", "the edited materials are not the file's (" + std::to_string(edited.size()) + " of " +
+                                      std::to_string(original.size()) + ")");
+    const std::vector<std::uint8_t> bytes = read_file_bytes(source, std::size_t(2) << 30);
+    const bool glb = ext == ".glb";
+    std::size_t json_at = 0, json_size = bytes.size(), rest_at = bytes.size();
+    if (glb) {
+        if (bytes.size() < 20 || u32_at(bytes, 0) != kGlbMagic || u32_at(bytes, 12 + 4) != kChunkJson)
+            throw Error(src_name, "byte 0", "not a GLB file with a JSON chunk first");
+        json_size = u32_at(bytes, 12);
+        json_at = 20;
+        if (json_size > bytes.size() - json_at) throw Error(src_name, "byte 12", "the JSON chunk runs past the end of the file");
+        rest_at = json_at + json_size;
+    }
+    ojson doc;
+    try {
+        doc = ojson::parse(bytes.begin() + std::ptrdiff_t(json_at), bytes.begin() + std::ptrdiff_t(json_at + json_size));
+    } catch (const ojson::exception& e) {
+        throw Error(src_name, "", std::string("cannot parse the JSON: ") + e.what());
+    }
+    if (!doc.is_object()) throw Error(src_name, "", "the glTF JSON is not an object");
+    const std::size_t count = doc.contains("materials") && doc["materials"].is_array() ? doc["materials"].size() : 0;
+    MaterialPatcher patcher(doc, src_name, diagnostics);
+    for (std::size_t i = 0; i < edited.size(); ++i) {
+        if (!MaterialPatcher::differs(edited[i], original[i])) continue;
+        if (i >= count || !doc["materials"][i].is_object()) {
+            diagnostics.warn(src_name, "/materials/" + std::to_string(i), "is not in the file (a default material): not written");
+            continue;
+        }
+        patcher.patch(i, original[i], edited[i]);
+    }
+    // The layout of the text as the file had it: indented, or on one line.
+    const bool indented = std::find(bytes.begin() + std::ptrdiff_t(json_at),
+                                    bytes.begin() + std::ptrdiff_t(json_at + json_size), '\n') !=
+                          bytes.begin() + std::ptrdiff_t(json_at + json_size);
+    std::string text = doc.dump(indented ? 2 : -1);
+
+    fs::path dest_dir = dest.parent_path().empty() ? fs::path(".") : dest.parent_path();
+    fs::path src_dir = source.parent_path().empty() ? fs::path(".") : source.parent_path();
+    if (std::error_code ec; !fs::is_directory(dest_dir, ec))
+        throw Error(dst_name, "", "cannot write: the folder " + dest_dir.string() + " does not exist");
+    if (glb) {
+        while (text.size() % 4) text += ' ';  // the JSON chunk is padded with spaces
+        std::vector<std::uint8_t> out;
+        out.reserve(bytes.size() + text.size());
+        put_u32(out, kGlbMagic);
+        put_u32(out, 2);
+        put_u32(out, 0);  // the total length, below
+        put_u32(out, std::uint32_t(text.size()));
+        put_u32(out, kChunkJson);
+        out.insert(out.end(), text.begin(), text.end());
+        out.insert(out.end(), bytes.begin() + std::ptrdiff_t(rest_at), bytes.end());  // BIN and any other chunk, as they were
+        std::uint32_t total = std::uint32_t(out.size());
+        for (int i = 0; i < 4; ++i) out[8 + std::size_t(i)] = std::uint8_t(total >> (8 * i));
+        write_atomically(dest, out.data(), out.size());
+    } else {
+        // The files the JSON names (buffers, images), beside the new file when it is elsewhere.
+        std::error_code ec;
+        if (!fs::equivalent(fs::absolute(dest_dir), fs::absolute(src_dir), ec)) {
+            for (const char* list : {"buffers", "images"}) {
+                if (!doc.contains(list) || !doc[list].is_array()) continue;
+                for (std::size_t i = 0; i < doc[list].size(); ++i) {
+                    const ojson& item = doc[list][i];
+                    if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+                    const std::string uri = item["uri"].get<std::string>();
+                    if (uri.rfind("data:", 0) == 0) continue;
+                    std::string error;
+                    auto from = resolve_relative_path(uri, src_dir, false, error);
+                    auto to = resolve_relative_path(uri, dest_dir, false, error);
+                    const std::string where = "/" + std::string(list) + "/" + std::to_string(i) + "/uri";
+                    if (!from || !to) {
+                        diagnostics.warn(dst_name, where, "'" + uri + "' is not copied: " + error);
+                        continue;
+                    }
+                    fs::create_directories(to->parent_path(), ec);
+                    auto data = read_file_bytes(*from, std::size_t(2) << 30);
+                    write_atomically(*to, data.data(), data.size());
+                }
+            }
+        }
+        write_atomically(dest, text + (indented ? "\n" : ""));
+    }
+    return patcher.changed();
 }
 
 }  // namespace fresnel

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "fresnel/scene/gltf_loader.h"
 #include "fresnel/scene/obj_loader.h"
@@ -129,5 +130,154 @@ TEST(SceneWriter, GltfPassesTheKhronosValidator) {
     }
     EXPECT_EQ(lines, 2);
     EXPECT_EQ(rc, 0);
+    fs::remove_all(dir);
+}
+
+// --- material edits saved back (save_gltf_material_edits) -----------------------------------
+
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+std::vector<std::uint8_t> bytes_of(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// A triangle with two materials, an unknown extension (required nowhere, used), extras at
+// several levels, names, and its data in a .bin file: what the writer does not understand.
+ojson edit_model(std::string& bin) {
+    const float pos[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const std::uint16_t idx[] = {0, 1, 2, 0};
+    bin.assign(reinterpret_cast<const char*>(pos), sizeof pos);
+    bin.append(reinterpret_cast<const char*>(idx), sizeof idx);
+    return ojson::parse(R"({
+      "asset": {"version": "2.0", "generator": "a tool", "extras": {"note": "keep me"}},
+      "extensionsUsed": ["VENDOR_unknown_thing"],
+      "scene": 0, "scenes": [{"nodes": [0], "name": "the scene"}],
+      "nodes": [{"mesh": 0, "name": "tri", "extras": {"id": 7}}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 1}]}],
+      "materials": [
+        {"name": "first", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.7, 0.6, 1.0], "metallicFactor": 0.0},
+         "extensions": {"VENDOR_unknown_thing": {"level": 3, "tags": ["a", "b"]}}, "extras": {"kept": true}},
+        {"name": "second", "pbrMetallicRoughness": {"roughnessFactor": 0.9}, "zeta": 1, "alpha": 2}
+      ],
+      "buffers": [{"uri": "tri.bin", "byteLength": 44}],
+      "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 8}],
+      "accessors": [
+        {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+        {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}
+      ]
+    })");
+}
+
+void put32(std::string& s, std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) s += char(v >> (8 * i));
+}
+void write_glb(const fs::path& path, ojson doc, const std::string& bin) {
+    doc["buffers"][0].erase("uri");
+    std::string j = doc.dump(), b = bin;
+    while (j.size() % 4) j += ' ';
+    while (b.size() % 4) b += '\0';
+    std::string out;
+    put32(out, 0x46546C67);
+    put32(out, 2);
+    put32(out, std::uint32_t(12 + 8 + j.size() + 8 + b.size()));
+    put32(out, std::uint32_t(j.size()));
+    put32(out, 0x4E4F534A);
+    out += j;
+    put32(out, std::uint32_t(b.size()));
+    put32(out, 0x004E4942);
+    out += b;
+    std::ofstream(path, std::ios::binary) << out;
+}
+ojson glb_json(const fs::path& path) {
+    auto b = bytes_of(path);
+    std::uint32_t n = std::uint32_t(b[12]) | std::uint32_t(b[13]) << 8 | std::uint32_t(b[14]) << 16 | std::uint32_t(b[15]) << 24;
+    return ojson::parse(b.begin() + 20, b.begin() + 20 + n);
+}
+std::vector<std::uint8_t> glb_rest(const fs::path& path) {  // everything after the JSON chunk
+    auto b = bytes_of(path);
+    std::uint32_t n = std::uint32_t(b[12]) | std::uint32_t(b[13]) << 8 | std::uint32_t(b[14]) << 16 | std::uint32_t(b[15]) << 24;
+    return std::vector<std::uint8_t>(b.begin() + 20 + n, b.end());
+}
+
+}  // namespace
+
+TEST(MaterialEdits, GltfKeepsEverythingButTheEdit) {
+    fs::path dir = temp_dir("edits_gltf");
+    std::string bin;
+    ojson doc = edit_model(bin);
+    std::ofstream(dir / "tri.gltf") << doc.dump(2);
+    std::ofstream(dir / "tri.bin", std::ios::binary) << bin;
+    Diagnostics diag;
+    Scene scene = load_gltf(dir / "tri.gltf", diag);
+    ASSERT_EQ(scene.materials.size(), 2u);
+
+    // No edit: the same JSON (keys in order), the .bin untouched.
+    EXPECT_EQ(save_gltf_material_edits(dir / "tri.gltf", dir / "same.gltf", scene.materials, scene.materials, diag), 0);
+    EXPECT_EQ(ojson::parse(std::ifstream(dir / "same.gltf")), doc);
+
+    // One edit, saved into another folder: that value changes, nothing else; the .bin is copied.
+    std::vector<Material> edited = scene.materials;
+    edited[1].roughness_factor = 0.2f;
+    fs::create_directories(dir / "out");
+    EXPECT_EQ(save_gltf_material_edits(dir / "tri.gltf", dir / "out" / "tri.gltf", scene.materials, edited, diag), 1);
+    ojson saved = ojson::parse(std::ifstream(dir / "out" / "tri.gltf"));
+    EXPECT_EQ(saved["materials"][1]["pbrMetallicRoughness"]["roughnessFactor"].dump(), "0.2");
+    ojson expect = doc;
+    expect["materials"][1]["pbrMetallicRoughness"]["roughnessFactor"] = 0.2;
+    EXPECT_EQ(saved, expect);
+    EXPECT_EQ(saved["materials"][0]["extensions"], doc["materials"][0]["extensions"]);
+    EXPECT_EQ(saved["materials"][1].begin().key(), "name");  // keys keep their order
+    EXPECT_EQ(bytes_of(dir / "out" / "tri.bin"), bytes_of(dir / "tri.bin"));
+    Scene back = load_gltf(dir / "out" / "tri.gltf", diag);
+    ASSERT_EQ(back.materials.size(), 2u);
+    EXPECT_EQ(back.materials[1].roughness_factor, 0.2f);
+    EXPECT_EQ(back.materials[0].base_color_factor, scene.materials[0].base_color_factor);
+    ASSERT_EQ(back.meshes.size(), scene.meshes.size());
+    EXPECT_EQ(back.meshes[0].primitives[0].positions.size(), scene.meshes[0].primitives[0].positions.size());
+    EXPECT_EQ(back.meshes[0].primitives[0].indices, scene.meshes[0].primitives[0].indices);
+
+    // A new extension block is declared in extensionsUsed.
+    edited = scene.materials;
+    edited[0].emissive_strength = EmissiveStrengthExt{4.0f};
+    save_gltf_material_edits(dir / "tri.gltf", dir / "tri.gltf", scene.materials, edited, diag);  // in place
+    saved = ojson::parse(std::ifstream(dir / "tri.gltf"));
+    EXPECT_EQ(saved["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"], 4.0);
+    EXPECT_EQ(saved["materials"][0]["extensions"]["VENDOR_unknown_thing"], doc["materials"][0]["extensions"]["VENDOR_unknown_thing"]);
+    EXPECT_EQ(saved["extensionsUsed"], ojson::parse(R"(["VENDOR_unknown_thing", "KHR_materials_emissive_strength"])"));
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+    fs::remove_all(dir);
+}
+
+TEST(MaterialEdits, GlbKeepsItsBinaryChunkByteForByte) {
+    fs::path dir = temp_dir("edits_glb");
+    std::string bin;
+    ojson doc = edit_model(bin);
+    write_glb(dir / "tri.glb", doc, bin);
+    Diagnostics diag;
+    Scene scene = load_gltf(dir / "tri.glb", diag);
+    std::vector<Material> edited = scene.materials;
+    edited[0].base_color_factor = {1, 0, 0, 1};
+    EXPECT_EQ(save_gltf_material_edits(dir / "tri.glb", dir / "red.glb", scene.materials, edited, diag), 1);
+    EXPECT_EQ(glb_rest(dir / "red.glb"), glb_rest(dir / "tri.glb"));
+    ojson expect = glb_json(dir / "tri.glb");
+    expect["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = ojson::parse("[1, 0, 0, 1]");
+    ojson saved = glb_json(dir / "red.glb");
+    EXPECT_EQ(saved, expect);
+    Scene back = load_gltf(dir / "red.glb", diag);
+    EXPECT_EQ(back.materials[0].base_color_factor, glm::vec4(1, 0, 0, 1));
+    EXPECT_EQ(bytes_of(dir / "red.glb").size() % 4, 0u);
+    // Containers are kept; a failed write leaves the file as it was.
+    EXPECT_THROW(save_gltf_material_edits(dir / "tri.glb", dir / "x.gltf", scene.materials, edited, diag), Error);
+    auto before = bytes_of(dir / "red.glb");
+    fs::create_directories(dir / "busy.glb" / "inside");
+    EXPECT_THROW(save_gltf_material_edits(dir / "tri.glb", dir / "busy.glb", scene.materials, edited, diag), Error);
+    EXPECT_THROW(save_gltf_material_edits(dir / "tri.glb", dir / "no" / "dir" / "a.glb", scene.materials, edited, diag), Error);
+    EXPECT_EQ(bytes_of(dir / "red.glb"), before);
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
     fs::remove_all(dir);
 }

@@ -43,6 +43,9 @@ struct Capabilities {
     // Multisampled textures (texelFetch on sampler2DMS): OpenGL 3.2+, not OpenGL ES 3.0.
     bool multisample_textures = true;
     int max_color_texture_samples = 0;  // GL_MAX_COLOR_TEXTURE_SAMPLES (0 on ES 3.0)
+    // GPU timer queries (GL_TIME_ELAPSED, TimerQuery): core in OpenGL 3.3; not in ES 3.0
+    // (EXT_disjoint_timer_query there is not used).
+    bool timer_queries = false;
 };
 
 class Context {

@@ -137,6 +137,20 @@ private:
     RenderbufferFormat format_ = RenderbufferFormat::RGBA16F;
 };
 
+// The GPU time of the commands between begin() and end() (GL_TIME_ELAPSED). Only where
+// Capabilities::timer_queries says so (OpenGL 3.3; not ES 3.0): check before constructing.
+class TimerQuery : public Handle {
+public:
+    TimerQuery();
+    TimerQuery(TimerQuery&&) noexcept = default;
+    TimerQuery& operator=(TimerQuery&&) noexcept = default;
+    ~TimerQuery();
+    void begin();
+    void end();
+    // The elapsed milliseconds once the GPU has them (never waits); false before.
+    bool result_ms(double& ms) const;
+};
+
 class Framebuffer : public Handle {
 public:
     Framebuffer();

@@ -162,6 +162,13 @@ public:
     // Number of shader variants compiled so far (they are cached by feature set).
     std::size_t program_count() const;
 
+    // Development (`fresnel view --shaders DIR`): shader files from `folder` (a copy of
+    // shaders/) instead of the embedded ones. reload_shaders() reads them again and recompiles
+    // every program, all or nothing: on an error the programs stay as they were and the error
+    // (file, compiler log) is returned; "" when they all compiled.
+    void set_shader_folder(const std::string& folder);
+    std::string reload_shaders();
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;

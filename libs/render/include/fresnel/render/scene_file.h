@@ -17,6 +17,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "fresnel/core/error.h"
 #include "fresnel/render/job.h"
@@ -57,5 +58,24 @@ SceneFile parse_scene_document(const nlohmann::json& doc, const std::string& nam
 // Parses JSON text with the options' size and depth limits; throws fresnel::Error (name,
 // "byte N" or "line L", reason). For job lists and other JSON the scene-file rules apply to.
 nlohmann::json parse_json_limited(std::string_view text, const std::string& name, const SceneFileOptions& options = {});
+
+// The other way: `job` as a scene file document, every field a scene file holds (the reader
+// gives the same job back, floats exactly). Paths are written relative to `base_dir` (the
+// folder the file will be in); those outside it are written with "..", or absolute when no
+// relative path exists, and listed in `outside` (the reader then needs allow_external_files).
+// Fields a scene file cannot hold (ambient, fog, fog colour, and flags such as --no-cache)
+// are reported in `dropped`. `output` is written as "output" when given.
+struct SceneDocumentReport {
+    std::vector<std::string> outside, dropped;
+};
+nlohmann::json scene_document(const Job& job, const std::filesystem::path& base_dir,
+                              const std::optional<std::filesystem::path>& output = {},
+                              SceneDocumentReport* report = nullptr);
+
+// Writes scene_document(job, the file's folder) to `path` atomically (a temporary file in the
+// same folder, flushed, renamed over `path`; a failed write leaves `path` as it was). Files
+// outside the folder and dropped fields are warnings in `diag`. Throws fresnel::Error.
+void save_scene_file(const std::filesystem::path& path, const Job& job, Diagnostics& diag,
+                     const std::optional<std::filesystem::path>& output = {});
 
 }  // namespace fresnel

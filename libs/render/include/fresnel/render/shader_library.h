@@ -44,8 +44,24 @@ public:
     std::size_t size() const { return programs_.size(); }
     GlslTarget target() const { return target_; }
 
+    // Development: read the shader files from `folder` (a copy of shaders/) instead of the
+    // embedded ones, from the next program compiled on; empty: the embedded files again.
+    void set_source_folder(const std::string& folder);
+    // Reads the files again and recompiles every cached program from them. All or nothing:
+    // when one fails to read, compile or link, every program stays as it was and the error
+    // is returned; "" on success (programs got before are then invalid: get them again).
+    std::string reload();
+
 private:
+    std::string source(const std::string& file, const std::vector<std::string>& defines);
     GlslTarget target_;
+    std::string folder_;  // set_source_folder
+    std::map<std::string, std::string> disk_;  // the files read from folder_ (kept: ShaderFiles returns views)
+    struct Sources {
+        std::string vertex, fragment;
+        std::vector<std::string> defines;
+    };
+    std::map<std::string, Sources> sources_;  // what each program was built from, for reload()
     std::map<std::string, std::unique_ptr<gpu::Program>> programs_;
     std::map<std::tuple<std::string, std::string, FeatureMask>, const gpu::Program*> variants_;
 };

@@ -10,7 +10,8 @@
 // re-encoded as PNG from the decoded pixels), samplers, cameras, KHR_lights_punctual.
 // Not written: skins and animations (the Scene holds no animations; joints and weights are
 // dropped), the kept-but-unshaded extension blocks (sheen, transmission, ...) and unknown
-// extensions and extras (the glTF loader does not keep them).
+// extensions and extras (the glTF loader does not keep them; save_gltf_material_edits below
+// keeps them, for edits of a file's materials).
 //
 // OBJ: one `o` per mesh instance, with its node's world transform applied to positions
 // and normals (identity for scenes from OBJ files, so the numbers round-trip), `vt` with
@@ -19,6 +20,7 @@
 // keys Pr Pm when `pbr_keys`), map_Kd / map_Ks / map_Ke / norm as PNG files beside it.
 // Floats are written with 9 significant digits, which reads back to the same float.
 #include <filesystem>
+#include <vector>
 
 #include "fresnel/core/error.h"
 #include "fresnel/scene/scene.h"
@@ -36,5 +38,22 @@ struct ObjWriteOptions {
 // `phong` block get the naive Kd = base colour, Ks 0.04 (converters fill `phong` first).
 void write_obj(const Scene& scene, const std::filesystem::path& path, Diagnostics& diagnostics,
                const ObjWriteOptions& options = {});
+
+// Material edits written back into the glTF file they came from, losslessly: `source`
+// (.gltf or .glb) is written to `dest` (the same container; may be `source` itself) with the
+// values that differ between `original` (the materials as loaded from `source`, in file order)
+// and `edited` replaced, and nothing else changed. The JSON is parsed and written back with its
+// keys in order, so unknown extensions, extras, names and other materials stay; a .glb's BIN
+// chunk (and any other chunk) is copied byte for byte; a .gltf's .bin and image files are not
+// touched (copied beside `dest` when it is in another folder). Values written: baseColorFactor,
+// metallicFactor, roughnessFactor, emissiveFactor, alphaMode, alphaCutoff, doubleSided,
+// normalTexture.scale, occlusionTexture.strength, KHR_materials_emissive_strength, _ior,
+// _specular (specularFactor, specularColorFactor), _clearcoat (clearcoatFactor,
+// clearcoatRoughnessFactor); a new extension block is added to extensionsUsed. Atomic: a
+// failed write leaves `dest` as it was. Returns how many values were written; throws
+// fresnel::Error (file, reason); what cannot be written goes to `diagnostics`.
+int save_gltf_material_edits(const std::filesystem::path& source, const std::filesystem::path& dest,
+                             const std::vector<Material>& original, const std::vector<Material>& edited,
+                             Diagnostics& diagnostics);
 
 }  // namespace fresnel
