@@ -739,9 +739,10 @@ TEST(KhronosReferences, Transmission) {
     s.width = s.height = 320;
     s.environment = &baked;
     const TransmissionCase cases[] = {
-        {"transmission", "front", {0, 0}, 20.0}, {"transmission", "q", {30, 20}, 20.0},
-        {"volume", "front", {0, 0}, 20.0},       {"volume", "q", {30, 20}, 20.0},
-        {"dispersion", "front", {0, 0}, 20.0},   {"dispersion", "q", {30, 20}, 20.0},
+        // Measured: 35.14, 34.91, 35.11, 36.06, 34.83, 35.52 dB.
+        {"transmission", "front", {0, 0}, 33.6}, {"transmission", "q", {30, 20}, 33.4},
+        {"volume", "front", {0, 0}, 33.6},       {"volume", "q", {30, 20}, 34.5},
+        {"dispersion", "front", {0, 0}, 33.3},   {"dispersion", "q", {30, 20}, 34.0},
     };
     for (const TransmissionCase& c : cases) {
         const std::string name = std::string(c.scene) + "_" + c.view_name;
