@@ -16,6 +16,14 @@ vec3 debug_value(int channel, MaterialInputs m, vec3 n, vec3 ng, vec3 t, vec3 b,
     if (channel == 10) return vec3(m.base_color.a);
     if (channel == 11) return vec3(fract(v_uv0), 0.0);
     if (channel == 12) return vec3(fract(v_uv1), 0.0);
+    if (channel == 22 || channel == 23) {
+#ifdef MATERIAL_TRANSMISSION
+        TransmissionInputs tr = read_transmission();
+        return vec3(channel == 22 ? tr.factor : clamp(tr.thickness, 0.0, 1.0));
+#else
+        return vec3(0.0);  // not transmissive
+#endif
+    }
     vec3 l = v;
     if (u_light_count > 0) light_incident(0, v_position, l);
     BrdfTerms bt = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight, n, v, l);

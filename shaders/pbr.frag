@@ -24,6 +24,7 @@ uniform int u_encoding;    // -1 = none (linear output), 0 = sRGB, 1 = gamma 2.2
 #include "lights.glsl"
 #include "ibl.glsl"
 #include "material_inputs.glsl"
+#include "transmission.glsl"
 #include "debug.glsl"
 
 struct Frame {
@@ -83,11 +84,23 @@ void main() {
     float cc_n_dot_v = clamped_dot(f.nc, v);
     float cc_mix = m.clearcoat * f_schlick(m.clearcoat_f0, 1.0, cc_n_dot_v);  // brdf::clearcoat_mix
 #endif
+#ifdef MATERIAL_TRANSMISSION
+    // KHR_materials_transmission / _volume (transmission.glsl): the refracted ray through the
+    // volume, for punctual lights (the BTDF towards the light seen from its exit) and the
+    // refraction of the opaque scene.
+    TransmissionInputs tr = read_transmission();
+    vec3 tr_ray = volume_ray(f.n, v, tr.thickness, tr.ior, model_scale());
+    float tr_ray_length = length(tr_ray);
+#endif
     for (int i = 0; i < MAX_LIGHTS; ++i) {
         if (i >= u_light_count) break;
         vec3 l;
         vec3 radiance = light_incident(i, v_position, l);
         vec3 lit = shade_light(m, v, l, radiance, comp_dielectric, comp_metal);  // fresnel::shade_light
+#ifdef MATERIAL_TRANSMISSION
+        vec3 lt = normalize(point_to_light(i, v_position) - tr_ray);
+        lit += shade_light_transmission(m, tr, v, l, lt, tr_ray_length, radiance);  // fresnel::shade_light_transmission
+#endif
         color += lit;
     }
 #ifdef USE_IBL
@@ -95,6 +108,9 @@ void main() {
         // Split-sum image-based light, weighted as the glTF BRDF's dielectric/metal mix.
         vec3 r = reflect(-v, f.n);
         vec3 diffuse = ibl_irradiance(f.n) * m.base_color.rgb;
+#ifdef MATERIAL_TRANSMISSION
+        diffuse = mix(diffuse, ibl_transmission(m, tr, f.n, v, v_position), tr.factor);
+#endif
         vec3 specular = ibl_radiance(r, m.roughness);
         vec3 fresnel_dielectric = ibl_ggx_fresnel(n_dot_v, m.roughness, m.f0_dielectric, m.specular_weight);
         vec3 fresnel_metal = ibl_ggx_fresnel(n_dot_v, m.roughness, m.base_color.rgb, 1.0);
@@ -109,6 +125,18 @@ void main() {
         ibl = mix(ibl, coat, cc_mix);
 #endif
         color += ibl;
+    }
+#elif defined(MATERIAL_TRANSMISSION)
+    {
+        // No environment: the refracted opaque scene still shows (as in the Khronos viewer,
+        // whose image-based light is then only dark), under the same Fresnel weights.
+        vec3 fd = ibl_ggx_fresnel(n_dot_v, m.roughness, m.f0_dielectric, m.specular_weight);
+        vec3 refraction = tr.factor * ibl_transmission(m, tr, f.n, v, v_position) * (1.0 - fd) * m.occlusion *
+                          (1.0 - m.metallic);
+#ifdef MATERIAL_CLEARCOAT
+        refraction *= 1.0 - cc_mix;
+#endif
+        color += refraction;
     }
 #endif
     // Occlusion applies to indirect light only.

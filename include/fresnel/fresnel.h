@@ -35,6 +35,7 @@
 #include "fresnel/material/phong.h"
 #include "fresnel/material/sampling.h"
 #include "fresnel/material/texture.h"
+#include "fresnel/material/transmission.h"
 
 #include "fresnel/ibl/bake.h"
 #include "fresnel/ibl/cubemap.h"

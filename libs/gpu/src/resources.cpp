@@ -82,6 +82,12 @@ Texture Texture::create_2d(int width, int height, TextureFormat format, const vo
     return t;
 }
 
+void Texture::generate_mipmaps() {
+    glBindTexture(GL_TEXTURE_2D, id_);
+    glGenerateMipmap(GL_TEXTURE_2D);
+    glBindTexture(GL_TEXTURE_2D, 0);
+}
+
 Texture Texture::create_2d_levels(TextureFormat format, std::span<const MipLevel> levels) {
     Texture t;
     if (levels.empty()) return t;

@@ -23,6 +23,8 @@ constexpr MaterialMapInfo kMaps[kMaterialMapCount] = {
     {"clearcoat", "HAS_CLEARCOAT_MAP", false, false},
     {"clearcoat_roughness", "HAS_CLEARCOAT_ROUGHNESS_MAP", false, false},
     {"clearcoat_normal", "HAS_CLEARCOAT_NORMAL_MAP", false, true},
+    {"transmission", "HAS_TRANSMISSION_MAP", false, false},
+    {"thickness", "HAS_THICKNESS_MAP", false, false},
 };
 
 // Reads one map at the point, or nullopt when the map is absent or unreadable.
@@ -87,6 +89,10 @@ const TextureSlot* material_map(const Material& m, MaterialMap map) {
         case MaterialMap::Clearcoat: slot = cc ? &cc->clearcoat_texture : nullptr; break;
         case MaterialMap::ClearcoatRoughness: slot = cc ? &cc->clearcoat_roughness_texture : nullptr; break;
         case MaterialMap::ClearcoatNormal: slot = cc ? &cc->clearcoat_normal_texture : nullptr; break;
+        case MaterialMap::Transmission: slot = is_transmissive(m) ? &m.transmission->transmission_texture : nullptr; break;
+        case MaterialMap::Thickness:
+            slot = is_transmissive(m) && m.volume ? &m.volume->thickness_texture : nullptr;
+            break;
     }
     return slot && slot->valid() ? slot : nullptr;
 }
@@ -214,7 +220,44 @@ EvaluatedMaterial evaluate(const Material& material, const TextureSource& textur
     e.clearcoat_normal = point.normal;
     if (auto t = maps.sample(MaterialMap::ClearcoatNormal))
         e.clearcoat_normal = perturb(*t, m.clearcoat->clearcoat_normal_scale, point);
+    if (is_transmissive(m)) {
+        TransmissionInputs& tr = e.transmission;
+        tr.factor = m.transmission->transmission_factor;
+        if (auto t = maps.sample(MaterialMap::Transmission)) tr.factor *= t->x;
+        tr.ior = m.ior_value();
+        if (m.volume) {
+            tr.thickness = m.volume->thickness_factor;
+            if (auto t = maps.sample(MaterialMap::Thickness)) tr.thickness *= t->y;
+            tr.attenuation_color = m.volume->attenuation_color;
+            float d = m.volume->attenuation_distance;
+            tr.attenuation_distance = std::isfinite(d) ? d : 0.0f;
+        }
+        if (m.dispersion) tr.dispersion = m.dispersion->dispersion;
+    }
     return e;
+}
+
+bool is_transmissive(const Material& m) { return m.transmission && !m.specular_glossiness && !m.unlit; }
+
+glm::vec3 shade_light_transmission(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 l_transmitted,
+                                   float ray_length, glm::vec3 radiance) {
+    const TransmissionInputs& tr = m.transmission;
+    const brdf::Surface& s = m.surface;
+    glm::vec3 h = l + v;
+    float hl = glm::length(h);
+    h = hl > 0.0f ? h / hl : m.normal;
+    float v_dot_h = std::clamp(glm::dot(v, h), 0.0f, 1.0f);
+    float n_dot_l = std::clamp(glm::dot(m.normal, l), 0.0f, 1.0f);
+    glm::vec3 f_dielectric = brdf::f_schlick(s.dielectric_f0() * s.specular_weight, glm::vec3(s.specular_weight), v_dot_h);
+    glm::vec3 btdf = transmission::btdf_punctual(m.normal, v, l_transmitted,
+                                                 brdf::alpha_from_roughness(s.perceptual_roughness), s.dielectric_f0(),
+                                                 glm::vec3(1.0f), s.base_color, tr.ior);
+    glm::vec3 transmitted = transmission::volume_attenuation(radiance * btdf, ray_length, tr.attenuation_color,
+                                                             tr.attenuation_distance);
+    glm::vec3 term = (1.0f - s.metallic) * (1.0f - f_dielectric) * tr.factor *
+                     (transmitted - radiance * n_dot_l * brdf::lambert(s.base_color));
+    if (m.clearcoat > 0.0f) term *= 1.0f - brdf::clearcoat_mix(m.clearcoat, m.clearcoat_f0, m.clearcoat_normal, v);
+    return term;
 }
 
 glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 radiance,

@@ -1,5 +1,7 @@
 #include "fresnel/render/material_uniforms.h"
 
+#include <cmath>
+
 #include "fresnel/gpu/resources.h"
 
 namespace fresnel {
@@ -28,6 +30,15 @@ MaterialUniforms material_uniforms(const Material& m) {
         u.clearcoat_roughness_factor = m.clearcoat->clearcoat_roughness_factor;
         u.clearcoat_normal_scale = m.clearcoat->clearcoat_normal_scale;
     }
+    if (is_transmissive(m)) {
+        u.transmission_factor = m.transmission->transmission_factor;
+        if (m.volume) {
+            u.thickness_factor = m.volume->thickness_factor;
+            u.attenuation_color = m.volume->attenuation_color;
+            u.attenuation_distance = std::isfinite(m.volume->attenuation_distance) ? m.volume->attenuation_distance : 0.0f;
+        }
+        if (m.dispersion) u.dispersion = m.dispersion->dispersion;
+    }
     for (int i = 0; i < kMaterialMapCount; ++i) u.maps[std::size_t(i)] = material_map(m, MaterialMap(i));
     return u;
 }
@@ -37,6 +48,7 @@ FeatureMask material_features(const Material& m) {
     if (m.unlit) f |= feature::Unlit;
     if (m.specular_glossiness) f |= feature::SpecularGlossiness;
     if (m.has_clearcoat()) f |= feature::Clearcoat;
+    if (is_transmissive(m)) f |= feature::Transmission;
     if (m.alpha_mode == AlphaMode::Mask) f |= feature::AlphaMask;
     if (m.alpha_mode == AlphaMode::Blend) f |= feature::AlphaBlend;
     return f;
@@ -60,6 +72,11 @@ void set_material_uniforms(const gpu::Program& prog, const MaterialUniforms& u,
     prog.set("u_clearcoat_factor", u.clearcoat_factor);
     prog.set("u_clearcoat_roughness_factor", u.clearcoat_roughness_factor);
     prog.set("u_clearcoat_normal_scale", u.clearcoat_normal_scale);
+    prog.set("u_transmission_factor", u.transmission_factor);
+    prog.set("u_thickness_factor", u.thickness_factor);
+    prog.set("u_attenuation_color", u.attenuation_color);
+    prog.set("u_attenuation_distance", u.attenuation_distance);
+    prog.set("u_dispersion", u.dispersion);
     for (int i = 0; i < kMaterialMapCount; ++i) {
         if (!bound[std::size_t(i)]) continue;
         std::string base = std::string("u_") + material_map_info(MaterialMap(i)).name;

@@ -13,6 +13,7 @@
 #include "fresnel/gpu/device.h"
 #include "fresnel/gpu/resources.h"
 #include "fresnel/material/phong.h"
+#include "fresnel/material/transmission.h"
 #include "fresnel/render/material_uniforms.h"
 #include "fresnel/render/shader_features.h"
 #include "fresnel/render/shader_library.h"
@@ -35,6 +36,7 @@ constexpr NamedChannel kChannels[] = {
     {"diffuse", DebugChannel::Diffuse}, {"specular", DebugChannel::Specular},
     {"irradiance", DebugChannel::Irradiance}, {"prefiltered", DebugChannel::Prefiltered},
     {"ibl-diffuse", DebugChannel::IblDiffuse}, {"ibl-specular", DebugChannel::IblSpecular},
+    {"transmission", DebugChannel::Transmission}, {"thickness", DebugChannel::Thickness},
 };
 
 constexpr int kMaxLights = kMaxShaderLights;
@@ -45,6 +47,10 @@ constexpr int kMaxLights = kMaxShaderLights;
 enum class TextureUnit : int {
     FirstMaterialMap = 0,
     Frame = 0,
+    // KHR_materials_transmission's opaque-scene texture: the unit of the specular-glossiness
+    // map, which transmissive variants never read (shader_features.h: no transmission with
+    // specular-glossiness); the 16 units OpenGL ES 3.0 guarantees are all taken otherwise.
+    TransmissionFramebuffer = 7,
     BrdfLut = 13,
     SpecularEnvironment = 14,
     IrradianceEnvironment = 15,
@@ -155,6 +161,46 @@ struct Renderer::Impl {
     gpu::Texture output;
     gpu::Framebuffer output_fb;
 
+    // KHR_materials_transmission (transmission.h): the opaque scene in linear radiance, drawn
+    // before the transmissive primitives, which refract it. As the Khronos Sample Viewer: a
+    // square 1024^2 RGBA8 target (linear values, clamped to 1 and quantised to 8 bits as
+    // there; its mip levels are the roughness blur) with the frame's own view and
+    // projection, multisampled like the frame and resolved, then mip-mapped by the driver.
+    int transmission_samples = -1;
+    gpu::Renderbuffer transmission_msaa_color, transmission_depth;
+    gpu::Framebuffer transmission_msaa_fb, transmission_fb;
+    gpu::Texture transmission_texture;
+    bool transmission_ready = false;  // drawn this frame
+    bool linear_pass = false;         // drawing the transmission pass: linear output
+
+    void ensure_transmission_target(int samples) {
+        if (samples == transmission_samples) return;
+        transmission_samples = samples;
+        const int size = transmission::kFramebufferSize;
+        transmission_texture = gpu::Texture::create_2d(size, size, gpu::TextureFormat::RGBA8, nullptr, true);
+        gpu::SamplerState ss;
+        ss.min_filter = Filter::Linear;
+        ss.mipmap = MipmapMode::Linear;
+        ss.mag_filter = Filter::Nearest;
+        ss.wrap_s = ss.wrap_t = Wrap::ClampToEdge;
+        transmission_texture.set_sampler(ss);
+        transmission_fb = gpu::Framebuffer();
+        transmission_fb.attach_color(transmission_texture);
+        transmission_depth = gpu::Renderbuffer(size, size, gpu::RenderbufferFormat::Depth24, samples);
+        if (samples > 1) {
+            transmission_msaa_color = gpu::Renderbuffer(size, size, gpu::RenderbufferFormat::RGBA8, samples);
+            transmission_msaa_fb = gpu::Framebuffer();
+            transmission_msaa_fb.attach_color(transmission_msaa_color);
+            transmission_msaa_fb.attach_depth(transmission_depth);
+            transmission_msaa_fb.check();
+        } else {
+            transmission_msaa_color = gpu::Renderbuffer();
+            transmission_msaa_fb = gpu::Framebuffer();
+            transmission_fb.attach_depth(transmission_depth);
+        }
+        transmission_fb.check();
+    }
+
     // Image-based light on the GPU, re-uploaded when the environment or table changes.
     // Keyed by content (BakedIbl::content_hash, image_content_hash), not by address: a new
     // object holding the same environment uploads nothing, a reused address with new data does.
@@ -204,7 +250,8 @@ struct Renderer::Impl {
         prog.set("u_env_rotation", env_rotation(s));
     }
 
-    void draw_sky(const CameraSetup& cam, const RenderSettings& s) {
+    // linear: radiance without exposure, tone mapping or encoding (the transmission pass).
+    void draw_sky(const CameraSetup& cam, const RenderSettings& s, bool linear = false) {
         gpu::PipelineState st;
         st.depth_test = false;
         st.depth_write = false;
@@ -219,9 +266,9 @@ struct Renderer::Impl {
         prog.set("u_env_intensity", s.env_intensity);
         float levels = float(s.environment->specular.levels.size());
         prog.set("u_lod", s.background_mode == RenderSettings::Background::Blurred ? s.blur_roughness * (levels - 1.0f) : 0.0f);
-        prog.set("u_exposure", exposure_scale(s.exposure_ev));
-        prog.set("u_tonemap", int(s.tone_mapper));
-        prog.set("u_encoding", s.encoding ? int(*s.encoding) : -1);
+        prog.set("u_exposure", linear ? 1.0f : exposure_scale(s.exposure_ev));
+        prog.set("u_tonemap", linear ? int(ToneMapper::None) : int(s.tone_mapper));
+        prog.set("u_encoding", linear || !s.encoding ? -1 : int(*s.encoding));
         device.draw_fullscreen();
     }
 
@@ -629,9 +676,17 @@ struct Renderer::Impl {
         prog.set("u_camera_position", cam.eye);
         prog.set("u_debug", int(settings.debug));
         prog.set("u_ambient", settings.ambient);
-        prog.set("u_exposure", exposure_scale(settings.exposure_ev));
-        prog.set("u_tonemap", int(settings.tone_mapper));
-        prog.set("u_encoding", settings.encoding ? int(*settings.encoding) : -1);
+        // The transmission pass writes linear radiance (Khronos' LINEAR_OUTPUT: no exposure either).
+        prog.set("u_exposure", linear_pass ? 1.0f : exposure_scale(settings.exposure_ev));
+        prog.set("u_tonemap", linear_pass ? int(ToneMapper::None) : int(settings.tone_mapper));
+        prog.set("u_encoding", linear_pass || !settings.encoding ? -1 : int(*settings.encoding));
+        if (features & feature::Transmission) {
+            constexpr int kUnit = int(TextureUnit::TransmissionFramebuffer);
+            static_assert(kUnit == int(MaterialMap::SpecularGlossiness));
+            device.bind_texture(kUnit, transmission_ready ? transmission_texture : white_texture());
+            prog.set("u_transmission_framebuffer", kUnit);
+            prog.set("u_transmission_framebuffer_size", float(transmission::kFramebufferSize));
+        }
         // The split-sum table, the prefiltered environment, the irradiance.
         bool have_lut = lut_texture && uploaded_lut != 0;
         if (have_lut) device.bind_texture(kLutUnit, lut_texture);
@@ -734,7 +789,7 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
     }
 
     if (r.scene) {
-        std::vector<Draw> opaque, blended;
+        std::vector<Draw> opaque, blended, transmissive;
         // GPU animation: joint matrices from the nodes' current world matrices.
         std::vector<std::vector<glm::mat4>> skin_matrices;
         if (settings.gpu_animation) {
@@ -767,14 +822,41 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
                     }
                 }
                 const Material* m = p.material >= 0 ? &r.scene->materials[std::size_t(p.material)] : nullptr;
-                if (m && m->alpha_mode == AlphaMode::Blend) blended.push_back(d);
+                if (m && is_transmissive(*m) && material_shading(settings.shading, *m) == ShadingModel::Gltf)
+                    transmissive.push_back(d);
+                else if (m && m->alpha_mode == AlphaMode::Blend) blended.push_back(d);
                 else opaque.push_back(d);
             }
         }
-        // Blended primitives last, far to near.
-        std::stable_sort(blended.begin(), blended.end(), [](const Draw& a, const Draw& b) { return a.depth > b.depth; });
+        // Blended primitives last, far to near; transmissive ones (KHR_materials_transmission)
+        // between the opaque and the blended ones, far to near, as the Khronos Sample Viewer.
+        auto far_to_near = [](const Draw& a, const Draw& b) { return a.depth > b.depth; };
+        std::stable_sort(blended.begin(), blended.end(), far_to_near);
+        std::stable_sort(transmissive.begin(), transmissive.end(), far_to_near);
         r.pack_lights(lights);
+        r.transmission_ready = false;
+        if (!transmissive.empty() && settings.debug == DebugChannel::None) {
+            // The transmission pass: what the transmissive primitives refract (everything else,
+            // with the environment background when the frame shows one), in linear radiance.
+            const int size = transmission::kFramebufferSize;
+            r.ensure_transmission_target(samples);
+            r.device.bind_framebuffer(samples > 1 ? &r.transmission_msaa_fb : &r.transmission_fb);
+            r.device.viewport(0, 0, size, size);
+            r.device.clear(transparent ? glm::vec4(0.0f) : glm::vec4(glm::vec3(settings.background), 1.0f), true);
+            if (settings.environment && settings.background_mode != RenderSettings::Background::Color)
+                r.draw_sky(cam, settings, true);
+            r.linear_pass = true;
+            for (const auto& d : opaque) r.draw_primitive(d, cam, lights, settings, stats);
+            for (const auto& d : blended) r.draw_primitive(d, cam, lights, settings, stats);
+            r.linear_pass = false;
+            if (samples > 1) r.device.blit_color(r.transmission_msaa_fb, r.transmission_fb, size, size);
+            r.transmission_texture.generate_mipmaps();
+            r.transmission_ready = true;
+            r.device.bind_framebuffer(&r.msaa_fb);
+            r.device.viewport(0, 0, w, h);
+        }
         for (const auto& d : opaque) r.draw_primitive(d, cam, lights, settings, stats);
+        for (const auto& d : transmissive) r.draw_primitive(d, cam, lights, settings, stats);
         for (const auto& d : blended) r.draw_primitive(d, cam, lights, settings, stats);
     }
 

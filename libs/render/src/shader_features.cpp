@@ -1,5 +1,7 @@
 #include "fresnel/render/shader_features.h"
 
+#include <algorithm>
+
 namespace fresnel {
 
 namespace {
@@ -30,6 +32,9 @@ constexpr FeatureInfo kFeatures[kCount] = {
     {ClearcoatNormalMap, "HAS_CLEARCOAT_NORMAL_MAP"},
     {Skinned, "SKINNED"},
     {MorphTargets, "MORPH_TARGETS"},
+    {TransmissionMap, "HAS_TRANSMISSION_MAP"},
+    {ThicknessMap, "HAS_THICKNESS_MAP"},
+    {Transmission, "MATERIAL_TRANSMISSION"},
 };
 
 // The maps a draw with these attributes and this material model may bind.
@@ -44,6 +49,7 @@ FeatureMask allowed_maps(FeatureMask m) {
         maps |= ClearcoatMap | ClearcoatRoughnessMap;
         if (m & HasTangent) maps |= ClearcoatNormalMap;
     }
+    if (m & Transmission) maps |= TransmissionMap | ThicknessMap;
     return maps;
 }
 }  // namespace
@@ -62,11 +68,14 @@ FeatureMask canonical_features(FeatureMask m) {
     m &= kAll;
     if (!(m & HasNormal)) m &= ~HasTangent;
     if (m & AlphaMask) m &= ~AlphaBlend;
-    if ((m & Unlit) && !(m & DebugView)) m &= ~(HasNormal | HasTangent | SpecularGlossiness | Clearcoat | UseIbl);
+    if ((m & Unlit) && !(m & DebugView))
+        m &= ~(HasNormal | HasTangent | SpecularGlossiness | Clearcoat | UseIbl | Transmission);
+    if (m & SpecularGlossiness) m &= ~Transmission;
     const FeatureMask allowed = allowed_maps(m);
     m = (m & ~kMaps) | (m & allowed);
     if (!(m & SpecularGlossiness) && (m & (SpecularMap | SpecularColorMap))) m |= SpecularMap | SpecularColorMap;
     if (m & (ClearcoatMap | ClearcoatRoughnessMap)) m |= ClearcoatMap | ClearcoatRoughnessMap;
+    if (m & Transmission) m |= allowed & (TransmissionMap | ThicknessMap);
     if (m & DebugView) m |= allowed & ~(NormalMap | ClearcoatNormalMap);
     return m;
 }
@@ -74,9 +83,19 @@ FeatureMask canonical_features(FeatureMask m) {
 bool valid_features(FeatureMask mask) { return (mask & ~kAll) == 0 && canonical_features(mask) == mask; }
 
 std::vector<FeatureMask> all_feature_sets() {
+    // The transmission bits (25..27) are decided by the Transmission bit alone (its maps come
+    // with it), and no rule on the other bits looks at them: so every valid mask is a valid
+    // mask of bits 0..24, with or without canonical_features(m | Transmission). Enumerating
+    // 2^25 masks instead of 2^28 keeps this fast.
     std::vector<FeatureMask> out;
-    for (FeatureMask m = 0; m <= kAll; ++m)
-        if (canonical_features(m) == m) out.push_back(m);
+    constexpr FeatureMask kLow = (1u << 25) - 1;
+    for (FeatureMask m = 0; m <= kLow; ++m) {
+        if (canonical_features(m) != m) continue;
+        out.push_back(m);
+        const FeatureMask t = canonical_features(m | Transmission);
+        if ((t & Transmission) && (t & kLow) == m) out.push_back(t);
+    }
+    std::sort(out.begin(), out.end());
     return out;
 }
 

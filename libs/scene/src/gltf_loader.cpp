@@ -34,15 +34,15 @@ const std::vector<std::string>& supported_gltf_extensions() {
         "KHR_materials_unlit", "KHR_mesh_quantization", "KHR_materials_ior", "KHR_materials_specular",
         "KHR_materials_pbrSpecularGlossiness", "KHR_materials_clearcoat",
         "EXT_meshopt_compression", "KHR_draco_mesh_compression", "EXT_texture_webp", "KHR_materials_variants",
-        "KHR_animation_pointer",
+        "KHR_animation_pointer", "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_dispersion",
     };
     return list;
 }
 
 const std::vector<std::string>& parsed_unshaded_gltf_extensions() {
     static const std::vector<std::string> list = {
-        "KHR_materials_sheen", "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_iridescence",
-        "KHR_materials_anisotropy", "KHR_materials_dispersion", "KHR_materials_diffuse_transmission",
+        "KHR_materials_sheen", "KHR_materials_iridescence", "KHR_materials_anisotropy",
+        "KHR_materials_diffuse_transmission",
     };
     return list;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "fresnel/material/sampling.h"
+#include "fresnel/material/transmission.h"
 
 namespace fresnel::trace {
 
@@ -20,15 +21,18 @@ BsdfLobes lobe_probabilities(const EvaluatedMaterial& m, glm::vec3 v) {
     float spec = (1.0f - s.metallic) * luminance(f_dielectric) + s.metallic * luminance(f_metal);
     float diff = (1.0f - s.metallic) * luminance((1.0f - f_dielectric) * s.base_color);
     float coat = m.clearcoat > 0.0f ? brdf::clearcoat_mix(m.clearcoat, m.clearcoat_f0, m.clearcoat_normal, v) : 0.0f;
+    const float t = std::clamp(m.transmission.factor, 0.0f, 1.0f);
     BsdfLobes p;
-    p.diffuse = std::max(diff, 0.0f) * (1.0f - coat);
+    p.diffuse = std::max(diff, 0.0f) * (1.0f - coat) * (1.0f - t);
+    p.transmission = std::max(diff, 0.0f) * (1.0f - coat) * t;
     p.specular = std::max(spec, 0.0f) * (1.0f - coat);
     p.clearcoat = coat;
-    float sum = p.diffuse + p.specular + p.clearcoat;
+    float sum = p.diffuse + p.specular + p.clearcoat + p.transmission;
     if (!(sum > 0.0f)) return BsdfLobes{};
     p.diffuse /= sum;
     p.specular /= sum;
     p.clearcoat /= sum;
+    p.transmission /= sum;
     return p;
 }
 
@@ -38,6 +42,9 @@ Bsdf::Bsdf(const EvaluatedMaterial& m, glm::vec3 v, const brdf::BrdfModel& model
     sampling::basis(base_.n, base_.t, base_.b);
     v_base_ = base_.to_local(v);
     alpha_ = brdf::alpha_from_roughness(m.surface.perceptual_roughness);
+    // The lobe's roughness as Khronos narrows it towards ior 1, kept off the delta as alpha_ is.
+    transmission_alpha_ = std::max(transmission::apply_ior_to_roughness(alpha_, m.transmission.ior),
+                                   kMinTraceRoughness * kMinTraceRoughness);
     if (lobes_.clearcoat > 0.0f) {
         coat_.n = m.clearcoat_normal;
         sampling::basis(coat_.n, coat_.t, coat_.b);
@@ -46,8 +53,42 @@ Bsdf::Bsdf(const EvaluatedMaterial& m, glm::vec3 v, const brdf::BrdfModel& model
     }
 }
 
+glm::vec3 Bsdf::eval_transmission(glm::vec3 l) const {
+    const TransmissionInputs& tr = m_.transmission;
+    const brdf::Surface& s = m_.surface;
+    const glm::vec3 n = base_.n;
+    float n_dot_l = glm::dot(n, l);
+    if (tr.factor <= 0.0f || n_dot_l >= 0.0f) return glm::vec3(0.0f);
+    glm::vec3 lm = l - 2.0f * n_dot_l * n;  // mirrored above the surface
+    glm::vec3 h = glm::normalize(lm + v_);
+    float n_dot_v = std::clamp(glm::dot(n, v_), 0.0f, 1.0f), n_dot_lm = -n_dot_l;
+    float v_dot_h = std::clamp(glm::dot(v_, h), 0.0f, 1.0f);
+    float a = transmission_alpha_;
+    float dv = brdf::d_ggx(std::clamp(glm::dot(n, h), 0.0f, 1.0f), a) * brdf::v_smith_ggx_correlated(n_dot_lm, n_dot_v, a);
+    glm::vec3 f_dielectric = brdf::f_schlick(s.dielectric_f0() * s.specular_weight, glm::vec3(s.specular_weight), v_dot_h);
+    glm::vec3 f = (1.0f - s.metallic) * (1.0f - f_dielectric) * tr.factor * s.base_color * dv * n_dot_lm;
+    if (m_.clearcoat > 0.0f) f *= 1.0f - brdf::clearcoat_mix(m_.clearcoat, m_.clearcoat_f0, m_.clearcoat_normal, v_);
+    return f;
+}
+
 glm::vec3 Bsdf::eval(glm::vec3 l) const {
-    return shade_light(m_, v_, l, glm::vec3(1.0f), glm::vec3(1.0f), glm::vec3(1.0f), model_);
+    glm::vec3 f = shade_light(m_, v_, l, glm::vec3(1.0f), glm::vec3(1.0f), glm::vec3(1.0f), model_);
+    const TransmissionInputs& tr = m_.transmission;
+    if (tr.factor > 0.0f) {
+        float n_dot_l = glm::dot(base_.n, l);
+        if (n_dot_l < 0.0f) return eval_transmission(l);
+        // Above the surface the transmission takes its share T of the diffuse lobe.
+        const brdf::Surface& s = m_.surface;
+        glm::vec3 h = glm::normalize(l + v_);
+        glm::vec3 f_dielectric = brdf::f_schlick(s.dielectric_f0() * s.specular_weight, glm::vec3(s.specular_weight),
+                                                 std::clamp(glm::dot(v_, h), 0.0f, 1.0f));
+        glm::vec3 diffuse = (1.0f - s.metallic) * (1.0f - f_dielectric) * brdf::lambert(s.base_color) * n_dot_l;
+        if (m_.clearcoat > 0.0f)
+            diffuse *= 1.0f - brdf::clearcoat_mix(m_.clearcoat, m_.clearcoat_f0, m_.clearcoat_normal, v_);
+        f -= tr.factor * diffuse;
+        f = glm::max(f, glm::vec3(0.0f));
+    }
+    return f;
 }
 
 float Bsdf::pdf(glm::vec3 l) const {
@@ -63,13 +104,18 @@ float Bsdf::pdf(glm::vec3 l) const {
         glm::vec3 ll = coat_.to_local(l);
         if (ll.z > 0.0f) pdf += lobes_.clearcoat * sampling::pdf_ggx_reflection(v_coat_, ll, coat_alpha_);
     }
+    if (lobes_.transmission > 0.0f) {
+        glm::vec3 ll = base_.to_local(l);
+        if (ll.z < 0.0f)
+            pdf += lobes_.transmission * sampling::pdf_ggx_reflection(v_base_, glm::vec3(ll.x, ll.y, -ll.z), transmission_alpha_);
+    }
     return pdf;
 }
 
 BsdfSample Bsdf::sample(glm::vec3 u) const {
     BsdfSample s;
     const BsdfLobes& p = lobes_;
-    if (p.diffuse + p.specular + p.clearcoat <= 0.0f) return s;
+    if (p.diffuse + p.specular + p.clearcoat + p.transmission <= 0.0f) return s;
     glm::vec2 u2(u.y, u.z);
     // Each lobe's samples below its own horizon are lost (the pdf of a lobe is 0 there, so
     // keeping them would make the mixture's pdf wrong where another lobe reaches).
@@ -81,12 +127,20 @@ BsdfSample Bsdf::sample(glm::vec3 u) const {
         if (v_base_.z <= 0.0f) return s;
         local = sampling::sample_ggx_reflection(v_base_, u2, alpha_);
         s.l = base_.to_world(local);
-    } else {
+    } else if (u.x < p.diffuse + p.specular + p.clearcoat) {
         if (v_coat_.z <= 0.0f) return s;
         local = sampling::sample_ggx_reflection(v_coat_, u2, coat_alpha_);
         s.l = coat_.to_world(local);
+    } else {
+        // Transmission: a reflection sample of the lobe mirrored through the surface.
+        if (v_base_.z <= 0.0f) return s;
+        local = sampling::sample_ggx_reflection(v_base_, u2, transmission_alpha_);
+        if (!(local.z > 0.0f)) return s;
+        local.z = -local.z;
+        s.l = base_.to_world(local);
+        s.transmitted = true;
     }
-    if (!(local.z > 0.0f)) return s;
+    if (!(s.transmitted ? local.z < 0.0f : local.z > 0.0f)) return s;
     float len = glm::length(s.l);
     if (!(len > 0.0f)) return s;
     s.l /= len;

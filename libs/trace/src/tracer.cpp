@@ -439,6 +439,7 @@ struct Integrator {
         glm::vec3 L(0.0f), beta(1.0f);
         float bsdf_pdf = 0.0f;  // of the direction that led here (for MIS with the environment)
         bool env_counted = false;  // no-env-visibility: the last vertex already took the environment
+        bool transmitted = false;  // the last bounce went through a transmissive surface (no NEE there)
         covered = false;
         for (int bounce = 0;; ++bounce) {
             ++rays;
@@ -447,7 +448,7 @@ struct Integrator {
                 if (bounce == 0) {
                     if (env && settings.env_background) L += env->radiance(dir);
                 } else if (env && !env_counted) {
-                    L += beta * env->radiance(dir) * power_heuristic(bsdf_pdf, env->pdf(dir));
+                    L += beta * env->radiance(dir) * (transmitted ? 1.0f : power_heuristic(bsdf_pdf, env->pdf(dir)));
                 }
                 break;
             }
@@ -534,12 +535,25 @@ struct Integrator {
 
             // Continue along a sample of the BSDF.
             BsdfSample bs = bsdf.sample(rng.uniform3());
-            if (bs.pdf <= 0.0f || glm::dot(bs.l, ng) <= 0.0f) break;
+            if (bs.pdf <= 0.0f || (glm::dot(bs.l, ng) <= 0.0f) != bs.transmitted) break;
             beta *= bs.f_cos / bs.pdf;
             bsdf_pdf = bs.pdf;
+            // KHR_materials_transmission: the path continues below the surface (next-event
+            // estimation sees only the upper side, so the next light it meets counts fully);
+            // through a volume (KHR_materials_volume) it leaves where the thickness-scaled
+            // refracted view ray does, attenuated along it, as the Khronos viewer models it.
+            transmitted = bs.transmitted;
+            glm::vec3 exit = p;
+            if (bs.transmitted && m.transmission.thickness > 0.0f) {
+                glm::vec3 ray = transmission::volume_ray(m.normal, wo, m.transmission.thickness, m.transmission.ior,
+                                                         glm::vec3(1.0f));
+                exit = p + ray;
+                beta = transmission::volume_attenuation(beta, glm::length(ray), m.transmission.attenuation_color,
+                                                        m.transmission.attenuation_distance);
+            }
             if (env && !settings.env_visibility) {
                 // The environment unshadowed: its BSDF-sampled half of the MIS here, hit or not.
-                L += beta * env->radiance(bs.l) * power_heuristic(bs.pdf, env->pdf(bs.l));
+                L += beta * env->radiance(bs.l) * (bs.transmitted ? 1.0f : power_heuristic(bs.pdf, env->pdf(bs.l)));
                 env_counted = true;
             }
             float rr = rng.uniform();
@@ -549,7 +563,7 @@ struct Integrator {
                 beta /= q;
             }
             if (!(beta.x + beta.y + beta.z > 0.0f)) break;
-            origin = offset_ray(p, ng);
+            origin = bs.transmitted ? offset_ray(exit, -ng) : offset_ray(p, ng);
             dir = bs.l;
         }
         return L;

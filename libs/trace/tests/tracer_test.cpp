@@ -403,3 +403,28 @@ TEST(Tracer, PointAndSpotLightsFollowTheExtension) {
     Traced t = run(s, nullptr, small(4, 1), {}, {point}, &cam);
     EXPECT_NEAR(covered_mean(t.image).mean, 8.0 / 4.0 * 0.5 / kPi, 0.02 * 8.0 / 4.0 * 0.5 / kPi);
 }
+
+// KHR_materials_transmission in the tracer: a white glass sphere with no reflection (specular
+// factor 0) passes the uniform environment through (1); with KHR_materials_volume its path
+// leaves after the thickness-scaled refracted ray, which has the length of the thickness, so an
+// attenuation colour 0.5 at attenuationDistance = thickness halves it everywhere (an opaque
+// Lambertian sphere of the same base colour would stay at 1).
+TEST(Tracer, TransmissionAndVolumeAttenuation) {
+    EnvironmentLight env(ibl::make_uniform_panorama(glm::vec3(1.0f)));
+    Material glass = lambert(1.0f);
+    glass.roughness_factor = 0.0f;
+    glass.transmission = TransmissionExt{1.0f, {}};
+    Traced thin = run(spheres(glass, {{0, 0, 0, 1}}), &env, small(32));
+    MeanErr m = covered_mean(thin.image);
+    ASSERT_GT(m.n, 300u);
+    EXPECT_NEAR(m.mean, 1.0, 0.03) << "standard error " << m.err;
+    VolumeExt vol;
+    vol.thickness_factor = 2.0f;
+    vol.attenuation_color = glm::vec3(0.5f);
+    vol.attenuation_distance = 2.0f;
+    glass.volume = vol;
+    Traced thick = run(spheres(glass, {{0, 0, 0, 1}}), &env, small(32));
+    MeanErr a = covered_mean(thick.image);
+    ASSERT_GT(a.n, 300u);
+    EXPECT_NEAR(a.mean, 0.5, 0.05) << "standard error " << a.err;
+}

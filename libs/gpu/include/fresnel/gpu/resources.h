@@ -106,6 +106,9 @@ public:
     static Texture create_cube(int size, TextureFormat format, int levels);
     void upload_cube_face(int face, int level, int size, const float* rgba);
     void set_sampler(const SamplerState& s);
+    // Regenerates levels 1.. of a 2D texture from level 0 (glGenerateMipmap), e.g. after
+    // rendering into it.
+    void generate_mipmaps();
     Texture(Texture&&) noexcept = default;
     Texture& operator=(Texture&&) noexcept = default;
     ~Texture();

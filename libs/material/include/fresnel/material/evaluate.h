@@ -13,6 +13,10 @@
 //   occlusion = 1 + strength * (occlusionTexture R - 1)
 //   emissive = emissiveFactor * emissiveStrength * emissiveTexture RGB (sRGB)
 //   alpha: OPAQUE -> 1; MASK -> discard below the cutoff, else 1; BLEND -> as computed
+//   transmission (KHR_materials_transmission, not with specular-glossiness or unlit):
+//               factor * transmissionTexture R; with KHR_materials_volume thickness =
+//               thicknessFactor * thicknessTexture G, attenuation colour and distance (infinity -> 0);
+//               dispersion factor (KHR_materials_dispersion); see transmission.h
 //   normal = normalize(TBN * ((map * 2 - 1) * (scale, scale, 1))) when a normal map is read,
 //            else the geometric normal; the same for the clearcoat normal.
 // A map is read only when the primitive can (map_usable); an unreadable map reads as
@@ -27,6 +31,7 @@
 #include "fresnel/material/brdf_model.h"
 #include "fresnel/material/material.h"
 #include "fresnel/material/texture.h"
+#include "fresnel/material/transmission.h"
 
 namespace fresnel {
 
@@ -47,8 +52,10 @@ enum class MaterialMap {
     Clearcoat,
     ClearcoatRoughness,
     ClearcoatNormal,
+    Transmission,        // KHR_materials_transmission transmissionTexture (R)
+    Thickness,           // KHR_materials_volume thicknessTexture (G), read only with transmission
 };
-inline constexpr int kMaterialMapCount = 11;
+inline constexpr int kMaterialMapCount = 13;
 
 struct MaterialMapInfo {
     const char* name;    // GLSL: u_<name>_map, u_<name>_uv, u_<name>_transform
@@ -98,6 +105,7 @@ struct EvaluatedMaterial {
     float clearcoat_f0 = 0.04f;
     glm::vec3 clearcoat_normal{0, 0, 1};
     bool unlit = false;
+    TransmissionInputs transmission;      // factor 0 without KHR_materials_transmission
 };
 
 EvaluatedMaterial evaluate(const Material& material, const TextureSource& textures, const SurfacePoint& point);
@@ -138,5 +146,19 @@ Material to_metallic_roughness(const Material& material, bool* lost_glossiness_m
 glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 radiance,
                       glm::vec3 comp_dielectric = glm::vec3(1.0f), glm::vec3 comp_metal = glm::vec3(1.0f),
                       const brdf::BrdfModel& model = {});
+
+// Whether the material is shaded with KHR_materials_transmission (the block is present, even
+// with factor 0, as in the Khronos viewer; not for specular-glossiness or unlit materials).
+// Such materials are drawn after the opaque scene, which they refract, and are not part of it.
+bool is_transmissive(const Material& material);
+
+// The transmission term a punctual light adds to shade_light (the twin of
+// shade_light_transmission in shaders/transmission.glsl): the BTDF replaces the Lambert lobe in
+// proportion to the transmission factor, under the dielectric Fresnel and the coat:
+//   (1 - cc_mix) (1 - metallic) (1 - F_d) T [attenuate(radiance btdf_punctual(l_transmitted)) - radiance n.l lambert]
+// l: the direction to the light; l_transmitted: to the light from the point where the
+// transmission ray leaves (ray_length = the ray's length, for the volume's attenuation).
+glm::vec3 shade_light_transmission(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 l_transmitted,
+                                   float ray_length, glm::vec3 radiance);
 
 }  // namespace fresnel

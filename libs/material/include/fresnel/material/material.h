@@ -92,7 +92,8 @@ struct SpecularGlossinessExt {
     TextureSlot specular_glossiness_texture;  // RGB specular (sRGB), A glossiness (linear)
 };
 
-// Kept, not shaded.
+// Shaded (transmission.h): KHR_materials_transmission, _volume, _dispersion. Kept, not
+// shaded: the others below.
 struct SheenExt {                          // KHR_materials_sheen
     glm::vec3 sheen_color_factor{0.0f};
     TextureSlot sheen_color_texture;       // sRGB

@@ -36,6 +36,12 @@ struct MaterialUniforms {
     float clearcoat_factor = 0.0f;       // with MATERIAL_CLEARCOAT only
     float clearcoat_roughness_factor = 0.0f;
     float clearcoat_normal_scale = 1.0f;
+    // KHR_materials_transmission / _volume / _dispersion (with MATERIAL_TRANSMISSION only).
+    float transmission_factor = 0.0f;
+    float thickness_factor = 0.0f;
+    glm::vec3 attenuation_color{1.0f};
+    float attenuation_distance = 0.0f;  // 0 = infinite (transmission.h)
+    float dispersion = 0.0f;
     // The slot each map reads (material_map), nullptr for none; index = MaterialMap.
     std::array<const TextureSlot*, kMaterialMapCount> maps{};
 };
@@ -43,7 +49,7 @@ struct MaterialUniforms {
 MaterialUniforms material_uniforms(const Material& m);
 
 // The shader feature bits (shader_features.h) of the material model: unlit,
-// specular-glossiness, clearcoat, alpha mode (feature_defines() spells them as #defines).
+// specular-glossiness, clearcoat, transmission, alpha mode (feature_defines() spells them as #defines).
 FeatureMask material_features(const Material& m);
 
 // Sets the values on `program` (in use); bound[i]: map i is bound to texture unit i.

@@ -44,14 +44,23 @@ enum : FeatureMask {
     // Animation on the GPU (vertex shader only; RenderSettings::gpu_animation).
     Skinned = 1u << 23,       // JOINTS_0 / WEIGHTS_0 by the joint matrices u_joints
     MorphTargets = 1u << 24,  // two morph targets' displacements by u_morph_weights
+    // KHR_materials_transmission (+ _volume, _dispersion): maps 11 and 12 (MaterialMap::Transmission,
+    // ::Thickness) and the material model bit; after the bits above so that those keep their values.
+    TransmissionMap = 1u << 25,
+    ThicknessMap = 1u << 26,
+    Transmission = 1u << 27,  // MATERIAL_TRANSMISSION: refraction of the opaque scene (transmission.h)
 };
-constexpr int kCount = 25;
+constexpr int kCount = 28;
 constexpr int kFirstMap = 12;
-constexpr int kMapCount = 11;
+constexpr int kMapCount = 13;
+// Maps 0..10 are bits 12..22; maps 11 and 12 (the transmission maps) bits 25 and 26.
+constexpr int kFirstCoreMaps = 11;
 constexpr FeatureMask kAll = (1u << kCount) - 1;
-constexpr FeatureMask kMaps = ((1u << kMapCount) - 1) << kFirstMap;
 // The bit of map `i` (fresnel::MaterialMap(i)).
-constexpr FeatureMask map_bit(int i) { return FeatureMask(1) << (kFirstMap + i); }
+constexpr FeatureMask map_bit(int i) {
+    return i < kFirstCoreMaps ? FeatureMask(1) << (kFirstMap + i) : FeatureMask(1) << (25 + i - kFirstCoreMaps);
+}
+constexpr FeatureMask kMaps = (((1u << kFirstCoreMaps) - 1) << kFirstMap) | TransmissionMap | ThicknessMap;
 }  // namespace feature
 
 // Bound lights: the size of the shaders' light arrays (MAX_LIGHTS).
@@ -85,7 +94,9 @@ std::vector<std::string> feature_defines(FeatureMask mask);
 //  - KHR_materials_specular's two maps come together, as do the clearcoat and
 //    clearcoat-roughness maps (the missing one is the white texture);
 //  - the debug view samples every map but the normal maps (white where absent);
-//  - alpha mask wins over blend (a material has one alpha mode).
+//  - alpha mask wins over blend (a material has one alpha mode);
+//  - transmission is not shaded for unlit (without the debug view) or specular-glossiness
+//    materials; with it, its two maps always come together (white stands in: factor * 1).
 // Normal maps are never stood in for: a flat normal texel is not exactly (0, 0, 1).
 FeatureMask canonical_features(FeatureMask mask);
 

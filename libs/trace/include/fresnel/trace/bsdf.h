@@ -6,6 +6,9 @@
 //   diffuse    cosine-weighted about the shading normal (sampling::sample_cosine)
 //   specular   GGX visible normals about the shading normal (sampling::sample_ggx_reflection)
 //   clearcoat  GGX visible normals about the coat normal, when there is a coat
+//   transmission  KHR_materials_transmission, thin-walled: the Khronos BTDF's lobe, GGX
+//              visible normals at apply_ior_to_roughness(alpha, ior) mirrored through the
+//              surface (transmission.h); it takes the share T of the diffuse lobe's weight
 // and the pdf of a direction is the mixture's (one-sample MIS over the lobes).
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
@@ -20,7 +23,7 @@ namespace fresnel::trace {
 inline constexpr float kMinTraceRoughness = 0.03f;
 
 struct BsdfLobes {
-    float diffuse = 0, specular = 0, clearcoat = 0;  // probabilities, summing to 1 (or all 0)
+    float diffuse = 0, specular = 0, clearcoat = 0, transmission = 0;  // probabilities, summing to 1 (or all 0)
 };
 BsdfLobes lobe_probabilities(const EvaluatedMaterial& m, glm::vec3 v);
 
@@ -28,6 +31,7 @@ struct BsdfSample {
     glm::vec3 l{0.0f};
     glm::vec3 f_cos{0.0f};  // f(v, l) cos(theta_l)
     float pdf = 0.0f;       // over solid angle; 0: no sample (absorbed)
+    bool transmitted = false;  // through the surface (the transmission lobe): l is below it
 };
 
 // The BSDF at one shading point, seen from v (unit, towards the viewer; m.normal and
@@ -55,7 +59,9 @@ private:
     BsdfLobes lobes_;
     Frame base_, coat_;
     glm::vec3 v_base_{0.0f}, v_coat_{0.0f};  // v in each frame
-    float alpha_ = 0.0f, coat_alpha_ = 0.0f;
+    float alpha_ = 0.0f, coat_alpha_ = 0.0f, transmission_alpha_ = 0.0f;
+    // The transmission lobe's f cos at l below the surface (0 above).
+    glm::vec3 eval_transmission(glm::vec3 l) const;
 };
 
 // One-query forms of the same (tests).
