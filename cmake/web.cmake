@@ -22,5 +22,6 @@ target_include_directories(nlohmann_json::nlohmann_json SYSTEM INTERFACE ${FRESN
 add_library(Threads::Threads INTERFACE IMPORTED)  # no pthreads on the web: parallel_for runs on the caller
 set(STB_INCLUDE_DIR ${FRESNEL_WEB_DEPS_INCLUDE}/stb)
 # C++ exceptions carry fresnel::Error: on, in every object and at the link.
-add_compile_options(-fexceptions)
+# WebAssembly SIMD (every browser with WebGL 2 of the last years has it): the IBL bake vectorises.
+add_compile_options(-fexceptions -msimd128)
 add_link_options(-fexceptions)

@@ -23,7 +23,9 @@ function showError(message) {
     $('error').hidden = !message;
     $('error').textContent = message || '';
 }
-function lastError() { return M.UTF8ToString(M._fresnel_error(app)); }
+// The loaders name files by their place in the in-memory file system (/files/N/NAME): show NAME.
+const plain = text => text.replace(/\/files\/\d+\//g, '');
+function lastError() { return plain(M.UTF8ToString(M._fresnel_error(app))); }
 function fail(message) {
     showError(message);
     window.fresnelError = message;
@@ -88,6 +90,15 @@ function scheduleDraw() {
 // Opens picked or dropped files: the model among them (its .bin and textures beside it),
 // or the environment. Throws (and shows) the loader's message; what was shown stays.
 async function openFiles(files) {
+    try {
+        await openFilesOrThrow(files);
+    } catch (e) {
+        showError(e.message);
+        status('error (the last good scene and environment stay)');
+        throw e;
+    }
+}
+async function openFilesOrThrow(files) {
     const model = files.find(f => isModel(f.name)), env = files.find(f => isEnv(f.name));
     if (!model && !env) throw new Error(`${files.map(f => f.name).join(', ')}: not a .glb, .gltf, .hdr or .exr file`);
     const dir = writeFiles(files);
@@ -96,7 +107,7 @@ async function openFiles(files) {
         await paint();
         if (!M.ccall('fresnel_open', 'number', ['number', 'string'], [app, `${dir}/${model.name}`]))
             throw new Error(lastError());
-        $('warnings').textContent = M.UTF8ToString(M._fresnel_warnings(app));
+        $('warnings').textContent = plain(M.UTF8ToString(M._fresnel_warnings(app)));
         $('warnings').hidden = !$('warnings').textContent;
     }
     if (env) set('env', `${dir}/${env.name}`);
@@ -210,6 +221,8 @@ async function main() {
     app = M.ccall('fresnel_create', 'number', ['string'], ['#canvas']);
     const err = lastError();
     $('gl-info').textContent = M.UTF8ToString(M._fresnel_info(app));
+    const gl = canvas.getContext('webgl2'), dbg = gl && gl.getExtension('WEBGL_debug_renderer_info');
+    if (dbg) $('gl-info').textContent += ` | ${gl.getParameter(dbg.UNMASKED_RENDERER_WEBGL)}`;
     if (err) fail(err);
     try {
         for (const key of SETTINGS) if (params.has(key)) set(key, params.get(key));
@@ -231,7 +244,7 @@ async function main() {
             const dir = writeFiles(files);
             if (!M.ccall('fresnel_open', 'number', ['number', 'string'], [app, `${dir}/${files[0].name}`])) fail(lastError());
         } else if (!M.ccall('fresnel_open', 'number', ['number', 'string'], [app, ''])) fail(lastError());  // the built-in demo
-        $('warnings').textContent = M.UTF8ToString(M._fresnel_warnings(app));
+        $('warnings').textContent = plain(M.UTF8ToString(M._fresnel_warnings(app)));
         $('warnings').hidden = !$('warnings').textContent;
         status('baking the environment…');
         $('progress').hidden = false;

@@ -8,12 +8,11 @@
 // usage: node web_page_test.mjs WEB_DIR FRESNEL_EXE SHARED_DIR NODE_TOOLS_DIR OUT_DIR
 import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
-import http from 'node:http';
 import path from 'node:path';
-import { createRequire } from 'node:module';
+
+import { chromiumPath, launch, loadChromium, openPage, serve } from './web_harness.mjs';
 
 const [webDir, fresnel, shared, nodeTools, outDir] = process.argv.slice(2);
-const chromiumPath = process.env.CHROMIUM_PATH || '/usr/bin/chromium';
 const skip = why => { console.log(`web_page_test: skipped: ${why}`); process.exit(77); };
 if (!webDir || !outDir) { console.error('usage: web_page_test.mjs WEB_DIR FRESNEL_EXE SHARED_DIR NODE_TOOLS_DIR OUT_DIR'); process.exit(2); }
 if (!fs.existsSync(path.join(webDir, 'fresnel.wasm'))) skip(`${webDir}/fresnel.wasm is missing (run make web)`);
@@ -21,31 +20,15 @@ if (!fs.existsSync(chromiumPath)) skip(`${chromiumPath} is missing (apt-get inst
 const model = path.join(shared, 'assets/models/DamagedHelmet/DamagedHelmet.glb');
 const env = path.join(shared, 'assets/env/studio_small_03_1k.hdr');
 if (!fs.existsSync(model) || !fs.existsSync(env)) skip(`the shared assets are missing (${model}, ${env})`);
-let chromium;
-try {
-    chromium = createRequire(path.join(nodeTools, 'package.json'))('playwright-core').chromium;
-} catch (e) { skip(`playwright-core is not in ${nodeTools} (scripts/install-test-tools.sh)`); }
+const chromium = loadChromium(nodeTools);
+if (!chromium) skip(`playwright-core is not in ${nodeTools} (scripts/install-test-tools.sh)`);
 fs.mkdirSync(outDir, { recursive: true });
 
 let failures = 0;
 const check = (ok, what) => { console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`); if (!ok) failures++; };
 
-// A static server: the page at /, the shared assets at /assets/.
-const types = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.css': 'text/css',
-                '.wasm': 'application/wasm', '.json': 'application/json' };
-const server = http.createServer((req, res) => {
-    const url = decodeURIComponent(new URL(req.url, 'http://x').pathname);
-    const root = url.startsWith('/assets/') ? path.join(shared, 'assets') : webDir;
-    const rel = url.startsWith('/assets/') ? url.slice('/assets/'.length) : url.slice(1) || 'index.html';
-    const file = path.resolve(root, rel);
-    if (!file.startsWith(path.resolve(root) + path.sep) || !fs.existsSync(file) || !fs.statSync(file).isFile()) {
-        res.writeHead(404); res.end('not found'); return;
-    }
-    res.writeHead(200, { 'Content-Type': types[path.extname(file)] || 'application/octet-stream' });
-    fs.createReadStream(file).pipe(res);
-});
-await new Promise(r => server.listen(0, '127.0.0.1', r));
-const base = `http://127.0.0.1:${server.address().port}`;
+const server = await serve(webDir, path.join(shared, 'assets'));
+const base = server.base;
 
 const size = '384x288', yaw = 30, pitch = 15;
 const cliArgs = [model, '--env', env, '--size', size, '--yaw', String(yaw), '--pitch', String(pitch)];
@@ -56,7 +39,7 @@ function render(out, extra = []) {
 function psnr(a, b) {
     const r = spawnSync(fresnel, ['compare', a, b, '--json'], { encoding: 'utf8' });
     if (r.status !== 0) throw new Error(`fresnel compare failed: ${r.stderr}`);
-    return JSON.parse(r.stdout).psnr;
+    return JSON.parse(r.stdout).psnr_db;
 }
 const t0 = Date.now();
 render(path.join(outDir, 'cli.png'));
@@ -64,11 +47,7 @@ render(path.join(outDir, 'cli_normal.png'), ['--debug', 'normal']);
 render(path.join(outDir, 'cli_basecolor.png'), ['--debug', 'basecolor']);
 console.log(`fresnel render x3: ${Date.now() - t0} ms`);
 
-const browser = await chromium.launch({
-    executablePath: chromiumPath, headless: true,
-    args: ['--no-sandbox', '--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
-           '--disable-gpu-watchdog', '--force-color-profile=srgb', '--disable-background-networking'],
-});
+const browser = await launch(chromium);
 try {
     const page = await browser.newPage({ viewport: { width: 1000, height: 700 }, deviceScaleFactor: 1 });
     const log = [];
@@ -80,11 +59,7 @@ try {
     };
     const query = `?model=/assets/models/DamagedHelmet/DamagedHelmet.glb&env=/assets/env/studio_small_03_1k.hdr` +
                   `&size=${size}&yaw=${yaw}&pitch=${pitch}&tonemap=neutral`;
-    const t1 = Date.now();
-    await page.goto(base + '/' + query);
-    await page.waitForFunction(() => window.fresnelReady || window.fresnelError, null, { timeout: 300000, polling: 100 });
-    const firstFrameMs = Date.now() - t1;
-    const error = await page.evaluate(() => window.fresnelError || '');
+    const { ms: firstFrameMs, error } = await openPage(page, base, query);
     check(!error, `page loads DamagedHelmet + studio_small_03 (${firstFrameMs} ms to the first frame)${error ? ': ' + error : ''}`);
     if (error) throw new Error(log.join('\n'));
     console.log(`renderer: ${await page.evaluate(() => document.getElementById('gl-info').textContent)}`);
@@ -102,6 +77,12 @@ try {
     });
     check(/broken\.glb/.test(broken.thrown) && /broken\.glb/.test(broken.shown || ''),
           `a broken .glb shows its error in the page: "${broken.shown}"`);
+    // What the web build leaves out is an error naming it, not a silent gap: an OpenEXR environment.
+    const exr = await page.evaluate(async () => {
+        const bytes = new Uint8Array([0x76, 0x2f, 0x31, 0x01, 2, 0, 0, 0, 0]);
+        try { await window.fresnel.openFiles([{ name: 'sky.exr', bytes }]); return ''; } catch (e) { return window.fresnel.error(); }
+    });
+    check(/sky\.exr/.test(exr) && /OpenEXR/.test(exr), `an .exr environment (no OpenEXR on the web) says so: "${exr}"`);
     const frames = await page.evaluate(() => window.fresnel.frames());
     await page.evaluate(() => window.fresnel.set('yaw', 30));
     check(await page.evaluate(() => window.fresnel.frames()) > frames && !(await page.evaluate(() => window.fresnel.error())),
