@@ -10,7 +10,7 @@ CMAKE_GEN   := $(shell command -v ninja >/dev/null 2>&1 && echo "-G Ninja")
 
 WEB_BUILD   ?= build-web
 
-.PHONY: all deps configure build demo test test-fast asan fuzz bench fidelity-report clean web web-deps
+.PHONY: all deps configure build demo test test-fast asan fuzz bench fidelity-report clean web web-deps web-bench
 
 all: build
 
@@ -87,6 +87,12 @@ web: web-deps
 	@test -f $(WEB_BUILD)/CMakeCache.txt || $(WEB_ENV) emcmake cmake -S . -B $(WEB_BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=Release
 	$(WEB_ENV) cmake --build $(WEB_BUILD) -j $(JOBS)
 	@echo "the page is in $(WEB_BUILD)/ (e.g. python3 -m http.server -d $(WEB_BUILD), then open http://localhost:8000/)"
+
+# The page's size and speed against the Khronos Sample Renderer in the same browser (printed, not asserted).
+web-bench: web
+	@scripts/install-test-tools.sh $(BUILD)/node-tools
+	@scripts/setup-khronos-ref.sh $(BUILD)/khronos-ref
+	node bench/web_bench.mjs $(WEB_BUILD) $(CURDIR)/../shared $(BUILD)/node-tools $(BUILD)/khronos-ref
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) build-fuzz $(WEB_BUILD)
