@@ -59,14 +59,49 @@ function drawNow() {
     const [yaw, pitch] = M.UTF8ToString(M._fresnel_camera(app)).split(' ').map(Number);
     $('stats').textContent = `frame ${M._fresnel_frame_ms(app).toFixed(1)} ms · yaw ${yaw.toFixed(1)} pitch ${pitch.toFixed(1)}`;
 }
+// Environments bake in a Web Worker (fresnel_bake_worker.js) so that the page stays responsive;
+// without workers (or when the worker fails to start) they bake here, in fresnel_prepare.
+let worker = null;
+function bakeInWorker(message) {
+    if (worker === null) {
+        try { worker = new Worker('fresnel_bake_worker.js'); } catch (e) { worker = false; }
+    }
+    if (!worker) return Promise.resolve(null);
+    return new Promise(resolve => {
+        worker.onmessage = e => {
+            if (e.data.progress !== undefined) { $('progress').value = e.data.progress; return; }
+            resolve(e.data);
+        };
+        worker.onerror = e => { e.preventDefault(); worker = false; resolve(null); };
+        worker.postMessage(message, message.bytes ? [message.bytes.buffer] : []);
+    });
+}
+// Bakes what the next frame needs in the worker (if anything), and hands the result to fresnel.
+async function ensureLighting() {
+    const pending = M.UTF8ToString(M._fresnel_pending_bake(app));
+    if (!pending) return;
+    const [source, size, samples] = pending.split('\n');
+    status('baking the environment…');
+    $('progress').hidden = false;
+    $('progress').value = 0;
+    const bytes = source === 'studio' ? null : M.FS.readFile(source).slice();
+    const name = source.split('/').pop();
+    const t = performance.now();
+    const r = await bakeInWorker({ name, bytes, size: Number(size), samples: Number(samples) });
+    if (!r) { M.ccall('fresnel_baked', null, ['number', 'string', 'string'], [app, '', 'the bake worker did not start']); return; }
+    if (r.error) { M.ccall('fresnel_baked', null, ['number', 'string', 'string'], [app, '', r.error.replace(/^[^:]*: /, '')]); return; }
+    const dir = writeFiles(r.files.map(f => ({ name: `${name}.baked/${f.name}`, bytes: f.bytes })));
+    M.ccall('fresnel_baked', null, ['number', 'string', 'string'], [app, `${dir}/${name}.baked`, '']);
+    console.log(`environment baked in the worker: ${Math.round(performance.now() - t)} ms`);
+}
 // Lets the page paint (status, progress) before a long synchronous step.
 const paint = () => new Promise(r => requestAnimationFrame(() => setTimeout(r, 0)));
 // Draws after the environment (if it is new) has baked; errors go to the page.
 async function draw() {
-    status('baking the environment / drawing…');
-    $('progress').hidden = false;
-    await paint();
     try {
+        await ensureLighting();
+        status('drawing…');
+        await paint();
         drawNow();
         showError('');
         status('ready');
@@ -246,8 +281,8 @@ async function main() {
         } else if (!M.ccall('fresnel_open', 'number', ['number', 'string'], [app, ''])) fail(lastError());  // the built-in demo
         $('warnings').textContent = plain(M.UTF8ToString(M._fresnel_warnings(app)));
         $('warnings').hidden = !$('warnings').textContent;
-        status('baking the environment…');
-        $('progress').hidden = false;
+        await ensureLighting();
+        status('drawing…');
         await paint();
         drawNow();
         $('progress').hidden = true;

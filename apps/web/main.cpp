@@ -8,6 +8,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -54,6 +55,10 @@ struct App {
     std::string text;  // the last string handed to the page (copied there at once)
     double frame_ms = 0;
     FrameStats stats;
+    // Environments baked by the page's Web Worker (fresnel_bake there): lighting key -> the
+    // baked folder, or the bake's error. `pending` is the key handed out by pending_bake().
+    std::map<std::string, std::string> baked_folders, bake_errors;
+    std::string pending;
 
     // Sets one of the CLI's job settings by its flag name (without the dashes).
     void set(const std::string& key, const std::string& value) {
@@ -140,10 +145,19 @@ struct App {
         resolved = resolve(job, *scene);
         std::string key = key_of(resolved);
         if (key == lighting_key) return;
+        if (key == pending && lighting_key != "\n") return;  // the worker is baking it: the old lighting meanwhile
         try {
-            lighting = load_lighting(resolved, [](double fraction) {
-                EM_ASM({ if (Module.onBakeProgress) Module.onBakeProgress($0); }, fraction);
-            });
+            if (auto e = bake_errors.find(key); e != bake_errors.end()) throw Error(resolved.environment->path.string(), "", e->second);
+            if (auto f = baked_folders.find(key); f != baked_folders.end()) {
+                double t = emscripten_get_now();
+                lighting = JobLighting{};
+                lighting.environment = ibl::load_baked(f->second);
+                lighting.environment_ms = emscripten_get_now() - t;
+            } else {
+                lighting = load_lighting(resolved, [](double fraction) {
+                    EM_ASM({ if (Module.onBakeProgress) Module.onBakeProgress($0); }, fraction);
+                });
+            }
             lighting_key = key;
             good_environment = job.environment;
             if (lighting.environment) {
@@ -172,6 +186,26 @@ struct App {
         if (!stats.gl_errors.empty()) throw Error("WebGL", "", "the frame raised " + stats.gl_errors);
     }
 
+    // What the page's worker should bake for the current job: "" when nothing (the lighting is
+    // loaded, or needs no bake), else "SOURCE\nSIZE\nSAMPLES" (SOURCE: a file, or studio).
+    std::string pending_bake() {
+        if (!scene) return "";
+        resolved = resolve(job, *scene);
+        std::string key = key_of(resolved);
+        if (key == lighting_key || !resolved.environment || baked_folders.count(key) || bake_errors.count(key)) return "";
+        const ibl::EnvironmentSource& e = *resolved.environment;
+        if (e.kind == ibl::EnvironmentSource::Kind::Uniform) return "";  // quick enough here
+        pending = key;
+        return (e.kind == ibl::EnvironmentSource::Kind::File ? e.path.string() : std::string("studio")) + "\n" +
+               std::to_string(resolved.bake_options.size) + "\n" + std::to_string(resolved.bake_options.samples);
+    }
+    void baked(const std::string& folder, const std::string& bake_error) {
+        if (pending.empty()) return;
+        if (bake_error.empty()) baked_folders[pending] = folder;
+        else bake_errors[pending] = bake_error;
+        pending.clear();
+    }
+
     OrbitViewport viewport() const { return {resolved.bounds, job.output.width, job.output.height}; }
 };
 
@@ -198,9 +232,11 @@ using fresnel::web::guarded;
 extern "C" {
 
 // A fresnel on the canvas `selector` ("#canvas"); check fresnel_error() (WebGL 2 missing...).
+// "" makes one without a canvas, for fresnel_bake in a Web Worker.
 EMSCRIPTEN_KEEPALIVE App* fresnel_create(const char* selector) {
     auto* app = new App;
     app->canvas = selector;
+    if (app->canvas.empty()) return app;
     guarded(app, [&] {
         app->context = fresnel::gpu::create_webgl_context(app->canvas);
         app->renderer = std::make_unique<fresnel::Renderer>(*app->context);
@@ -244,6 +280,30 @@ EMSCRIPTEN_KEEPALIVE int fresnel_dolly(App* app, float clicks) {
 }
 EMSCRIPTEN_KEEPALIVE int fresnel_frame_all(App* app) {
     return guarded(app, [&] { app->job.camera = fresnel::frame_all(app->job.camera); });
+}
+// The environment the page's worker should bake before the next frame ("" = none), see App::pending_bake.
+EMSCRIPTEN_KEEPALIVE const char* fresnel_pending_bake(App* app) {
+    if (!app) return "";
+    app->text.clear();
+    guarded(app, [&] { app->text = app->pending_bake(); });
+    return app->text.c_str();
+}
+// The worker's result for the pending bake: the baked folder, or its error message.
+EMSCRIPTEN_KEEPALIVE void fresnel_baked(App* app, const char* folder, const char* error) {
+    if (app) app->baked(folder, error);
+}
+// In the page's Web Worker: bakes `source` (a panorama file, or studio) as load_lighting() would,
+// without the cache, into `out_dir` (a folder load_baked() reads; no previews).
+EMSCRIPTEN_KEEPALIVE int fresnel_bake(App* app, const char* source, const char* out_dir, int size, int samples) {
+    return guarded(app, [&] {
+        fresnel::ibl::BakeOptions o;
+        o.size = size;
+        o.samples = samples;
+        auto baked = fresnel::ibl::load_or_bake(fresnel::ibl::parse_environment(source), o, [](double fraction) {
+            EM_ASM({ if (Module.onBakeProgress) Module.onBakeProgress($0); }, fraction);
+        }, /*use_cache=*/false);
+        fresnel::ibl::save_baked(baked, out_dir, o, /*previews=*/false);
+    });
 }
 // The orbit camera as "yaw pitch" degrees (for the page's URL and panel).
 EMSCRIPTEN_KEEPALIVE const char* fresnel_camera(App* app) {

@@ -3,6 +3,7 @@
 //   1. DamagedHelmet with studio_small_03 by URL parameters: the canvas read back matches
 //      `fresnel render` for the same camera and settings at >= 30 dB PSNR (`fresnel compare`);
 //   2. a broken file shows an error in the page, and the page keeps working (the next frame draws);
+//   1b. the environment bakes in the page's Web Worker (the page's thread stays free);
 //   3. debug channels switch (normal, basecolor): each matches `fresnel render --debug` at >= 30 dB.
 // Exit 77 (skipped) when build-web, Chromium, playwright-core or the shared assets are missing.
 // usage: node web_page_test.mjs WEB_DIR FRESNEL_EXE SHARED_DIR NODE_TOOLS_DIR OUT_DIR
@@ -63,6 +64,8 @@ try {
     check(!error, `page loads DamagedHelmet + studio_small_03 (${firstFrameMs} ms to the first frame)${error ? ': ' + error : ''}`);
     if (error) throw new Error(log.join('\n'));
     console.log(`renderer: ${await page.evaluate(() => document.getElementById('gl-info').textContent)}`);
+    const worker = log.find(l => /baked in the worker/.test(l));
+    check(worker, `the environment baked in the page's Web Worker (${worker || 'no'})`);
 
     await canvasPng(path.join(outDir, 'web.png'));
     const p = psnr(path.join(outDir, 'web.png'), path.join(outDir, 'cli.png'));
