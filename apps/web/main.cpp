@@ -127,7 +127,10 @@ struct App {
     void open(const std::string& path) {
         Job j = job;
         j.source.model = path;
-        j.camera = Job::Camera{.yaw_deg = job.camera.yaw_deg, .pitch_deg = job.camera.pitch_deg};
+        // The orbit (yaw, pitch, K, fov) carries over to the new model; the pan target does not.
+        j.camera.target.reset();
+        j.camera.scene_camera.reset();
+        j.camera.look_at.reset();
         Diagnostics diag;
         auto s = std::make_unique<Scene>(load_scene(j, diag));
         ResolvedJob r = resolve(j, *s);

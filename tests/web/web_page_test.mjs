@@ -2,9 +2,10 @@
 // driven by npm playwright-core (the driver only; no browser is downloaded):
 //   1. DamagedHelmet with studio_small_03 by URL parameters: the canvas read back matches
 //      `fresnel render` for the same camera and settings at >= 30 dB PSNR (`fresnel compare`);
-//   2. a broken file shows an error in the page, and the page keeps working (the next frame draws);
 //   1b. the environment bakes in the page's Web Worker (the page's thread stays free);
-//   3. debug channels switch (normal, basecolor): each matches `fresnel render --debug` at >= 30 dB.
+//   2. a broken file shows an error in the page, and the page keeps working (the next frame draws);
+//   3. debug channels switch (normal, basecolor): each matches `fresnel render --debug` at >= 30 dB;
+//   4. a .gltf by URL (its buffer and texture fetched beside it) matches `fresnel render` at >= 30 dB.
 // Exit 77 (skipped) when build-web, Chromium, playwright-core or the shared assets are missing.
 // usage: node web_page_test.mjs WEB_DIR FRESNEL_EXE SHARED_DIR NODE_TOOLS_DIR OUT_DIR
 import { spawnSync } from 'node:child_process';
@@ -33,8 +34,8 @@ const base = server.base;
 
 const size = '384x288', yaw = 30, pitch = 15;
 const cliArgs = [model, '--env', env, '--size', size, '--yaw', String(yaw), '--pitch', String(pitch)];
-function render(out, extra = []) {
-    const r = spawnSync(fresnel, ['render', ...cliArgs, ...extra, '-o', out], { encoding: 'utf8' });
+function render(out, extra = [], args = cliArgs) {
+    const r = spawnSync(fresnel, ['render', ...args, ...extra, '-o', out], { encoding: 'utf8' });
     if (r.status !== 0) throw new Error(`fresnel render failed: ${r.stderr}`);
 }
 function psnr(a, b) {
@@ -46,6 +47,8 @@ const t0 = Date.now();
 render(path.join(outDir, 'cli.png'));
 render(path.join(outDir, 'cli_normal.png'), ['--debug', 'normal']);
 render(path.join(outDir, 'cli_basecolor.png'), ['--debug', 'basecolor']);
+const gltfRel = 'models/BoxTextured/specular-glossiness/BoxTextured.gltf';  // .gltf + .bin + .png, specular-glossiness
+render(path.join(outDir, 'cli_gltf.png'), [], [path.join(shared, 'assets', gltfRel), ...cliArgs.slice(1)]);
 console.log(`fresnel render x3: ${Date.now() - t0} ms`);
 
 const browser = await launch(chromium);
@@ -104,6 +107,14 @@ try {
         check(!err && d >= 30 && vsShaded < d - 5,
               `--debug ${channel}: ${d.toFixed(2)} dB against fresnel render --debug ${channel} (${vsShaded.toFixed(2)} dB against the shaded frame)${err ? ': ' + err : ''}`);
     }
+    // Another model by URL: a .gltf whose buffer and texture the page fetches beside it.
+    await page.evaluate(() => window.fresnel.set('debug', 'none'));
+    const gltfError = await page.evaluate(async u => {
+        try { await window.fresnel.openUrl(u); return ''; } catch (e) { return e.message; }
+    }, `/assets/${gltfRel}`);
+    await canvasPng(path.join(outDir, 'web_gltf.png'));
+    const g = psnr(path.join(outDir, 'web_gltf.png'), path.join(outDir, 'cli_gltf.png'));
+    check(!gltfError && g >= 30, `${gltfRel} by URL (its .bin and .png fetched): ${g.toFixed(2)} dB against fresnel render${gltfError ? ': ' + gltfError : ''}`);
     if (failures) console.log(log.join('\n'));
 } finally {
     await browser.close();
