@@ -8,7 +8,9 @@ FUZZ_SECONDS ?= 60
 FRESNEL_WERROR ?= OFF
 CMAKE_GEN   := $(shell command -v ninja >/dev/null 2>&1 && echo "-G Ninja")
 
-.PHONY: all deps configure build demo test test-fast asan fuzz bench fidelity-report clean
+WEB_BUILD   ?= build-web
+
+.PHONY: all deps configure build demo test test-fast asan fuzz bench fidelity-report clean web web-deps web-bench
 
 all: build
 
@@ -72,5 +74,25 @@ fidelity-report: configure
 	cmake --build $(BUILD) -j $(JOBS) --target fresnel
 	bench/fidelity_report.py $(BUILD)/bin/fresnel --readme README.md
 
+# The web page: the same libraries through Debian's Emscripten on WebGL 2, into $(WEB_BUILD)/
+# (index.html, fresnel.js, fresnel.wasm; serve the folder with any static server). Debian's
+# Emscripten ships its system libraries prebuilt in a frozen cache (/usr/share/emscripten/cache,
+# read only), so nothing is cached outside the build folder. NODE_PATH: its JavaScript tools'
+# modules when the `node` on PATH is not Debian's; EMSDK_PYTHON: Debian's Python.
+WEB_ENV := NODE_PATH=/usr/share/nodejs EMSDK_PYTHON=/usr/bin/python3
+web-deps:
+	@scripts/install-deps.sh scripts/web-packages.txt
+
+web: web-deps
+	@test -f $(WEB_BUILD)/CMakeCache.txt || $(WEB_ENV) emcmake cmake -S . -B $(WEB_BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=Release
+	$(WEB_ENV) cmake --build $(WEB_BUILD) -j $(JOBS)
+	@echo "the page is in $(WEB_BUILD)/ (e.g. python3 -m http.server -d $(WEB_BUILD), then open http://localhost:8000/)"
+
+# The page's size and speed against the Khronos Sample Renderer in the same browser (printed, not asserted).
+web-bench: web
+	@scripts/install-test-tools.sh $(BUILD)/node-tools
+	@scripts/setup-khronos-ref.sh $(BUILD)/khronos-ref
+	node bench/web_bench.mjs $(WEB_BUILD) $(CURDIR)/../shared $(BUILD)/node-tools $(BUILD)/khronos-ref
+
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) build-fuzz
+	rm -rf $(BUILD) $(ASAN_BUILD) build-fuzz $(WEB_BUILD)

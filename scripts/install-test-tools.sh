@@ -2,11 +2,12 @@
 # Installs the independent readers and validators some tests use to check our files, into
 # build/node-tools (never into the repository), from npm: ktx-parse (KTX2), ajv (JSON Schema:
 # docs/scene.schema.json), js-yaml and kubernetes-models (docs/batch.md's Kubernetes manifest),
-# gltf-validator (the Khronos glTF-Validator, for the glTF files `fresnel convert` writes).
+# gltf-validator (the Khronos glTF-Validator, for the glTF files `fresnel convert` writes),
+# playwright-core (drives Debian's Chromium for the web page's test; the driver only, it downloads no browser).
 # Best effort: without node/npm or the npm registry, those tests skip.
 set -u
 dir=${1:-build/node-tools}
-want=(ktx-parse@0.7 ajv@8 js-yaml@4 kubernetes-models@4 gltf-validator@2.0.0-dev.3.10)
+want=(ktx-parse@0.7 ajv@8 js-yaml@4 kubernetes-models@4 gltf-validator@2.0.0-dev.3.10 playwright-core@1.65.1)
 missing=()
 for p in "${want[@]}"; do
   [[ -d $dir/node_modules/${p%@*} ]] || missing+=("$p")

@@ -1,5 +1,9 @@
 #include "fresnel/core/image.h"
 
+// The web build (Emscripten) has no OpenEXR and no libjpeg-turbo (Debian builds neither for
+// WebAssembly): FRESNEL_NO_OPENEXR makes EXR a clear error naming the feature, and JPEG goes
+// through stb_image (FRESNEL_NO_TURBOJPEG).
+#ifndef FRESNEL_NO_OPENEXR
 #include <ImathBox.h>
 #include <OpenEXR/ImfArray.h>
 #include <OpenEXR/ImfChannelList.h>
@@ -9,9 +13,12 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfRgbaFile.h>
+#endif
 #include <stb_image.h>
 #include <stb_image_write.h>
+#ifndef FRESNEL_NO_TURBOJPEG
 #include <turbojpeg.h>
+#endif
 
 #include <cstring>
 #include <fstream>
@@ -80,6 +87,10 @@ namespace {
 // or rejects with its own message.
 bool decode_jpeg_turbo(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits,
                        Image8& out) {
+#ifdef FRESNEL_NO_TURBOJPEG
+    (void)bytes, (void)name, (void)limits, (void)out;
+    return false;
+#else
     if (bytes.size() < 3 || bytes[0] != 0xFF || bytes[1] != 0xD8 || bytes[2] != 0xFF) return false;
     tjhandle tj = tjInitDecompress();
     if (!tj) return false;
@@ -99,6 +110,7 @@ bool decode_jpeg_turbo(std::span<const std::uint8_t> bytes, const std::string& n
         return false;  // errors and warnings (a truncated stream...) go to stb_image, as before
     out = std::move(img);
     return true;
+#endif
 }
 }  // namespace
 
@@ -129,6 +141,7 @@ ImageF decode_hdr(std::span<const std::uint8_t> bytes, const std::string& name, 
     return detail::decode_radiance(bytes, name, limits);
 }
 
+#ifndef FRESNEL_NO_OPENEXR
 // OpenEXR reads through this stream so that EXR data in memory is never written to disk.
 class MemoryStream final : public Imf::IStream {
 public:
@@ -300,6 +313,14 @@ ImageF decode_exr(std::span<const std::uint8_t> bytes, const std::string& name, 
         throw Error(name, "", std::string("cannot read OpenEXR data: ") + e.what());
     }
 }
+#else
+constexpr const char* kNoOpenExr =
+    "OpenEXR is not available in this build (the web build has no OpenEXR: Debian has no WebAssembly build of it); "
+    "use a Radiance .hdr file";
+ImageF decode_exr(std::span<const std::uint8_t>, const std::string& name, const ImageLimits&) {
+    throw Error(name, "", kNoOpenExr);
+}
+#endif
 
 }  // namespace
 
@@ -332,6 +353,10 @@ void write_hdr(const fs::path& path, const ImageF& image) {
 }
 
 void write_exr(const fs::path& path, const ImageF& image) {
+#ifdef FRESNEL_NO_OPENEXR
+    (void)image;
+    throw Error(path.string(), "", kNoOpenExr);
+#else
     try {
         Imf::Header header(image.width, image.height);
         header.compression() = Imf::ZIP_COMPRESSION;
@@ -344,6 +369,7 @@ void write_exr(const fs::path& path, const ImageF& image) {
     } catch (const std::exception& e) {
         throw Error(path.string(), "", std::string("cannot write OpenEXR: ") + e.what());
     }
+#endif
 }
 
 }  // namespace fresnel

@@ -6,6 +6,7 @@
 #define STBI_FAILURE_USERMSG
 // PNG deflate through zlib (level 6): as small as stb's own compressor at its level 8, and
 // about twice as fast (a 512^2 frame: 12 ms against ~25 ms).
+#ifndef FRESNEL_NO_ZLIB  // the web build: stb's own deflate (Emscripten's zlib is a port it would download)
 #include <zlib.h>
 #include <cstdlib>
 static unsigned char* fresnel_png_deflate(unsigned char* data, int length, int* out_length, int /*quality*/) {
@@ -20,6 +21,7 @@ static unsigned char* fresnel_png_deflate(unsigned char* data, int length, int* 
     return out;
 }
 #define STBIW_ZLIB_COMPRESS fresnel_png_deflate
+#endif
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 #pragma GCC diagnostic ignored "-Wunused-function"

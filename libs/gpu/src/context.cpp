@@ -1,9 +1,11 @@
 #include "fresnel/gpu/context.h"
 
-#include <epoxy/gl.h>
+#include "gl.h"
 
 #include <algorithm>
 #include <cstring>
+
+#include "fresnel/core/error.h"
 
 namespace fresnel::gpu {
 
@@ -17,7 +19,7 @@ std::string Context::version() const {
     const GLubyte* s = glGetString(GL_VERSION);
     return s ? reinterpret_cast<const char*>(s) : "";
 }
-bool Context::has_extension(const char* name) const { return epoxy_has_gl_extension(name); }
+bool Context::has_extension(const char* name) const { return gl::has_extension(name); }
 
 namespace {
 void GLAPIENTRY debug_callback(GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* message,
@@ -29,8 +31,14 @@ void GLAPIENTRY debug_callback(GLenum, GLenum type, GLuint, GLenum severity, GLs
 
 // Largest sample count of a multisampled renderbuffer of `format` (0 when it is not renderable).
 int max_samples_of(GLenum format, bool es) {
+#ifdef __EMSCRIPTEN__
+    // WebGL 2's getInternalformatParameter answers GL_SAMPLES only (not GL_NUM_SAMPLE_COUNTS).
+    GLint samples[32] = {};
+    glGetInternalformativ(GL_RENDERBUFFER, format, GL_SAMPLES, 32, samples);
+    return samples[0];  // descending order; 0 when not renderable multisampled
+#endif
     // glGetInternalformativ is core in ES 3.0 and GL 4.2 (ARB_internalformat_query before).
-    if (es || epoxy_gl_version() >= 42 || epoxy_has_gl_extension("GL_ARB_internalformat_query")) {
+    if (es || gl::version() >= 42 || gl::has_extension("GL_ARB_internalformat_query")) {
         GLint count = 0;
         glGetInternalformativ(GL_RENDERBUFFER, format, GL_NUM_SAMPLE_COUNTS, 1, &count);
         if (count <= 0) return 0;
@@ -46,13 +54,13 @@ int max_samples_of(GLenum format, bool es) {
 
 void Context::init_context(const ContextOptions& options) {
     options_ = options;
-    const bool es = !epoxy_is_desktop_gl();
+    const bool es = !gl::is_desktop();
     Capabilities& c = caps_;
     c.api = es ? Api::OpenGLES30 : Api::OpenGL33;
     if (es) {
-        c.float_color_targets = epoxy_has_gl_extension("GL_EXT_color_buffer_float");
-        c.half_float_color_targets = c.float_color_targets || epoxy_has_gl_extension("GL_EXT_color_buffer_half_float");
-        c.float_linear_filtering = epoxy_has_gl_extension("GL_OES_texture_float_linear");
+        c.float_color_targets = gl::has_extension("GL_EXT_color_buffer_float");
+        c.half_float_color_targets = c.float_color_targets || gl::has_extension("GL_EXT_color_buffer_half_float");
+        c.float_linear_filtering = gl::has_extension("GL_OES_texture_float_linear");
         c.seamless_cube_maps = true;  // always on in ES 3.0; GL_TEXTURE_CUBE_MAP_SEAMLESS does not exist there
         c.multisample_textures = false;  // ES 3.1
     } else {
@@ -63,8 +71,8 @@ void Context::init_context(const ContextOptions& options) {
     }
     c.timer_queries = !es && (epoxy_gl_version() >= 33 || epoxy_has_gl_extension("GL_ARB_timer_query"));
     c.max_anisotropy = 1.0f;
-    if (epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic") ||
-        epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic")) {
+    if (gl::has_extension("GL_EXT_texture_filter_anisotropic") ||
+        gl::has_extension("GL_ARB_texture_filter_anisotropic")) {
         GLfloat a = 1.0f;
         glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY_EXT, &a);
         c.max_anisotropy = std::max(1.0f, a);
@@ -80,7 +88,7 @@ void Context::init_context(const ContextOptions& options) {
     }
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &n);
     c.max_texture_units = n;
-    c.debug_output = epoxy_has_gl_extension("GL_KHR_debug");
+    c.debug_output = gl::has_extension("GL_KHR_debug");
     while (glGetError() != GL_NO_ERROR) {
     }
     if (options_.log && es && !c.float_color_targets)
@@ -94,5 +102,11 @@ void Context::init_context(const ContextOptions& options) {
     glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
     glDebugMessageCallback(debug_callback, &options_.log);
 }
+
+#ifndef __EMSCRIPTEN__
+std::unique_ptr<Context> create_webgl_context(const std::string& canvas_selector, const ContextOptions&) {
+    throw Error("WebGL", canvas_selector, "WebGL contexts exist only in the web build (make web)");
+}
+#endif
 
 }  // namespace fresnel::gpu

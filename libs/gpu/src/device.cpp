@@ -1,6 +1,6 @@
 #include "fresnel/gpu/device.h"
 
-#include <epoxy/gl.h>
+#include "gl.h"
 
 namespace fresnel::gpu {
 

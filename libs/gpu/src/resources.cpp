@@ -1,6 +1,6 @@
 #include "fresnel/gpu/resources.h"
 
-#include <epoxy/gl.h>
+#include "gl.h"
 
 #include <algorithm>
 #include <glm/gtc/type_ptr.hpp>
@@ -58,8 +58,8 @@ FormatInfo info(TextureFormat f) {
 // 32-bit float textures filter linearly on GL 3.3; on ES 3.0 only with OES_texture_float_linear
 // (without it a LINEAR-filtered RGBA32F texture is incomplete and samples as zero).
 bool filterable(TextureFormat f) {
-    if (f != TextureFormat::RGBA32F || epoxy_is_desktop_gl()) return true;
-    return epoxy_has_gl_extension("GL_OES_texture_float_linear");
+    if (f != TextureFormat::RGBA32F || gl::is_desktop()) return true;
+    return gl::has_extension("GL_OES_texture_float_linear");
 }
 }  // namespace
 
@@ -180,8 +180,8 @@ void Texture::set_sampler(const SamplerState& s) {
     glTexParameteri(target, GL_TEXTURE_WRAP_S, gl_wrap(s.wrap_s));
     glTexParameteri(target, GL_TEXTURE_WRAP_T, gl_wrap(s.wrap_t));
     if (kind_ == Kind::Cube) glTexParameteri(target, GL_TEXTURE_WRAP_R, gl_wrap(s.wrap_r));
-    if (s.max_anisotropy > 1.0f && (epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic") ||
-                                    epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic"))) {
+    if (s.max_anisotropy > 1.0f && (gl::has_extension("GL_EXT_texture_filter_anisotropic") ||
+                                    gl::has_extension("GL_ARB_texture_filter_anisotropic"))) {
         GLfloat max = 1.0f;
         glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY_EXT, &max);
         glTexParameterf(target, GL_TEXTURE_MAX_ANISOTROPY_EXT, std::min(max, s.max_anisotropy));

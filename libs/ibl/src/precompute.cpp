@@ -391,7 +391,10 @@ Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& o, const Pr
             }
             if (progress) {
                 double c = double(lv.size) * double(lobe.size());
-                double now = done_cost.fetch_add(c) + c;
+                double prev = done_cost.load();  // (atomic<double>::fetch_add is C++20; libc++ of the web build lacks it)
+                while (!done_cost.compare_exchange_weak(prev, prev + c)) {
+                }
+                double now = prev + c;
                 progress(now / total_cost);
             }
         },

@@ -3,7 +3,10 @@
 // continuations and their first physical line number), whitespace tokens, numbers in the
 // forms OBJ writers produce ("+1", "2.", "1e+2"), and names made safe for messages.
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <charconv>
+#include <cstdlib>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -84,6 +87,30 @@ inline std::string_view rest_after(std::string_view line, std::string_view keywo
     return trim(t);
 }
 
+// std::from_chars for double; libc++ before 17 (the web build's, Emscripten 3.1.6) has none,
+// so there it is strtod on a copy, limited to what from_chars takes (no leading blanks, no hex).
+inline std::from_chars_result from_chars_double(const char* first, const char* last, double& v) {
+#if defined(_LIBCPP_VERSION) && _LIBCPP_VERSION < 170000
+    std::string copy(first, last);
+    if (copy.empty()) return {first, std::errc::invalid_argument};
+    std::size_t digits = copy[0] == '-' ? 1 : 0;
+    if (std::isspace(static_cast<unsigned char>(copy[0])) || copy[0] == '+')
+        return {first, std::errc::invalid_argument};
+    if (copy.size() > digits + 1 && copy[digits] == '0' && (copy[digits + 1] == 'x' || copy[digits + 1] == 'X'))
+        copy.resize(digits + 1);  // from_chars reads the "0" of "0x..." and stops
+    errno = 0;
+    char* end = nullptr;
+    double r = std::strtod(copy.c_str(), &end);
+    if (end == copy.c_str()) return {first, std::errc::invalid_argument};
+    const char* ptr = first + (end - copy.c_str());
+    if (errno == ERANGE) return {ptr, std::errc::result_out_of_range};
+    v = r;
+    return {ptr, std::errc()};
+#else
+    return std::from_chars(first, last, v);
+#endif
+}
+
 // A number; `partial` is set when only a prefix of the token is a number ("3.1+e2" -> 3.1).
 // Non-finite results (nan, inf, 1e999) are returned as such for the caller to judge.
 inline std::optional<double> parse_number(std::string_view s, bool& partial) {
@@ -91,7 +118,7 @@ inline std::optional<double> parse_number(std::string_view s, bool& partial) {
     if (!s.empty() && s.front() == '+') s.remove_prefix(1);
     if (s.empty()) return std::nullopt;
     double v = 0.0;
-    auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    auto [ptr, ec] = from_chars_double(s.data(), s.data() + s.size(), v);
     if (ec == std::errc::result_out_of_range) {
         // Overflow or underflow: tell them apart by the exponent's sign.
         bool negative = s.front() == '-';

@@ -25,6 +25,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
@@ -69,7 +70,9 @@ struct WeldHash {
         std::uint64_t h = 0xcbf29ce484222325ull;
         for (float f : k.v) {
             const float c = f == 0.0f ? 0.0f : f;  // -0 and +0 compare equal, so hash them alike
-            h = (h ^ std::bit_cast<std::uint32_t>(c)) * 0x100000001b3ull;
+            std::uint32_t bits = 0;  // std::bit_cast, which the web build's libc++ lacks
+            std::memcpy(&bits, &c, sizeof bits);
+            h = (h ^ bits) * 0x100000001b3ull;
         }
         h ^= h >> 29;
         h *= 0xbf58476d1ce4e5b9ull;

@@ -16,6 +16,9 @@ namespace fresnel {
 template <class Fn>
 void parallel_for(std::size_t count, Fn&& fn, unsigned threads = 0) {
     if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
+    threads = 1;  // the web build without pthreads: std::thread cannot start
+#endif
     threads = unsigned(std::min<std::size_t>(threads, count));
     if (threads <= 1) {
         for (std::size_t i = 0; i < count; ++i) fn(i);

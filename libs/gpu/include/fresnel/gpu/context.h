@@ -1,5 +1,6 @@
 #pragma once
-// An OpenGL context, headless (EGL) or windowed (GLFW), behind one interface.
+// An OpenGL context, headless (EGL), windowed (GLFW) or a web page's canvas (WebGL 2, the
+// Emscripten build), behind one interface.
 // Everything above the GPU layer talks to the GPU only through fresnel/gpu/*.h.
 #include <functional>
 #include <memory>
@@ -83,5 +84,12 @@ std::unique_ptr<Context> create_headless_context(const ContextOptions& options =
 // A window with an OpenGL 3.3 core (or ES 3.0) context (GLFW). Throws when no display is available.
 std::unique_ptr<Context> create_window_context(int width, int height, const std::string& title,
                                                const ContextOptions& options = {});
+
+// The web build (Emscripten): a WebGL 2 context on the page's canvas `canvas_selector`
+// (a CSS selector such as "#canvas"), speaking OpenGL ES 3.0; its default framebuffer is the
+// canvas (kept after presenting, so the page can read it back). Throws fresnel::Error when
+// the browser has no WebGL 2. In the desktop build it throws (there is no canvas); in the web
+// build create_headless_context and create_window_context throw.
+std::unique_ptr<Context> create_webgl_context(const std::string& canvas_selector, const ContextOptions& options = {});
 
 }  // namespace fresnel::gpu

@@ -2,6 +2,8 @@
 // glTF 2.0 loader: .gltf (with external, data-URI or no buffers) and .glb.
 // The file is treated as hostile: every offset, stride, count and index is
 // checked before use; sizes are capped; URIs may not leave the model's folder.
+#include <algorithm>
+#include <cstdint>
 #include <filesystem>
 
 #include "fresnel/core/error.h"
@@ -14,7 +16,8 @@ struct GltfLoadOptions {
     // Allow URIs outside the model's folder (absolute paths, ".." escapes). Never network.
     bool allow_external_files = false;
     std::size_t max_file_bytes = std::size_t(2) << 30;     // the .gltf/.glb and each external file
-    std::size_t max_total_bytes = std::size_t(8) << 30;    // all buffers and images together
+    // all buffers and images together: 8 GiB, or all of a 32-bit address space (the web build)
+    std::size_t max_total_bytes = std::size_t(std::min<std::uint64_t>(std::uint64_t(8) << 30, SIZE_MAX));
     std::size_t max_data_uri_bytes = std::size_t(512) << 20;
     std::size_t max_vertices = std::size_t(200) << 20;     // per primitive, after expansion
     int max_node_depth = 1024;

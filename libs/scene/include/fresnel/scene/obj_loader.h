@@ -20,6 +20,8 @@
 //    paths are relative to the MTL file; scalar maps (map_d, map_Pr, map_Pm, map_Ns) are
 //    packed into the glTF channels they feed. Faces without a known material use MTL's
 //    defaults (OpenGL 1's: Kd 0.8, Ka 0.2).
+#include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -37,7 +39,8 @@ struct ObjLoadOptions {
     // escapes). Never the network.
     bool allow_external_files = false;
     std::size_t max_file_bytes = std::size_t(2) << 30;      // the .obj and each .mtl
-    std::size_t max_total_bytes = std::size_t(8) << 30;     // all texture files together
+    // all texture files together: 8 GiB, or all of a 32-bit address space (the web build)
+    std::size_t max_total_bytes = std::size_t(std::min<std::uint64_t>(std::uint64_t(8) << 30, SIZE_MAX));
     std::size_t max_elements = std::size_t(200) << 20;      // v + vt + vn + face corners
     std::size_t max_polygon_vertices = std::size_t(1) << 20;
     std::size_t max_materials = std::size_t(1) << 20;       // per MTL file

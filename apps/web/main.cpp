@@ -1,0 +1,327 @@
+// fresnel in the browser: the same Job, resolve(), load_lighting() and Renderer as
+// `fresnel render` and `fresnel view`, drawing into a WebGL 2 canvas (libs/gpu's WebGL
+// context). The page (index.html, fresnel_page.js) writes the files it is given into
+// Emscripten's in-memory file system and drives this through the C functions below; one
+// App per canvas, held by the page as an opaque handle.
+#include <emscripten/emscripten.h>
+#include <emscripten/html5.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "fresnel/core/error.h"
+#include "fresnel/gpu/context.h"
+#include "fresnel/gpu/device.h"
+#include "fresnel/render/job.h"
+#include "fresnel/render/orbit_controller.h"
+#include "fresnel/render/renderer.h"
+
+namespace fresnel::web {
+namespace {
+
+std::string key_of(const ResolvedJob& r) {
+    return (r.environment ? r.environment->describe() : std::string("none")) + "|" + r.bake_options.key() + "|" +
+           (r.needs_brdf_lut ? "lut" : "");
+}
+
+bool parse_float(const std::string& s, float& out) {
+    char* end = nullptr;
+    out = std::strtof(s.c_str(), &end);
+    return !s.empty() && end && *end == '\0';
+}
+
+// "R,G,B" (0..1).
+bool parse_rgb(const std::string& s, glm::vec3& out) {
+    std::istringstream in(s);
+    char c1 = 0, c2 = 0;
+    return bool(in >> out.x >> c1 >> out.y >> c2 >> out.z) && c1 == ',' && c2 == ',' && in.peek() == EOF;
+}
+
+struct App {
+    std::string canvas;
+    std::unique_ptr<gpu::Context> context;
+    std::unique_ptr<Renderer> renderer;
+    Job job;
+    std::unique_ptr<Scene> scene;
+    ResolvedJob resolved;
+    JobLighting lighting;
+    std::string lighting_key = "\n";  // nothing loaded
+    Job::Environment good_environment;
+    std::string error, warnings, info, info_bake;
+    std::string text;  // the last string handed to the page (copied there at once)
+    double frame_ms = 0;
+    FrameStats stats;
+    // Environments baked by the page's Web Worker (fresnel_bake there): lighting key -> the
+    // baked folder, or the bake's error. `pending` is the key handed out by pending_bake().
+    std::map<std::string, std::string> baked_folders, bake_errors;
+    std::string pending;
+
+    // Sets one of the CLI's job settings by its flag name (without the dashes).
+    void set(const std::string& key, const std::string& value) {
+        float f = 0;
+        auto number = [&] {
+            if (!parse_float(value, f)) throw Error("--" + key, "", "not a number: '" + value + "'");
+            return f;
+        };
+        if (key == "yaw") job.camera.yaw_deg = number();
+        else if (key == "pitch") job.camera.pitch_deg = number();
+        else if (key == "distance") job.camera.distance_k = number();
+        else if (key == "fov") job.camera.yfov_deg = number();
+        else if (key == "exposure") job.output.exposure_ev = number();
+        else if (key == "env-intensity") job.environment.intensity = number();
+        else if (key == "env-rotation") job.environment.rotation_deg = number();
+        else if (key == "msaa") job.output.msaa = std::max(1, int(number()));
+        else if (key == "anisotropy") job.output.anisotropy = std::max(1.0f, number());
+        else if (key == "tonemap") {
+            auto t = parse_tone_mapper(value);
+            if (!t) throw Error("--tonemap", "", "unknown tone mapper '" + value + "' (neutral, aces, aces-hill, reinhard, agx, none)");
+            job.output.tone_mapper = *t;
+        } else if (key == "encoding") {
+            auto e = parse_encoding(value);
+            if (!e) throw Error("--encoding", "", "unknown encoding '" + value + "' (srgb, gamma2.2)");
+            job.output.encoding = *e;
+        } else if (key == "debug") {
+            auto d = parse_debug_channel(value);
+            if (!d) throw Error("--debug", "", "unknown debug channel '" + value + "'");
+            job.output.debug = *d;
+        } else if (key == "env") {  // a file in the page's file system, or studio / none / color:R,G,B
+            Job::Environment& e = job.environment;
+            if (value == "studio") e.kind = Job::Environment::Kind::Studio;
+            else if (value == "none") e.kind = Job::Environment::Kind::None;
+            else if (value == "auto") e.kind = Job::Environment::Kind::Automatic;
+            else if (value.rfind("color:", 0) == 0) {
+                if (!parse_rgb(value.substr(6), e.color)) throw Error("--env", "", "color:R,G,B expected, got '" + value + "'");
+                e.kind = Job::Environment::Kind::Color;
+            } else {
+                e.kind = Job::Environment::Kind::File;
+                e.path = value;
+            }
+        } else if (key == "background") {
+            Job::Background& b = job.background;
+            if (value == "env") b.mode = Job::Background::Mode::Environment;
+            else if (value == "blur") b.mode = Job::Background::Mode::Blurred;
+            else if (value == "auto") b.mode = Job::Background::Mode::Automatic;
+            else if (value == "transparent") b.mode = Job::Background::Mode::Transparent;
+            else if (parse_rgb(value, b.color)) b.mode = Job::Background::Mode::Color;
+            else throw Error("--background", "", "env, blur, transparent or R,G,B expected, got '" + value + "'");
+        } else if (key == "size") {
+            int w = 0, h = 0;
+            char x = 0;
+            std::istringstream in(value);
+            if (!(in >> w >> x >> h) || x != 'x' || w < 1 || h < 1 || w > 8192 || h > 8192)
+                throw Error("--size", "", "WxH expected (1..8192), got '" + value + "'");
+            job.output.width = w;
+            job.output.height = h;
+            emscripten_set_canvas_element_size(canvas.c_str(), w, h);
+        } else {
+            throw Error("fresnel_set", "", "unknown setting '" + key + "'");
+        }
+    }
+
+    // Loads a model (a path in the page's file system; "" = the built-in demo). The scene
+    // shown so far stays when it fails.
+    void open(const std::string& path) {
+        Job j = job;
+        j.source.model = path;
+        // The orbit (yaw, pitch, K, fov) carries over to the new model; the pan target does not.
+        j.camera.target.reset();
+        j.camera.scene_camera.reset();
+        j.camera.look_at.reset();
+        Diagnostics diag;
+        auto s = std::make_unique<Scene>(load_scene(j, diag));
+        ResolvedJob r = resolve(j, *s);
+        renderer->set_scene(*s, r.scene_index);
+        scene = std::move(s);
+        job = j;
+        warnings.clear();
+        for (const std::string& line : diag.lines()) warnings += line + "\n";
+    }
+
+    // Resolves the job and loads or bakes its lighting when it changed; the environment that
+    // worked before stays when the new one fails.
+    void prepare() {
+        if (!scene) throw Error("fresnel", "", "no model loaded");
+        resolved = resolve(job, *scene);
+        std::string key = key_of(resolved);
+        if (key == lighting_key) return;
+        if (key == pending && lighting_key != "\n") return;  // the worker is baking it: the old lighting meanwhile
+        try {
+            if (auto e = bake_errors.find(key); e != bake_errors.end()) throw Error(resolved.environment->path.string(), "", e->second);
+            if (auto f = baked_folders.find(key); f != baked_folders.end()) {
+                double t = emscripten_get_now();
+                lighting = JobLighting{};
+                lighting.environment = ibl::load_baked(f->second);
+                lighting.environment_ms = emscripten_get_now() - t;
+            } else {
+                lighting = load_lighting(resolved, [](double fraction) {
+                    EM_ASM({ if (Module.onBakeProgress) Module.onBakeProgress($0); }, fraction);
+                });
+            }
+            lighting_key = key;
+            good_environment = job.environment;
+            if (lighting.environment) {
+                const ibl::BakedIbl& e = *lighting.environment;
+                info_bake = "environment " + std::to_string(int(lighting.environment_ms)) + " ms (cube " +
+                            std::to_string(int(e.cube_ms)) + ", specular " + std::to_string(int(e.specular_ms)) +
+                            ", irradiance " + std::to_string(int(e.irradiance_ms)) + ", table " +
+                            std::to_string(int(e.lut_ms)) + ")";
+                EM_ASM({ console.log(UTF8ToString($0)); }, info_bake.c_str());
+            }
+        } catch (...) {
+            job.environment = good_environment;
+            resolved = resolve(job, *scene);
+            throw;
+        }
+    }
+
+    void draw() {
+        prepare();
+        RenderSettings rs = lighting.settings(resolved);
+        double t = emscripten_get_now();
+        stats = {};
+        renderer->draw(resolved.camera, resolved.lights, rs, RenderTarget::default_framebuffer(0, 0), &stats);
+        renderer->finish();
+        frame_ms = emscripten_get_now() - t;
+        if (!stats.gl_errors.empty()) throw Error("WebGL", "", "the frame raised " + stats.gl_errors);
+    }
+
+    // What the page's worker should bake for the current job: "" when nothing (the lighting is
+    // loaded, or needs no bake), else "SOURCE\nSIZE\nSAMPLES" (SOURCE: a file, or studio).
+    std::string pending_bake() {
+        if (!scene) return "";
+        resolved = resolve(job, *scene);
+        std::string key = key_of(resolved);
+        if (key == lighting_key || !resolved.environment || baked_folders.count(key) || bake_errors.count(key)) return "";
+        const ibl::EnvironmentSource& e = *resolved.environment;
+        if (e.kind == ibl::EnvironmentSource::Kind::Uniform) return "";  // quick enough here
+        pending = key;
+        return (e.kind == ibl::EnvironmentSource::Kind::File ? e.path.string() : std::string("studio")) + "\n" +
+               std::to_string(resolved.bake_options.size) + "\n" + std::to_string(resolved.bake_options.samples);
+    }
+    void baked(const std::string& folder, const std::string& bake_error) {
+        if (pending.empty()) return;
+        if (bake_error.empty()) baked_folders[pending] = folder;
+        else bake_errors[pending] = bake_error;
+        pending.clear();
+    }
+
+    OrbitViewport viewport() const { return {resolved.bounds, job.output.width, job.output.height}; }
+};
+
+// Runs `fn`, keeping its error message for fresnel_error(); 1 when it worked.
+template <class Fn>
+int guarded(App* app, Fn&& fn) {
+    if (!app) return 0;
+    try {
+        app->error.clear();
+        fn();
+        return 1;
+    } catch (const std::exception& e) {
+        app->error = e.what();
+        return 0;
+    }
+}
+
+}  // namespace
+}  // namespace fresnel::web
+
+using fresnel::web::App;
+using fresnel::web::guarded;
+
+extern "C" {
+
+// A fresnel on the canvas `selector` ("#canvas"); check fresnel_error() (WebGL 2 missing...).
+// "" makes one without a canvas, for fresnel_bake in a Web Worker.
+EMSCRIPTEN_KEEPALIVE App* fresnel_create(const char* selector) {
+    auto* app = new App;
+    app->canvas = selector;
+    if (app->canvas.empty()) return app;
+    guarded(app, [&] {
+        app->context = fresnel::gpu::create_webgl_context(app->canvas);
+        app->renderer = std::make_unique<fresnel::Renderer>(*app->context);
+        const auto& c = app->context->capabilities();
+        app->info = app->context->renderer() + " | " + app->context->version() +
+                    (c.float_color_targets ? "" : c.half_float_color_targets ? " | HDR target: RGBA16F (no EXT_color_buffer_float)"
+                                                                             : " | HDR target: RGBA8, radiance clamps to 1 (no float render targets)");
+        app->job.environment.use_cache = false;  // the page's file system is gone when it closes
+        app->set("size", std::to_string(app->job.output.width) + "x" + std::to_string(app->job.output.height));
+    });
+    return app;
+}
+EMSCRIPTEN_KEEPALIVE void fresnel_destroy(App* app) { delete app; }
+EMSCRIPTEN_KEEPALIVE const char* fresnel_error(App* app) { return app ? app->error.c_str() : "no fresnel"; }
+EMSCRIPTEN_KEEPALIVE const char* fresnel_warnings(App* app) { return app ? app->warnings.c_str() : ""; }
+EMSCRIPTEN_KEEPALIVE const char* fresnel_info(App* app) { return app ? app->info.c_str() : ""; }
+EMSCRIPTEN_KEEPALIVE double fresnel_frame_ms(App* app) { return app ? app->frame_ms : 0; }
+EMSCRIPTEN_KEEPALIVE int fresnel_open(App* app, const char* path) {
+    return guarded(app, [&] { app->open(path); });
+}
+EMSCRIPTEN_KEEPALIVE int fresnel_set(App* app, const char* key, const char* value) {
+    return guarded(app, [&] { app->set(key, value); });
+}
+// Loads or bakes the lighting the settings ask for (the environment kept when it fails).
+EMSCRIPTEN_KEEPALIVE int fresnel_prepare(App* app) {
+    return guarded(app, [&] { app->prepare(); });
+}
+EMSCRIPTEN_KEEPALIVE int fresnel_draw(App* app) {
+    return guarded(app, [&] { app->draw(); });
+}
+EMSCRIPTEN_KEEPALIVE int fresnel_orbit(App* app, float dx, float dy) {
+    return guarded(app, [&] { app->job.camera = fresnel::orbit(app->job.camera, dx, dy); });
+}
+EMSCRIPTEN_KEEPALIVE int fresnel_pan(App* app, float dx, float dy) {
+    return guarded(app, [&] { app->job.camera = fresnel::pan(app->job.camera, app->viewport(), dx, dy); });
+}
+EMSCRIPTEN_KEEPALIVE int fresnel_dolly(App* app, float clicks) {
+    return guarded(app, [&] {
+        app->job.camera = fresnel::dolly(app->job.camera, app->viewport(), fresnel::dolly_factor(clicks));
+    });
+}
+EMSCRIPTEN_KEEPALIVE int fresnel_frame_all(App* app) {
+    return guarded(app, [&] { app->job.camera = fresnel::frame_all(app->job.camera); });
+}
+// The environment the page's worker should bake before the next frame ("" = none), see App::pending_bake.
+EMSCRIPTEN_KEEPALIVE const char* fresnel_pending_bake(App* app) {
+    if (!app) return "";
+    app->text.clear();
+    guarded(app, [&] { app->text = app->pending_bake(); });
+    return app->text.c_str();
+}
+// The worker's result for the pending bake: the baked folder, or its error message.
+EMSCRIPTEN_KEEPALIVE void fresnel_baked(App* app, const char* folder, const char* error) {
+    if (app) app->baked(folder, error);
+}
+// In the page's Web Worker: bakes `source` (a panorama file, or studio) as load_lighting() would,
+// without the cache, into `out_dir` (a folder load_baked() reads; no previews).
+EMSCRIPTEN_KEEPALIVE int fresnel_bake(App* app, const char* source, const char* out_dir, int size, int samples) {
+    return guarded(app, [&] {
+        fresnel::ibl::BakeOptions o;
+        o.size = size;
+        o.samples = samples;
+        auto baked = fresnel::ibl::load_or_bake(fresnel::ibl::parse_environment(source), o, [](double fraction) {
+            EM_ASM({ if (Module.onBakeProgress) Module.onBakeProgress($0); }, fraction);
+        }, /*use_cache=*/false);
+        fresnel::ibl::save_baked(baked, out_dir, o, /*previews=*/false);
+    });
+}
+// The orbit camera as "yaw pitch" degrees (for the page's URL and panel).
+EMSCRIPTEN_KEEPALIVE const char* fresnel_camera(App* app) {
+    if (!app) return "";
+    app->text = std::to_string(app->job.camera.yaw_deg) + " " + std::to_string(app->job.camera.pitch_deg);
+    return app->text.c_str();
+}
+// The debug channels' names (--debug), separated by spaces.
+EMSCRIPTEN_KEEPALIVE const char* fresnel_debug_channels(App* app) {
+    if (!app) return "";
+    app->text.clear();
+    for (const std::string& n : fresnel::debug_channel_names()) app->text += (app->text.empty() ? "" : " ") + n;
+    return app->text.c_str();
+}
+
+}  // extern "C"
+
+int main() { return 0; }
