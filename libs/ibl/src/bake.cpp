@@ -17,7 +17,10 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-constexpr int kFormatVersion = 3;  // bump when the bake's output changes, to invalidate caches
+constexpr int kFormatVersion = 4;  // bump when the bake's output changes, to invalidate caches
+// Version 3 folders differ only in the table's A channel (4: the sheen albedo); they load,
+// and the channel is computed on load.
+constexpr int kSheenlessFormatVersion = 3;
 
 double ms_since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
@@ -164,8 +167,10 @@ BakedIbl load_baked(const fs::path& dir) {
         throw Error(mpath.string(), "", std::string("invalid manifest: ") + e.what());
     }
     BakedIbl ibl;
+    int format_version = kFormatVersion;
     try {
-        if (m.at("format_version").get<int>() != kFormatVersion)
+        format_version = m.at("format_version").get<int>();
+        if (format_version != kFormatVersion && format_version != kSheenlessFormatVersion)
             throw Error(mpath.string(), "/format_version", "baked with another format version; bake again");
         ibl.source = m.value("source", "");
         ibl.key = m.value("key", "");
@@ -179,6 +184,7 @@ BakedIbl load_baked(const fs::path& dir) {
     ibl.specular = read_ktx2_cube(dir / "specular.ktx2");
     ibl.irradiance_map = read_ktx2_cube(dir / "irradiance.ktx2");
     ibl.lut = read_ktx2_2d(dir / "brdf_lut.ktx2");
+    if (format_version == kSheenlessFormatVersion) fill_sheen_albedo(ibl.lut);
     ibl.from_cache = true;
     ibl.content_hash = baked_content_hash(ibl);
     return ibl;

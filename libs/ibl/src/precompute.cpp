@@ -464,11 +464,24 @@ ImageF compute_brdf_lut(int size, int samples, unsigned threads) {
                 float n_dot_v = brdf_lut_n_dot_v(i, size);
                 glm::vec2 ab = integrate_split_sum(n_dot_v, roughness, samples);
                 float* p = lut.at(i, int(j));
-                p[0] = ab.x, p[1] = ab.y, p[2] = ab.x + ab.y, p[3] = 1.0f;
+                p[0] = ab.x, p[1] = ab.y, p[2] = ab.x + ab.y;
+                p[3] = brdf::sheen_albedo_integral(n_dot_v, roughness, kSheenAlbedoSamplesPerAxis);
             }
         },
         threads);
     return lut;
+}
+
+void fill_sheen_albedo(ImageF& lut, unsigned threads) {
+    parallel_for(
+        std::size_t(lut.height),
+        [&](std::size_t j) {
+            float roughness = (float(j) + 0.5f) / float(lut.height);
+            for (int i = 0; i < lut.width; ++i)
+                lut.at(i, int(j))[3] = brdf::sheen_albedo_integral(brdf_lut_n_dot_v(i, lut.width), roughness,
+                                                                   kSheenAlbedoSamplesPerAxis);
+        },
+        threads);
 }
 
 }  // namespace fresnel::ibl

@@ -28,6 +28,10 @@ MaterialUniforms material_uniforms(const Material& m) {
         u.clearcoat_roughness_factor = m.clearcoat->clearcoat_roughness_factor;
         u.clearcoat_normal_scale = m.clearcoat->clearcoat_normal_scale;
     }
+    if (m.has_sheen()) {
+        u.sheen_color_factor = m.sheen->sheen_color_factor;
+        u.sheen_roughness_factor = m.sheen->sheen_roughness_factor;
+    }
     for (int i = 0; i < kMaterialMapCount; ++i) u.maps[std::size_t(i)] = material_map(m, MaterialMap(i));
     return u;
 }
@@ -37,6 +41,7 @@ FeatureMask material_features(const Material& m) {
     if (m.unlit) f |= feature::Unlit;
     if (m.specular_glossiness) f |= feature::SpecularGlossiness;
     if (m.has_clearcoat()) f |= feature::Clearcoat;
+    if (m.has_sheen()) f |= feature::Sheen;
     if (m.alpha_mode == AlphaMode::Mask) f |= feature::AlphaMask;
     if (m.alpha_mode == AlphaMode::Blend) f |= feature::AlphaBlend;
     return f;
@@ -60,6 +65,8 @@ void set_material_uniforms(const gpu::Program& prog, const MaterialUniforms& u,
     prog.set("u_clearcoat_factor", u.clearcoat_factor);
     prog.set("u_clearcoat_roughness_factor", u.clearcoat_roughness_factor);
     prog.set("u_clearcoat_normal_scale", u.clearcoat_normal_scale);
+    prog.set("u_sheen_color_factor", u.sheen_color_factor);
+    prog.set("u_sheen_roughness_factor", u.sheen_roughness_factor);
     for (int i = 0; i < kMaterialMapCount; ++i) {
         if (!bound[std::size_t(i)]) continue;
         std::string base = std::string("u_") + material_map_info(MaterialMap(i)).name;

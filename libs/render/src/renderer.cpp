@@ -35,6 +35,7 @@ constexpr NamedChannel kChannels[] = {
     {"diffuse", DebugChannel::Diffuse}, {"specular", DebugChannel::Specular},
     {"irradiance", DebugChannel::Irradiance}, {"prefiltered", DebugChannel::Prefiltered},
     {"ibl-diffuse", DebugChannel::IblDiffuse}, {"ibl-specular", DebugChannel::IblSpecular},
+    {"sheen", DebugChannel::Sheen}, {"sheen-roughness", DebugChannel::SheenRoughness},
 };
 
 constexpr int kMaxLights = kMaxShaderLights;
@@ -312,7 +313,8 @@ struct Renderer::Impl {
             case MaterialMap::Normal:
             case MaterialMap::SpecularColor:
             case MaterialMap::SpecularGlossiness:
-            case MaterialMap::ClearcoatNormal: return true;
+            case MaterialMap::ClearcoatNormal:
+            case MaterialMap::SheenColor: return true;
             default: return false;
         }
     }

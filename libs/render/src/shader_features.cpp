@@ -28,8 +28,11 @@ constexpr FeatureInfo kFeatures[kCount] = {
     {ClearcoatMap, "HAS_CLEARCOAT_MAP"},
     {ClearcoatRoughnessMap, "HAS_CLEARCOAT_ROUGHNESS_MAP"},
     {ClearcoatNormalMap, "HAS_CLEARCOAT_NORMAL_MAP"},
+    {SheenColorMap, "HAS_SHEEN_COLOR_MAP"},
+    {SheenRoughnessMap, "HAS_SHEEN_ROUGHNESS_MAP"},
     {Skinned, "SKINNED"},
     {MorphTargets, "MORPH_TARGETS"},
+    {Sheen, "MATERIAL_SHEEN"},
 };
 
 // The maps a draw with these attributes and this material model may bind.
@@ -44,6 +47,7 @@ FeatureMask allowed_maps(FeatureMask m) {
         maps |= ClearcoatMap | ClearcoatRoughnessMap;
         if (m & HasTangent) maps |= ClearcoatNormalMap;
     }
+    if (m & Sheen) maps |= SheenColorMap | SheenRoughnessMap;
     return maps;
 }
 }  // namespace
@@ -62,11 +66,12 @@ FeatureMask canonical_features(FeatureMask m) {
     m &= kAll;
     if (!(m & HasNormal)) m &= ~HasTangent;
     if (m & AlphaMask) m &= ~AlphaBlend;
-    if ((m & Unlit) && !(m & DebugView)) m &= ~(HasNormal | HasTangent | SpecularGlossiness | Clearcoat | UseIbl);
+    if ((m & Unlit) && !(m & DebugView)) m &= ~(HasNormal | HasTangent | SpecularGlossiness | Clearcoat | Sheen | UseIbl);
     const FeatureMask allowed = allowed_maps(m);
     m = (m & ~kMaps) | (m & allowed);
     if (!(m & SpecularGlossiness) && (m & (SpecularMap | SpecularColorMap))) m |= SpecularMap | SpecularColorMap;
     if (m & (ClearcoatMap | ClearcoatRoughnessMap)) m |= ClearcoatMap | ClearcoatRoughnessMap;
+    if (m & (SheenColorMap | SheenRoughnessMap)) m |= SheenColorMap | SheenRoughnessMap;
     if (m & DebugView) m |= allowed & ~(NormalMap | ClearcoatNormalMap);
     return m;
 }

@@ -6,7 +6,7 @@
 //   specular.ktx2      GGX-prefiltered cube map, RGBA16F, all faces and levels
 //   irradiance.ktx2    irradiance / pi as a small cube map (see BakeOptions::irradiance_samples), RGBA16F
 //   irradiance_sh.json the 9 SH coefficients of irradiance / pi (RGB)
-//   brdf_lut.ktx2      split-sum table, RGBA16F: R = A, G = B, B = A + B (directional albedo)
+//   brdf_lut.ktx2      split-sum table, RGBA16F: R = A, G = B, B = A + B (directional albedo), A = sheen albedo
 //   preview/           OpenEXR previews: specular_level<k>.exr and irradiance.exr (faces side by side), brdf_lut.exr
 #include <cstdint>
 #include <filesystem>

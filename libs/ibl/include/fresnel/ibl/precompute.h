@@ -10,7 +10,8 @@
 //    2001) for clients that want them;
 //  - the split-sum BRDF table (Karis 2013) for the same GGX / height-correlated Smith
 //    model as direct lighting; R = scale A, G = bias B of F0; A + B is the directional
-//    albedo E used for multiple-scattering compensation (Fdez-Aguera 2019).
+//    albedo E used for multiple-scattering compensation (Fdez-Aguera 2019); A is the
+//    directional albedo of the KHR_materials_sheen lobe.
 #include <array>
 #include <functional>
 #include <glm/vec3.hpp>
@@ -79,7 +80,14 @@ Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& options, co
 // same normal-mapped model shades the same (NormalTangentTest's bowls, 29.9 -> 31.6 dB).
 // The shader reads the table with plain bilinear filtering at u = n.v.
 inline constexpr float kBrdfLutGrazingNdotV = 0.5f / 1024.0f;
+// A holds the directional albedo E of the white KHR_materials_sheen lobe at (n.v, sheen
+// roughness), brdf::sheen_albedo_integral with this many cosine samples per axis (the
+// sheen's albedo scaling; brdf::SheenAlbedoTable is the same on the CPU).
+inline constexpr int kSheenAlbedoSamplesPerAxis = 32;
 ImageF compute_brdf_lut(int size = 128, int samples = 1024, unsigned threads = 0);
+
+// Writes the A channel (the sheen albedo) of a table made before it held one.
+void fill_sheen_albedo(ImageF& lut, unsigned threads = 0);
 
 // The n.v that column `column` of a `size`-wide table holds (see above).
 float brdf_lut_n_dot_v(int column, int size);

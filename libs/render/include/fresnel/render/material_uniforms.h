@@ -36,6 +36,8 @@ struct MaterialUniforms {
     float clearcoat_factor = 0.0f;       // with MATERIAL_CLEARCOAT only
     float clearcoat_roughness_factor = 0.0f;
     float clearcoat_normal_scale = 1.0f;
+    glm::vec3 sheen_color_factor{0.0f};  // with MATERIAL_SHEEN only
+    float sheen_roughness_factor = 0.0f;
     // The slot each map reads (material_map), nullptr for none; index = MaterialMap.
     std::array<const TextureSlot*, kMaterialMapCount> maps{};
 };
@@ -43,7 +45,7 @@ struct MaterialUniforms {
 MaterialUniforms material_uniforms(const Material& m);
 
 // The shader feature bits (shader_features.h) of the material model: unlit,
-// specular-glossiness, clearcoat, alpha mode (feature_defines() spells them as #defines).
+// specular-glossiness, clearcoat, sheen, alpha mode (feature_defines() spells them as #defines).
 FeatureMask material_features(const Material& m);
 
 // Sets the values on `program` (in use); bound[i]: map i is bound to texture unit i.

@@ -28,6 +28,7 @@ class Context;
 enum class DebugChannel {
     None = 0, BaseColor, Metallic, Roughness, Normal, GeometryNormal, Tangent, Bitangent, Occlusion, Emissive,
     Alpha, Uv0, Uv1, D, G, F, Diffuse, Specular, Irradiance, Prefiltered, IblDiffuse, IblSpecular,
+    Sheen, SheenRoughness,  // KHR_materials_sheen: colour (sRGB), roughness (grey)
 };
 std::optional<DebugChannel> parse_debug_channel(const std::string& name);
 std::vector<std::string> debug_channel_names();
