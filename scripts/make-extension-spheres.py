@@ -21,10 +21,13 @@ def png(width, height, pixel):
             chunk(b'IDAT', zlib.compress(raw, 9)) + chunk(b'IEND', b''))
 
 
-def stripes(x, y):  # sheen colour (RGB) and sheen roughness (A): bands along u, a ramp along v
-    band = (x // 8) % 3
-    rgb = [(255, 200, 120), (120, 255, 160), (200, 160, 255)][band]
-    return rgb + (40 + (215 * y) // 63,)
+def stripes(x, y):  # sheen colour (RGB, sRGB): bands along u
+    return [(255, 200, 120), (120, 255, 160), (200, 160, 255)][(x // 8) % 3] + (255,)
+
+
+def ramp(x, y):  # sheen roughness (A, linear): a ramp along v. Its own image: a renderer may
+    # upload an image once, in one colour space, when two slots of different spaces share it.
+    return (255, 255, 255, 40 + (215 * y) // 63)
 
 
 def anisotropy_map(x, y):  # RG direction (tangent space, [-1,1] -> [0,255]), B strength
@@ -36,7 +39,7 @@ def thickness_map(x, y):  # G: thickness between the minimum and the maximum
     return (0, (255 * x) // 63, 0, 255)
 
 
-TEXTURES = {'stripes': stripes, 'anisotropy': anisotropy_map, 'thickness': thickness_map}
+TEXTURES = {'stripes': stripes, 'ramp': ramp, 'anisotropy': anisotropy_map, 'thickness': thickness_map}
 
 
 def scenes():
@@ -52,7 +55,7 @@ def scenes():
         'sheen_textured': ({'pbrMetallicRoughness': mr((0.2, 0.02, 0.02), 0.0, 1.0),
                             'extensions': {'KHR_materials_sheen': {
                                 'sheenColorFactor': [1.0, 1.0, 1.0], 'sheenColorTexture': {'index': 0},
-                                'sheenRoughnessFactor': 1.0, 'sheenRoughnessTexture': {'index': 0}}}}, ['stripes']),
+                                'sheenRoughnessFactor': 1.0, 'sheenRoughnessTexture': {'index': 1}}}}, ['stripes', 'ramp']),
         'anisotropy_metal': ({'pbrMetallicRoughness': mr((0.95, 0.9, 0.85), 1.0, 0.4),
                               'extensions': {'KHR_materials_anisotropy': {'anisotropyStrength': 0.8}}}, []),
         'anisotropy_textured': ({'pbrMetallicRoughness': mr((0.5, 0.2, 0.1), 0.0, 0.3),

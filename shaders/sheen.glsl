@@ -46,12 +46,15 @@ float sheen_albedo(float n_dot_v, float sheen_roughness) {
 float max3(vec3 c) { return max(max(c.r, c.g), c.b); }
 
 #ifdef USE_IBL
-// Image-based light on the sheen lobe: radiance * sheen colour * E(n.v). The Khronos Sample
-// Viewer reads a Charlie-prefiltered cube at lod = roughness * (levels - 1); we read the
-// irradiance cube instead (no extra cube to bake, store and bind): the Charlie lobe is broad
-// (its half vectors lie near grazing), so its prefiltered light is close to the cosine-weighted
-// average of the hemisphere. README gives the agreement this leaves with the Khronos renderer.
+uniform samplerCube u_sheen_env;  // Charlie-prefiltered (ibl::prefilter_charlie), lod = roughness * (levels - 1)
+uniform sampler2D u_charlie_lut;  // R: the Khronos Sample Viewer's Charlie table (ibl::compute_charlie_lut)
+
+// Image-based light on the sheen lobe, as the Khronos Sample Viewer's getIBLRadianceCharlie:
+// the Charlie-prefiltered radiance in the mirror direction * sheen colour * its table at (n.v, r).
 vec3 ibl_sheen(vec3 n, vec3 v, vec3 sheen_color, float sheen_roughness) {
-    return ibl_irradiance(n) * sheen_color * sheen_albedo(clamped_dot(n, v), sheen_roughness);
+    vec3 r = normalize(reflect(-v, n));
+    vec3 light = textureLod(u_sheen_env, u_env_rotation * r, sheen_roughness * (u_env_levels - 1.0)).rgb * u_env_intensity;
+    float brdf = texture(u_charlie_lut, clamp(vec2(clamped_dot(n, v), sheen_roughness), vec2(0.0), vec2(1.0))).r;
+    return light * sheen_color * brdf;
 }
 #endif

@@ -49,6 +49,10 @@ enum class TextureUnit : int {
     BrdfLut = 13,
     SpecularEnvironment = 14,
     IrradianceEnvironment = 15,
+    // KHR_materials_sheen's image-based light (MATERIAL_SHEEN with USE_IBL): above the 16 units
+    // OpenGL ES 3.0 guarantees (llvmpipe has 32).
+    SheenEnvironment = 16,
+    CharlieLut = 17,
 };
 
 enum Attr : unsigned {
@@ -162,6 +166,7 @@ struct Renderer::Impl {
     std::uint64_t uploaded_env = 0;
     gpu::Texture env_specular;
     gpu::Texture env_irradiance;
+    gpu::Texture env_sheen, charlie_lut;
     std::uint64_t uploaded_lut = 0;
     gpu::Texture lut_texture;
 
@@ -179,6 +184,20 @@ struct Renderer::Impl {
             env_irradiance = gpu::Texture::create_cube(irr.size(), gpu::TextureFormat::RGBA16F, 1);
             for (int f = 0; f < 6; ++f)
                 env_irradiance.upload_cube_face(f, 0, irr.size(), irr.levels[0].faces[std::size_t(f)].data());
+            const ibl::Cubemap& sh = s.environment->sheen;
+            env_sheen = {};
+            if (sh.size() > 0) {
+                env_sheen = gpu::Texture::create_cube(sh.size(), gpu::TextureFormat::RGBA16F, int(sh.levels.size()));
+                for (std::size_t l = 0; l < sh.levels.size(); ++l)
+                    for (int f = 0; f < 6; ++f)
+                        env_sheen.upload_cube_face(f, int(l), sh.levels[l].size, sh.levels[l].faces[std::size_t(f)].data());
+            }
+            const ImageF& cl = s.environment->charlie_lut;
+            charlie_lut = {};
+            if (cl.width > 0) {
+                charlie_lut = gpu::Texture::create_2d(cl.width, cl.height, gpu::TextureFormat::RGBA32F, cl.pixels.data(), false);
+                charlie_lut.set_sampler(gpu::SamplerState::clamped(Filter::Linear));
+            }
             uploaded_env = env_id;
         }
         const ImageF* lut = s.brdf_lut ? s.brdf_lut : (s.environment ? &s.environment->lut : nullptr);
@@ -638,6 +657,12 @@ struct Renderer::Impl {
             prog.set("u_specular_env", kSpecularUnit);
             device.bind_texture(kIrradianceUnit, env_irradiance);
             prog.set("u_irradiance_env", kIrradianceUnit);
+            if ((features & feature::Sheen) && env_sheen && charlie_lut) {
+                device.bind_texture(int(TextureUnit::SheenEnvironment), env_sheen);
+                prog.set("u_sheen_env", int(TextureUnit::SheenEnvironment));
+                device.bind_texture(int(TextureUnit::CharlieLut), charlie_lut);
+                prog.set("u_charlie_lut", int(TextureUnit::CharlieLut));
+            }
             set_ibl_uniforms(prog, settings);
         }
         for (int i = 0; i < kMaterialMapCount; ++i)
