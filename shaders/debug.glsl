@@ -24,6 +24,8 @@ vec3 debug_value(int channel, MaterialInputs m, vec3 n, vec3 ng, vec3 t, vec3 b,
         return vec3(0.0);  // not transmissive
 #endif
     }
+    if (channel == 24) return linear_to_srgb(clamp(m.sheen_color, 0.0, 1.0));  // KHR_materials_sheen (0 without)
+    if (channel == 25) return vec3(m.sheen_roughness);
     vec3 l = v;
     if (u_light_count > 0) light_incident(0, v_position, l);
     BrdfTerms bt = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight, n, v, l);

@@ -23,6 +23,11 @@ uniform float u_clearcoat_factor;
 uniform float u_clearcoat_roughness_factor;
 uniform float u_clearcoat_normal_scale;
 #endif
+#ifdef MATERIAL_SHEEN
+#include "sheen.glsl"
+uniform vec3 u_sheen_color_factor;      // KHR_materials_sheen
+uniform float u_sheen_roughness_factor;
+#endif
 
 // Per map: sampler, UV set (0/1) and the KHR_texture_transform matrix. (Spelled out:
 // GLSL ES 3.00 has no token pasting.)
@@ -58,6 +63,12 @@ uniform sampler2D u_clearcoat_roughness_map; uniform int u_clearcoat_roughness_u
 #endif
 #ifdef HAS_CLEARCOAT_NORMAL_MAP
 uniform sampler2D u_clearcoat_normal_map; uniform int u_clearcoat_normal_uv; uniform mat3 u_clearcoat_normal_transform;
+#endif
+#ifdef HAS_SHEEN_COLOR_MAP
+uniform sampler2D u_sheen_color_map; uniform int u_sheen_color_uv; uniform mat3 u_sheen_color_transform;
+#endif
+#ifdef HAS_SHEEN_ROUGHNESS_MAP
+uniform sampler2D u_sheen_roughness_map; uniform int u_sheen_roughness_uv; uniform mat3 u_sheen_roughness_transform;
 #endif
 
 vec2 map_uv(int set, mat3 transform) {
@@ -106,6 +117,8 @@ struct MaterialInputs {
     float clearcoat_roughness;  // perceptual
     float clearcoat_f0;
     vec3 clearcoat_normal;
+    vec3 sheen_color;       // KHR_materials_sheen (0 = no sheen)
+    float sheen_roughness;  // perceptual
 };
 
 // t, b, ng: the geometric frame (unit, flipped for back faces), as evaluate's SurfacePoint.
@@ -166,6 +179,20 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     m.clearcoat = clamp(m.clearcoat, 0.0, 1.0);
     m.clearcoat_roughness = clamp(m.clearcoat_roughness, 0.0, 1.0);
 #endif
+    m.sheen_color = vec3(0.0);
+    m.sheen_roughness = 0.0;
+#ifdef MATERIAL_SHEEN
+    m.sheen_color = u_sheen_color_factor;
+    m.sheen_roughness = u_sheen_roughness_factor;
+#ifdef HAS_SHEEN_COLOR_MAP
+    m.sheen_color *= sample_map(u_sheen_color_map, u_sheen_color_uv, u_sheen_color_transform).rgb;
+#endif
+#ifdef HAS_SHEEN_ROUGHNESS_MAP
+    m.sheen_roughness *= sample_map(u_sheen_roughness_map, u_sheen_roughness_uv, u_sheen_roughness_transform).a;
+#endif
+    m.sheen_color = max(m.sheen_color, vec3(0.0));
+    m.sheen_roughness = clamp(m.sheen_roughness, 0.0, 1.0);
+#endif
     m.occlusion = 1.0;
 #ifdef HAS_OCCLUSION_MAP
     m.occlusion = 1.0 + u_occlusion_strength * (sample_map(u_occlusion_map, u_occlusion_uv, u_occlusion_transform).r - 1.0);
@@ -205,7 +232,16 @@ vec3 shade_light(MaterialInputs m, vec3 v, vec3 l, vec3 radiance, vec3 comp_diel
     if (n_dot_l > 0.0) {
         BrdfTerms t = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight, m.normal, v, l);
         vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;
-        lit = radiance * n_dot_l * (t.diffuse + specular);
+        vec3 base = t.diffuse + specular;
+#ifdef MATERIAL_SHEEN
+        // The Charlie lobe over the base, which keeps 1 - max(c) E (fresnel::shade_light).
+        float n_dot_v = clamped_dot(m.normal, v);
+        float n_dot_h = clamped_dot(m.normal, normalize(l + v));
+        float c = max3(m.sheen_color);
+        float scaling = min(1.0 - c * sheen_albedo(n_dot_v, m.sheen_roughness), 1.0 - c * sheen_albedo(n_dot_l, m.sheen_roughness));
+        base = sheen_specular(m.sheen_color, m.sheen_roughness, n_dot_l, n_dot_v, n_dot_h) + base * scaling;
+#endif
+        lit = radiance * n_dot_l * base;
     }
 #ifdef MATERIAL_CLEARCOAT
     // mix(base, coat, clearcoat * Fc), Fc the Schlick Fresnel of the coat at its normal

@@ -3,7 +3,8 @@
 // and fresnel::shade_light. Inputs: u_points (RGBA32F), kTexels texels per point:
 //   0 (uv0.xy, uv1.xy)  1 vertex colour  2 tangent  3 bitangent  4 geometric normal
 //   5 view  6 light  7 energy compensation (dielectric)  8 energy compensation (metal)
-// u_output selects which results the pixel writes (see main).
+// u_output selects which results the pixel writes (see main). u_brdf_lut's A channel is
+// the sheen albedo table (brdf::SheenAlbedoTable::standard() on the C++ side).
 in vec2 v_texcoord;
 out vec4 frag_color;
 uniform sampler2D u_points;
@@ -17,6 +18,7 @@ vec4 v_color;
 #include "common.glsl"
 #include "color.glsl"
 #include "brdf.glsl"
+#include "ibl.glsl"
 #include "material_inputs.glsl"
 
 const int kTexels = 9;
@@ -38,6 +40,7 @@ void main() {
     else if (u_output == 3) frag_color = vec4(m.f0_dielectric, m.clearcoat);
     else if (u_output == 4) frag_color = vec4(m.normal, m.clearcoat_roughness);
     else if (u_output == 5) frag_color = vec4(m.clearcoat_normal, m.clearcoat_f0);
+    else if (u_output == 7) frag_color = vec4(m.sheen_color, m.sheen_roughness);
     else {
         vec3 radiance = vec3(1.0, 0.8, 0.6);
         frag_color = vec4(shade_light(m, point_texel(5).xyz, point_texel(6).xyz, radiance, point_texel(7).xyz,

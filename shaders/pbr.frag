@@ -118,6 +118,11 @@ void main() {
         vec3 dielectric = diffuse * (1.0 - fresnel_dielectric) * m.occlusion + specular * fresnel_dielectric * so;
         vec3 metal = specular * fresnel_metal * so;
         vec3 ibl = mix(dielectric, metal, m.metallic);
+#ifdef MATERIAL_SHEEN
+        // KHR_materials_sheen: the Charlie lobe's light over the base, which keeps 1 - max(c) E.
+        ibl = ibl_sheen(f.n, v, m.sheen_color, m.sheen_roughness) * m.occlusion +
+              ibl * (1.0 - max3(m.sheen_color) * sheen_albedo(n_dot_v, m.sheen_roughness));
+#endif
 #ifdef MATERIAL_CLEARCOAT
         // The coat reflects the prefiltered environment at its roughness; its Fresnel is cc_mix.
         vec3 coat = ibl_radiance(reflect(-v, f.nc), m.clearcoat_roughness) *

@@ -4,7 +4,7 @@
 // Seeded random materials cover every input: factors (F0 clamping included), every map
 // slot with small random textures on both UV sets, KHR_texture_transform, all wrap modes
 // and filters, sRGB and linear slots, specular-glossiness and metallic-roughness,
-// KHR_materials_ior / _specular / _clearcoat / _emissive_strength, alpha modes, vertex
+// KHR_materials_ior / _specular / _clearcoat / _sheen / _emissive_strength, alpha modes, vertex
 // colour, missing UV sets and tangents. Uniforms are packed by the renderer's own
 // material_uniforms / set_material_uniforms, so the packing is under test too.
 // shaders/material_probe.frag evaluates one surface point per pixel.
@@ -53,7 +53,7 @@ using namespace fresnel;
 
 constexpr int kSide = 8;                 // points per case: kSide x kSide pixels
 constexpr int kTexels = 9;               // input texels per point (material_probe.frag)
-constexpr int kOutputs = 7;              // u_output values
+constexpr int kOutputs = 8;              // u_output values (6 = shade_light)
 constexpr float kRelTol = 1e-4f;         // exact sampling: relative ...
 constexpr float kAbsFloor = 1e-6f;       // ... or absolute near zero
 // shade_light: relative, as gpu_brdf_test (the GGX peak of glossy lobes turns float
@@ -107,8 +107,8 @@ struct Case {
 
 class Gen {
 public:
-    explicit Gen(unsigned seed) : rng_(seed) {}
-    float u() { return u01_(rng_); }
+    explicit Gen(unsigned seed) : rng_(seed), side_(seed ^ 0x5eedu) {}
+    float u() { return u01_(*cur_); }
     float range(float a, float b) { return a + (b - a) * u(); }
     int pick(int n) { return int(u() * float(n)) % n; }
     bool chance(float p) { return u() < p; }
@@ -202,6 +202,18 @@ public:
             cc.clearcoat_normal_scale = range(-2, 2);
             m.clearcoat = cc;
         }
+        // Extensions added later draw from their own stream, so that the cases of the
+        // others stay what they were (their figures in the comments above hold).
+        cur_ = &side_;
+        if (chance(0.5f)) {
+            SheenExt sh;
+            sh.sheen_color_factor = chance(0.15f) ? glm::vec3(0.0f) : glm::vec3(u(), u(), u());
+            sh.sheen_color_texture = slot();
+            sh.sheen_roughness_factor = chance(0.1f) ? float(pick(2)) : u();
+            sh.sheen_roughness_texture = slot();
+            m.sheen = sh;
+        }
+        cur_ = &rng_;
         if (chance(0.3f)) {
             SpecularGlossinessExt sg;
             sg.diffuse_factor = glm::vec4(u(), u(), u(), u());
@@ -239,7 +251,8 @@ public:
     }
 
 private:
-    std::mt19937 rng_;
+    std::mt19937 rng_, side_;
+    std::mt19937* cur_ = &rng_;
     std::uniform_real_distribution<float> u01_{0.0f, 1.0f};
 };
 
@@ -255,6 +268,7 @@ std::array<glm::vec4, kOutputs> cpu_outputs(const Case& c, const TextureSource& 
     o[4] = glm::vec4(e.normal, e.clearcoat_roughness);
     o[5] = glm::vec4(e.clearcoat_normal, e.clearcoat_f0);
     o[6] = glm::vec4(shade_light(e, pt.v, pt.l, glm::vec3(1.0f, 0.8f, 0.6f), pt.comp_d, pt.comp_m), 1.0f);
+    o[7] = glm::vec4(e.sheen_color, e.sheen_roughness);
     return o;
 }
 
@@ -279,6 +293,7 @@ const char* kOutputNames[kOutputs][4] = {
     {"normal.x", "normal.y", "normal.z", "clearcoat_roughness"},
     {"cc_normal.x", "cc_normal.y", "cc_normal.z", "clearcoat_f0"},
     {"shade.r", "shade.g", "shade.b", "one"},
+    {"sheen.r", "sheen.g", "sheen.b", "sheen_roughness"},
 };
 
 class MaterialProbe : public ::testing::Test {
@@ -291,6 +306,7 @@ protected:
         }
     }
     static void TearDownTestSuite() {
+        sheen_lut_.reset();
         library_.reset();
         context_.reset();
     }
@@ -302,6 +318,7 @@ protected:
 
     // Runs the probe over one case: per output, one RGBA per point.
     std::array<std::vector<glm::vec4>, kOutputs> probe(const Case& c, bool count_coverage = true) {
+        const gpu::Texture& lut = sheen_lut();  // made first: creating a texture binds it to the active unit
         std::vector<float> texels(std::size_t(kSide * kTexels * kSide * 4), 0.0f);
         for (int i = 0; i < kSide * kSide; ++i) {
             const Point& pt = c.points[std::size_t(i)];
@@ -367,9 +384,11 @@ protected:
         state.cull = gpu::Cull::None;
         device.apply(state);
         prog.use();
-        const int points_unit = 15;
+        const int points_unit = 15, lut_unit = 13;
         device.bind_texture(points_unit, points);
         prog.set("u_points", points_unit);
+        device.bind_texture(lut_unit, lut);
+        prog.set("u_brdf_lut", lut_unit);
         for (auto [unit, index] : units) device.bind_texture(unit, maps[std::size_t(index)]);
         set_material_uniforms(prog, mu, bound);
         prog.set("u_material_lod", c.lod);
@@ -387,6 +406,21 @@ protected:
         device.bind_framebuffer(nullptr);
         EXPECT_EQ(device.take_errors(), "");
         return out;
+    }
+
+    // A table whose A channel is the sheen albedo shade_light reads on the CPU
+    // (SheenAlbedoTable::standard()), sampled as the renderer samples its split-sum table.
+    static const gpu::Texture& sheen_lut() {
+        if (!sheen_lut_) {
+            const brdf::SheenAlbedoTable& t = brdf::SheenAlbedoTable::standard();
+            std::vector<float> px(std::size_t(t.size() * t.size() * 4), 0.0f);
+            for (int y = 0; y < t.size(); ++y)
+                for (int x = 0; x < t.size(); ++x) px[(std::size_t(y) * std::size_t(t.size()) + std::size_t(x)) * 4 + 3] = t.at(x, y);
+            sheen_lut_ = std::make_unique<gpu::Texture>(
+                gpu::Texture::create_2d(t.size(), t.size(), gpu::TextureFormat::RGBA32F, px.data(), false));
+            sheen_lut_->set_sampler(gpu::SamplerState::clamped(Filter::Linear));
+        }
+        return *sheen_lut_;
     }
 
     // The driver's response to each texel byte, read through the probe at texel centres
@@ -500,6 +534,9 @@ protected:
                                                                     m.specular->specular_color_factor.z}));
                             if (o == 2 && ch == 3 && m.specular) norm = std::max(1.0f, m.specular->specular_factor);
                             if (o == 4 && ch < 3) norm = 1.0f + std::abs(m.normal_scale);
+                            if (o == 7 && ch < 3 && m.sheen)
+                                norm = std::max(1.0f, std::max({m.sheen->sheen_color_factor.x, m.sheen->sheen_color_factor.y,
+                                                                m.sheen->sheen_color_factor.z}));
                             if (o == 5 && ch < 3 && m.clearcoat) norm = 1.0f + std::abs(m.clearcoat->clearcoat_normal_scale);
                             ok = err <= kFilteredAbsTol * norm;
                             worst_abs = std::max(worst_abs, err / norm);
@@ -511,7 +548,7 @@ protected:
                                           << kOutputNames[o][ch] << ": C++ " << want << " GPU " << got << " (lod "
                                           << c.lod << ", uv0 " << pt.p.uv0.x << "," << pt.p.uv0.y << ", SG "
                                           << bool(c.material.specular_glossiness) << ", coat "
-                                          << c.material.has_clearcoat() << ")";
+                                          << c.material.has_clearcoat() << ", sheen " << c.material.has_sheen() << ")";
                         }
                     }
                 }
@@ -533,9 +570,11 @@ protected:
     static std::string context_error_;
     static std::unique_ptr<ShaderLibrary> library_;
     static std::unique_ptr<DriverDecode> decode_;
+    static std::unique_ptr<gpu::Texture> sheen_lut_;
     std::array<int, kMaterialMapCount> maps_bound_{};  // coverage: draws that read each map
 };
 std::unique_ptr<DriverDecode> MaterialProbe::decode_;
+std::unique_ptr<gpu::Texture> MaterialProbe::sheen_lut_;
 
 std::unique_ptr<gpu::Context> MaterialProbe::context_;
 std::string MaterialProbe::context_error_;

@@ -17,7 +17,12 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-constexpr int kFormatVersion = 3;  // bump when the bake's output changes, to invalidate caches
+constexpr int kFormatVersion = 5;  // bump when the bake's output changes, to invalidate caches
+// Version 3 folders lack the table's A channel (5: the sheen albedo) and sheen.ktx2; they load,
+// and the channel is computed on load.
+constexpr int kSheenlessFormatVersion = 3;
+constexpr int kSheenCubeSize = 32;  // the Charlie cube (prefilter_charlie): a wide blur
+constexpr int kSheenSamples = 64;   // the Khronos Sample Viewer's count
 
 double ms_since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
@@ -66,6 +71,10 @@ BakedIbl bake(const ImageF& panorama, const BakeOptions& o, const Progress& prog
         fill(out.specular);
         out.irradiance_map = make_cubemap(o.irradiance_size, 1);
         fill(out.irradiance_map);
+        out.sheen = make_cubemap(kSheenCubeSize, o.levels);
+        fill(out.sheen);
+        for (auto& f : out.sheen.levels[0].faces) std::fill(f.begin(), f.end(), 0.0f);  // the viewer's level 0 (see prefilter_charlie)
+        out.charlie_lut = compute_charlie_lut();
         out.irradiance.c[0] = c / 0.282095f;  // irradiance / pi of a uniform sky is the sky itself
         out.lut = o.use_lut_cache ? load_or_bake_lut(o) : bake_lut(o);
         out.content_hash = baked_content_hash(out);
@@ -88,6 +97,8 @@ BakedIbl bake(const ImageF& panorama, const BakeOptions& o, const Progress& prog
     out.specular = prefilter_ggx(source, po, [&](double f) {
         if (progress) progress(0.05 + 0.85 * f);
     });
+    out.sheen = prefilter_charlie(source, kSheenCubeSize, o.levels, kSheenSamples, o.threads);
+    out.charlie_lut = compute_charlie_lut();
     out.specular_ms = ms_since(t);
     t = std::chrono::steady_clock::now();
     // The table does not depend on the environment: it comes from the cache when present.
@@ -107,6 +118,7 @@ void save_baked(const BakedIbl& ibl, const fs::path& dir, const BakeOptions& o, 
     const Cubemap& irr = ibl.irradiance_map;
     write_ktx2_cube(dir / "irradiance.ktx2", irr);
     write_ktx2_2d(dir / "brdf_lut.ktx2", ibl.lut);
+    write_ktx2_cube(dir / "sheen.ktx2", ibl.sheen);
     json sh = json::array();
     for (const auto& c : ibl.irradiance.c) sh.push_back({c.x, c.y, c.z});
     {
@@ -115,7 +127,7 @@ void save_baked(const BakedIbl& ibl, const fs::path& dir, const BakeOptions& o, 
                   {"coefficients", sh}}
                  .dump(2);
     }
-    json files = {"specular.ktx2", "irradiance.ktx2", "irradiance_sh.json", "brdf_lut.ktx2"};
+    json files = {"specular.ktx2", "irradiance.ktx2", "irradiance_sh.json", "brdf_lut.ktx2", "sheen.ktx2"};
     if (previews) {
         fs::create_directories(dir / "preview", ec);
         for (std::size_t l = 0; l < ibl.specular.levels.size(); ++l) {
@@ -164,8 +176,10 @@ BakedIbl load_baked(const fs::path& dir) {
         throw Error(mpath.string(), "", std::string("invalid manifest: ") + e.what());
     }
     BakedIbl ibl;
+    int format_version = kFormatVersion;
     try {
-        if (m.at("format_version").get<int>() != kFormatVersion)
+        format_version = m.at("format_version").get<int>();
+        if (format_version != kFormatVersion && format_version != kSheenlessFormatVersion)
             throw Error(mpath.string(), "/format_version", "baked with another format version; bake again");
         ibl.source = m.value("source", "");
         ibl.key = m.value("key", "");
@@ -179,6 +193,17 @@ BakedIbl load_baked(const fs::path& dir) {
     ibl.specular = read_ktx2_cube(dir / "specular.ktx2");
     ibl.irradiance_map = read_ktx2_cube(dir / "irradiance.ktx2");
     ibl.lut = read_ktx2_2d(dir / "brdf_lut.ktx2");
+    if (format_version == kSheenlessFormatVersion) {
+        fill_sheen_albedo(ibl.lut);
+        // No Charlie cube either: filter the mirror level's mip chain (the bake's source at its size).
+        Cubemap source = make_cubemap(ibl.specular.size(), 1);
+        source.levels[0] = ibl.specular.levels[0];
+        build_mip_chain(source);
+        ibl.sheen = prefilter_charlie(source, kSheenCubeSize, int(ibl.specular.levels.size()), kSheenSamples);
+    } else {
+        ibl.sheen = read_ktx2_cube(dir / "sheen.ktx2");
+    }
+    ibl.charlie_lut = compute_charlie_lut();
     ibl.from_cache = true;
     ibl.content_hash = baked_content_hash(ibl);
     return ibl;
@@ -210,6 +235,7 @@ std::uint64_t image_content_hash(const ImageF& image, std::uint64_t seed) {
 std::uint64_t baked_content_hash(const BakedIbl& ibl) {
     std::uint64_t h = mix_cube(ibl.specular, 0x243F6A8885A308D3ull);
     h = mix_cube(ibl.irradiance_map, h);
+    h = mix_cube(ibl.sheen, h);
     return image_content_hash(ibl.lut, h) | 1u;  // never 0 (0 = not computed)
 }
 

@@ -467,10 +467,146 @@ ImageF compute_brdf_lut(int size, int samples, unsigned threads) {
                 float n_dot_v = brdf_lut_n_dot_v(i, size);
                 glm::vec2 ab = integrate_split_sum(n_dot_v, roughness, samples);
                 float* p = lut.at(i, int(j));
-                p[0] = ab.x, p[1] = ab.y, p[2] = ab.x + ab.y, p[3] = 1.0f;
+                p[0] = ab.x, p[1] = ab.y, p[2] = ab.x + ab.y;
+                p[3] = brdf::sheen_albedo_integral(n_dot_v, roughness, kSheenAlbedoSamplesPerAxis);
             }
         },
         threads);
+    return lut;
+}
+
+void fill_sheen_albedo(ImageF& lut, unsigned threads) {
+    parallel_for(
+        std::size_t(lut.height),
+        [&](std::size_t j) {
+            float roughness = (float(j) + 0.5f) / float(lut.height);
+            for (int i = 0; i < lut.width; ++i)
+                lut.at(i, int(j))[3] = brdf::sheen_albedo_integral(brdf_lut_n_dot_v(i, lut.width), roughness,
+                                                                   kSheenAlbedoSamplesPerAxis);
+        },
+        threads);
+}
+
+namespace {
+// Charlie D with the exponent parameter a as the Khronos filter writes it: (2 + 1/a) sin^(1/a) / (2 pi).
+float d_charlie_a(float a, float n_dot_h) {
+    a = std::max(a, 1e-6f);
+    float sin2h = std::max(1.0f - n_dot_h * n_dot_h, 0.0f);
+    return (2.0f + 1.0f / a) * std::pow(sin2h, 0.5f / a) / (2.0f * kPi);
+}
+// A Charlie half vector for Hammersley point u at perceptual roughness r (alpha = r^2).
+glm::vec3 charlie_half(glm::vec2 u, float roughness, float& cos_theta) {
+    float alpha = roughness * roughness;
+    float sin_theta = std::pow(u.y, alpha / (2.0f * alpha + 1.0f));
+    cos_theta = std::sqrt(std::max(1.0f - sin_theta * sin_theta, 0.0f));
+    float phi = 2.0f * kPi * u.x;
+    return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
+}
+}  // namespace
+
+// Bilinear at one level with seamless cube filtering (as GL's TEXTURE_CUBE_MAP_SEAMLESS and
+// WebGL 2 do): a footprint texel beyond the face's edge is read from the face it lies on. The
+// Charlie filter reads the coarsest levels (2x2, 1x1), where clamping at each face's edge would
+// paint the faces as blocks.
+glm::vec3 sample_seamless(const Cubemap& cube, int level, glm::vec3 dir) {
+    const CubeLevel& lv = cube.levels[std::size_t(level)];
+    int face;
+    float s, t;
+    cube_face_uv(dir, face, s, t);
+    float fx = s * float(lv.size) - 0.5f, fy = t * float(lv.size) - 0.5f;
+    int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+    float ax = fx - float(x0), ay = fy - float(y0);
+    glm::vec3 sum(0.0f);
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+            float w = (i ? ax : 1.0f - ax) * (j ? ay : 1.0f - ay);
+            if (w <= 0.0f) continue;
+            int x = x0 + i, y = y0 + j;
+            const float* p;
+            if (x >= 0 && y >= 0 && x < lv.size && y < lv.size) {
+                p = lv.texel(face, x, y);
+            } else {
+                // The texel centre beyond the edge, on the face's plane, lands on a neighbour.
+                int f2;
+                float s2, t2;
+                cube_face_uv(cube_texel_direction(face, x, y, lv.size), f2, s2, t2);
+                int x2 = std::clamp(int(s2 * float(lv.size)), 0, lv.size - 1), y2 = std::clamp(int(t2 * float(lv.size)), 0, lv.size - 1);
+                p = lv.texel(f2, x2, y2);
+            }
+            sum += w * glm::vec3(p[0], p[1], p[2]);
+        }
+    return sum;
+}
+
+Cubemap prefilter_charlie(const Cubemap& source, int size, int levels, int samples, unsigned threads) {
+    Cubemap out = make_cubemap(size, levels);
+    const int source_levels = int(source.levels.size());
+    const float width = float(source.size());
+    for (int level = 0; level < levels; ++level) {
+        const float roughness = levels > 1 ? float(level) / float(levels - 1) : 0.0f;
+        std::vector<LobeSample> lobe;
+        for (int i = 0; i < samples; ++i) {
+            float cos_theta;
+            glm::vec3 h = charlie_half(sampling::hammersley(std::uint32_t(i), std::uint32_t(samples)), roughness, cos_theta);
+            glm::vec3 l = 2.0f * h.z * h - glm::vec3(0, 0, 1);  // reflect v = n = +Z about h
+            if (l.z <= 0.0f) continue;
+            // The viewer's mip from its sample "pdf" D / 4 (0 gives the coarsest level).
+            float pdf = d_charlie_a(roughness * roughness, cos_theta) * 0.25f;
+            float lod = roughness == 0.0f ? 0.0f
+                        : pdf > 0.0f ? 0.5f * std::log2(6.0f * width * width / (float(samples) * pdf))
+                                     : float(source_levels - 1);
+            lod = std::clamp(lod, 0.0f, float(source_levels - 1));
+            lobe.push_back(make_sample(l, l.z, lod, source_levels));
+        }
+        CubeLevel& dst = out.levels[std::size_t(level)];
+        parallel_for(
+            std::size_t(6 * dst.size),
+            [&](std::size_t row) {
+                int f = int(row / std::size_t(dst.size)), y = int(row % std::size_t(dst.size));
+                for (int x = 0; x < dst.size; ++x) {
+                    glm::vec3 n = cube_texel_direction(f, x, y, dst.size), tt, bb;
+                    sampling::basis(n, tt, bb);
+                    glm::vec3 sum(0.0f);
+                    float wsum = 0.0f;
+                    for (const LobeSample& s : lobe) {
+                        glm::vec3 d = tt * s.dir.x + bb * s.dir.y + n * s.dir.z;
+                        glm::vec3 c = sample_seamless(source, s.level0, d) * (1.0f - (s.w1 > 0.0f ? s.w1 / s.weight : 0.0f));
+                        if (s.w1 > 0.0f) c += sample_seamless(source, s.level0 + 1, d) * (s.w1 / s.weight);
+                        sum += c * s.weight;
+                        wsum += s.weight;
+                    }
+                    store(dst.texel(f, x, y), wsum > 0.0f ? sum / wsum : glm::vec3(0.0f));
+                }
+            },
+            threads);
+    }
+    return out;
+}
+
+ImageF compute_charlie_lut(int size, int samples) {
+    ImageF lut(size, size);
+    for (int j = 0; j < size; ++j) {
+        const float roughness = (float(j) + 0.5f) / float(size);
+        for (int i = 0; i < size; ++i) {
+            const float n_dot_v = (float(i) + 0.5f) / float(size);
+            const glm::vec3 v(std::sqrt(1.0f - n_dot_v * n_dot_v), 0.0f, n_dot_v);
+            double c = 0.0;
+            for (int k = 0; k < samples; ++k) {
+                float cos_theta;
+                glm::vec3 h = charlie_half(sampling::hammersley(std::uint32_t(k), std::uint32_t(samples)), roughness, cos_theta);
+                glm::vec3 l = glm::normalize(2.0f * glm::dot(v, h) * h - v);
+                float n_dot_l = std::clamp(l.z, 0.0f, 1.0f);
+                if (n_dot_l <= 0.0f) continue;
+                float n_dot_h = std::clamp(h.z, 0.0f, 1.0f), v_dot_h = std::clamp(glm::dot(v, h), 0.0f, 1.0f);
+                float vis = std::clamp(1.0f / (4.0f * (n_dot_l + n_dot_v - n_dot_l * n_dot_v)), 0.0f, 1.0f);  // Ashikhmin
+                c += double(vis * d_charlie_a(roughness, n_dot_h) * n_dot_l * v_dot_h);
+            }
+            float* p = lut.at(i, j);
+            p[0] = float(8.0 * double(kPi) * c / double(samples));
+            p[1] = p[2] = 0.0f;
+            p[3] = 1.0f;
+        }
+    }
     return lut;
 }
 

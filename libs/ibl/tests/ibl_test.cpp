@@ -415,3 +415,34 @@ TEST(Bake, ContentHashIdentifiesTheBakedData) {
     EXPECT_EQ(loaded.content_hash, again.content_hash);
     std::filesystem::remove_all(dir);
 }
+
+// KHR_materials_sheen's image-based light. The Charlie table against figures from an
+// independent NumPy transcription of the Khronos viewer's estimator (512 Hammersley samples).
+TEST(Sheen, CharlieLutMatchesTheViewersEstimator) {
+    ImageF lut = compute_charlie_lut(64, 512);
+    auto at = [&](float nv, float r) {
+        return lut.at(std::min(int(nv * 64.0f), 63), std::min(int(r * 64.0f), 63))[0];
+    };
+    EXPECT_NEAR(at(0.5f, 0.5f), 0.320f, 0.015f);
+    EXPECT_NEAR(at(0.2f, 0.3f), 0.697f, 0.04f);
+    EXPECT_NEAR(at(0.99f, 0.99f), 0.162f, 0.01f);
+    EXPECT_NEAR(at(0.8f, 0.8f), 0.211f, 0.01f);
+}
+
+// The Charlie cube of a uniform sky: black at level 0 (no sample above the horizon, as in the
+// viewer), the sky itself elsewhere; and the bake carries it (uniform or not).
+TEST(Sheen, CharlieCubeOfAUniformSky) {
+    Cubemap sky = make_cubemap(16, 1);
+    for (auto& f : sky.levels[0].faces)
+        for (std::size_t i = 0; i < f.size(); i += 4) f[i] = 0.5f, f[i + 1] = 1.0f, f[i + 2] = 2.0f, f[i + 3] = 1.0f;
+    build_mip_chain(sky);
+    Cubemap c = prefilter_charlie(sky, 8, 5, 64);
+    ASSERT_EQ(c.levels.size(), 5u);
+    EXPECT_EQ(c.levels[0].texel(2, 3, 3)[1], 0.0f);
+    for (int l = 1; l < 5; ++l)
+        for (int f = 0; f < 6; ++f) {
+            const float* t = c.levels[std::size_t(l)].texel(f, 0, c.levels[std::size_t(l)].size - 1);
+            EXPECT_NEAR(t[0], 0.5f, 1e-4f);
+            EXPECT_NEAR(t[2], 2.0f, 1e-4f);
+        }
+}

@@ -23,6 +23,8 @@ constexpr MaterialMapInfo kMaps[kMaterialMapCount] = {
     {"clearcoat", "HAS_CLEARCOAT_MAP", false, false},
     {"clearcoat_roughness", "HAS_CLEARCOAT_ROUGHNESS_MAP", false, false},
     {"clearcoat_normal", "HAS_CLEARCOAT_NORMAL_MAP", false, true},
+    {"sheen_color", "HAS_SHEEN_COLOR_MAP", true, false},
+    {"sheen_roughness", "HAS_SHEEN_ROUGHNESS_MAP", false, false},
     {"transmission", "HAS_TRANSMISSION_MAP", false, false},
     {"thickness", "HAS_THICKNESS_MAP", false, false},
 };
@@ -76,6 +78,7 @@ const TextureSlot* material_map(const Material& m, MaterialMap map) {
     const auto* sg = m.specular_glossiness ? &*m.specular_glossiness : nullptr;
     const auto* sp = m.specular ? &*m.specular : nullptr;
     const auto* cc = m.has_clearcoat() ? &*m.clearcoat : nullptr;
+    const auto* sh = m.has_sheen() ? &*m.sheen : nullptr;
     const TextureSlot* slot = nullptr;
     switch (map) {
         case MaterialMap::BaseColor: slot = sg ? &sg->diffuse_texture : &m.base_color; break;
@@ -89,6 +92,8 @@ const TextureSlot* material_map(const Material& m, MaterialMap map) {
         case MaterialMap::Clearcoat: slot = cc ? &cc->clearcoat_texture : nullptr; break;
         case MaterialMap::ClearcoatRoughness: slot = cc ? &cc->clearcoat_roughness_texture : nullptr; break;
         case MaterialMap::ClearcoatNormal: slot = cc ? &cc->clearcoat_normal_texture : nullptr; break;
+        case MaterialMap::SheenColor: slot = sh ? &sh->sheen_color_texture : nullptr; break;
+        case MaterialMap::SheenRoughness: slot = sh ? &sh->sheen_roughness_texture : nullptr; break;
         case MaterialMap::Transmission: slot = is_transmissive(m) ? &m.transmission->transmission_texture : nullptr; break;
         case MaterialMap::Thickness:
             slot = is_transmissive(m) && m.volume ? &m.volume->thickness_texture : nullptr;
@@ -204,6 +209,15 @@ EvaluatedMaterial evaluate(const Material& material, const TextureSource& textur
         e.clearcoat = std::clamp(e.clearcoat, 0.0f, 1.0f);
         e.clearcoat_roughness = std::clamp(e.clearcoat_roughness, 0.0f, 1.0f);
     }
+    if (m.has_sheen()) {
+        const SheenExt& sh = *m.sheen;
+        e.sheen_color = sh.sheen_color_factor;
+        e.sheen_roughness = sh.sheen_roughness_factor;
+        if (auto t = maps.sample(MaterialMap::SheenColor)) e.sheen_color *= glm::vec3(*t);
+        if (auto t = maps.sample(MaterialMap::SheenRoughness)) e.sheen_roughness *= t->w;
+        e.sheen_color = glm::max(e.sheen_color, glm::vec3(0.0f));
+        e.sheen_roughness = std::clamp(e.sheen_roughness, 0.0f, 1.0f);
+    }
     if (auto t = maps.sample(MaterialMap::Occlusion)) e.occlusion = 1.0f + m.occlusion_strength * (t->x - 1.0f);
     e.emissive = m.emissive_factor * m.emissive_strength_value();
     if (auto t = maps.sample(MaterialMap::Emissive)) e.emissive *= glm::vec3(*t);
@@ -267,7 +281,18 @@ glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm:
     if (n_dot_l > 0.0f) {
         brdf::Terms t = brdf::evaluate_terms(m.surface, m.normal, v, l, model);
         glm::vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;
-        lit = radiance * n_dot_l * (t.diffuse + specular);
+        glm::vec3 base = t.diffuse + specular;
+        if (m.sheen_color != glm::vec3(0.0f)) {
+            // KHR_materials_sheen: the Charlie lobe over the base, which keeps 1 - max(c) E.
+            float n_dot_v = std::clamp(glm::dot(m.normal, v), 0.0f, 1.0f);
+            glm::vec3 h = glm::normalize(l + v);
+            float n_dot_h = std::clamp(glm::dot(m.normal, h), 0.0f, 1.0f);
+            const brdf::SheenAlbedoTable& e = brdf::SheenAlbedoTable::standard();
+            float scaling = brdf::sheen_albedo_scaling(m.sheen_color, e(n_dot_v, m.sheen_roughness),
+                                                       e(n_dot_l, m.sheen_roughness));
+            base = brdf::sheen_specular(m.sheen_color, m.sheen_roughness, n_dot_l, n_dot_v, n_dot_h) + base * scaling;
+        }
+        lit = radiance * n_dot_l * base;
     }
     if (m.clearcoat > 0.0f) {
         float cc_mix = brdf::clearcoat_mix(m.clearcoat, m.clearcoat_f0, m.clearcoat_normal, v);

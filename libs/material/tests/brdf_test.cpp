@@ -390,3 +390,39 @@ TEST(Brdf, DiffuseOnlyAlbedoOfRoughWhiteDielectric) {
         EXPECT_GT(a.diffuse, 0.85) << nv;
     }
 }
+
+// KHR_materials_sheen. The Charlie distribution is a normalised microfacet distribution:
+// the integral of D(h) cos(theta_h) over the hemisphere is 1 (midpoint rule in theta, exact in phi).
+TEST(Sheen, CharlieDistributionIsNormalised) {
+    for (float r : {0.3f, 0.5f, 0.7f, 1.0f}) {
+        const int n = 20000;
+        double sum = 0.0;
+        for (int i = 0; i < n; ++i) {
+            double theta = (i + 0.5) * (kPi / 2.0) / n;
+            sum += d_charlie(r, float(std::cos(theta))) * std::cos(theta) * std::sin(theta) * 2.0 * kPi * (kPi / 2.0) / n;
+        }
+        EXPECT_NEAR(sum, 1.0, 5e-3) << "roughness " << r;
+    }
+}
+
+// The sheen albedo E against figures from an independent NumPy integration (256^2 cosine
+// grid) of the same D and V, and the table against its own integral at texel centres.
+TEST(Sheen, AlbedoMatchesIndependentIntegrationAndTable) {
+    struct Ref {
+        float n_dot_v, roughness, e;
+    };
+    for (Ref ref : {Ref{0.5f, 0.5f, 0.188f}, Ref{0.2f, 0.3f, 0.340f}, Ref{1.0f, 1.0f, 0.164f}, Ref{0.8f, 0.8f, 0.182f}})
+        EXPECT_NEAR(sheen_albedo_integral(ref.n_dot_v, ref.roughness, 128), ref.e, 5e-3)
+            << ref.n_dot_v << " " << ref.roughness;
+    const SheenAlbedoTable& t = SheenAlbedoTable::standard();
+    for (int j : {0, 7, 20, 31})
+        for (int i : {1, 5, 16, 31}) {
+            float nv = SheenAlbedoTable::column_n_dot_v(i, t.size()), r = (float(j) + 0.5f) / float(t.size());
+            EXPECT_NEAR(t(nv, r), t.at(i, j), 1e-6f);
+            EXPECT_GE(t.at(i, j), 0.0f);
+            EXPECT_LE(t.at(i, j), 1.0f);
+        }
+    // The albedo scaling keeps the base's energy: 1 - max(c) E in [0, 1].
+    EXPECT_FLOAT_EQ(sheen_albedo_scaling(glm::vec3(0.0f), 0.5f, 0.5f), 1.0f);
+    EXPECT_FLOAT_EQ(sheen_albedo_scaling(glm::vec3(1.0f, 0.2f, 0.0f), 0.3f, 0.6f), 0.4f);
+}

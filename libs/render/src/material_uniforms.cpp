@@ -39,6 +39,10 @@ MaterialUniforms material_uniforms(const Material& m) {
         }
         if (m.dispersion) u.dispersion = m.dispersion->dispersion;
     }
+    if (m.has_sheen()) {
+        u.sheen_color_factor = m.sheen->sheen_color_factor;
+        u.sheen_roughness_factor = m.sheen->sheen_roughness_factor;
+    }
     for (int i = 0; i < kMaterialMapCount; ++i) u.maps[std::size_t(i)] = material_map(m, MaterialMap(i));
     return u;
 }
@@ -49,6 +53,7 @@ FeatureMask material_features(const Material& m) {
     if (m.specular_glossiness) f |= feature::SpecularGlossiness;
     if (m.has_clearcoat()) f |= feature::Clearcoat;
     if (is_transmissive(m)) f |= feature::Transmission;
+    if (m.has_sheen()) f |= feature::Sheen;
     if (m.alpha_mode == AlphaMode::Mask) f |= feature::AlphaMask;
     if (m.alpha_mode == AlphaMode::Blend) f |= feature::AlphaBlend;
     return f;
@@ -56,6 +61,13 @@ FeatureMask material_features(const Material& m) {
 
 void set_material_uniforms(const gpu::Program& prog, const MaterialUniforms& u,
                            const std::array<bool, kMaterialMapCount>& bound) {
+    std::array<int, kMaterialMapCount> units{};
+    for (int i = 0; i < kMaterialMapCount; ++i) units[std::size_t(i)] = bound[std::size_t(i)] ? i : -1;
+    set_material_uniforms(prog, u, units);
+}
+
+void set_material_uniforms(const gpu::Program& prog, const MaterialUniforms& u,
+                           const std::array<int, kMaterialMapCount>& units) {
     prog.set("u_base_color_factor", u.base_color_factor);
     prog.set("u_metallic_factor", u.metallic_factor);
     prog.set("u_roughness_factor", u.roughness_factor);
@@ -77,10 +89,12 @@ void set_material_uniforms(const gpu::Program& prog, const MaterialUniforms& u,
     prog.set("u_attenuation_color", u.attenuation_color);
     prog.set("u_attenuation_distance", u.attenuation_distance);
     prog.set("u_dispersion", u.dispersion);
+    prog.set("u_sheen_color_factor", u.sheen_color_factor);
+    prog.set("u_sheen_roughness_factor", u.sheen_roughness_factor);
     for (int i = 0; i < kMaterialMapCount; ++i) {
-        if (!bound[std::size_t(i)]) continue;
+        if (units[std::size_t(i)] < 0) continue;
         std::string base = std::string("u_") + material_map_info(MaterialMap(i)).name;
-        prog.set(base + "_map", i);
+        prog.set(base + "_map", units[std::size_t(i)]);
         // A map the variant reads but the material lacks is the 1x1 white texture.
         const TextureSlot* slot = u.maps[std::size_t(i)];
         prog.set(base + "_uv", slot ? slot->tex_coord : 0);

@@ -37,20 +37,18 @@ constexpr NamedChannel kChannels[] = {
     {"irradiance", DebugChannel::Irradiance}, {"prefiltered", DebugChannel::Prefiltered},
     {"ibl-diffuse", DebugChannel::IblDiffuse}, {"ibl-specular", DebugChannel::IblSpecular},
     {"transmission", DebugChannel::Transmission}, {"thickness", DebugChannel::Thickness},
+    {"sheen", DebugChannel::Sheen}, {"sheen-roughness", DebugChannel::SheenRoughness},
 };
 
 constexpr int kMaxLights = kMaxShaderLights;
 
-// Texture units: 0 .. kMaterialMapCount-1 are the material's maps (unit = MaterialMap), the
-// image-based light's textures sit at the top of the 16 units OpenGL ES 3.0 guarantees, and
-// the output pass reads its frame from unit 0 (no material is bound then).
+// Texture units of the passes with fixed layouts: the output pass reads its frame from unit 0,
+// the legacy models' image-based light sits at the top of the 16 units OpenGL ES 3.0
+// guarantees. The glTF draws pack theirs (draw_primitive).
 enum class TextureUnit : int {
     FirstMaterialMap = 0,
     Frame = 0,
-    // KHR_materials_transmission's opaque-scene texture: the unit of the specular-glossiness
-    // map, which transmissive variants never read (shader_features.h: no transmission with
-    // specular-glossiness); the 16 units OpenGL ES 3.0 guarantees are all taken otherwise.
-    TransmissionFramebuffer = 7,
+    // The legacy models' image-based light (the glTF model packs its units per draw).
     BrdfLut = 13,
     SpecularEnvironment = 14,
     IrradianceEnvironment = 15,
@@ -207,6 +205,7 @@ struct Renderer::Impl {
     std::uint64_t uploaded_env = 0;
     gpu::Texture env_specular;
     gpu::Texture env_irradiance;
+    gpu::Texture env_sheen, charlie_lut;
     std::uint64_t uploaded_lut = 0;
     gpu::Texture lut_texture;
 
@@ -224,6 +223,20 @@ struct Renderer::Impl {
             env_irradiance = gpu::Texture::create_cube(irr.size(), gpu::TextureFormat::RGBA16F, 1);
             for (int f = 0; f < 6; ++f)
                 env_irradiance.upload_cube_face(f, 0, irr.size(), irr.levels[0].faces[std::size_t(f)].data());
+            const ibl::Cubemap& sh = s.environment->sheen;
+            env_sheen = {};
+            if (sh.size() > 0) {
+                env_sheen = gpu::Texture::create_cube(sh.size(), gpu::TextureFormat::RGBA16F, int(sh.levels.size()));
+                for (std::size_t l = 0; l < sh.levels.size(); ++l)
+                    for (int f = 0; f < 6; ++f)
+                        env_sheen.upload_cube_face(f, int(l), sh.levels[l].size, sh.levels[l].faces[std::size_t(f)].data());
+            }
+            const ImageF& cl = s.environment->charlie_lut;
+            charlie_lut = {};
+            if (cl.width > 0) {
+                charlie_lut = gpu::Texture::create_2d(cl.width, cl.height, gpu::TextureFormat::RGBA32F, cl.pixels.data(), false);
+                charlie_lut.set_sampler(gpu::SamplerState::clamped(Filter::Linear));
+            }
             uploaded_env = env_id;
         }
         const ImageF* lut = s.brdf_lut ? s.brdf_lut : (s.environment ? &s.environment->lut : nullptr);
@@ -359,7 +372,8 @@ struct Renderer::Impl {
             case MaterialMap::Normal:
             case MaterialMap::SpecularColor:
             case MaterialMap::SpecularGlossiness:
-            case MaterialMap::ClearcoatNormal: return true;
+            case MaterialMap::ClearcoatNormal:
+            case MaterialMap::SheenColor: return true;
             default: return false;
         }
     }
@@ -628,13 +642,12 @@ struct Renderer::Impl {
         if (d.joints) raw |= feature::Skinned;
         if (d.morph) raw |= feature::MorphTargets;
 
-        // Map i takes texture unit i (feature bit kFirstMap + i); the image-based light uses the
-        // named units above them (TextureUnit).
-        constexpr int kLutUnit = int(TextureUnit::BrdfLut), kSpecularUnit = int(TextureUnit::SpecularEnvironment),
-                      kIrradianceUnit = int(TextureUnit::IrradianceEnvironment);
-        static_assert(kMaterialMapCount <= kLutUnit && kMaterialMapCount == feature::kMapCount);
+        // Texture units are packed per draw: the maps the variant reads take units 0, 1, ... in
+        // MaterialMap order, then the opaque scene (transmission), the split-sum table, the
+        // environment's two cubes and sheen's cube and table follow; so a draw needs 16 units (what
+        // OpenGL ES 3.0 guarantees) unless it reads more than 10 maps with sheen under an environment.
+        static_assert(kMaterialMapCount == feature::kMapCount);
         const gpu::Texture* bound[kMaterialMapCount] = {};
-        std::array<bool, kMaterialMapCount> is_bound{};
         const VertexInputs vertex{p.has_uv0, p.has_uv1, p.has_tangent};
         for (int i = 0; i < kMaterialMapCount; ++i) {
             const TextureSlot* slot = mu.maps[std::size_t(i)];
@@ -653,7 +666,6 @@ struct Renderer::Impl {
             // A map the variant samples but the material lacks reads the white texture: x * 1.0 = x.
             if (!(features & feature::map_bit(i))) bound[i] = nullptr;
             else if (!bound[i]) bound[i] = &white_texture();
-            is_bound[std::size_t(i)] = bound[i] != nullptr;
         }
 
         // Alternative BRDF terms are defines on top of the feature set (rare: a string-keyed variant).
@@ -680,28 +692,42 @@ struct Renderer::Impl {
         prog.set("u_exposure", linear_pass ? 1.0f : exposure_scale(settings.exposure_ev));
         prog.set("u_tonemap", linear_pass ? int(ToneMapper::None) : int(settings.tone_mapper));
         prog.set("u_encoding", linear_pass || !settings.encoding ? -1 : int(*settings.encoding));
+        // Created (and so bound to the active unit) before any unit is filled, not in between.
+        const gpu::Texture& white = white_texture();
+        std::array<int, kMaterialMapCount> map_units{};
+        int next_unit = 0;
+        for (int i = 0; i < kMaterialMapCount; ++i) {
+            map_units[std::size_t(i)] = bound[i] ? next_unit++ : -1;
+            if (bound[i]) device.bind_texture(map_units[std::size_t(i)], *bound[i]);
+        }
         if (features & feature::Transmission) {
-            constexpr int kUnit = int(TextureUnit::TransmissionFramebuffer);
-            static_assert(kUnit == int(MaterialMap::SpecularGlossiness));
-            device.bind_texture(kUnit, transmission_ready ? transmission_texture : white_texture());
+            const int kUnit = next_unit++;
+            device.bind_texture(kUnit, transmission_ready ? transmission_texture : white);
             prog.set("u_transmission_framebuffer", kUnit);
             prog.set("u_transmission_framebuffer_size", float(transmission::kFramebufferSize));
         }
         // The split-sum table, the prefiltered environment, the irradiance.
         bool have_lut = lut_texture && uploaded_lut != 0;
+        const int kLutUnit = next_unit++;
         if (have_lut) device.bind_texture(kLutUnit, lut_texture);
         prog.set("u_brdf_lut", kLutUnit);
         prog.set("u_energy_compensation", settings.energy_compensation && have_lut ? 1 : 0);
         if (settings.environment) {
+            const int kSpecularUnit = next_unit++, kIrradianceUnit = next_unit++;
             device.bind_texture(kSpecularUnit, env_specular);
             prog.set("u_specular_env", kSpecularUnit);
             device.bind_texture(kIrradianceUnit, env_irradiance);
             prog.set("u_irradiance_env", kIrradianceUnit);
+            if ((features & feature::Sheen) && env_sheen && charlie_lut) {
+                const int kSheenUnit = next_unit++, kCharlieUnit = next_unit++;
+                device.bind_texture(kSheenUnit, env_sheen);
+                prog.set("u_sheen_env", kSheenUnit);
+                device.bind_texture(kCharlieUnit, charlie_lut);
+                prog.set("u_charlie_lut", kCharlieUnit);
+            }
             set_ibl_uniforms(prog, settings);
         }
-        for (int i = 0; i < kMaterialMapCount; ++i)
-            if (bound[i]) device.bind_texture(i, *bound[i]);
-        set_material_uniforms(prog, mu, is_bound);
+        set_material_uniforms(prog, mu, map_units);
         // Lights, packed once per frame (pack_lights).
         set_light_uniforms(prog);
 

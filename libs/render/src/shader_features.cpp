@@ -30,8 +30,11 @@ constexpr FeatureInfo kFeatures[kCount] = {
     {ClearcoatMap, "HAS_CLEARCOAT_MAP"},
     {ClearcoatRoughnessMap, "HAS_CLEARCOAT_ROUGHNESS_MAP"},
     {ClearcoatNormalMap, "HAS_CLEARCOAT_NORMAL_MAP"},
+    {SheenColorMap, "HAS_SHEEN_COLOR_MAP"},
+    {SheenRoughnessMap, "HAS_SHEEN_ROUGHNESS_MAP"},
     {Skinned, "SKINNED"},
     {MorphTargets, "MORPH_TARGETS"},
+    {Sheen, "MATERIAL_SHEEN"},
     {TransmissionMap, "HAS_TRANSMISSION_MAP"},
     {ThicknessMap, "HAS_THICKNESS_MAP"},
     {Transmission, "MATERIAL_TRANSMISSION"},
@@ -50,6 +53,7 @@ FeatureMask allowed_maps(FeatureMask m) {
         if (m & HasTangent) maps |= ClearcoatNormalMap;
     }
     if (m & Transmission) maps |= TransmissionMap | ThicknessMap;
+    if (m & Sheen) maps |= SheenColorMap | SheenRoughnessMap;
     return maps;
 }
 }  // namespace
@@ -69,13 +73,14 @@ FeatureMask canonical_features(FeatureMask m) {
     if (!(m & HasNormal)) m &= ~HasTangent;
     if (m & AlphaMask) m &= ~AlphaBlend;
     if ((m & Unlit) && !(m & DebugView))
-        m &= ~(HasNormal | HasTangent | SpecularGlossiness | Clearcoat | UseIbl | Transmission);
+        m &= ~(HasNormal | HasTangent | SpecularGlossiness | Clearcoat | Sheen | UseIbl | Transmission);
     if (m & SpecularGlossiness) m &= ~Transmission;
     const FeatureMask allowed = allowed_maps(m);
     m = (m & ~kMaps) | (m & allowed);
     if (!(m & SpecularGlossiness) && (m & (SpecularMap | SpecularColorMap))) m |= SpecularMap | SpecularColorMap;
     if (m & (ClearcoatMap | ClearcoatRoughnessMap)) m |= ClearcoatMap | ClearcoatRoughnessMap;
     if (m & Transmission) m |= allowed & (TransmissionMap | ThicknessMap);
+    if (m & (SheenColorMap | SheenRoughnessMap)) m |= SheenColorMap | SheenRoughnessMap;
     if (m & DebugView) m |= allowed & ~(NormalMap | ClearcoatNormalMap);
     return m;
 }
@@ -83,17 +88,23 @@ FeatureMask canonical_features(FeatureMask m) {
 bool valid_features(FeatureMask mask) { return (mask & ~kAll) == 0 && canonical_features(mask) == mask; }
 
 std::vector<FeatureMask> all_feature_sets() {
-    // The transmission bits (25..27) are decided by the Transmission bit alone (its maps come
-    // with it), and no rule on the other bits looks at them: so every valid mask is a valid
-    // mask of bits 0..24, with or without canonical_features(m | Transmission). Enumerating
-    // 2^25 masks instead of 2^28 keeps this fast.
+    // Bits 23..30 (the sheen and transmission maps and model bits, skinning, morphing) come in
+    // groups that no rule on bits 0..22 looks at, except that unlit and specular-glossiness drop
+    // some and the debug view turns the maps on: so every valid mask is a valid mask of bits
+    // 0..22 plus one choice per group, kept when canonical. 2^23 masks instead of 2^31.
     std::vector<FeatureMask> out;
-    constexpr FeatureMask kLow = (1u << 25) - 1;
+    constexpr FeatureMask kLow = (1u << 23) - 1;
+    const FeatureMask animation[] = {0, Skinned, MorphTargets, Skinned | MorphTargets};
+    const FeatureMask sheen[] = {0, Sheen, Sheen | SheenColorMap | SheenRoughnessMap};
+    const FeatureMask transmission[] = {0, Transmission, Transmission | TransmissionMap | ThicknessMap};
     for (FeatureMask m = 0; m <= kLow; ++m) {
         if (canonical_features(m) != m) continue;
-        out.push_back(m);
-        const FeatureMask t = canonical_features(m | Transmission);
-        if ((t & Transmission) && (t & kLow) == m) out.push_back(t);
+        for (FeatureMask a : animation)
+            for (FeatureMask s : sheen)
+                for (FeatureMask t : transmission) {
+                    const FeatureMask x = m | a | s | t;
+                    if (canonical_features(x) == x) out.push_back(x);
+                }
     }
     std::sort(out.begin(), out.end());
     return out;

@@ -32,7 +32,7 @@ const std::vector<std::string>& supported_gltf_extensions() {
     static const std::vector<std::string> list = {
         "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform",
         "KHR_materials_unlit", "KHR_mesh_quantization", "KHR_materials_ior", "KHR_materials_specular",
-        "KHR_materials_pbrSpecularGlossiness", "KHR_materials_clearcoat",
+        "KHR_materials_pbrSpecularGlossiness", "KHR_materials_clearcoat", "KHR_materials_sheen",
         "EXT_meshopt_compression", "KHR_draco_mesh_compression", "EXT_texture_webp", "KHR_materials_variants",
         "KHR_animation_pointer", "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_dispersion",
     };
@@ -41,8 +41,7 @@ const std::vector<std::string>& supported_gltf_extensions() {
 
 const std::vector<std::string>& parsed_unshaded_gltf_extensions() {
     static const std::vector<std::string> list = {
-        "KHR_materials_sheen", "KHR_materials_iridescence", "KHR_materials_anisotropy",
-        "KHR_materials_diffuse_transmission",
+        "KHR_materials_iridescence", "KHR_materials_anisotropy", "KHR_materials_diffuse_transmission",
     };
     return list;
 }
@@ -513,7 +512,6 @@ private:
             b.specular_glossiness_texture = texture_ref(*sg, "specularGlossinessTexture", gp);
             out.specular_glossiness = b;
         }
-        // Kept, not shaded (yet): parsed with the specification's defaults.
         if (const json* e = r_.find(ext, "KHR_materials_sheen")) {
             std::string p = at("KHR_materials_sheen");
             SheenExt b;
@@ -523,6 +521,7 @@ private:
             b.sheen_roughness_texture = texture_ref(*e, "sheenRoughnessTexture", p);
             out.sheen = b;
         }
+        // Kept, not shaded (yet): parsed with the specification's defaults.
         if (const json* e = r_.find(ext, "KHR_materials_transmission")) {
             std::string p = at("KHR_materials_transmission");
             TransmissionExt b;

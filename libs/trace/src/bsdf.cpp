@@ -20,6 +20,9 @@ BsdfLobes lobe_probabilities(const EvaluatedMaterial& m, glm::vec3 v) {
     glm::vec3 f_metal = brdf::f_schlick(s.base_color, glm::vec3(1.0f), n_dot_v);
     float spec = (1.0f - s.metallic) * luminance(f_dielectric) + s.metallic * luminance(f_metal);
     float diff = (1.0f - s.metallic) * luminance((1.0f - f_dielectric) * s.base_color);
+    // KHR_materials_sheen has no sampling routine of its own: its broad lobe is sampled by
+    // the cosine lobe, which covers the whole hemisphere (its weight joins the diffuse's).
+    diff += luminance(m.sheen_color);
     float coat = m.clearcoat > 0.0f ? brdf::clearcoat_mix(m.clearcoat, m.clearcoat_f0, m.clearcoat_normal, v) : 0.0f;
     const float t = std::clamp(m.transmission.factor, 0.0f, 1.0f);
     BsdfLobes p;

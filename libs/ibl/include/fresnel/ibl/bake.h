@@ -6,7 +6,8 @@
 //   specular.ktx2      GGX-prefiltered cube map, RGBA16F, all faces and levels
 //   irradiance.ktx2    irradiance / pi as a small cube map (see BakeOptions::irradiance_samples), RGBA16F
 //   irradiance_sh.json the 9 SH coefficients of irradiance / pi (RGB)
-//   brdf_lut.ktx2      split-sum table, RGBA16F: R = A, G = B, B = A + B (directional albedo)
+//   sheen.ktx2         KHR_materials_sheen's Charlie-prefiltered cube map (prefilter_charlie), RGBA16F
+//   brdf_lut.ktx2      split-sum table, RGBA16F: R = A, G = B, B = A + B (directional albedo), A = sheen albedo
 //   preview/           OpenEXR previews: specular_level<k>.exr and irradiance.exr (faces side by side), brdf_lut.exr
 #include <cstdint>
 #include <filesystem>
@@ -41,7 +42,9 @@ struct BakedIbl {
     Cubemap specular;
     Cubemap irradiance_map;  // irradiance / pi, irradiance_size^2 faces (what shading samples)
     SH9 irradiance;          // the same as SH: evaluate(n) = irradiance(n) / pi
-    ImageF lut;      // lut_size^2: R = A, G = B, B = A + B
+    ImageF lut;      // lut_size^2: R = A, G = B, B = A + B, A = sheen albedo
+    Cubemap sheen;       // Charlie-prefiltered (prefilter_charlie), same levels as specular
+    ImageF charlie_lut;  // compute_charlie_lut(): computed on bake and load, not stored
     std::string source;
     std::string key;
     double bake_ms = 0;

@@ -10,7 +10,8 @@
 //    2001) for clients that want them;
 //  - the split-sum BRDF table (Karis 2013) for the same GGX / height-correlated Smith
 //    model as direct lighting; R = scale A, G = bias B of F0; A + B is the directional
-//    albedo E used for multiple-scattering compensation (Fdez-Aguera 2019).
+//    albedo E used for multiple-scattering compensation (Fdez-Aguera 2019); A is the
+//    directional albedo of the KHR_materials_sheen lobe.
 #include <array>
 #include <functional>
 #include <glm/vec3.hpp>
@@ -79,7 +80,28 @@ Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& options, co
 // same normal-mapped model shades the same (NormalTangentTest's bowls, 29.9 -> 31.6 dB).
 // The shader reads the table with plain bilinear filtering at u = n.v.
 inline constexpr float kBrdfLutGrazingNdotV = 0.5f / 1024.0f;
+// A holds the directional albedo E of the white KHR_materials_sheen lobe at (n.v, sheen
+// roughness), brdf::sheen_albedo_integral with this many cosine samples per axis (the
+// sheen's albedo scaling; brdf::SheenAlbedoTable is the same on the CPU).
+inline constexpr int kSheenAlbedoSamplesPerAxis = 32;
 ImageF compute_brdf_lut(int size = 128, int samples = 1024, unsigned threads = 0);
+
+// KHR_materials_sheen's image-based light, as the Khronos Sample Viewer bakes it (its
+// ibl_filtering.frag, cCharlie): level k of `levels` filtered at sheen roughness k/(levels-1)
+// with `samples` Charlie half vectors h (sin theta = u^(a/(2a+1)), a = r^2) reflecting the
+// normal, weighted by n.l and read from the source mip whose level the viewer computes
+// from its sample density D/4 (the coarsest where that is 0). Its level 0 is black and the
+// others are wide blurs, so a small cube holds it. The shader reads it at lod = r (levels - 1).
+Cubemap prefilter_charlie(const Cubemap& source_with_mips, int size = 32, int levels = 5, int samples = 64,
+                          unsigned threads = 0);
+// The viewer's Charlie table for that light (its LUT(), cCharlie, in R): at (n.v, roughness)
+// texel centres, 8 pi / N * sum over Charlie half vectors of V_Ashikhmin D n.l v.h (its
+// estimator as written, with D's exponent 1/r). The sheen's image-based light is the cube's
+// radiance * sheen colour * this.
+ImageF compute_charlie_lut(int size = 64, int samples = 256);
+
+// Writes the A channel (the sheen albedo) of a table made before it held one.
+void fill_sheen_albedo(ImageF& lut, unsigned threads = 0);
 
 // The n.v that column `column` of a `size`-wide table holds (see above).
 float brdf_lut_n_dot_v(int column, int size);

@@ -7,6 +7,7 @@
 // caller; alpha = roughness^2 (perceptual roughness squared).
 #include <algorithm>
 #include <cmath>
+#include <vector>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
@@ -130,6 +131,79 @@ inline float clearcoat_specular(glm::vec3 nc, glm::vec3 v, glm::vec3 l, float al
 // Returns the weight given to the coat; the base keeps 1 minus it.
 inline float clearcoat_mix(float clearcoat, float coat_f0, glm::vec3 nc, glm::vec3 v) {
     return clearcoat * f_schlick(coat_f0, 1.0f, std::clamp(glm::dot(nc, v), 0.0f, 1.0f));
+}
+
+// ---- KHR_materials_sheen: the Charlie sheen lobe (Estevez & Kulla 2017) ----------------
+// The extension's BRDF, as the Khronos Sample Viewer evaluates it; the same functions as
+// shaders/sheen.glsl. Sheen roughness r is perceptual; alpha_g = r^2.
+
+// Charlie distribution D(h) = (2 + 1/alpha_g) sin(theta_h)^(1/alpha_g) / (2 pi).
+inline float d_charlie(float sheen_roughness, float n_dot_h) {
+    float r = std::max(sheen_roughness, 1e-6f);
+    float inv_alpha = 1.0f / (r * r);
+    float sin2h = std::max(1.0f - n_dot_h * n_dot_h, 0.0f);
+    return (2.0f + inv_alpha) * std::pow(sin2h, inv_alpha * 0.5f) / (2.0f * kPi);
+}
+
+// Estevez-Kulla's fit of the Charlie shadowing exponent L(x) at one alpha_g.
+inline float sheen_lambda_fit(float x, float alpha_g) {
+    float t = (1.0f - alpha_g) * (1.0f - alpha_g);
+    float a = 21.5473f + (25.3245f - 21.5473f) * t;
+    float b = 3.82987f + (3.32435f - 3.82987f) * t;
+    float c = 0.19823f + (0.16801f - 0.19823f) * t;
+    float d = -1.97760f + (-1.27393f + 1.97760f) * t;
+    float e = -4.32054f + (-4.85967f + 4.32054f) * t;
+    return a / (1.0f + b * std::pow(x, c)) + d * x + e;
+}
+// Lambda(cos theta): exp(L(cos)) below 0.5, exp(2 L(0.5) - L(1 - cos)) above (the fit's
+// symmetric extension).
+inline float sheen_lambda(float cos_theta, float alpha_g) {
+    if (std::fabs(cos_theta) < 0.5f) return std::exp(sheen_lambda_fit(cos_theta, alpha_g));
+    return std::exp(2.0f * sheen_lambda_fit(0.5f, alpha_g) - sheen_lambda_fit(1.0f - cos_theta, alpha_g));
+}
+// Visibility V = G / (4 n.l n.v) with G = 1 / (1 + Lambda(v) + Lambda(l)), clamped to [0, 1].
+inline float v_sheen(float n_dot_l, float n_dot_v, float sheen_roughness) {
+    float r = std::max(sheen_roughness, 1e-6f);
+    float alpha_g = r * r;
+    float denom = (1.0f + sheen_lambda(n_dot_v, alpha_g) + sheen_lambda(n_dot_l, alpha_g)) * (4.0f * n_dot_v * n_dot_l);
+    return denom > 0.0f ? std::clamp(1.0f / denom, 0.0f, 1.0f) : 1.0f;
+}
+// The sheen lobe f_sheen = sheen colour * D * V (no n.l); n.l, n.v, n.h clamped by the caller.
+inline glm::vec3 sheen_specular(glm::vec3 sheen_color, float sheen_roughness, float n_dot_l, float n_dot_v, float n_dot_h) {
+    return sheen_color * (d_charlie(sheen_roughness, n_dot_h) * v_sheen(n_dot_l, n_dot_v, sheen_roughness));
+}
+
+// Directional albedo E(n.v, r) of the white sheen lobe (integral of D V cos over the
+// hemisphere), by a cosine-weighted midpoint grid of samples_per_axis^2 points.
+// The layer under the sheen is scaled by 1 - max(sheen colour) E (the extension's albedo
+// scaling); libs/ibl bakes E into the A channel of the split-sum table.
+float sheen_albedo_integral(float n_dot_v, float sheen_roughness, int samples_per_axis = 64);
+
+// E tabulated on the split-sum table's grid (ibl/precompute.h: x = n.v at texel centres with
+// column 0 at the grazing limit, y = roughness at texel centres) and read back with the
+// bilinear, clamp-to-edge lookup a GL sampler does at u = n.v, v = roughness, so the CPU
+// reads the same values the shader reads from the table's A channel.
+class SheenAlbedoTable {
+public:
+    explicit SheenAlbedoTable(int size = 32, int samples_per_axis = 64);
+    float operator()(float n_dot_v, float sheen_roughness) const;
+    int size() const { return size_; }
+    float at(int column, int row) const { return values_[std::size_t(row) * std::size_t(size_) + std::size_t(column)]; }
+    // The n.v of a column (the split-sum table's convention).
+    static float column_n_dot_v(int column, int size);
+    // The table fresnel::shade_light uses (built on first use, then shared read-only).
+    static const SheenAlbedoTable& standard();
+
+private:
+    int size_;
+    std::vector<float> values_;
+};
+
+// The extension's albedo scaling of the layer below the sheen for a punctual light:
+// min(1 - max(c) E(n.v), 1 - max(c) E(n.l)). For image-based light only the n.v term.
+inline float sheen_albedo_scaling(glm::vec3 sheen_color, float e_v, float e_l) {
+    float m = std::max({sheen_color.x, sheen_color.y, sheen_color.z});
+    return std::min(1.0f - m * e_v, 1.0f - m * e_l);
 }
 
 // Directional albedo: the integral of f(l, v) cos(theta_l) over the hemisphere, by a

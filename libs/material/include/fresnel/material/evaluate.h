@@ -10,6 +10,8 @@
 //   specular-glossiness (replaces the above): specular_glossiness_to_metallic_roughness
 //   clearcoat = factor * clearcoatTexture R, roughness = factor * clearcoatRoughnessTexture G,
 //               coat F0 = ior_to_f0(ior); all only when clearcoatFactor > 0
+//   sheen colour = sheenColorFactor * sheenColorTexture RGB (sRGB), roughness = factor *
+//               sheenRoughnessTexture A; only when the colour factor is non-zero
 //   occlusion = 1 + strength * (occlusionTexture R - 1)
 //   emissive = emissiveFactor * emissiveStrength * emissiveTexture RGB (sRGB)
 //   alpha: OPAQUE -> 1; MASK -> discard below the cutoff, else 1; BLEND -> as computed
@@ -52,10 +54,12 @@ enum class MaterialMap {
     Clearcoat,
     ClearcoatRoughness,
     ClearcoatNormal,
+    SheenColor,          // KHR_materials_sheen sheenColorTexture
+    SheenRoughness,      // KHR_materials_sheen sheenRoughnessTexture
     Transmission,        // KHR_materials_transmission transmissionTexture (R)
     Thickness,           // KHR_materials_volume thicknessTexture (G), read only with transmission
 };
-inline constexpr int kMaterialMapCount = 13;
+inline constexpr int kMaterialMapCount = 15;
 
 struct MaterialMapInfo {
     const char* name;    // GLSL: u_<name>_map, u_<name>_uv, u_<name>_transform
@@ -104,6 +108,8 @@ struct EvaluatedMaterial {
     float clearcoat_roughness = 0.0f;     // perceptual
     float clearcoat_f0 = 0.04f;
     glm::vec3 clearcoat_normal{0, 0, 1};
+    glm::vec3 sheen_color{0.0f};          // KHR_materials_sheen (0 = no sheen)
+    float sheen_roughness = 0.0f;         // perceptual
     bool unlit = false;
     TransmissionInputs transmission;      // factor 0 without KHR_materials_transmission
 };
@@ -138,8 +144,10 @@ MetallicRoughnessPoint specular_glossiness_to_metallic_roughness(glm::vec4 diffu
 // is returned unchanged. The renderer keeps the block and converts per point instead.
 Material to_metallic_roughness(const Material& material, bool* lost_glossiness_map = nullptr);
 
-// KHR_materials_clearcoat layering of one punctual light (pbr.frag's light loop):
+// KHR_materials_sheen and _clearcoat layering of one punctual light (pbr.frag's light loop):
 //   base = (f_diffuse + f_specular_dielectric * comp_dielectric + f_specular_metal * comp_metal) n.l
+//   with sheen: base = f_sheen n.l + base * sheen_albedo_scaling(colour, E(n.v), E(n.l)),
+//               E from brdf::SheenAlbedoTable::standard() (the shader: the table's A channel)
 //   result = radiance * mix(base, clearcoat_specular, clearcoat_mix)
 // comp_* are the energy-compensation factors (1 without); `model` selects the BRDF's terms
 // (brdf_model.h; the default is glTF's). The twin of shade_light in shaders/material_inputs.glsl.

@@ -92,14 +92,15 @@ struct SpecularGlossinessExt {
     TextureSlot specular_glossiness_texture;  // RGB specular (sRGB), A glossiness (linear)
 };
 
-// Shaded (transmission.h): KHR_materials_transmission, _volume, _dispersion. Kept, not
-// shaded: the others below.
-struct SheenExt {                          // KHR_materials_sheen
+// Shaded (transmission.h): KHR_materials_transmission, _volume, _dispersion; (evaluate.h)
+// KHR_materials_sheen. Kept, not shaded: the others below.
+struct SheenExt {                          // KHR_materials_sheen (shaded: evaluate.h)
     glm::vec3 sheen_color_factor{0.0f};
-    TextureSlot sheen_color_texture;       // sRGB
+    TextureSlot sheen_color_texture;       // RGB, sRGB
     float sheen_roughness_factor = 0.0f;
     TextureSlot sheen_roughness_texture;   // A
 };
+// Kept, not shaded.
 struct TransmissionExt {                   // KHR_materials_transmission
     float transmission_factor = 0.0f;
     TextureSlot transmission_texture;      // R
@@ -203,6 +204,12 @@ struct Material {
     float emissive_strength_value() const { return emissive_strength ? emissive_strength->emissive_strength : 1.0f; }
     // A coat is shaded only with a positive factor (the extension's default 0 means none).
     bool has_clearcoat() const { return clearcoat && clearcoat->clearcoat_factor > 0.0f; }
+    // Sheen is shaded only with a non-zero colour factor (the default 0 is no sheen, as the
+    // colour is factor * texture).
+    bool has_sheen() const {
+        return sheen && (sheen->sheen_color_factor.x > 0.0f || sheen->sheen_color_factor.y > 0.0f ||
+                         sheen->sheen_color_factor.z > 0.0f);
+    }
 };
 
 // Dielectric reflectance at normal incidence of an ior against air: ((ior-1)/(ior+1))^2

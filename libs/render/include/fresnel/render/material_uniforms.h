@@ -42,6 +42,8 @@ struct MaterialUniforms {
     glm::vec3 attenuation_color{1.0f};
     float attenuation_distance = 0.0f;  // 0 = infinite (transmission.h)
     float dispersion = 0.0f;
+    glm::vec3 sheen_color_factor{0.0f};  // with MATERIAL_SHEEN only
+    float sheen_roughness_factor = 0.0f;
     // The slot each map reads (material_map), nullptr for none; index = MaterialMap.
     std::array<const TextureSlot*, kMaterialMapCount> maps{};
 };
@@ -49,10 +51,15 @@ struct MaterialUniforms {
 MaterialUniforms material_uniforms(const Material& m);
 
 // The shader feature bits (shader_features.h) of the material model: unlit,
-// specular-glossiness, clearcoat, transmission, alpha mode (feature_defines() spells them as #defines).
+// specular-glossiness, clearcoat, sheen, transmission, alpha mode (feature_defines() spells them as #defines).
 FeatureMask material_features(const Material& m);
 
-// Sets the values on `program` (in use); bound[i]: map i is bound to texture unit i.
+// Sets the values on `program` (in use); units[i]: the texture unit map i is bound to (-1: none).
+// The renderer packs the maps a variant reads into consecutive units, so that with the
+// image-based light's textures they stay within the 16 units OpenGL ES 3.0 guarantees.
+void set_material_uniforms(const gpu::Program& program, const MaterialUniforms& u,
+                           const std::array<int, kMaterialMapCount>& units);
+// The same with map i on unit i where bound[i] (tests).
 void set_material_uniforms(const gpu::Program& program, const MaterialUniforms& u,
                            const std::array<bool, kMaterialMapCount>& bound);
 

@@ -29,7 +29,7 @@ enum : FeatureMask {
     AlphaBlend = 1u << 9,
     DebugView = 1u << 10,  // RenderSettings::debug != None
     UseIbl = 1u << 11,     // an environment lights the scene
-    // Texture maps bound, in fresnel::MaterialMap order (texture units 0..10).
+    // Texture maps bound, in fresnel::MaterialMap order (texture units 0..12).
     BaseColorMap = 1u << 12,
     MetallicRoughnessMap = 1u << 13,
     NormalMap = 1u << 14,
@@ -41,24 +41,27 @@ enum : FeatureMask {
     ClearcoatMap = 1u << 20,
     ClearcoatRoughnessMap = 1u << 21,
     ClearcoatNormalMap = 1u << 22,
+    SheenColorMap = 1u << 23,           // KHR_materials_sheen sheenColorTexture
+    SheenRoughnessMap = 1u << 24,       // KHR_materials_sheen sheenRoughnessTexture
     // Animation on the GPU (vertex shader only; RenderSettings::gpu_animation).
-    Skinned = 1u << 23,       // JOINTS_0 / WEIGHTS_0 by the joint matrices u_joints
-    MorphTargets = 1u << 24,  // two morph targets' displacements by u_morph_weights
-    // KHR_materials_transmission (+ _volume, _dispersion): maps 11 and 12 (MaterialMap::Transmission,
-    // ::Thickness) and the material model bit; after the bits above so that those keep their values.
-    TransmissionMap = 1u << 25,
-    ThicknessMap = 1u << 26,
-    Transmission = 1u << 27,  // MATERIAL_TRANSMISSION: refraction of the opaque scene (transmission.h)
+    Skinned = 1u << 25,       // JOINTS_0 / WEIGHTS_0 by the joint matrices u_joints
+    MorphTargets = 1u << 26,  // two morph targets' displacements by u_morph_weights
+    Sheen = 1u << 27,         // KHR_materials_sheen (Material::has_sheen)
+    // KHR_materials_transmission (+ _volume, _dispersion): maps 13 and 14 (MaterialMap::Transmission,
+    // ::Thickness) and the material model bit.
+    TransmissionMap = 1u << 28,
+    ThicknessMap = 1u << 29,
+    Transmission = 1u << 30,  // MATERIAL_TRANSMISSION: refraction of the opaque scene (transmission.h)
 };
-constexpr int kCount = 28;
+constexpr int kCount = 31;
 constexpr int kFirstMap = 12;
-constexpr int kMapCount = 13;
-// Maps 0..10 are bits 12..22; maps 11 and 12 (the transmission maps) bits 25 and 26.
-constexpr int kFirstCoreMaps = 11;
+constexpr int kMapCount = 15;
+// Maps 0..12 are bits 12..24; maps 13 and 14 (the transmission maps) bits 28 and 29.
+constexpr int kFirstCoreMaps = 13;
 constexpr FeatureMask kAll = (1u << kCount) - 1;
 // The bit of map `i` (fresnel::MaterialMap(i)).
 constexpr FeatureMask map_bit(int i) {
-    return i < kFirstCoreMaps ? FeatureMask(1) << (kFirstMap + i) : FeatureMask(1) << (25 + i - kFirstCoreMaps);
+    return i < kFirstCoreMaps ? FeatureMask(1) << (kFirstMap + i) : FeatureMask(1) << (28 + i - kFirstCoreMaps);
 }
 constexpr FeatureMask kMaps = (((1u << kFirstCoreMaps) - 1) << kFirstMap) | TransmissionMap | ThicknessMap;
 }  // namespace feature
@@ -86,13 +89,13 @@ std::vector<std::string> feature_defines(FeatureMask mask);
 // a 1x1 white texture stands in for exactly (x * 1.0 = x), so variants stay few:
 //  - tangents without normals are ignored (glTF 2.0, meshes: "TANGENT ... ignored");
 //  - every map needs UV0; normal and clearcoat-normal maps need tangents;
-//    the clearcoat maps need the clearcoat; specular-glossiness reads its own map and
+//    the clearcoat maps need the clearcoat, the sheen maps the sheen; specular-glossiness reads its own map and
 //    neither the metallic-roughness nor the two KHR_materials_specular maps, which
 //    metallic-roughness reads instead of the specular-glossiness map;
 //  - unlit without the debug view reads only the base colour (map): normals, tangents,
-//    lit maps, specular-glossiness, clearcoat and the environment are dropped;
+//    lit maps, specular-glossiness, clearcoat, sheen and the environment are dropped;
 //  - KHR_materials_specular's two maps come together, as do the clearcoat and
-//    clearcoat-roughness maps (the missing one is the white texture);
+//    clearcoat-roughness maps, as do the two sheen maps (the missing one is the white texture);
 //  - the debug view samples every map but the normal maps (white where absent);
 //  - alpha mask wins over blend (a material has one alpha mode);
 //  - transmission is not shaded for unlit (without the debug view) or specular-glossiness
