@@ -4,11 +4,13 @@ Two things in a sanitizer build's stderr are not findings in fresnel's code:
 - LeakSanitizer's own stop-the-world tracer dying at exit ("Tracer caught signal 11",
   "LeakSanitizer has encountered a fatal error"), a known intermittent fault of the tool
   (google/sanitizers#1353). The caller reruns the step.
-- Leaks whose every stack frame above the allocator is "<unknown module>": memory the GL
+- Leaks whose every stack frame above the allocator is "<unknown module>", or (with a
+  working symboliser) a bare "(module+0xOFFSET)" without a function name: memory the GL
   driver allocated from code that is no longer mapped when the leak check runs (Mesa's
-  driver is unloaded by eglTerminate; llvmpipe's JIT code has no module). fresnel's own
-  code is linked into the executable and always symbolises, so such a leak cannot be
-  ours; tests/lsan.supp covers the driver frames that still have a name.
+  driver is unloaded by eglTerminate; llvmpipe's JIT code has no module; an unloaded
+  library that sat after the executable shows as the executable plus an offset past its
+  end). fresnel's own code is linked into the executable and always symbolises, so such a
+  leak cannot be ours; tests/lsan.supp covers the driver frames that still have a name.
 Reports are read from stderr, never from the exit status: steps run with LeakSanitizer's
 exitcode=0, so a leak report (counted or not) leaves the program's own status (0 or 1)
 for the runners to judge.
@@ -25,6 +27,7 @@ import time
 MARKERS = ("ERROR: AddressSanitizer", "ERROR: LeakSanitizer", "runtime error:", "UndefinedBehaviorSanitizer")
 LSAN_TRACER_FAULT = "LeakSanitizer has encountered a fatal error"
 _ALLOCATOR = re.compile(r"in (__interceptor_|__asan_|operator new|malloc|calloc|realloc)")
+_UNNAMED = re.compile(r"\([^()\s]+\+0x[0-9a-f]+\)")
 
 
 def tracer_fault(stderr):
@@ -42,12 +45,15 @@ def _leak_only_in_unknown_modules(stderr):
     if not leaks:
         return False
     for block in leaks:
-        for line in block.splitlines():
-            m = re.match(r"\s*#\d+ 0x[0-9a-f]+ (.*)", line)
-            if not m:
+        frames = [m.group(1).strip() for m in re.finditer(r"(?m)^\s*#\d+ 0x[0-9a-f]+ (.*)$", block)]
+        # The symboliser works when the allocator's own frame has a name; then a frame with only
+        # "(module+0xOFFSET)" is code no module maps any more (an unloaded driver placed after
+        # the executable is reported as the executable plus an offset past its end).
+        symbolised = any(_ALLOCATOR.search(f) for f in frames)
+        for frame in frames:
+            if frame == "(<unknown module>)" or _ALLOCATOR.search(frame):
                 continue
-            frame = m.group(1)
-            if frame.strip() == "(<unknown module>)" or _ALLOCATOR.search(frame):
+            if symbolised and _UNNAMED.fullmatch(frame):
                 continue
             return False
     return True
