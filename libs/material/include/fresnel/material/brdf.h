@@ -81,6 +81,29 @@ struct Terms {
     glm::vec3 specular_metal{0.0f};     // metallic F_metal V D
 };
 
+// The clamped cosines of one (n, v, l), with h = normalize(l + v) (n when l = -v).
+struct Cosines {
+    float n_dot_l, n_dot_v, n_dot_h, v_dot_h;
+};
+inline Cosines cosines(glm::vec3 n, glm::vec3 v, glm::vec3 l) {
+    glm::vec3 h = l + v;
+    float hl = glm::length(h);
+    h = hl > 0.0f ? h / hl : n;
+    return {std::clamp(glm::dot(n, l), 0.0f, 1.0f), std::clamp(glm::dot(n, v), 0.0f, 1.0f),
+            std::clamp(glm::dot(n, h), 0.0f, 1.0f), std::clamp(glm::dot(v, h), 0.0f, 1.0f)};
+}
+
+// Appendix B's layering of the lobes, given t.d and t.v, the two Fresnel terms and the diffuse
+// lobe before its weights: fresnel_mix of the dielectric, conductor_fresnel of the metal.
+inline void layer(Terms& t, const Surface& s, glm::vec3 f_dielectric, glm::vec3 f_metal, glm::vec3 diffuse) {
+    float spec = t.v * t.d;
+    t.f = glm::mix(f_dielectric, f_metal, s.metallic);
+    t.diffuse = (1.0f - s.metallic) * (1.0f - f_dielectric) * diffuse;
+    t.specular_dielectric = (1.0f - s.metallic) * f_dielectric * spec;
+    t.specular_metal = s.metallic * f_metal * spec;
+    t.specular = t.specular_dielectric + t.specular_metal;
+}
+
 // Evaluates f(l, v) following Appendix B:
 //   dielectric = mix(lambert(base), V*D, F_schlick(f0 w, w, v·h))  (fresnel_mix; f0 = 0.04 and the
 //                specular weight w = 1 unless KHR_materials_ior / _specular say otherwise)
@@ -88,24 +111,13 @@ struct Terms {
 //   f          = mix(dielectric, metal, metallic)
 inline Terms evaluate_terms(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l) {
     Terms t;
-    glm::vec3 h = l + v;
-    float hl = glm::length(h);
-    h = hl > 0.0f ? h / hl : n;
-    float n_dot_l = std::clamp(glm::dot(n, l), 0.0f, 1.0f);
-    float n_dot_v = std::clamp(glm::dot(n, v), 0.0f, 1.0f);
-    float n_dot_h = std::clamp(glm::dot(n, h), 0.0f, 1.0f);
-    float v_dot_h = std::clamp(glm::dot(v, h), 0.0f, 1.0f);
+    const Cosines c = cosines(n, v, l);
     float alpha = alpha_from_roughness(s.perceptual_roughness);
-    t.d = d_ggx(n_dot_h, alpha);
-    t.v = v_smith_ggx_correlated(n_dot_l, n_dot_v, alpha);
-    float spec = t.v * t.d;
-    glm::vec3 f_metal = f_schlick(s.base_color, glm::vec3(1.0f), v_dot_h);
-    glm::vec3 f_dielectric = f_schlick(s.dielectric_f0() * s.specular_weight, glm::vec3(s.specular_weight), v_dot_h);
-    t.f = glm::mix(f_dielectric, f_metal, s.metallic);
-    t.diffuse = (1.0f - s.metallic) * (1.0f - f_dielectric) * lambert(s.base_color);
-    t.specular_dielectric = (1.0f - s.metallic) * f_dielectric * spec;
-    t.specular_metal = s.metallic * f_metal * spec;
-    t.specular = t.specular_dielectric + t.specular_metal;
+    t.d = d_ggx(c.n_dot_h, alpha);
+    t.v = v_smith_ggx_correlated(c.n_dot_l, c.n_dot_v, alpha);
+    glm::vec3 f_metal = f_schlick(s.base_color, glm::vec3(1.0f), c.v_dot_h);
+    glm::vec3 f_dielectric = f_schlick(s.dielectric_f0() * s.specular_weight, glm::vec3(s.specular_weight), c.v_dot_h);
+    layer(t, s, f_dielectric, f_metal, lambert(s.base_color));
     return t;
 }
 

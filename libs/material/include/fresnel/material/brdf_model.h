@@ -169,13 +169,7 @@ inline float diffuse_oren_nayar_factor(float n_dot_l, float n_dot_v, float l_dot
 inline Terms evaluate_terms(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l, const BrdfModel& m) {
     if (m.is_default()) return evaluate_terms(s, n, v, l);
     Terms t;
-    glm::vec3 h = l + v;
-    float hl = glm::length(h);
-    h = hl > 0.0f ? h / hl : n;
-    float n_dot_l = std::clamp(glm::dot(n, l), 0.0f, 1.0f);
-    float n_dot_v = std::clamp(glm::dot(n, v), 0.0f, 1.0f);
-    float n_dot_h = std::clamp(glm::dot(n, h), 0.0f, 1.0f);
-    float v_dot_h = std::clamp(glm::dot(v, h), 0.0f, 1.0f);
+    const auto [n_dot_l, n_dot_v, n_dot_h, v_dot_h] = cosines(n, v, l);
     float alpha = alpha_from_roughness(s.perceptual_roughness);
     switch (m.d) {
         case Distribution::Ggx: t.d = d_ggx(n_dot_h, alpha); break;
@@ -191,7 +185,6 @@ inline Terms evaluate_terms(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec
         case Geometry::CookTorrance: t.v = v_cook_torrance(n_dot_l, n_dot_v, n_dot_h, v_dot_h); break;
         case Geometry::Kelemen: t.v = v_kelemen(v_dot_h); break;
     }
-    float spec = t.v * t.d;
     glm::vec3 f0d = s.dielectric_f0() * s.specular_weight, f90d(s.specular_weight);
     glm::vec3 f_metal(0.0f), f_dielectric(0.0f);
     switch (m.f) {
@@ -216,11 +209,7 @@ inline Terms evaluate_terms(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec
             diffuse = diffuse_oren_nayar_factor(n_dot_l, n_dot_v, glm::dot(l, v), s.perceptual_roughness);
             break;
     }
-    t.f = glm::mix(f_dielectric, f_metal, s.metallic);
-    t.diffuse = (1.0f - s.metallic) * (1.0f - f_dielectric) * lambert(s.base_color) * diffuse;
-    t.specular_dielectric = (1.0f - s.metallic) * f_dielectric * spec;
-    t.specular_metal = s.metallic * f_metal * spec;
-    t.specular = t.specular_dielectric + t.specular_metal;
+    layer(t, s, f_dielectric, f_metal, lambert(s.base_color) * diffuse);
     return t;
 }
 
