@@ -96,7 +96,12 @@ TEST(ShaderFeatures, RulesAreCanonicalAndEnumerated) {
     const std::vector<FeatureMask> all = all_feature_sets();
     const std::set<FeatureMask> set(all.begin(), all.end());
     // canonical_features is idempotent, and everything it returns is enumerated.
-    for (FeatureMask m = 0; m <= kAll; m += 7) {  // a stride through all 4M raw masks
+    std::uint64_t state = 0x9e3779b97f4a7c15ull;  // splitmix64: 4M raw masks spread over all bits
+    for (int i = 0; i < (1 << 22); ++i) {
+        std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        const FeatureMask m = (z ^ (z >> 31)) & kAll;
         FeatureMask c = canonical_features(m);
         ASSERT_EQ(canonical_features(c), c) << std::hex << m;
         ASSERT_TRUE(set.count(c)) << std::hex << m;

@@ -93,7 +93,7 @@ std::vector<FeatureMask> all_feature_sets() {
     // some and the debug view turns the maps on: so every valid mask is a valid mask of bits
     // 0..22 plus one choice per group, kept when canonical. 2^23 masks instead of 2^31.
     std::vector<FeatureMask> out;
-    constexpr FeatureMask kLow = (1u << 23) - 1;
+    constexpr FeatureMask kLow = (FeatureMask(1) << 23) - 1;
     const FeatureMask animation[] = {0, Skinned, MorphTargets, Skinned | MorphTargets};
     const FeatureMask sheen[] = {0, Sheen, Sheen | SheenColorMap | SheenRoughnessMap};
     const FeatureMask transmission[] = {0, Transmission, Transmission | TransmissionMap | ThicknessMap};

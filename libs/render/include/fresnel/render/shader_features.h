@@ -11,7 +11,7 @@
 
 namespace fresnel {
 
-using FeatureMask = std::uint32_t;
+using FeatureMask = std::uint64_t;  // bits past 31: write FeatureMask(1) << N
 
 namespace feature {
 enum : FeatureMask {
@@ -56,14 +56,18 @@ enum : FeatureMask {
 constexpr int kCount = 31;
 constexpr int kFirstMap = 12;
 constexpr int kMapCount = 15;
-// Maps 0..12 are bits 12..24; maps 13 and 14 (the transmission maps) bits 28 and 29.
-constexpr int kFirstCoreMaps = 13;
-constexpr FeatureMask kAll = (1u << kCount) - 1;
+constexpr FeatureMask kAll = (FeatureMask(1) << kCount) - 1;
+// The bit position of each map, in fresnel::MaterialMap order: maps 0..12 are bits 12..24,
+// the transmission maps (13, 14) bits 28 and 29. A new map appends its position here.
+constexpr int kMapBitPositions[kMapCount] = {12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 28, 29};
 // The bit of map `i` (fresnel::MaterialMap(i)).
-constexpr FeatureMask map_bit(int i) {
-    return i < kFirstCoreMaps ? FeatureMask(1) << (kFirstMap + i) : FeatureMask(1) << (28 + i - kFirstCoreMaps);
+constexpr FeatureMask map_bit(int i) { return FeatureMask(1) << kMapBitPositions[i]; }
+constexpr FeatureMask all_map_bits() {
+    FeatureMask m = 0;
+    for (int i = 0; i < kMapCount; ++i) m |= map_bit(i);
+    return m;
 }
-constexpr FeatureMask kMaps = (((1u << kFirstCoreMaps) - 1) << kFirstMap) | TransmissionMap | ThicknessMap;
+constexpr FeatureMask kMaps = all_map_bits();
 }  // namespace feature
 
 // Bound lights: the size of the shaders' light arrays (MAX_LIGHTS).
@@ -124,7 +128,7 @@ enum : FeatureMask {
     Fogged = 1u << 7,        // OpenGL 1 only: GL_FOG
 };
 constexpr int kCount = 8;
-constexpr FeatureMask kAll = (1u << kCount) - 1;
+constexpr FeatureMask kAll = (FeatureMask(1) << kCount) - 1;
 constexpr FeatureMask kModels = Ogl1Vertex | Ogl1Pixel | BlinnPhong;
 }  // namespace legacy_feature
 
