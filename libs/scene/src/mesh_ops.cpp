@@ -76,7 +76,9 @@ std::size_t repair_normals(std::span<const glm::vec3> positions, std::span<const
         glm::vec3& n = normals[v];
         float len = finite(n) ? glm::length(n) : 0.0f;
         if (len > 1e-20f && std::isfinite(len)) {
-            n /= len;
+            // Unit to the digits a file carries (6 decimals: |len - 1| ~ 1e-6) is kept as written,
+            // so converters keep normals bit for bit; anything further off is normalised.
+            if (std::fabs(len - 1.0f) > 1e-5f) n /= len;
             continue;
         }
         if (smooth.empty()) {

@@ -254,6 +254,9 @@ private:
     // ---- Parsing ----------------------------------------------------------------------
 
     float coordinate(std::string_view s, const char* what, bool must_be_finite) {
+        return float(coordinate64(s, what, must_be_finite));
+    }
+    double coordinate64(std::string_view s, const char* what, bool must_be_finite) {
         bool partial = false;
         auto v = parse_number(s, partial);
         if (!v) fail("'" + printable(s) + "' is not a number (" + what + ")");
@@ -261,9 +264,9 @@ private:
         if (!std::isfinite(*v) || std::fabs(*v) > 3.4e38) {
             if (must_be_finite) fail(std::string(what) + " '" + printable(s) + "' is not a finite number");
             warn_once(std::string("nonfinite ") + what, std::string(what) + " is not finite; replaced");
-            return std::numeric_limits<float>::quiet_NaN();
+            return std::numeric_limits<double>::quiet_NaN();
         }
-        return float(*v);
+        return *v;
     }
 
     int mesh_index(const std::string& name, int line) {
@@ -368,8 +371,11 @@ private:
             } else if (k == "vt") {
                 if (tok.size() < 2) fail("a texture coordinate needs u [v [w]]");
                 count_element();
-                float u = coordinate(tok[1], "u", false), v = tok.size() >= 3 ? coordinate(tok[2], "v", false) : 0.0f;
-                vt_.emplace_back(std::isfinite(u) ? u : 0.0f, 1.0f - (std::isfinite(v) ? v : 0.0f));
+                float u = coordinate(tok[1], "u", false);
+                double v = tok.size() >= 3 ? coordinate64(tok[2], "v", false) : 0.0;
+                // glTF's origin is top-left: 1 - v in double from the file's digits, rounded once
+                // (write_obj inverts it exactly; see obj_v_text in scene_writer.cpp).
+                vt_.emplace_back(std::isfinite(u) ? u : 0.0f, float(1.0 - (std::isfinite(v) ? v : 0.0)));
             } else if (k == "vn") {
                 if (tok.size() < 4) fail("a normal needs x y z");
                 count_element();

@@ -418,10 +418,27 @@ void write_gltf(const Scene& scene, const fs::path& path, Diagnostics& diagnosti
 // ---- OBJ/MTL -------------------------------------------------------------------------------
 
 namespace {
+// The shortest text that reads back as the same float.
 std::string num(float v) {
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.9g", double(std::isfinite(v) ? v : 0.0f));
-    return buf;
+    auto r = std::to_chars(buf, buf + sizeof buf, std::isfinite(v) ? v : 0.0f);
+    return std::string(buf, r.ptr);
+}
+// An OBJ v for the glTF-convention texture coordinate `g`: the shortest decimal d with
+// float(1 - d) == g, which is what load_obj computes from it. So a v the OBJ loader read comes
+// back as the same digits whenever the decimals that round to g hold no shorter one: always
+// for v in [0, 1] written with up to 7 decimal places, and up to 6 for |v| < 8 (the decimals
+// of g lie within a float step of 1 - g, which is narrower than those grids); OBJ -> glTF ->
+// OBJ keeps exporters' texture coordinates exactly. Any g itself survives glTF -> OBJ -> glTF.
+std::string obj_v_text(float g) {
+    if (!std::isfinite(g)) g = 0.0f;
+    const double centre = 1.0 - double(g);
+    char buf[40];
+    for (int digits = 1; digits <= 17; ++digits) {
+        std::snprintf(buf, sizeof buf, "%.*g", digits, centre);
+        if (float(1.0 - std::strtod(buf, nullptr)) == g) return buf;
+    }
+    return buf;  // 17 digits print `centre` exactly, which maps back to g
 }
 std::string vec3_text(const glm::vec3& v) { return num(v.x) + " " + num(v.y) + " " + num(v.z); }
 std::string mtl_name(const Material& m, std::size_t i) {
@@ -487,7 +504,7 @@ void write_obj(const Scene& scene, const fs::path& path, Diagnostics& diagnostic
             for (const glm::vec3& v : p.positions)
                 obj += "v " + vec3_text(identity ? v : glm::vec3(inst.world * glm::vec4(v, 1.0f))) + "\n";
             if (has_t)
-                for (const glm::vec2& t : p.uv0) obj += "vt " + num(t.x) + " " + num(1.0f - t.y) + "\n";
+                for (const glm::vec2& t : p.uv0) obj += "vt " + num(t.x) + " " + obj_v_text(t.y) + "\n";
             if (has_n)
                 for (const glm::vec3& n : p.normals) obj += "vn " + vec3_text(identity ? n : glm::normalize(normal_matrix * n)) + "\n";
             if (p.material >= 0 && std::size_t(p.material) < scene.materials.size())

@@ -2,6 +2,7 @@
 // texture coordinates; .glb the same; no temporary files stay behind; the glTF files pass the
 // Khronos glTF-Validator with 0 errors and 0 warnings (skips without node and the validator,
 // scripts/install-test-tools.sh installs it).
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -77,10 +78,8 @@ void expect_same_geometry(const Scene& a, const Scene& b) {
     for (std::size_t i = 0; i < ca.size(); ++i) {
         EXPECT_EQ(ca[i].p, cb[i].p) << i;
         EXPECT_EQ(ca[i].n, cb[i].n) << i;
-        // glTF's UV origin is top-left, OBJ's bottom-left: each trip computes 1 - v once in
-        // float, which is exact for v in [0.5, 1] and within one float step below.
-        EXPECT_NEAR(ca[i].t.x, cb[i].t.x, 0.0f) << i;
-        EXPECT_NEAR(ca[i].t.y, cb[i].t.y, 6e-8f) << i;
+        // glTF's UV origin is top-left, OBJ's bottom-left; the flip is inverted exactly.
+        EXPECT_EQ(ca[i].t, cb[i].t) << i;
     }
 }
 
@@ -105,6 +104,35 @@ TEST(SceneWriter, ObjToGltfToObjKeepsGeometry) {
             EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
         fs::remove_all(dir);
     }
+}
+
+// The OBJ's own digits come back: v values as exporters write them (up to 7 decimal places in
+// [0, 1], 6 for tiling coordinates), through glTF's 1 - v and back.
+TEST(SceneWriter, ObjTextureCoordinatesComeBackAsWritten) {
+    const std::vector<std::string> vs = {"0",        "1",         "0.5",      "0.000123", "0.333333", "0.1234567",
+                                         "0.9999999", "0.0000001", "0.01",     "-0.25",    "2.5",      "-3.141593",
+                                         "7.999999", "0.7071068", "0.4999999", "1e-05",    "0.456",    "0.9"};
+    fs::path dir = temp_dir("uvdigits");
+    std::string obj;
+    for (std::size_t i = 0; i < vs.size(); ++i) obj += "v " + std::to_string(i) + " 0 0\n";
+    for (std::size_t i = 0; i < vs.size(); ++i) obj += "vt 0.25 " + vs[i] + "\n";
+    for (std::size_t i = 0; i + 2 < vs.size(); i += 3)
+        obj += "f " + std::to_string(i + 1) + "/" + std::to_string(i + 1) + " " + std::to_string(i + 2) + "/" +
+               std::to_string(i + 2) + " " + std::to_string(i + 3) + "/" + std::to_string(i + 3) + "\n";
+    std::ofstream(dir / "in.obj") << obj;
+    Diagnostics d;
+    Scene src = load_obj(dir / "in.obj", d);
+    write_gltf(src, dir / "mid.glb", d);
+    write_obj(load_gltf(dir / "mid.glb", d), dir / "back.obj", d);
+    std::ifstream back(dir / "back.obj");
+    std::vector<double> got, want;
+    for (std::string line; std::getline(back, line);)
+        if (line.rfind("vt ", 0) == 0) got.push_back(std::strtod(line.substr(line.find(' ', 3) + 1).c_str(), nullptr));
+    for (const std::string& v : vs) want.push_back(std::strtod(v.c_str(), nullptr));
+    std::sort(got.begin(), got.end());
+    std::sort(want.begin(), want.end());
+    EXPECT_EQ(got, want);
+    fs::remove_all(dir);
 }
 
 TEST(SceneWriter, GltfPassesTheKhronosValidator) {

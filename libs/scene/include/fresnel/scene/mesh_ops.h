@@ -50,7 +50,8 @@ std::vector<std::uint32_t> index_list(const Primitive& p);
 // Renormalises every normal. A normal that is zero (length <= 1e-20), infinite or NaN is
 // replaced by the area-weighted average of the faces of the triangles around its vertex
 // (`triangles`: a triangle list into `positions`), or by +Z when those faces have no area.
-// Returns how many normals were replaced (renormalised ones are not counted).
+// Returns how many normals were replaced (renormalised ones are not counted; normals within
+// 1e-5 of unit length are kept as they are).
 std::size_t repair_normals(std::span<const glm::vec3> positions, std::span<const std::uint32_t> triangles,
                            std::span<glm::vec3> normals);
 // The same on a triangle primitive with normals (returns 0 for other primitives).
