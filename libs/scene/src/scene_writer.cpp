@@ -1,6 +1,8 @@
 // glTF and OBJ/MTL writers (scene_writer.h). JSON through nlohmann::json, as the loader.
 #include "fresnel/scene/scene_writer.h"
 
+#include "fresnel/scene/mesh_ops.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +13,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -207,6 +210,74 @@ json material_json(const Material& m, const Scene& scene, GltfBuilder& b, bool h
         j["extensions"]["KHR_materials_unlit"] = json::object();
         b.used.insert("KHR_materials_unlit");
     }
+    // The other material extensions the loader keeps, written back with every value that
+    // differs from the specification's default (so glTF -> glTF loses none of them).
+    auto ext = [&](const char* name, json e) {
+        j["extensions"][name] = std::move(e);
+        b.used.insert(name);
+    };
+    auto tex = [&](json& e, const char* key, const TextureSlot& t) {
+        if (slot_ok(t, scene)) e[key] = b.texture_info(t, nt);
+    };
+    auto vec3 = [](const glm::vec3& v) { return json::array({v.x, v.y, v.z}); };
+    if (m.sheen) {
+        const SheenExt& x = *m.sheen;
+        json e = json::object();
+        if (x.sheen_color_factor != glm::vec3(0.0f)) e["sheenColorFactor"] = vec3(x.sheen_color_factor);
+        tex(e, "sheenColorTexture", x.sheen_color_texture);
+        if (x.sheen_roughness_factor != 0.0f) e["sheenRoughnessFactor"] = x.sheen_roughness_factor;
+        tex(e, "sheenRoughnessTexture", x.sheen_roughness_texture);
+        ext("KHR_materials_sheen", e);
+    }
+    if (m.transmission) {
+        json e = json::object();
+        if (m.transmission->transmission_factor != 0.0f) e["transmissionFactor"] = m.transmission->transmission_factor;
+        tex(e, "transmissionTexture", m.transmission->transmission_texture);
+        ext("KHR_materials_transmission", e);
+    }
+    if (m.volume) {
+        const VolumeExt& x = *m.volume;
+        json e = json::object();
+        if (x.thickness_factor != 0.0f) e["thicknessFactor"] = x.thickness_factor;
+        tex(e, "thicknessTexture", x.thickness_texture);
+        if (std::isfinite(x.attenuation_distance)) e["attenuationDistance"] = x.attenuation_distance;
+        if (x.attenuation_color != glm::vec3(1.0f)) e["attenuationColor"] = vec3(x.attenuation_color);
+        ext("KHR_materials_volume", e);
+    }
+    if (m.dispersion) {
+        json e = json::object();
+        if (m.dispersion->dispersion != 0.0f) e["dispersion"] = m.dispersion->dispersion;
+        ext("KHR_materials_dispersion", e);
+    }
+    if (m.iridescence) {
+        const IridescenceExt& x = *m.iridescence;
+        json e = json::object();
+        if (x.iridescence_factor != 0.0f) e["iridescenceFactor"] = x.iridescence_factor;
+        tex(e, "iridescenceTexture", x.iridescence_texture);
+        if (x.iridescence_ior != 1.3f) e["iridescenceIor"] = x.iridescence_ior;
+        if (x.iridescence_thickness_minimum != 100.0f) e["iridescenceThicknessMinimum"] = x.iridescence_thickness_minimum;
+        if (x.iridescence_thickness_maximum != 400.0f) e["iridescenceThicknessMaximum"] = x.iridescence_thickness_maximum;
+        tex(e, "iridescenceThicknessTexture", x.iridescence_thickness_texture);
+        ext("KHR_materials_iridescence", e);
+    }
+    if (m.anisotropy) {
+        const AnisotropyExt& x = *m.anisotropy;
+        json e = json::object();
+        if (x.anisotropy_strength != 0.0f) e["anisotropyStrength"] = x.anisotropy_strength;
+        if (x.anisotropy_rotation != 0.0f) e["anisotropyRotation"] = x.anisotropy_rotation;
+        tex(e, "anisotropyTexture", x.anisotropy_texture);
+        ext("KHR_materials_anisotropy", e);
+    }
+    if (m.diffuse_transmission) {
+        const DiffuseTransmissionExt& x = *m.diffuse_transmission;
+        json e = json::object();
+        if (x.diffuse_transmission_factor != 0.0f) e["diffuseTransmissionFactor"] = x.diffuse_transmission_factor;
+        tex(e, "diffuseTransmissionTexture", x.diffuse_transmission_texture);
+        if (x.diffuse_transmission_color_factor != glm::vec3(1.0f))
+            e["diffuseTransmissionColorFactor"] = vec3(x.diffuse_transmission_color_factor);
+        tex(e, "diffuseTransmissionColorTexture", x.diffuse_transmission_color_texture);
+        ext("KHR_materials_diffuse_transmission", e);
+    }
     return j;
 }
 
@@ -224,7 +295,33 @@ int wrap_enum(Wrap w) { return w == Wrap::ClampToEdge ? 33071 : w == Wrap::Mirro
 
 }  // namespace
 
-void write_gltf(const Scene& scene, const fs::path& path, Diagnostics& diagnostics) {
+namespace {
+// Whether a material needs a tangent space from the mesh (the validator's
+// MESH_PRIMITIVE_NO_TANGENT_SPACE): anisotropy always, a coat normal map without a base one.
+// Returns the texture coordinate set tangents are built on.
+std::optional<int> tangent_space_need(const Material& m, const Scene& scene) {
+    if (slot_ok(m.normal, scene)) return std::nullopt;  // the loader made them (or the file had them)
+    if (m.anisotropy) return m.anisotropy->anisotropy_texture.valid() ? m.anisotropy->anisotropy_texture.tex_coord : 0;
+    if (m.has_clearcoat() && slot_ok(m.clearcoat->clearcoat_normal_texture, scene))
+        return m.clearcoat->clearcoat_normal_texture.tex_coord;
+    return std::nullopt;
+}
+}  // namespace
+
+void write_gltf(const Scene& in, const fs::path& path, Diagnostics& diagnostics) {
+    // Primitives whose material needs a tangent space get MikkTSpace tangents, on a copy.
+    std::optional<Scene> with_tangents;
+    for (std::size_t mi = 0; mi < in.meshes.size(); ++mi)
+        for (std::size_t pi = 0; pi < in.meshes[mi].primitives.size(); ++pi) {
+            const Primitive& p = in.meshes[mi].primitives[pi];
+            if (p.tangents.size() == p.positions.size() || p.material < 0 || std::size_t(p.material) >= in.materials.size())
+                continue;
+            if (auto uv = tangent_space_need(in.materials[std::size_t(p.material)], in)) {
+                if (!with_tangents) with_tangents = in;
+                generate_tangents(with_tangents->meshes[mi].primitives[pi], *uv);
+            }
+        }
+    const Scene& scene = with_tangents ? *with_tangents : in;
     const bool glb = path.extension() == ".glb" || path.extension() == ".GLB";
     const std::string stem = path.stem().string();
     const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
@@ -303,6 +400,18 @@ void write_gltf(const Scene& scene, const fs::path& path, Diagnostics& diagnosti
             }
             if (mode != 4) jp["mode"] = mode;
             if (p.material >= 0 && std::size_t(p.material) < scene.materials.size()) jp["material"] = p.material;
+            // KHR_materials_variants: one mapping per material, listing the variants that pick it.
+            std::map<int, std::vector<int>> by_material;
+            for (std::size_t v = 0; v < p.variant_materials.size() && v < scene.material_variants.size(); ++v) {
+                int mat = p.variant_materials[v];
+                if (mat >= 0 && std::size_t(mat) < scene.materials.size()) by_material[mat].push_back(int(v));
+            }
+            if (!by_material.empty()) {
+                json mappings = json::array();
+                for (const auto& [mat, variants] : by_material) mappings.push_back({{"material", mat}, {"variants", variants}});
+                jp["extensions"]["KHR_materials_variants"] = {{"mappings", mappings}};
+                b.used.insert("KHR_materials_variants");
+            }
             jm["primitives"].push_back(jp);
         }
         if (jm["primitives"].empty()) diagnostics.warn(path.string(), "/meshes", "a mesh without vertices was written empty");
@@ -352,6 +461,11 @@ void write_gltf(const Scene& scene, const fs::path& path, Diagnostics& diagnosti
         }
         doc["extensions"]["KHR_lights_punctual"] = {{"lights", lights}};
         b.used.insert("KHR_lights_punctual");
+    }
+    if (b.used.count("KHR_materials_variants")) {
+        json variants = json::array();
+        for (const std::string& name : scene.material_variants) variants.push_back({{"name", name}});
+        doc["extensions"]["KHR_materials_variants"] = {{"variants", variants}};
     }
     json scenes = json::array();
     for (const auto& roots : scene.scenes) scenes.push_back({{"nodes", roots}});
