@@ -40,7 +40,7 @@ std::vector<LightInstance> scene_lights(const Scene& scene, const std::vector<No
     std::vector<LightInstance> out;
     for (const auto& inst : instances) {
         const Node& node = scene.nodes[std::size_t(inst.node)];
-        if (node.light < 0) continue;
+        if (node.light < 0 || !inst.visible) continue;
         const Light& l = scene.lights[std::size_t(node.light)];
         LightInstance li;
         li.type = l.type;

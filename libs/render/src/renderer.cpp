@@ -830,7 +830,7 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
         }
         for (const auto& inst : r.instances) {
             const Node& node = r.scene->nodes[std::size_t(inst.node)];
-            if (node.mesh < 0) continue;
+            if (node.mesh < 0 || !inst.visible) continue;
             const Mesh& mesh = r.scene->meshes[std::size_t(node.mesh)];
             for (const auto& p : r.meshes[std::size_t(node.mesh)]) {
                 glm::mat4 model = node.world_space_mesh ? glm::mat4(1.0f) : inst.world;

@@ -35,6 +35,7 @@ const std::vector<std::string>& supported_gltf_extensions() {
         "KHR_materials_pbrSpecularGlossiness", "KHR_materials_clearcoat", "KHR_materials_sheen",
         "EXT_meshopt_compression", "KHR_draco_mesh_compression", "EXT_texture_webp", "KHR_materials_variants",
         "KHR_animation_pointer", "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_dispersion",
+        "KHR_node_visibility",
     };
     return list;
 }
@@ -783,6 +784,8 @@ private:
             const json& ext = r_.object(n, "extensions", ptr);
             if (const json* l = r_.find(ext, "KHR_lights_punctual"))
                 node.light = r_.index(*l, "light", ptr + "/extensions/KHR_lights_punctual", scene_.lights.size(), "light", true);
+            if (const json* v = r_.find(ext, "KHR_node_visibility"))
+                node.visible = r_.boolean(*v, "visible", ptr + "/extensions/KHR_node_visibility", true);
             const json& children = r_.array(n, "children", ptr);
             for (std::size_t c = 0; c < children.size(); ++c) {
                 std::string cp = ptr + "/children/" + std::to_string(c);

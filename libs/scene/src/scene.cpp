@@ -17,13 +17,16 @@ std::vector<NodeInstance> flatten(const Scene& scene, int index) {
     if (index < 0 || std::size_t(index) >= scene.scenes.size()) return out;
     // The loader guarantees a forest (no cycles, one parent each), so this terminates.
     const std::vector<glm::mat4> world = world_matrices(scene.nodes);
-    std::vector<int> stack(scene.scenes[std::size_t(index)].rbegin(), scene.scenes[std::size_t(index)].rend());
+    std::vector<std::pair<int, bool>> stack;  // node, whether its ancestors are visible
+    for (auto it = scene.scenes[std::size_t(index)].rbegin(); it != scene.scenes[std::size_t(index)].rend(); ++it)
+        stack.emplace_back(*it, true);
     while (!stack.empty()) {
-        int n = stack.back();
+        auto [n, parents_visible] = stack.back();
         stack.pop_back();
-        out.push_back({n, world[std::size_t(n)]});
         const Node& node = scene.nodes[std::size_t(n)];
-        stack.insert(stack.end(), node.children.rbegin(), node.children.rend());
+        const bool visible = parents_visible && node.visible;
+        out.push_back({n, world[std::size_t(n)], visible});
+        for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.emplace_back(*it, visible);
     }
     return out;
 }

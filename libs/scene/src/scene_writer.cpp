@@ -424,6 +424,10 @@ void write_gltf(const Scene& in, const fs::path& path, Diagnostics& diagnostics)
         if (n.local != glm::mat4(1.0f)) jn["matrix"] = vec_json(glm::value_ptr(n.local), 16);
         if (n.mesh >= 0 && !meshes[std::size_t(n.mesh)]["primitives"].empty()) jn["mesh"] = n.mesh;
         if (n.camera >= 0) jn["camera"] = n.camera;
+        if (!n.visible) {
+            jn["extensions"]["KHR_node_visibility"] = {{"visible", false}};
+            b.used.insert("KHR_node_visibility");
+        }
         if (n.light >= 0) {
             jn["extensions"]["KHR_lights_punctual"] = {{"light", n.light}};
             b.used.insert("KHR_lights_punctual");
@@ -602,9 +606,17 @@ void write_obj(const Scene& scene, const fs::path& path, Diagnostics& diagnostic
         mtl += "\n";
     }
     std::size_t base_v = 1;
+    bool hidden_skipped = false;
     for (const NodeInstance& inst : flatten(scene)) {
         const Node& node = scene.nodes[std::size_t(inst.node)];
         if (node.mesh < 0) continue;
+        if (!inst.visible) {  // OBJ cannot hide an object: what is written is what is seen
+            if (!hidden_skipped)
+                diagnostics.warn(path.string(), "/nodes/" + std::to_string(inst.node),
+                                 "hidden nodes (KHR_node_visibility) are not written");
+            hidden_skipped = true;
+            continue;
+        }
         const Mesh& mesh = scene.meshes[std::size_t(node.mesh)];
         obj += "o " + (mesh.name.empty() ? (node.name.empty() ? "mesh" + std::to_string(node.mesh) : node.name) : mesh.name) + "\n";
         const bool identity = inst.world == glm::mat4(1.0f);

@@ -765,6 +765,29 @@ TEST(GltfLights, KhrLightsPunctual) {
     EXPECT_EQ(load_error(doc.gltf()).where(), "/extensions/KHR_lights_punctual/lights/2/spot");
 }
 
+TEST(GltfNodes, KhrNodeVisibility) {
+    Doc doc;
+    doc.j["extensionsUsed"] = {"KHR_node_visibility"};
+    doc.j["nodes"] = json::array({{{"children", {1}}, {"extensions", {{"KHR_node_visibility", {{"visible", false}}}}}},
+                                  {{"extensions", {{"KHR_node_visibility", {{"visible", true}}}}}},
+                                  {{"extensions", {{"KHR_node_visibility", json::object()}}}}});
+    doc.j["scenes"] = json::array({{{"nodes", {0, 2}}}});
+    Diagnostics d;
+    Scene s = load(doc.gltf(), d);
+    EXPECT_FALSE(s.nodes[0].visible);
+    EXPECT_TRUE(s.nodes[1].visible);
+    EXPECT_TRUE(s.nodes[2].visible);  // the default
+    EXPECT_EQ(d.total(), 0u) << all_warnings(d);
+    auto inst = flatten(s);
+    ASSERT_EQ(inst.size(), 3u);
+    EXPECT_FALSE(inst[0].visible);
+    EXPECT_FALSE(inst[1].visible);  // below a hidden node, whatever its own flag says
+    EXPECT_TRUE(inst[2].visible);
+    EXPECT_EQ(gltf_extension_support("KHR_node_visibility"), GltfExtensionSupport::Supported);
+    doc.j["nodes"][0]["extensions"]["KHR_node_visibility"]["visible"] = 0;
+    EXPECT_EQ(load_error(doc.gltf()).where(), "/nodes/0/extensions/KHR_node_visibility/visible");
+}
+
 TEST(GltfMaterials, FactorsModesAndExtensions) {
     Image8 pixels;
     auto png = make_png(3, 2, &pixels);

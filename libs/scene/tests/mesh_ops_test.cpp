@@ -364,3 +364,83 @@ TEST(MeshOpsTest, TransformPrimitive) {
     expect_near(p.normals[0], glm::normalize(glm::vec3(1, 0.5f, 0)));
     expect_near(p.tangents[0], glm::vec4(glm::normalize(glm::vec3(1, -2, 0)), -1));
 }
+
+// ---- picking and node visibility (fresnel/scene/pick.h, KHR_node_visibility) ----------------
+
+namespace {
+// Two unit quads in the z = 0 plane of their nodes: node 0 at the origin, node 1 (a child of
+// node 0) moved to z = -2 and scaled by 2.
+Scene two_quads() {
+    Scene s;
+    Mesh m;
+    Primitive p;
+    p.positions = {{-0.5f, -0.5f, 0}, {0.5f, -0.5f, 0}, {0.5f, 0.5f, 0}, {-0.5f, 0.5f, 0}};
+    p.normals.assign(4, glm::vec3(0, 0, 1));
+    p.indices = {0, 1, 2, 0, 2, 3};
+    p.bounds_min = {-0.5f, -0.5f, 0};
+    p.bounds_max = {0.5f, 0.5f, 0};
+    m.primitives = {p};
+    s.meshes = {m};
+    s.nodes.resize(2);
+    s.nodes[0].mesh = 0;
+    s.nodes[0].children = {1};
+    s.nodes[1].mesh = 0;
+    s.nodes[1].local = glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -2)), glm::vec3(2.0f));
+    s.scenes = {{0}};
+    s.default_scene = 0;
+    return s;
+}
+}  // namespace
+
+#include "fresnel/scene/pick.h"
+
+TEST(Pick, NearestTriangleInWorldUnits) {
+    Scene s = two_quads();
+    auto inst = flatten(s);
+    // From z = 5 straight down -z: the front quad at distance 5.
+    auto hit = pick(s, inst, {0.1f, 0.2f, 5.0f}, {0, 0, -3});
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->node, 0);
+    EXPECT_EQ(hit->primitive, 0);
+    EXPECT_NEAR(hit->distance, 5.0f, 1e-5f);
+    expect_near(hit->point, {0.1f, 0.2f, 0.0f});
+    // Outside the front quad (x = 0.8) but inside the scaled back one (half size 1): distance 7.
+    hit = pick(s, inst, {0.8f, 0.0f, 5.0f}, {0, 0, -1});
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->node, 1);
+    EXPECT_NEAR(hit->distance, 7.0f, 1e-5f);
+    // Which triangle: (0.4, -0.3) lies in triangle 0 (0, 1, 2), (-0.4, 0.3) in triangle 1.
+    EXPECT_EQ(pick(s, inst, {0.4f, -0.3f, 1.0f}, {0, 0, -1})->triangle, 0);
+    EXPECT_EQ(pick(s, inst, {-0.4f, 0.3f, 1.0f}, {0, 0, -1})->triangle, 1);
+    // From behind: the back face counts; missing everything, or a zero direction: nothing.
+    hit = pick(s, inst, {0.0f, 0.0f, -10.0f}, {0, 0, 1});
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->node, 1);
+    EXPECT_NEAR(hit->distance, 8.0f, 1e-5f);
+    EXPECT_FALSE(pick(s, inst, {3.0f, 0.0f, 5.0f}, {0, 0, -1}));
+    EXPECT_FALSE(pick(s, inst, {0.0f, 0.0f, 5.0f}, {0, 0, 1}));  // pointing away
+    EXPECT_FALSE(pick(s, inst, {0.0f, 0.0f, 5.0f}, {0, 0, 0}));
+    // The highlighted box of the back quad: half size 1 at z = -2.
+    Bounds b = primitive_world_bounds(s, inst[1], 0);
+    expect_near(b.min, {-1, -1, -2});
+    expect_near(b.max, {1, 1, -2});
+}
+
+TEST(Pick, HiddenNodesAndTheirChildrenAreNotSeen) {
+    Scene s = two_quads();
+    s.nodes[0].visible = false;  // hides node 1 too, though its own flag says visible
+    auto inst = flatten(s);
+    ASSERT_EQ(inst.size(), 2u);
+    EXPECT_FALSE(inst[0].visible);
+    EXPECT_FALSE(inst[1].visible);
+    EXPECT_FALSE(pick(s, inst, {0.0f, 0.0f, 5.0f}, {0, 0, -1}));
+    s.nodes[0].visible = true;
+    s.nodes[1].visible = false;  // only the child hidden: the ray through both meets node 0 only
+    inst = flatten(s);
+    EXPECT_TRUE(inst[0].visible);
+    EXPECT_FALSE(inst[1].visible);
+    auto hit = pick(s, inst, {0.0f, 0.0f, -10.0f}, {0, 0, 1});
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->node, 0);
+    EXPECT_NEAR(hit->distance, 10.0f, 1e-5f);
+}

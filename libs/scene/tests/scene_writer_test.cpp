@@ -151,6 +151,10 @@ Scene with_every_extension(Scene s) {
     s.material_variants = {"day", "night", "dusk"};
     for (Mesh& mesh : s.meshes)
         for (Primitive& p : mesh.primitives) p.variant_materials = {1, -1, 0};
+    s.nodes.push_back(Node{});  // KHR_node_visibility: a hidden (empty) root node
+    s.nodes.back().name = "hidden";
+    s.nodes.back().visible = false;
+    s.scenes.at(0).push_back(int(s.nodes.size()) - 1);
     return s;
 }
 
@@ -193,6 +197,9 @@ TEST(SceneWriter, GltfToGltfKeepsMaterialExtensionsAndVariants) {
                         m.diffuse_transmission->diffuse_transmission_color_texture.valid());
             EXPECT_FALSE(got->materials[1].sheen || got->materials[1].iridescence);  // no block appears from nothing
             EXPECT_EQ(got->material_variants, src.material_variants);
+            ASSERT_FALSE(got->nodes.empty());
+            EXPECT_EQ(got->nodes.back().name, "hidden");
+            EXPECT_FALSE(got->nodes.back().visible);
             for (const Mesh& mesh : got->meshes)
                 for (const Primitive& p : mesh.primitives) EXPECT_EQ(p.variant_materials, (std::vector<int>{1, -1, 0}));
         }

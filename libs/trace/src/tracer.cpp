@@ -326,7 +326,7 @@ TraceScene::TraceScene(const Scene& scene, const std::vector<NodeInstance>& inst
 
     for (const NodeInstance& inst : instances) {
         const Node& node = scene.nodes[std::size_t(inst.node)];
-        if (node.mesh < 0 || node.mesh >= int(scene.meshes.size())) continue;
+        if (node.mesh < 0 || node.mesh >= int(scene.meshes.size()) || !inst.visible) continue;
         glm::mat4 world = node.world_space_mesh ? glm::mat4(1.0f) : inst.world;
         glm::mat3 linear(world);
         glm::mat3 normal_matrix = glm::transpose(glm::inverse(linear));

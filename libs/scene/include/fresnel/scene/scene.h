@@ -135,6 +135,9 @@ struct Node {
     // the identity, not the node's world matrix (which still places its bounds, as the
     // camera convention uses the POSITION accessor's box).
     bool world_space_mesh = false;
+    // KHR_node_visibility: false hides the node and every node below it (their meshes and
+    // lights are not drawn; cameras still work). NodeInstance::visible holds the result.
+    bool visible = true;
 };
 
 struct Scene {
@@ -175,6 +178,7 @@ void apply_material_variant(Scene& scene, int variant);
 struct NodeInstance {
     int node = -1;
     glm::mat4 world{1.0f};
+    bool visible = true;  // the node and all its ancestors are visible (Node::visible)
 };
 
 // Flattens the scene graph of scene `index` (-1 = default scene) into node instances.
