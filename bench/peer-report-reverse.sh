@@ -66,8 +66,10 @@ for src in "${inputs[@]}"; do
   name=$(basename "${src%.*}")
   mkdir -p "$out/$name.ours" "$out/$name.naive"
   "$fresnel" convert "$src" "$out/$name.ours/$name.obj" > /dev/null 2>&1
-  cp -r "$out/$name.ours/." "$out/$name.naive/"
-  naive "$src" "$out/$name.ours/$name.mtl" "$out/$name.naive/$name.mtl"
+  # The naive MTL from a conversion that keeps the base colour texture as map_Kd.
+  "$fresnel" convert --no-diffuse-bake "$src" "$out/$name.naive/$name.obj" > /dev/null 2>&1
+  cp "$out/$name.naive/$name.mtl" "$out/$name.naive/$name.fitted.mtl"
+  naive "$src" "$out/$name.naive/$name.fitted.mtl" "$out/$name.naive/$name.mtl"
   for view in "${views[@]}"; do
     read -r yaw pitch <<< "$view"
     tag=$name.y$yaw.p$pitch

@@ -96,17 +96,20 @@ std::string render_command_line(const Job& job, const std::string& output) {
     if (!env.use_cache) add("--no-cache");
     if (!out.energy_compensation) add("--no-energy-compensation");
     if (!out.brdf.is_default()) add("--brdf", brdf::to_string(out.brdf));
-    // Extra lights come from --light, so they are directional or point lights.
+    // Extra lights, as --light writes them (a range is not part of that syntax).
     for (const LightInstance& l : job.lights.extra) {
         float lum = std::max({l.radiance.x, l.radiance.y, l.radiance.z});
         glm::vec3 color = lum > 0 ? l.radiance / lum : glm::vec3(1.0f);
         std::string rgb = color == glm::vec3(1.0f) ? "" : "," + nums({color.x, color.y, color.z});
+        const float deg = 180.0f / 3.14159265358979f;
+        glm::vec3 from = -l.direction;
+        float el = std::asin(std::clamp(from.y, -1.0f, 1.0f)) * deg, az = std::atan2(from.x, from.z) * deg;
         if (l.type == Light::Type::Point) {
             add("--light", "point:" + nums({l.position.x, l.position.y, l.position.z, lum}) + rgb);
+        } else if (l.type == Light::Type::Spot) {
+            add("--light", "spot:" + nums({l.position.x, l.position.y, l.position.z, az, el, lum, l.inner_cone * deg,
+                                           l.outer_cone * deg}) + rgb);
         } else {
-            const float deg = 180.0f / 3.14159265358979f;
-            glm::vec3 from = -l.direction;
-            float el = std::asin(std::clamp(from.y, -1.0f, 1.0f)) * deg, az = std::atan2(from.x, from.z) * deg;
             add("--light", "dir:" + nums({az, el, lum}) + rgb);
         }
     }

@@ -3,6 +3,8 @@
 // Materials go through the fitted conversion of fresnel/material/fit.h (Phong -> PBR and PBR ->
 // Phong by least squares over light and view directions); the writers are
 // fresnel/scene/scene_writer.h. Each material's residual is printed (stderr).
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -12,6 +14,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "fresnel/core/color.h"
 #include "fresnel/material/evaluate.h"
 #include "fresnel/material/fit.h"
 #include "fresnel/scene/gltf_loader.h"
@@ -28,6 +31,7 @@ struct ConvertOptions {
     std::string input, output;
     bool allow_external_files = false;
     bool quiet = false;
+    bool no_diffuse_bake = false;
 };
 
 std::string lower_ext(const fs::path& p) {
@@ -80,10 +84,85 @@ float texture_mean(const Scene& scene, const TextureSlot& slot, int channel) {
     return n ? float(sum / double(n) / 255.0) : 1.0f;
 }
 
+// The image of a texture slot, or null.
+const Image8* slot_image(const Scene& scene, const TextureSlot& slot) {
+    if (!slot.valid() || std::size_t(slot.texture) >= scene.textures.size()) return nullptr;
+    int image = scene.textures[std::size_t(slot.texture)].image;
+    if (image < 0 || std::size_t(image) >= scene.images.size() || !scene.images[std::size_t(image)].valid()) return nullptr;
+    return &scene.images[std::size_t(image)].pixels;
+}
+
+// OpenGL 1 modulates only by map_Kd, so a metallic-roughness texture's metalness would be lost
+// with one Kd per material: metal texels would show their base colour as diffuse. Instead the
+// fitted diffuse is baked per texel into a new map_Kd (and Kd becomes 1): the fit of the mean
+// material gives Kd for the mean diffuse albedo a = base * (1 - metallic), and each texel gets
+// Kd * encode(a_texel) / encode(a_mean), per channel (the fit works on display values; sRGB
+// encoding makes the ratio of albedos one of encoded values). Needs both maps on the same UV
+// set without transforms; the texels are matched by relative position (nearest).
+bool bake_diffuse_map(Scene& scene, Material& m, const glm::vec3& kd, const glm::vec3& mean_base, float mean_metallic) {
+    const Image8* mr = slot_image(scene, m.metallic_roughness);
+    if (!mr) return false;
+    const Image8* base = slot_image(scene, m.base_color);
+    if (base && (m.base_color.tex_coord != m.metallic_roughness.tex_coord || m.base_color.has_transform ||
+                 m.metallic_roughness.has_transform))
+        return false;
+    const int w = base ? std::max(base->width, mr->width) : mr->width, h = base ? std::max(base->height, mr->height) : mr->height;
+    auto texel = [](const Image8& im, int x, int y, int w, int h) {
+        return im.at(std::min(im.width - 1, x * im.width / w), std::min(im.height - 1, y * im.height / h));
+    };
+    const glm::vec3 factor = glm::vec3(m.base_color_factor);
+    const glm::vec3 a_mean = linear_to_srgb(glm::max(mean_base * (1.0f - mean_metallic), glm::vec3(0.0f)));
+    Image8 out;
+    out.width = w;
+    out.height = h;
+    out.channels = 4;
+    out.pixels.resize(std::size_t(w) * std::size_t(h) * 4);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            glm::vec3 c = factor;
+            float alpha = 255.0f;
+            if (base) {
+                const std::uint8_t* b = texel(*base, x, y, w, h);
+                c *= srgb_to_linear(glm::vec3(b[0], b[1], b[2]) / 255.0f);
+                alpha = b[3];
+            }
+            const float metallic = std::clamp(m.metallic_factor * float(texel(*mr, x, y, w, h)[2]) / 255.0f, 0.0f, 1.0f);
+            const glm::vec3 a = linear_to_srgb(c * (1.0f - metallic));
+            std::uint8_t* o = out.at(x, y);
+            for (int k = 0; k < 3; ++k) {
+                float d = a_mean[k] > 1e-4f ? kd[k] * a[k] / a_mean[k] : kd[k];
+                o[k] = std::uint8_t(std::lround(std::clamp(d, 0.0f, 1.0f) * 255.0f));
+            }
+            o[3] = std::uint8_t(alpha);
+        }
+    SceneImage img;
+    img.name = "baked diffuse of " + m.name;
+    img.pixels = std::move(out);
+    scene.images.push_back(std::move(img));
+    Texture t = base ? scene.textures[std::size_t(m.base_color.texture)] : scene.textures[std::size_t(m.metallic_roughness.texture)];
+    t.image = int(scene.images.size()) - 1;
+    scene.textures.push_back(t);
+    m.base_color.texture = int(scene.textures.size()) - 1;
+    m.base_color.tex_coord = m.metallic_roughness.tex_coord;
+    return true;
+}
+
+// The mean linear base colour of a material (factor times its texture's mean, decoded).
+glm::vec3 mean_base_color(const Scene& scene, const Material& m) {
+    glm::vec3 c = glm::vec3(m.base_color_factor);
+    const Image8* img = slot_image(scene, m.base_color);
+    if (!img) return c;
+    glm::dvec3 sum(0.0);
+    std::size_t n = std::size_t(img->width) * std::size_t(img->height);
+    for (std::size_t i = 0; i < n; ++i)
+        sum += glm::dvec3(srgb_to_linear(glm::vec3(img->pixels[i * 4], img->pixels[i * 4 + 1], img->pixels[i * 4 + 2]) / 255.0f));
+    return n ? c * glm::vec3(sum / double(n)) : c;
+}
+
 // PBR materials -> fitted Phong values in Material::phong (for the OBJ writer). A
 // metallic-roughness texture enters through its mean (OBJ/MTL has no per-texel Ns); the base
 // colour texture stays map_Kd, which modulates the fitted Kd as the base colour factor did.
-void fit_pbr_materials(Scene& scene, bool quiet) {
+void fit_pbr_materials(Scene& scene, bool quiet, bool bake) {
     for (Material& m : scene.materials) {
         if (m.phong) continue;  // from an OBJ: keep its own values
         fit::Pbr pbr = fit::from_material(m);
@@ -91,9 +170,18 @@ void fit_pbr_materials(Scene& scene, bool quiet) {
         pbr.roughness *= texture_mean(scene, m.metallic_roughness, 1);
         m.metallic_factor = pbr.metallic;  // what the MTL's Pm / Pr say (no map_Pm / map_Pr is written)
         m.roughness_factor = pbr.roughness;
+        // With a metallic-roughness texture the diffuse is baked per texel (bake_diffuse_map),
+        // fitted for the mean material; otherwise map_Kd modulates Kd as the factor did.
+        const bool per_texel = bake && slot_image(scene, m.metallic_roughness) != nullptr;
+        glm::vec3 mean_base(0.0f);
+        if (per_texel) {
+            mean_base = mean_base_color(scene, m);
+            pbr.base_color = glm::min(mean_base, glm::vec3(1.0f));
+        }
         fit::PbrToPhong f = fit::fit_pbr_to_phong(pbr);
         PhongExt p;
         p.diffuse = f.phong.kd;
+        if (per_texel && bake_diffuse_map(scene, m, f.phong.kd, mean_base, pbr.metallic)) p.diffuse = glm::vec3(1.0f);
         p.specular = f.phong.ks;
         p.shininess = f.phong.ns;
         p.ambient = glm::vec3(0.0f);
@@ -129,7 +217,7 @@ int run_convert(const ConvertOptions& o) {
     }
     to_metallic_roughness_all(scene, diagnostics, o.input);
     if (out_obj) {
-        fit_pbr_materials(scene, o.quiet);
+        fit_pbr_materials(scene, o.quiet, !o.no_diffuse_bake);
         write_obj(scene, o.output, diagnostics);
     } else {
         if (in_obj) fit_phong_materials(scene, o.quiet);
@@ -149,6 +237,9 @@ Runner add_convert_command(CLI::App& app) {
     cmd->add_flag("--allow-external-files", opts->allow_external_files,
                   "Allow URIs and MTL/texture paths outside the model's folder");
     cmd->add_flag("--quiet", opts->quiet, "Do not print each material's fit residual");
+    cmd->add_flag("--no-diffuse-bake", opts->no_diffuse_bake,
+                  "glTF -> OBJ: keep the base colour texture as map_Kd with one fitted Kd per material, instead of "
+                  "baking the fitted diffuse per texel (metallic-roughness textures) into a new map_Kd");
     cmd->footer("Phong materials are fitted to metallic-roughness (and back) by fresnel/material/fit.h;\n"
                 "specular-glossiness becomes metallic-roughness + KHR_materials_specular.");
     return [opts]() { return run_convert(*opts); };

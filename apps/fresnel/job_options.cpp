@@ -352,8 +352,9 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
                       "Single-scattering specular only (no multiple-scattering compensation of punctual lights)");
     }
     cmd->add_option("--light", o->lights,
-                    "Add a light: dir:AZIMUTH,ELEVATION,LUX[,R,G,B] (arriving from that direction) or "
-                    "point:X,Y,Z,CANDELA[,R,G,B]; repeatable");
+                    "Add a light: dir:AZIMUTH,ELEVATION,LUX[,R,G,B] (arriving from that direction), "
+                    "point:X,Y,Z,CANDELA[,R,G,B] or spot:X,Y,Z,AZIMUTH,ELEVATION,CANDELA,INNER,OUTER[,R,G,B] "
+                    "(shining as a dir light from AZIMUTH,ELEVATION; cone half-angles in degrees); repeatable");
     cmd->add_flag("--no-scene-lights", o->no_scene_lights, "Ignore the file's KHR_lights_punctual lights");
     if (raster) {
         cmd->add_option("--msaa", o->msaa, "MSAA samples (1 = off)")->capture_default_str()->check(CLI::Range(1, 16));

@@ -7,6 +7,7 @@
 
 #include "fresnel/core/color.h"
 #include "fresnel/core/error.h"
+#include "fresnel/render/lights.h"
 #include "fresnel/render/renderer.h"
 
 namespace fresnel::cli {
@@ -35,6 +36,8 @@ const std::map<std::string, Signature>& commands() {
         {"debug", {1, 0}},        {"background", {1, 0}},    {"wait", {1, 1}},         {"screenshot", {-1, 0}},
         {"print", {0, 0}},        {"stats", {0, 0}},        {"set", {-2, 0}},         {"split", {-3, 0}},        {"quit", {0, 0}},
         {"save", {-1, 0}},        {"save-scene", {-1, 0}},   {"auto-rotate", {2, 0}},  {"reload-shaders", {-4, 0}},
+        {"light", {1, 0}},        {"light-remove", {1, 1}},  {"orbit-lights", {1, 0}}, {"hide", {1, 1}},
+        {"show", {1, 1}},         {"pick", {2, 2}},
     };
     return c;
 }
@@ -46,6 +49,9 @@ int material_field_size(const std::string& field) {
         {"baseColorFactor", 4}, {"metallicFactor", 1},  {"roughnessFactor", 1}, {"emissiveFactor", 3},
         {"alphaCutoff", 1},     {"normalScale", 1},     {"occlusionStrength", 1}, {"emissiveStrength", 1},
         {"ior", 1},             {"specularFactor", 1},  {"clearcoatFactor", 1}, {"clearcoatRoughnessFactor", 1},
+        {"sheenColorFactor", 3}, {"sheenRoughnessFactor", 1}, {"transmissionFactor", 1}, {"thicknessFactor", 1},
+        {"attenuationDistance", 1}, {"attenuationColor", 3}, {"dispersion", 1}, {"iridescenceFactor", 1},
+        {"iridescenceIor", 1}, {"anisotropyStrength", 1}, {"anisotropyRotation", 1}, {"diffuseTransmissionFactor", 1},
     };
     auto it = sizes.find(field);
     return it == sizes.end() ? 0 : it->second;
@@ -71,6 +77,41 @@ bool set_material_field(Material& m, const std::string& field, const std::vector
     } else if (field == "clearcoatRoughnessFactor") {
         if (!m.clearcoat) m.clearcoat = ClearcoatExt{};
         m.clearcoat->clearcoat_roughness_factor = v[0];
+    } else if (field == "sheenColorFactor") {
+        if (!m.sheen) m.sheen = SheenExt{};
+        m.sheen->sheen_color_factor = {v[0], v[1], v[2]};
+    } else if (field == "sheenRoughnessFactor") {
+        if (!m.sheen) m.sheen = SheenExt{};
+        m.sheen->sheen_roughness_factor = v[0];
+    } else if (field == "transmissionFactor") {
+        if (!m.transmission) m.transmission = TransmissionExt{};
+        m.transmission->transmission_factor = v[0];
+    } else if (field == "thicknessFactor") {
+        if (!m.volume) m.volume = VolumeExt{};
+        m.volume->thickness_factor = v[0];
+    } else if (field == "attenuationDistance") {
+        if (!m.volume) m.volume = VolumeExt{};
+        m.volume->attenuation_distance = v[0];
+    } else if (field == "attenuationColor") {
+        if (!m.volume) m.volume = VolumeExt{};
+        m.volume->attenuation_color = {v[0], v[1], v[2]};
+    } else if (field == "dispersion") {
+        m.dispersion = DispersionExt{v[0]};
+    } else if (field == "iridescenceFactor") {
+        if (!m.iridescence) m.iridescence = IridescenceExt{};
+        m.iridescence->iridescence_factor = v[0];
+    } else if (field == "iridescenceIor") {
+        if (!m.iridescence) m.iridescence = IridescenceExt{};
+        m.iridescence->iridescence_ior = v[0];
+    } else if (field == "anisotropyStrength") {
+        if (!m.anisotropy) m.anisotropy = AnisotropyExt{};
+        m.anisotropy->anisotropy_strength = v[0];
+    } else if (field == "anisotropyRotation") {
+        if (!m.anisotropy) m.anisotropy = AnisotropyExt{};
+        m.anisotropy->anisotropy_rotation = v[0];
+    } else if (field == "diffuseTransmissionFactor") {
+        if (!m.diffuse_transmission) m.diffuse_transmission = DiffuseTransmissionExt{};
+        m.diffuse_transmission->diffuse_transmission_factor = v[0];
     }
     return true;
 }
@@ -160,6 +201,17 @@ std::vector<ScriptCommand> read_view_script(const std::string& path) {
         if (c.name == "dolly" && !(c.number(0) > 0)) fail("dolly: the factor must be positive");
         if (c.name == "auto-rotate" && ((c.args[0] != "camera" && c.args[0] != "env") || (c.args[1] != "on" && c.args[1] != "off")))
             fail("auto-rotate: expected camera|env on|off");
+        if (c.name == "orbit-lights" && c.args[0] != "on" && c.args[0] != "off") fail("orbit-lights: expected on|off");
+        if (c.name == "light") {
+            try {
+                parse_light(c.args[0]);
+            } catch (const std::exception& e) {
+                fail(std::string("light: ") + e.what());
+            }
+        }
+        for (const char* whole : {"light-remove", "hide", "show"})
+            if (c.name == whole && (c.number(0) < 0 || c.number(0) != float(int(c.number(0)))))
+                fail(c.name + ": expected an index (>= 0)");
         out.push_back(std::move(c));
     }
     return out;

@@ -16,7 +16,12 @@
 //   set material INDEX FIELD VALUE...   a material factor, FIELD as in glTF: baseColorFactor R G B A,
 //                          metallicFactor, roughnessFactor, emissiveFactor R G B, alphaCutoff,
 //                          normalScale, occlusionStrength, emissiveStrength, ior, specularFactor,
-//                          clearcoatFactor, clearcoatRoughnessFactor (live; saved by save and save-scene)
+//                          clearcoatFactor, clearcoatRoughnessFactor, sheenColorFactor R G B,
+//                          sheenRoughnessFactor, transmissionFactor, thicknessFactor, attenuationDistance,
+//                          attenuationColor R G B, dispersion, iridescenceFactor, iridescenceIor,
+//                          anisotropyStrength, anisotropyRotation, diffuseTransmissionFactor
+//                          (live; save writes the core, emissiveStrength, ior, specular and clearcoat
+//                          ones; save-scene the overrides a scene file holds)
 //   save PATH              the material edits written into a copy of the model's glTF file (or the
 //                          file itself), keeping everything else byte for byte (scene_writer.h)
 //   save-scene PATH        the view as a scene file (*.fresnel.json) that `fresnel render PATH` renders
@@ -24,6 +29,12 @@
 //   reload-shaders [DIR]   F5: read the shader files again (from DIR, else --shaders) and recompile;
 //                          a compile error is reported and the shaders in use stay
 //   split CHANNEL POS | split off   the split view: right of POS (0..1 of the width) the debug CHANNEL (or none)
+//   light SPEC             add a light, SPEC as render --light (dir:..., point:..., spot:...)
+//   light-remove N         remove the N-th added light
+//   orbit-lights on|off    turn the added lights about the model (+Y), 30 degrees a second
+//   hide NODE | show NODE  the node's visibility (KHR_node_visibility: its subtree's meshes and lights)
+//   pick X Y               click-select at window point X, Y (from the top left); prints one JSON
+//                          line: {"node":N,"mesh":M,"primitive":P,"material":K,"distance":D} or {"node":null}
 //   stats                  print frame time, draw calls, triangles and resident memory as one JSON line
 //   quit                   exit: 0, or 1 when an open/env/screenshot of the script failed
 // Paths are relative to the current folder. A malformed line is reported as FILE:LINE and

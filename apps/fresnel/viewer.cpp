@@ -30,8 +30,10 @@
 #include "fresnel/gpu/resources.h"
 #include "fresnel/gui/window.h"
 #include "fresnel/ibl/bake.h"
+#include "fresnel/render/lights.h"
 #include "fresnel/render/orbit_controller.h"
 #include "fresnel/render/scene_file.h"
+#include "fresnel/scene/pick.h"
 #include "fresnel/scene/scene_writer.h"
 #include "view_script.h"
 
@@ -342,6 +344,42 @@ private:
                 std::fflush(stdout);
                 continue;
             }
+            if (c.name == "pick") {  // after the frame it clicks on is drawn
+                if (!ready || !scene_ || !last_camera_) {
+                    --script_pos_;
+                    return false;
+                }
+                pick_at({c.number(0), c.number(1)});
+                if (picked_) {
+                    const int mat = scene_->meshes[std::size_t(picked_->mesh)].primitives[std::size_t(picked_->primitive)].material;
+                    std::printf("{\"node\":%d,\"mesh\":%d,\"primitive\":%d,\"material\":%d,\"distance\":%.6g}\n", picked_->node,
+                                picked_->mesh, picked_->primitive, mat, double(picked_->distance));
+                } else {
+                    std::printf("{\"node\":null}\n");
+                }
+                std::fflush(stdout);
+                return false;  // the highlight shows in the next frame
+            }
+            if (c.name == "light") {
+                job_.lights.extra.push_back(parse_light(c.args[0]));  // checked when the script was read
+                return false;
+            }
+            if (c.name == "light-remove") {
+                std::size_t i = std::size_t(c.number(0));
+                if (i < job_.lights.extra.size()) job_.lights.extra.erase(job_.lights.extra.begin() + std::ptrdiff_t(i));
+                else failed("light-remove: no added light " + c.args[0]);
+                return false;
+            }
+            if (c.name == "orbit-lights") {
+                orbit_lights_ = c.args[0] == "on";
+                return false;
+            }
+            if (c.name == "hide" || c.name == "show") {
+                std::size_t n = std::size_t(c.number(0));
+                if (!scene_ || n >= scene_->nodes.size()) failed(c.name + ": no node " + c.args[0]);
+                else set_node_visible(int(n), c.name == "show");
+                return false;
+            }
             if (c.name == "orbit") job_.camera = orbit(job_.camera, -c.number(0), c.number(1), 1.0f);
             else if (c.name == "pan") job_.camera = pan(job_.camera, view, c.number(0), c.number(1));
             else if (c.name == "dolly") job_.camera = dolly(job_.camera, view, c.number(0));
@@ -453,6 +491,7 @@ private:
             uploading = true;
             renderer_->set_scene(*scene, resolved.scene_index);
             scene_ = std::move(scene);
+            picked_.reset();
             original_materials_ = scene_->materials;
             materials_edited_ = false;
             job_ = job;
@@ -661,7 +700,7 @@ private:
 
     // --- auto-rotate -----------------------------------------------------------------
 
-    bool spinning() const { return spin_camera_ || spin_environment_; }
+    bool spinning() const { return spin_camera_ || spin_environment_ || (orbit_lights_ && !job_.lights.extra.empty()); }
     // Turns the camera (about the target) and/or the environment by 30 degrees a second.
     void spin() {
         auto now = Clock::now();
@@ -674,6 +713,293 @@ private:
             job_.camera.yaw_deg = std::remainder(job_.camera.yaw_deg + step, 360.0f);
         }
         if (spin_environment_) job_.environment.rotation_deg = std::remainder(job_.environment.rotation_deg + step, 360.0f);
+        if (orbit_lights_) orbit_added_lights(step);
+    }
+
+    // "Orbit lights around the model": the added lights turn about +Y through the bounds' centre.
+    void orbit_added_lights(float degrees) {
+        const float a = glm::radians(degrees);
+        const glm::mat3 r(glm::vec3(std::cos(a), 0.0f, -std::sin(a)), glm::vec3(0.0f, 1.0f, 0.0f),
+                          glm::vec3(std::sin(a), 0.0f, std::cos(a)));
+        const glm::vec3 c = bounds_.empty ? glm::vec3(0.0f) : bounds_.center();
+        for (LightInstance& l : job_.lights.extra) {
+            l.direction = glm::normalize(r * l.direction);
+            l.position = c + r * (l.position - c);
+        }
+    }
+
+    // --- lights, picking and the scene tree -------------------------------------------
+
+    // A window point (ImGui coordinates: points from the top left) as a world-space ray of the
+    // last frame's camera.
+    bool window_ray(glm::vec2 point, glm::vec3& origin, glm::vec3& direction) const {
+        if (!last_camera_) return false;
+        gui::Size win = window_->window_size();
+        if (win.width <= 0 || win.height <= 0) return false;
+        const glm::mat4 inv = glm::inverse(last_camera_->projection * last_camera_->view);
+        const float x = 2.0f * point.x / float(win.width) - 1.0f, y = 1.0f - 2.0f * point.y / float(win.height);
+        glm::vec4 a = inv * glm::vec4(x, y, -1.0f, 1.0f), b = inv * glm::vec4(x, y, 1.0f, 1.0f);
+        if (a.w == 0.0f || b.w == 0.0f) return false;
+        origin = glm::vec3(a) / a.w;
+        direction = glm::normalize(glm::vec3(b) / b.w - origin);
+        return std::isfinite(direction.x);
+    }
+    // A world point on the window (ImGui points), or nothing behind the camera.
+    std::optional<glm::vec2> to_window(glm::vec3 p) const {
+        if (!last_camera_) return std::nullopt;
+        gui::Size win = window_->window_size();
+        glm::vec4 c = last_camera_->projection * last_camera_->view * glm::vec4(p, 1.0f);
+        if (!(c.w > 1e-6f)) return std::nullopt;
+        return glm::vec2((c.x / c.w * 0.5f + 0.5f) * float(win.width), (0.5f - c.y / c.w * 0.5f) * float(win.height));
+    }
+    // Where a directional light's handle sits: on a sphere around the model, towards the light.
+    float handle_radius() const { return bounds_.empty ? 1.0f : std::max(bounds_.radius() * 1.25f, 1e-3f); }
+    glm::vec3 light_handle(const LightInstance& l) const {
+        if (l.type != Light::Type::Directional) return l.position;
+        return (bounds_.empty ? glm::vec3(0.0f) : bounds_.center()) - l.direction * handle_radius();
+    }
+
+    // The click selection at a window point: the nearest visible primitive, or none.
+    void pick_at(glm::vec2 point) {
+        picked_.reset();
+        glm::vec3 o, d;
+        if (!scene_ || !window_ray(point, o, d)) return;
+        picked_ = pick(*scene_, resolved_.instances, o, d);
+        if (picked_) {
+            const Primitive& p = scene_->meshes[std::size_t(picked_->mesh)].primitives[std::size_t(picked_->primitive)];
+            if (p.material >= 0) edit_material_ = p.material;
+        }
+    }
+
+    // Left-button drags of a light's handle: a directional light turns to where the ray meets
+    // the handle sphere; a point or spot light moves in the plane through it facing the camera.
+    // True while a handle is being dragged (the camera stays).
+    bool drag_lights(const ImGuiIO& io) {
+        if (!gui_visible_ || !show_gizmos_) return false;
+        glm::vec2 mouse(io.MousePos.x, io.MousePos.y);
+        if (io.MouseClicked[0] && !io.KeyShift) {
+            dragging_light_ = -1;
+            float best = 10.0f;  // points
+            for (int i = 0; i < int(job_.lights.extra.size()); ++i)
+                if (auto s = to_window(light_handle(job_.lights.extra[std::size_t(i)])); s && glm::distance(*s, mouse) < best)
+                    best = glm::distance(*s, mouse), dragging_light_ = i;
+            if (dragging_light_ >= 0) selected_light_ = dragging_light_;
+        }
+        if (!io.MouseDown[0]) dragging_light_ = -1;
+        if (dragging_light_ < 0 || dragging_light_ >= int(job_.lights.extra.size())) return false;
+        glm::vec3 o, d;
+        if (!window_ray(mouse, o, d)) return true;
+        LightInstance& l = job_.lights.extra[std::size_t(dragging_light_)];
+        if (l.type == Light::Type::Directional) {
+            const glm::vec3 c = bounds_.empty ? glm::vec3(0.0f) : bounds_.center();
+            const float r = handle_radius();
+            // Nearest point of the ray to the centre, pushed out to the sphere.
+            const float t = glm::dot(c - o, d);
+            glm::vec3 p = o + d * t;
+            const float h2 = r * r - glm::dot(p - c, p - c);
+            if (h2 > 0.0f) p = o + d * (t - std::sqrt(h2));  // the near side
+            if (glm::length(p - c) > 1e-6f) l.direction = -glm::normalize(p - c);
+        } else if (last_camera_) {
+            const glm::vec3 n = glm::normalize(last_camera_->eye - last_camera_->target);
+            const float den = glm::dot(d, n);
+            if (std::fabs(den) > 1e-6f) {
+                const float t = glm::dot(l.position - o, n) / den;
+                if (t > 0.0f) l.position = o + d * t;
+            }
+        }
+        return true;
+    }
+
+    // Light handles and the picked primitive's box, under the panels.
+    void draw_gizmos() {
+        if (!last_camera_ || !scene_) return;
+        ImDrawList* dl = ImGui::GetBackgroundDrawList();
+        if (picked_ && std::size_t(picked_->instance) < resolved_.instances.size()) {
+            Bounds b = primitive_world_bounds(*scene_, resolved_.instances[std::size_t(picked_->instance)], picked_->primitive);
+            if (!b.empty) {
+                std::optional<glm::vec2> s[8];
+                for (int c = 0; c < 8; ++c)
+                    s[c] = to_window(glm::vec3((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y, (c & 4) ? b.max.z : b.min.z));
+                for (int a = 0; a < 8; ++a)
+                    for (int bit : {1, 2, 4})
+                        if (!(a & bit) && s[a] && s[a | bit])
+                            dl->AddLine(ImVec2(s[a]->x, s[a]->y), ImVec2(s[a | bit]->x, s[a | bit]->y), IM_COL32(255, 220, 40, 230), 1.5f);
+            }
+        }
+        if (!show_gizmos_) return;
+        const glm::vec3 c = bounds_.empty ? glm::vec3(0.0f) : bounds_.center();
+        auto draw_light = [&](const LightInstance& l, bool added, bool selected) {
+            ImU32 col = !added ? IM_COL32(160, 160, 160, 200) : selected ? IM_COL32(255, 220, 40, 255) : IM_COL32(255, 255, 255, 230);
+            glm::vec3 h = added ? light_handle(l) : (l.type == Light::Type::Directional ? c - l.direction * handle_radius() : l.position);
+            auto s = to_window(h);
+            if (!s) return;
+            ImVec2 at(s->x, s->y);
+            if (l.type == Light::Type::Directional) {
+                if (auto sc = to_window(c)) dl->AddLine(at, ImVec2(sc->x, sc->y), col, 1.0f);
+            } else if (l.type == Light::Type::Spot) {
+                if (auto e = to_window(l.position + l.direction * handle_radius() * 0.3f)) dl->AddLine(at, ImVec2(e->x, e->y), col, 2.0f);
+            }
+            dl->AddCircleFilled(at, 6.0f, col);
+            dl->AddCircle(at, 8.0f, IM_COL32(0, 0, 0, 200), 0, 1.5f);
+        };
+        // The scene's lights (resolved_.lights: the scene's, then the added ones), grey, not draggable.
+        if (!resolved_.default_lights && resolved_.lights.size() >= job_.lights.extra.size())
+            for (std::size_t i = 0; i < resolved_.lights.size() - job_.lights.extra.size(); ++i)
+                draw_light(resolved_.lights[i], false, false);
+        for (std::size_t i = 0; i < job_.lights.extra.size(); ++i)
+            draw_light(job_.lights.extra[i], true, int(i) == selected_light_);
+    }
+
+    static const char* light_type_name(Light::Type t) {
+        return t == Light::Type::Directional ? "directional" : t == Light::Type::Point ? "point" : "spot";
+    }
+
+    void draw_lights_panel() {
+        ImGui::Checkbox("scene lights##lights", &job_.lights.scene_lights);
+        ImGui::SameLine();
+        ImGui::Checkbox("gizmos", &show_gizmos_);
+        if (resolved_.default_lights)
+            ImGui::TextDisabled("default key + fill lights (the scene has none; adding one replaces them)");
+        const glm::vec3 c = bounds_.empty ? glm::vec3(0.0f) : bounds_.center();
+        const float r = handle_radius();
+        auto add = [&](Light::Type t) {
+            LightInstance l;
+            l.type = t;
+            l.direction = direction_from_angles(30.0f, 45.0f);
+            l.position = c - l.direction * r;
+            l.radiance = glm::vec3(t == Light::Type::Directional ? 3.0f : 3.0f * r * r);
+            l.outer_cone = glm::radians(30.0f);
+            l.inner_cone = glm::radians(15.0f);
+            job_.lights.extra.push_back(l);
+            selected_light_ = int(job_.lights.extra.size()) - 1;
+        };
+        if (ImGui::Button("+ directional")) add(Light::Type::Directional);
+        ImGui::SameLine();
+        if (ImGui::Button("+ point")) add(Light::Type::Point);
+        ImGui::SameLine();
+        if (ImGui::Button("+ spot")) add(Light::Type::Spot);
+        if (ImGui::Checkbox("orbit lights around the model", &orbit_lights_) && orbit_lights_) spin_last_.reset();
+        int remove = -1;
+        for (int i = 0; i < int(job_.lights.extra.size()); ++i) {
+            LightInstance& l = job_.lights.extra[std::size_t(i)];
+            ImGui::PushID(i);
+            bool open = ImGui::TreeNodeEx("light", ImGuiTreeNodeFlags_DefaultOpen | (i == selected_light_ ? ImGuiTreeNodeFlags_Selected : 0),
+                                          "%d: %s", i, light_type_name(l.type));
+            if (ImGui::IsItemClicked()) selected_light_ = i;
+            ImGui::SameLine();
+            if (ImGui::SmallButton("delete")) remove = i;
+            if (open) {
+                int type = int(l.type);
+                if (ImGui::Combo("type", &type, "directional\0point\0spot\0")) l.type = Light::Type(type);
+                if (l.type != Light::Type::Point) {  // where it shines from, as --light dir:AZ,EL
+                    glm::vec3 from = -l.direction;
+                    float el = glm::degrees(std::asin(std::clamp(from.y, -1.0f, 1.0f)));
+                    float az = glm::degrees(std::atan2(from.x, from.z));
+                    bool ch = ImGui::DragFloat("azimuth", &az, 0.5f, -180.0f, 180.0f, "%.1f deg");
+                    ch |= ImGui::DragFloat("elevation", &el, 0.5f, -90.0f, 90.0f, "%.1f deg");
+                    if (ch) l.direction = direction_from_angles(az, std::clamp(el, -90.0f, 90.0f));
+                }
+                if (l.type != Light::Type::Directional) ImGui::DragFloat3("position", &l.position.x, 0.01f * r);
+                float lum = std::max({l.radiance.x, l.radiance.y, l.radiance.z});
+                glm::vec3 color = lum > 0.0f ? l.radiance / lum : glm::vec3(1.0f);
+                bool ch = ImGui::ColorEdit3("colour", &color.x);
+                ch |= ImGui::DragFloat(l.type == Light::Type::Directional ? "lux" : "candela", &lum, 0.01f * std::max(lum, 1.0f), 0.0f, 1e6f);
+                if (ch) l.radiance = color * std::max(lum, 0.0f);
+                if (l.type != Light::Type::Directional) ImGui::DragFloat("range (0: infinite)", &l.range, 0.01f * r, 0.0f, 1e6f);
+                if (l.type == Light::Type::Spot) {
+                    float inner = glm::degrees(l.inner_cone), outer = glm::degrees(l.outer_cone);
+                    if (ImGui::DragFloatRange2("cone", &inner, &outer, 0.2f, 0.0f, 90.0f, "inner %.1f", "outer %.1f")) {
+                        l.outer_cone = glm::radians(std::clamp(outer, 0.1f, 90.0f));
+                        l.inner_cone = glm::radians(std::clamp(inner, 0.0f, glm::degrees(l.outer_cone) - 0.05f));
+                    }
+                }
+                ImGui::TreePop();
+            }
+            ImGui::PopID();
+        }
+        if (remove >= 0) {
+            job_.lights.extra.erase(job_.lights.extra.begin() + remove);
+            selected_light_ = -1;
+            dragging_light_ = -1;
+        }
+        ImGui::TextDisabled("drag a handle in the view to move a light");
+    }
+
+    std::string node_label(int n) const {
+        const Node& node = scene_->nodes[std::size_t(n)];
+        std::string s = node.name.empty() ? "node " + std::to_string(n) : node.name;
+        if (node.mesh >= 0) s += "  [mesh " + std::to_string(node.mesh) + "]";
+        if (node.light >= 0) s += "  [light " + std::to_string(node.light) + "]";
+        if (node.camera >= 0) s += "  [camera " + std::to_string(node.camera) + "]";
+        return s;
+    }
+
+    // One node of the scene tree: a visibility box, its children, its mesh's primitives.
+    void draw_tree_node(int n, int depth) {
+        if (n < 0 || std::size_t(n) >= scene_->nodes.size() || depth > 64) return;
+        Node& node = scene_->nodes[std::size_t(n)];
+        ImGui::PushID(n);
+        bool visible = node.visible;
+        if (ImGui::Checkbox("##visible", &visible)) set_node_visible(n, visible);
+        ImGui::SameLine();
+        const bool leaf = node.children.empty() && node.mesh < 0;
+        const bool selected = picked_ && picked_->node == n;
+        bool open = ImGui::TreeNodeEx("node", (leaf ? ImGuiTreeNodeFlags_Leaf : 0) | (selected ? ImGuiTreeNodeFlags_Selected : 0),
+                                      "%s", node_label(n).c_str());
+        if (open) {
+            if (node.mesh >= 0 && std::size_t(node.mesh) < scene_->meshes.size()) {
+                const auto& prims = scene_->meshes[std::size_t(node.mesh)].primitives;
+                for (int p = 0; p < int(prims.size()); ++p) {
+                    const int mat = prims[std::size_t(p)].material;
+                    std::string label = "primitive " + std::to_string(p) + ": " + std::to_string(prims[std::size_t(p)].triangle_count()) +
+                                        " triangles, material " +
+                                        (mat >= 0 ? std::to_string(mat) + " " + scene_->materials[std::size_t(mat)].name : "default");
+                    bool sel = picked_ && picked_->node == n && picked_->primitive == p;
+                    if (ImGui::Selectable((label + "##p" + std::to_string(p)).c_str(), sel)) select_primitive(n, p);
+                }
+            }
+            for (int child : node.children) draw_tree_node(child, depth + 1);
+            ImGui::TreePop();
+        }
+        ImGui::PopID();
+    }
+
+    void select_primitive(int node, int primitive) {
+        for (std::size_t i = 0; i < resolved_.instances.size(); ++i)
+            if (resolved_.instances[i].node == node) {
+                PickHit h;
+                h.instance = int(i);
+                h.node = node;
+                h.mesh = scene_->nodes[std::size_t(node)].mesh;
+                h.primitive = primitive;
+                picked_ = h;
+                const int mat = scene_->meshes[std::size_t(h.mesh)].primitives[std::size_t(primitive)].material;
+                if (mat >= 0) edit_material_ = mat;
+                return;
+            }
+    }
+
+    // KHR_node_visibility, live: the renderer's instances are read again.
+    void set_node_visible(int n, bool visible) {
+        scene_->nodes[std::size_t(n)].visible = visible;
+        renderer_->update_transforms();
+        if (picked_ && !visible) picked_.reset();
+    }
+
+    void draw_scene_tree() {
+        const Scene& s = *scene_;
+        ImGui::Text("%zu nodes, %zu meshes, %zu materials, %zu textures, %zu lights, %zu cameras", s.nodes.size(), s.meshes.size(),
+                    s.materials.size(), s.textures.size(), s.lights.size(), s.cameras.size());
+        if (picked_) {
+            ImGui::Text("selected: node %d, primitive %d", picked_->node, picked_->primitive);
+            ImGui::SameLine();
+            if (ImGui::SmallButton("clear")) picked_.reset();
+        } else {
+            ImGui::TextDisabled("click the model to select a primitive");
+        }
+        const int index = resolved_.scene_index >= 0 ? resolved_.scene_index : s.default_scene;
+        if (index >= 0 && std::size_t(index) < s.scenes.size())
+            for (int root : s.scenes[std::size_t(index)]) draw_tree_node(root, 0);
     }
 
     // --- input -----------------------------------------------------------------------
@@ -702,6 +1028,13 @@ private:
                 split_pos_ = std::clamp(io.MousePos.x / float(std::max(win.width, 1)), 0.0f, 1.0f);
                 return true;
             }
+        }
+        if (!io.WantCaptureMouse && drag_lights(io)) return true;
+        if (!io.WantCaptureMouse && io.MouseClicked[0]) press_at_ = glm::vec2(io.MousePos.x, io.MousePos.y), press_moved_ = false;
+        if (io.MouseDown[0] && glm::distance(glm::vec2(io.MousePos.x, io.MousePos.y), press_at_) > 3.0f) press_moved_ = true;
+        if (!io.WantCaptureMouse && io.MouseReleased[0] && !press_moved_ && !io.KeyShift) {
+            pick_at(press_at_);  // a click, not a drag: select what is under it
+            changed = true;
         }
         if (!io.WantCaptureMouse) {
             float dx = io.MouseDelta.x, dy = io.MouseDelta.y;
@@ -786,6 +1119,7 @@ private:
     int divider_pixels() const { return std::clamp(int(split_pos_ * float(fb_.width) + 0.5f), 0, fb_.width); }
 
     void draw_gui() {
+        draw_gizmos();
         if (split_) {  // the divider, over the frame and under the panels
             gui::Size win = window_->window_size();
             float x = split_pos_ * float(win.width);
@@ -911,6 +1245,8 @@ private:
                 ImGui::Checkbox("energy compensation##right", &split_output_.energy_compensation);
             }
         }
+        if (scene_ && ImGui::CollapsingHeader("Scene")) draw_scene_tree();
+        if (ImGui::CollapsingHeader("Lights")) draw_lights_panel();
         if (scene_ && !scene_->materials.empty() && ImGui::CollapsingHeader("Materials")) draw_material_editor();
         if (ImGui::CollapsingHeader("Statistics")) {
             ImGui::Text("%dx%d pixels, frame %.1f ms (CPU, draw + finish)", fb_.width, fb_.height, frame_ms_);
@@ -955,11 +1291,52 @@ private:
             e |= ImGui::SliderFloat("clearcoatFactor", &m.clearcoat->clearcoat_factor, 0.0f, 1.0f);
             e |= ImGui::SliderFloat("clearcoatRoughness", &m.clearcoat->clearcoat_roughness_factor, 0.0f, 1.0f);
         }
+        // The other extensions' factors, for the material's blocks (shaded ones change the frame).
+        if (m.sheen && ImGui::TreeNode("KHR_materials_sheen")) {
+            e |= ImGui::ColorEdit3("sheenColorFactor", &m.sheen->sheen_color_factor.x, ImGuiColorEditFlags_Float);
+            e |= ImGui::SliderFloat("sheenRoughnessFactor", &m.sheen->sheen_roughness_factor, 0.0f, 1.0f);
+            ImGui::TreePop();
+        }
+        if ((m.transmission || m.volume || m.dispersion) && ImGui::TreeNode("transmission, volume, dispersion")) {
+            if (m.transmission) e |= ImGui::SliderFloat("transmissionFactor", &m.transmission->transmission_factor, 0.0f, 1.0f);
+            if (m.volume) {
+                e |= ImGui::DragFloat("thicknessFactor", &m.volume->thickness_factor, 0.01f, 0.0f, 100.0f);
+                e |= ImGui::DragFloat("attenuationDistance", &m.volume->attenuation_distance, 0.01f, 1e-4f, 1e6f);
+                e |= ImGui::ColorEdit3("attenuationColor", &m.volume->attenuation_color.x, ImGuiColorEditFlags_Float);
+            }
+            if (m.dispersion) e |= ImGui::DragFloat("dispersion", &m.dispersion->dispersion, 0.01f, 0.0f, 10.0f);
+            ImGui::TreePop();
+        }
+        if (m.iridescence && ImGui::TreeNode("KHR_materials_iridescence")) {
+            e |= ImGui::SliderFloat("iridescenceFactor", &m.iridescence->iridescence_factor, 0.0f, 1.0f);
+            e |= ImGui::DragFloat("iridescenceIor", &m.iridescence->iridescence_ior, 0.005f, 1.0f, 3.0f);
+            e |= ImGui::DragFloatRange2("thickness (nm)", &m.iridescence->iridescence_thickness_minimum,
+                                        &m.iridescence->iridescence_thickness_maximum, 1.0f, 0.0f, 2000.0f);
+            ImGui::TreePop();
+        }
+        if (m.anisotropy && ImGui::TreeNode("KHR_materials_anisotropy")) {
+            e |= ImGui::SliderFloat("anisotropyStrength", &m.anisotropy->anisotropy_strength, 0.0f, 1.0f);
+            e |= ImGui::SliderAngle("anisotropyRotation", &m.anisotropy->anisotropy_rotation, -180.0f, 180.0f);
+            ImGui::TreePop();
+        }
+        if (m.diffuse_transmission && ImGui::TreeNode("KHR_materials_diffuse_transmission")) {
+            e |= ImGui::SliderFloat("diffuseTransmissionFactor", &m.diffuse_transmission->diffuse_transmission_factor, 0.0f, 1.0f);
+            e |= ImGui::ColorEdit3("diffuseTransmissionColorFactor", &m.diffuse_transmission->diffuse_transmission_color_factor.x);
+            ImGui::TreePop();
+        }
         const std::pair<const char*, const TextureSlot*> slots[] = {
             {"baseColor", &m.base_color}, {"metallicRoughness", &m.metallic_roughness}, {"normal", &m.normal},
             {"occlusion", &m.occlusion}, {"emissive", &m.emissive}};
-        for (const auto& [name, slot] : slots)
-            if (slot->valid()) ImGui::TextDisabled("%s texture %d (uv%d)", name, slot->texture, slot->tex_coord);
+        for (const auto& [name, slot] : slots) {
+            if (!slot->valid()) continue;
+            ImGui::TextDisabled("%s texture %d (uv%d)", name, slot->texture, slot->tex_coord);
+            if (auto t = renderer_->texture_preview(slot->texture); t && t->width > 0 && t->height > 0) {
+                const float h = 64.0f, w = std::min(h * float(t->width) / float(t->height), 256.0f);
+                ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(t->id)), ImVec2(w, h));
+                if (ImGui::IsItemHovered())
+                    ImGui::SetTooltip("%dx%d%s", t->width, t->height, t->srgb ? " (sRGB: shown decoded, darker)" : "");
+            }
+        }
         if (e) materials_edited_ = true;
         if (materials_edited_ && ImGui::Button("Revert all materials")) {
             mats = original_materials_;
@@ -1156,6 +1533,11 @@ private:
     std::vector<Material> original_materials_;
     bool materials_edited_ = false;
     int edit_material_ = 0;
+    bool orbit_lights_ = false, show_gizmos_ = true;
+    int selected_light_ = -1, dragging_light_ = -1;
+    std::optional<PickHit> picked_;
+    glm::vec2 press_at_{0.0f};
+    bool press_moved_ = false;
     bool split_ = false, dragging_divider_ = false;
     float split_pos_ = 0.5f;
     Job::Output split_output_;

@@ -41,7 +41,7 @@ std::string slurp(const fs::path& p) {
 
 struct Result {
     int exit_code = -1;
-    std::string err;
+    std::string err, out;
 };
 
 class View : public ::testing::Test {
@@ -92,9 +92,11 @@ exit $rc
             inner.append(" ");
             inner.append(quote(a));
         }
-        fs::path err = dir_ / "stderr.txt", rc = dir_ / "rc.txt";
+        fs::path err = dir_ / "stderr.txt", rc = dir_ / "rc.txt", out = dir_ / "stdout.txt";
         fs::remove(rc);
-        inner.append(" >/dev/null 2>");  // appended piece by piece: GCC 12 warns (-Wrestrict) on a + chain here
+        inner.append(" >");  // appended piece by piece: GCC 12 warns (-Wrestrict) on a + chain here
+        inner.append(quote(out.string()));
+        inner.append(" 2>");
         inner.append(quote(err.string()));
         inner.append(" </dev/null; echo $? >");
         inner.append(quote(rc.string()));
@@ -105,6 +107,7 @@ exit $rc
         Result r;
         std::istringstream(slurp(rc)) >> r.exit_code;  // -1 when the program never ran
         r.err = slurp(err);
+        r.out = slurp(out);
         return r;
     }
 
@@ -362,6 +365,42 @@ TEST_F(View, MaterialEditIsLiveAndRevertsExactly) {
     };
     EXPECT_GT(redness(red), redness(ref) + 5.0);
     for (int c = 0; c < 3; ++c) EXPECT_EQ(red.at(2, 2)[c], ref.at(2, 2)[c]) << c;
+}
+
+// The scene tree, picking and the lights panel's script twins: a click on the helmet selects
+// its one primitive (and a click on the background nothing); an added light changes the frame
+// as `render --light` would and removing it gives the first frame back; hiding node 0 (the
+// helmet) leaves the background, showing it restores the frame.
+TEST_F(View, PickingLightsAndNodeVisibility) {
+    fs::path model = kShared / "assets/models/DamagedHelmet/DamagedHelmet.glb";
+    if (!fs::exists(model)) GTEST_SKIP() << "needs " << model;
+    const std::string light = "spot:0,0,3,0,0,40,10,25,1,0.6,0.3";
+    auto shot = [&](const char* name) { return "screenshot " + (dir_ / name).string() + "\n"; };
+    std::ofstream(dir_ / "p.txt") << shot("first.png") << "pick 100 75\npick 3 3\n"
+                                  << "light " << light << "\n" << shot("lit.png") << "light-remove 0\n"
+                                  << shot("unlit.png") << "hide 0\n" << shot("hidden.png") << "show 0\n"
+                                  << shot("shown.png") << "quit\n";
+    Result r = run({"view", model.string(), "--size", "200x150", "--script", (dir_ / "p.txt").string()}, true);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("{\"node\":0,\"mesh\":0,\"primitive\":0,\"material\":0,"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("{\"node\":null}"), std::string::npos) << r.out;
+    Result rr = run({"render", model.string(), "--size", "200x150", "--light", light, "-o", (dir_ / "render_lit.png").string()},
+                    false);
+    ASSERT_EQ(rr.exit_code, 0) << rr.err;
+    auto img = [&](const char* name) { return fresnel::read_image8(dir_ / name); };
+    const fresnel::Image8 first = img("first.png"), lit = img("lit.png");
+    EXPECT_GE(fresnel::compare_images(lit, img("render_lit.png"), false).psnr_db, 40.0);
+    EXPECT_LT(fresnel::compare_images(lit, first, false).psnr_db, 30.0);  // the light changed the frame
+    EXPECT_GE(fresnel::compare_images(img("unlit.png"), first, false).psnr_db, 60.0);
+    EXPECT_GE(fresnel::compare_images(img("shown.png"), first, false).psnr_db, 60.0);
+    // Hidden: the centre shows the grey studio background instead of the helmet.
+    const fresnel::Image8 hidden = img("hidden.png");
+    const std::uint8_t* h = hidden.at(100, 75);
+    EXPECT_LE(std::abs(int(h[0]) - int(h[1])) + std::abs(int(h[1]) - int(h[2])), 8) << int(h[0]) << " " << int(h[1]) << " " << int(h[2]);
+    int moved = 0;
+    for (int c = 0; c < 3; ++c) moved = std::max(moved, std::abs(int(h[c]) - int(first.at(100, 75)[c])));
+    EXPECT_GT(moved, 20);
+    EXPECT_LT(fresnel::compare_images(hidden, first, false).psnr_db, 25.0);
 }
 
 // "Save scene": a scripted session moves the camera, the environment and the tone mapping,

@@ -76,7 +76,9 @@ std::vector<LightInstance> default_lights() {
 LightInstance parse_light(const std::string& spec) {
     auto colon = spec.find(':');
     auto fail = [&](const std::string& why) -> void { throw Error("--light", spec, why); };
-    if (colon == std::string::npos) fail("expected dir:AZIMUTH,ELEVATION,LUX[,R,G,B] or point:X,Y,Z,CANDELA[,R,G,B]");
+    if (colon == std::string::npos)
+        fail("expected dir:AZIMUTH,ELEVATION,LUX[,R,G,B], point:X,Y,Z,CANDELA[,R,G,B] or "
+             "spot:X,Y,Z,AZIMUTH,ELEVATION,CANDELA,INNER,OUTER[,R,G,B]");
     std::string kind = spec.substr(0, colon);
     std::vector<float> v;
     std::stringstream ss(spec.substr(colon + 1));
@@ -105,8 +107,20 @@ LightInstance parse_light(const std::string& spec) {
         l.position = {v[0], v[1], v[2]};
         if (v.size() == 7) color = {v[4], v[5], v[6]};
         l.radiance = color * v[3];
+    } else if (kind == "spot") {
+        if (v.size() != 8 && v.size() != 11) fail("spot: needs X,Y,Z,AZIMUTH,ELEVATION,CANDELA,INNER,OUTER[,R,G,B]");
+        l.type = Light::Type::Spot;
+        l.position = {v[0], v[1], v[2]};
+        l.direction = direction_from_angles(v[3], v[4]);  // it shines as a dir light from AZIMUTH,ELEVATION would
+        const float deg = 3.14159265358979f / 180.0f;
+        l.inner_cone = v[6] * deg;
+        l.outer_cone = v[7] * deg;
+        // KHR_lights_punctual's ranges: 0 <= inner < outer <= pi/2.
+        if (!(v[6] >= 0.0f && v[6] < v[7] && v[7] <= 90.0f)) fail("spot cone angles need 0 <= INNER < OUTER <= 90 degrees");
+        if (v.size() == 11) color = {v[8], v[9], v[10]};
+        l.radiance = color * v[5];
     } else {
-        fail("unknown light type '" + kind + "' (use dir or point)");
+        fail("unknown light type '" + kind + "' (use dir, point or spot)");
     }
     if (l.radiance.x < 0 || l.radiance.y < 0 || l.radiance.z < 0) fail("intensity and colour must not be negative");
     return l;

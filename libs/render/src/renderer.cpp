@@ -788,6 +788,15 @@ ImageF Renderer::render(const CameraSetup& cam, const std::vector<LightInstance>
     return img;
 }
 
+std::optional<Renderer::TexturePreview> Renderer::texture_preview(int texture) const {
+    for (bool srgb : {false, true}) {
+        auto it = impl_->textures.find({texture, srgb});
+        if (it != impl_->textures.end() && it->second.texture)
+            return TexturePreview{it->second.texture.id(), it->second.texture.width(), it->second.texture.height(), srgb};
+    }
+    return std::nullopt;
+}
+
 void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& lights, const RenderSettings& settings,
                     FrameStats* stats_out) {
     draw(cam, lights, settings, RenderTarget::offscreen(), stats_out);

@@ -77,13 +77,27 @@ TEST(ParseLight, PointForms) {
     expect_near(l.radiance, glm::vec3(0.0f), 0.0f, "zero intensity is allowed");
 }
 
+TEST(ParseLight, SpotForms) {
+    // Above the origin, shining straight down (as a dir light from elevation 90 travels).
+    LightInstance l = parse_light("spot:0,2,0,0,90,50,10,30");
+    EXPECT_EQ(l.type, Light::Type::Spot);
+    expect_near(l.position, {0.0f, 2.0f, 0.0f}, 1e-6f, "position");
+    expect_near(l.direction, {0.0f, -1.0f, 0.0f}, 1e-6f, "aimed down");
+    EXPECT_NEAR(l.inner_cone, 10.0f * 3.14159265f / 180.0f, 1e-6f);
+    EXPECT_NEAR(l.outer_cone, 30.0f * 3.14159265f / 180.0f, 1e-6f);
+    expect_near(l.radiance, glm::vec3(50.0f), 1e-5f, "white, 50 cd");
+    l = parse_light("spot:1,2,3,-90,10,4,0,45,1,0.5,0");
+    expect_near(l.direction, travel(-90, 10), 1e-6f, "direction as dir: travels");
+    expect_near(l.radiance, {4.0f, 2.0f, 0.0f}, 1e-6f, "colour times candela");
+}
+
 TEST(ParseLight, ErrorsNameTheOptionTheSpecAndTheReason) {
     struct Case {
         const char* spec;
         const char* reason;  // a part of the message
     };
     const Case cases[] = {
-        {"", "expected dir:AZIMUTH,ELEVATION,LUX[,R,G,B] or point:X,Y,Z,CANDELA[,R,G,B]"},
+        {"", "expected dir:AZIMUTH,ELEVATION,LUX[,R,G,B], point:X,Y,Z,CANDELA[,R,G,B] or spot:"},
         {"dir", "expected dir:"},
         {"30,45,3", "expected dir:"},
         {"dir:", "dir: needs AZIMUTH,ELEVATION,LUX[,R,G,B]"},
@@ -94,7 +108,10 @@ TEST(ParseLight, ErrorsNameTheOptionTheSpecAndTheReason) {
         {"point:1,2,3", "point: needs X,Y,Z,CANDELA[,R,G,B]"},
         {"point:1,2,3,4,5", "point: needs"},
         {"point:1,2,3,4,5,6,7,8", "point: needs"},
-        {"spot:1,2,3,4", "unknown light type 'spot' (use dir or point)"},
+        {"spot:1,2,3,4", "spot: needs X,Y,Z,AZIMUTH,ELEVATION,CANDELA,INNER,OUTER[,R,G,B]"},
+        {"spot:0,1,0,0,90,5,30,20", "0 <= INNER < OUTER <= 90"},
+        {"spot:0,1,0,0,90,5,10,95", "0 <= INNER < OUTER <= 90"},
+        {"cone:1,2,3,4", "unknown light type 'cone' (use dir, point or spot)"},
         {"DIR:30,45,3", "unknown light type 'DIR'"},
         {"dir:a,45,3", "'a' is not a number"},
         {"dir:30,45,3x", "'3x' is not a number"},

@@ -39,7 +39,9 @@ std::vector<LightInstance> default_lights();
 // tracer shades punctual lights with it).
 glm::vec3 light_incident(const LightInstance& light, glm::vec3 position, glm::vec3& l, float& distance);
 
-// Parses the CLI forms "dir:AZ,EL,LUX[,R,G,B]" and "point:X,Y,Z,CANDELA[,R,G,B]".
+// Parses the CLI forms "dir:AZ,EL,LUX[,R,G,B]", "point:X,Y,Z,CANDELA[,R,G,B]" and
+// "spot:X,Y,Z,AZ,EL,CANDELA,INNER,OUTER[,R,G,B]" (aimed as a dir light from AZ,EL travels;
+// cone half-angles in degrees, 0 <= INNER < OUTER <= 90).
 // Throws fresnel::Error (file "--light") on malformed input.
 LightInstance parse_light(const std::string& spec);
 

@@ -164,6 +164,16 @@ public:
     // Number of shader variants compiled so far (they are cached by feature set).
     std::size_t program_count() const;
 
+    // The uploaded texture of the scene's texture `texture` (for a GUI's thumbnails): the
+    // GPU layer's texture name and size; nothing when the renderer has not uploaded it. The
+    // linear upload is preferred; a texture only materials read as sRGB gives that one.
+    struct TexturePreview {
+        unsigned id = 0;
+        int width = 0, height = 0;
+        bool srgb = false;
+    };
+    std::optional<TexturePreview> texture_preview(int texture) const;
+
     // Development (`fresnel view --shaders DIR`): shader files from `folder` (a copy of
     // shaders/) instead of the embedded ones. reload_shaders() reads them again and recompiles
     // every program, all or nothing: on an error the programs stay as they were and the error
