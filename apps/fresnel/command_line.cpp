@@ -122,6 +122,8 @@ std::string render_command_line(const Job& job, const std::string& output) {
     }
     if (job.source.allow_external_files) add("--allow-external-files");
     if (job.source.pose_skins) add("--pose-skins");
+    if (job.source.obj_normals != Job::Source::ObjNormals::Auto)
+        add("--obj-normals", job.source.obj_normals == Job::Source::ObjNormals::Smooth ? "smooth" : "groups");
     return line;
 }
 

@@ -175,7 +175,11 @@ std::optional<Job> job_from_options(const RenderOptions& o, Job job, const Given
     if (given("--tonemap")) out.tone_mapper = *tone;
     if (given("--encoding")) out.encoding = *encoding;
     if (given("--debug")) out.debug = *debug;
-    if (given("--msaa")) out.msaa = o.msaa;
+    if (o.msaa > 0) {
+        if (given("--msaa")) out.msaa = o.msaa;
+    } else if (given("--shading") && (out.shading == ShadingModel::Ogl1 || out.shading == ShadingModel::Ogl1Pixel)) {
+        out.msaa = 1;  // no --msaa: OpenGL 1's framebuffer has no multisampling (nor has ogl1-ref's)
+    }
     if (given("--anisotropy")) out.anisotropy = o.anisotropy;
     if (given("--exposure")) out.exposure_ev = o.exposure;
     if (given("--no-energy-compensation")) out.energy_compensation = !o.no_energy_compensation;
@@ -183,6 +187,10 @@ std::optional<Job> job_from_options(const RenderOptions& o, Job job, const Given
     if (given("--scene")) job.source.scene = o.scene;
     if (given("--allow-external-files")) job.source.allow_external_files = o.allow_external;
     if (given("--pose-skins")) job.source.pose_skins = o.pose_skins;
+    if (given("--obj-normals")) {
+        using N = Job::Source::ObjNormals;
+        job.source.obj_normals = o.obj_normals == "smooth" ? N::Smooth : o.obj_normals == "groups" ? N::Groups : N::Auto;
+    }
     if (given("--variant")) job.source.variant = o.variant;
 
     // A camera flag given on the command line replaces a scene file's camera.
@@ -357,7 +365,8 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
                     "(shining as a dir light from AZIMUTH,ELEVATION; cone half-angles in degrees); repeatable");
     cmd->add_flag("--no-scene-lights", o->no_scene_lights, "Ignore the file's KHR_lights_punctual lights");
     if (raster) {
-        cmd->add_option("--msaa", o->msaa, "MSAA samples (1 = off)")->capture_default_str()->check(CLI::Range(1, 16));
+        cmd->add_option("--msaa", o->msaa, "MSAA samples (1 = off; --shading ogl1 and ogl1-pixel default to 1, as OpenGL 1)")
+            ->default_str("4")->check(CLI::Range(1, 16));
         cmd->add_option("--anisotropy", o->anisotropy,
                         "Anisotropic filtering of the detail maps (base colour, metallic-roughness, normal, specular "
                         "colour, clearcoat normal) with trilinear samplers, 1 = off. 16 matches the Khronos Sample "
@@ -377,6 +386,12 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
             ->capture_default_str()
             ->check(CLI::IsMember({"gl33", "es3"}));
     }
+    cmd->add_option("--obj-normals", o->obj_normals,
+                    "OBJ corners without vn: groups (honour s; none means flat, as the OBJ specification says), smooth "
+                    "(a normal per position whatever the groups, as OpenGL 1 viewers like rgl and ogl1-ref do) or auto "
+                    "(smooth with --shading ogl1 or ogl1-pixel, groups otherwise)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"auto", "groups", "smooth"}));
     cmd->add_flag("--pose-skins", o->pose_skins,
                   "Pose skinned meshes by their joints' rest transforms (default: the bind pose, as the Khronos "
                   "Sample Renderer's reference images show)");

@@ -34,7 +34,7 @@ struct RenderOptions {
     std::string background;
     std::vector<std::string> lights;
     bool no_scene_lights = false;
-    int msaa = 4;
+    int msaa = 0;  // 0: not given (4, or 1 with --shading ogl1 / ogl1-pixel)
     float anisotropy = 16;
     std::string debug = "none";
     bool json = false;
@@ -42,6 +42,7 @@ struct RenderOptions {
     bool gl_debug = false;
     std::string gl = "gl33";
     bool pose_skins = false;
+    std::string obj_normals = "auto";
     std::string variant;  // KHR_materials_variants name; empty = the default materials
     std::string env;
     bool env_given = false;

@@ -22,6 +22,9 @@ Scene load_scene(const Job& job, Diagnostics& diag) {
     if (is_obj_path(job.source.model)) {
         ObjLoadOptions oo;
         oo.allow_external_files = job.source.allow_external_files;
+        using N = Job::Source::ObjNormals;
+        const bool ogl1 = job.output.shading == ShadingModel::Ogl1 || job.output.shading == ShadingModel::Ogl1Pixel;
+        oo.smooth_without_groups = job.source.obj_normals == N::Smooth || (job.source.obj_normals == N::Auto && ogl1);
         return load_obj(job.source.model, diag, oo);
     }
     GltfLoadOptions lo;

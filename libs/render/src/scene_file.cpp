@@ -486,6 +486,8 @@ void read_render(const Reader& r, const json& o, Job& job) {
         auto m = parse_shading_model(r.string(*v, at(ptr, "shading")));
         if (!m) r.fail(at(ptr, "shading"), "must be auto, gltf, ogl1, ogl1-pixel or blinn-phong-normalized");
         out.shading = *m;
+        // OpenGL 1's framebuffer has no multisampling: without a "msaa" of its own, none.
+        if ((out.shading == ShadingModel::Ogl1 || out.shading == ShadingModel::Ogl1Pixel) && !r.find(o, "msaa")) out.msaa = 1;
     }
 }
 
@@ -537,7 +539,7 @@ SceneFile parse_scene_document(const json& doc, const std::string& name, const f
     Reader r(name, base_dir, diag, options);
     if (!doc.is_object()) r.fail("", "a scene file is a JSON object");
     r.keys(doc, "", {"fresnel", "$schema", "description", "model", "models", "camera", "lights", "sceneLights",
-                     "environment", "background", "render", "output", "poseSkins", "variant"},
+                     "environment", "background", "render", "output", "poseSkins", "variant", "objNormals"},
            ignore);
     if (auto* v = r.find(doc, "fresnel")) {
         int version = r.integer(*v, "/fresnel", 1, 1 << 30);
@@ -555,6 +557,14 @@ SceneFile parse_scene_document(const json& doc, const std::string& name, const f
     Job& job = sf.job;
     read_models(r, doc, job);
     if (auto* v = r.find(doc, "poseSkins")) job.source.pose_skins = r.boolean(*v, "/poseSkins");
+    if (auto* v = r.find(doc, "objNormals")) {
+        const std::string s = r.string(*v, "/objNormals");
+        using N = Job::Source::ObjNormals;
+        if (s == "auto") job.source.obj_normals = N::Auto;
+        else if (s == "groups") job.source.obj_normals = N::Groups;
+        else if (s == "smooth") job.source.obj_normals = N::Smooth;
+        else r.fail("/objNormals", "must be auto, groups or smooth");
+    }
     if (auto* v = r.find(doc, "variant")) job.source.variant = r.string(*v, "/variant");
     if (auto* v = r.find(doc, "camera")) read_camera(r, *v, job);
     if (auto* v = r.find(doc, "lights")) {
@@ -729,6 +739,8 @@ json scene_document(const Job& job, const fs::path& base_dir, const std::optiona
     }
     if (!job.source.variant.empty()) doc["variant"] = job.source.variant;
     if (job.source.pose_skins) doc["poseSkins"] = true;
+    if (job.source.obj_normals != Job::Source::ObjNormals::Auto)
+        doc["objNormals"] = job.source.obj_normals == Job::Source::ObjNormals::Smooth ? "smooth" : "groups";
 
     // Camera.
     const Job::Camera& c = job.camera;

@@ -86,6 +86,24 @@ glm::dvec3 newell(const std::vector<glm::dvec3>& p) {
     return n;
 }
 
+// Whether a polygon given in 2D, counter-clockwise, is convex (every turn left or straight)
+// and turns once around (a star pentagon turns left everywhere too, twice around).
+bool convex_polygon(const std::vector<glm::dvec2>& pts) {
+    const std::size_t n = pts.size();
+    if (n < 3) return false;
+    glm::dvec2 lo = pts[0], hi = pts[0];
+    for (const auto& p : pts) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const double extent = std::max(hi.x - lo.x, hi.y - lo.y), eps = extent * extent * 1e-12;
+    double turning = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::dvec2 u = pts[i] - pts[(i + n - 1) % n], v = pts[(i + 1) % n] - pts[i];
+        const double c = u.x * v.y - u.y * v.x;
+        if (c < -eps) return false;
+        if (glm::length(u) > 0 && glm::length(v) > 0) turning += std::atan2(c, glm::dot(u, v));
+    }
+    return turning < 2.0 * 3.14159265358979 * 1.5;  // once around (2 pi), not twice (4 pi)
+}
+
 // Ear clipping of a simple polygon given in 2D, counter-clockwise. Writes triangles as
 // local index triples. `budget` counts vertex tests; returns false (output unchanged) when
 // it runs out. Self-touching polygons (repeated vertices) and collinear runs are handled by
@@ -805,7 +823,15 @@ private:
                         glm::dvec3 w = glm::cross(nn, u);
                         flat2d.clear();
                         for (const auto& q : poly) flat2d.emplace_back(glm::dot(q, u), glm::dot(q, w));
-                        done = ear_clip(flat2d, local, budget_);
+                        // Convex: the fan from the first corner, as OpenGL's GL_POLYGON and most
+                        // loaders triangulate (so Gouraud shading interpolates as theirs does);
+                        // concave: ear clipping.
+                        if (convex_polygon(flat2d)) {
+                            for (std::uint32_t i = 1; i + 1 < f.count; ++i) local.insert(local.end(), {0u, i, i + 1});
+                            done = true;
+                        } else {
+                            done = ear_clip(flat2d, local, budget_);
+                        }
                     }
                     if (!done) {
                         if (len > 0) ++fanned;

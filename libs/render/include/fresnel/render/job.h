@@ -67,6 +67,11 @@ struct Job {
         };
         std::vector<Model> models;
         std::string variant;                // KHR_materials_variants name; empty = the default materials
+        // OBJ corners without `vn`: Groups honours `s` (the specification: none means flat),
+        // Smooth gives them a normal per position whatever the groups (what OpenGL 1 viewers
+        // such as rgl, and ogl1-ref, do); Auto is Smooth under Output::shading ogl1 or
+        // ogl1-pixel, Groups otherwise.
+        enum class ObjNormals { Auto, Groups, Smooth } obj_normals = ObjNormals::Auto;
         bool operator==(const Source&) const = default;
     };
     // The orbit camera of README.md's camera convention, or the file's camera N.
