@@ -55,7 +55,7 @@ const isModel = name => /\.(glb|gltf)$/i.test(name);
 const isEnv = name => /\.(hdr|exr)$/i.test(name);
 const baseName = name => name.split('/').pop();
 const dirName = name => name.includes('/') ? name.substring(0, name.lastIndexOf('/')) : '';
-const join = (dir, name) => (dir ? `${dir}/${name}` : name);
+const join = (dir, name) => (dir && name ? `${dir}/${name}` : dir || name);
 // A `fresnel bake` folder's manifest, and scene files (any other .json).
 const isBakeManifest = name => baseName(name) === 'manifest.json';
 const isScene = name => /\.json$/i.test(name) && !isBakeManifest(name) && baseName(name) !== 'irradiance_sh.json';
@@ -242,16 +242,29 @@ async function fetchScene(url) {
     if (env && safe(env)) {
         try {
             if (isEnv(env)) writeFile(join(dir, env), await fetchBytes(new URL(env, abs).href));
-            else {
-                const folder = new URL(env.replace(/\/?$/, '/'), abs);
-                const manifest = await fetchBytes(new URL('manifest.json', folder).href);
-                writeFile(join(dir, join(env, 'manifest.json')), manifest);
-                const listed = JSON.parse(new TextDecoder().decode(manifest)).files || [];
-                for (const f of listed.filter(f => typeof f === 'string' && safe(f) && !f.startsWith('preview/')))
-                    try { writeFile(join(dir, join(env, f)), await fetchBytes(new URL(f, folder).href)); } catch (e) { /* reported on load */ }
-            }
+            else await fetchBakeFolder(new URL(env, abs).href, join(dir, env));
         } catch (e) { /* the parser names the missing file */ }
     }
+    return `${dir}/${name}`;
+}
+// A `fresnel bake` folder by URL: its manifest and the files the manifest lists (previews left
+// out), written into the folder `into`; returns `into`.
+async function fetchBakeFolder(url, into) {
+    const folder = new URL(url.replace(/\/?$/, '/'), location.href);
+    const manifest = await fetchBytes(new URL('manifest.json', folder).href);
+    writeFile(join(into, 'manifest.json'), manifest);
+    let listed = [];
+    try { listed = JSON.parse(new TextDecoder().decode(manifest)).files || []; } catch (e) { /* load_baked says why */ }
+    const safe = f => typeof f === 'string' && !f.startsWith('/') && !f.split('/').includes('..') && !f.startsWith('preview/');
+    for (const f of listed.filter(safe))
+        try { writeFile(join(into, f), await fetchBytes(new URL(f, folder).href)); } catch (e) { /* reported on load */ }
+    return into;
+}
+// An environment by URL: a panorama, or a `fresnel bake` folder (a URL without .hdr/.exr); its path here.
+async function fetchEnvironment(url) {
+    const name = decodeURIComponent(new URL(url, location.href).pathname.replace(/\/$/, '').split('/').pop());
+    if (!isEnv(name)) return fetchBakeFolder(url, `/files/${++folders}/${name || 'baked'}`);
+    const dir = writeFiles(await fetchFiles(url));
     return `${dir}/${name}`;
 }
 async function openScene(url) {
@@ -605,7 +618,10 @@ async function main() {
         try {
             status('loading the scene file…');
             const path = await fetchScene(params.get('scene'));
+            let env = null;  // ?env= overrides the file's environment, as --env does
+            if (params.has('env')) env = /^(studio|none|auto)$|^color:/.test(params.get('env')) ? params.get('env') : await fetchEnvironment(params.get('env'));
             await openScenePath(path, () => {
+                if (env) set('env', env);
                 for (const key of SETTINGS) if (params.has(key)) set(key, params.get(key));
                 lightParams();
             });
@@ -617,10 +633,10 @@ async function main() {
         return;
     }
     try {
-        if (params.has('env')) {
+        if (params.has('env') && /^(studio|none|auto)$|^color:/.test(params.get('env'))) set('env', params.get('env'));
+        else if (params.has('env')) {
             status('loading the environment…');
-            const dir = writeFiles(await fetchFiles(params.get('env')));
-            set('env', `${dir}/${decodeURIComponent(new URL(params.get('env'), location.href).pathname.split('/').pop())}`);
+            set('env', await fetchEnvironment(params.get('env')));
         }
         let model = params.get('model');
         if (model === null) model = (await fetch(DEFAULT_MODEL, { method: 'HEAD' }).then(r => r.ok, () => false)) ? DEFAULT_MODEL : '';

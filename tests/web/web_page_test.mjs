@@ -133,8 +133,23 @@ try {
         check(!err && d >= 30 && vsShaded < d - 5,
               `--debug ${channel}: ${d.toFixed(2)} dB against fresnel render --debug ${channel} (${vsShaded.toFixed(2)} dB against the shaded frame)${err ? ': ' + err : ''}`);
     }
-    // Another model by URL: a .gltf whose buffer and texture the page fetches beside it.
     await page.evaluate(() => window.fresnel.set('debug', 'none'));
+    // A `fresnel bake` folder picked (its files), instead of the page's own bake.
+    const bakedFiles = fs.readdirSync(path.join(sceneDir, 'studio.baked')).map(f => path.join(sceneDir, 'studio.baked', f));
+    const pick = async (p, selector, files, done) => {
+        const before = await p.evaluate(() => window.fresnel.frames());
+        await p.setInputFiles(selector, files);
+        await p.waitForFunction(([n, d]) => window.fresnel.error() || (window.fresnel.frames() > n && new Function('s', d)(window.fresnel.state())),
+                                [before, done], { timeout: 60000, polling: 50 });
+        return p.evaluate(() => window.fresnel.error());
+    };
+    const bakeError = await pick(page, '#bake-files', bakedFiles, 'return !s.environment.endsWith(".hdr")');
+    await canvasPng(path.join(outDir, 'web_baked.png'));
+    const pb = psnr(path.join(outDir, 'web_baked.png'), path.join(outDir, 'cli.png'));
+    const bakedEnv = await page.evaluate(() => window.fresnel.state().environment);
+    check(!bakeError && pb >= 30 && !/\.hdr$/.test(bakedEnv),
+          `a picked fresnel bake folder as the environment (${bakedEnv}): ${pb.toFixed(2)} dB against fresnel render${bakeError ? ': ' + bakeError : ''}`);
+    // Another model by URL: a .gltf whose buffer and texture the page fetches beside it.
     const gltfError = await page.evaluate(async u => {
         try { await window.fresnel.openUrl(u); return ''; } catch (e) { return e.message; }
     }, `/assets/${gltfRel}`);
@@ -179,13 +194,20 @@ try {
         check(mats.length >= 1 && pe < 30 && pr >= 50, `material ${mats[0] && mats[0].name}: base colour edit ${pe.toFixed(2)} dB (< 30), revert ${pr.toFixed(2)} dB (>= 50)`);
 
         // Lights: adding one changes the frame, removing it restores it.
-        await scenePage.evaluate(() => window.fresnel.addLight('point:0,0,2,20,0.3,0.5,1'));
+        await scenePage.evaluate(() => window.fresnel.addLight('point:0,0,2,80,0.3,0.5,1'));
         const lit = await shot('web_scene_light.png');
         const n = await scenePage.evaluate(() => window.fresnel.state().lights.filter(l => l.origin === 'extra').length);
         await scenePage.evaluate(k => window.fresnel.removeLight(k - 1), n);
         const unlit = await shot('web_scene_unlit.png');
         const pl = psnr(lit, sceneShot), pu = psnr(unlit, sceneShot);
         check(n === 2 && pl < 35 && pu >= 50, `an added point light: ${pl.toFixed(2)} dB (< 35), removed ${pu.toFixed(2)} dB (>= 50)`);
+
+        // The scene file picked with the files it names (without their folder): found by name.
+        await scenePage.evaluate(() => window.fresnel.set('yaw', 120));
+        const pickError = await pick(scenePage, '#scene-file', [path.join(sceneDir, 'helmet.fresnel.json'), path.join(sceneDir, 'DamagedHelmet.glb'), ...bakedFiles],
+                                     'return s.yaw === -35');
+        const pp = psnr(await shot('web_scene_picked.png'), path.join(outDir, 'cli_scene.png'));
+        check(!pickError && pp >= 30, `the scene file picked with its files: ${pp.toFixed(2)} dB against fresnel render SCENE.fresnel.json${pickError ? ': ' + pickError : ''}`);
         const err = await scenePage.evaluate(() => window.fresnel.error());
         check(!err, `no error in the scene page${err ? ': ' + err : ''}`);
     }
