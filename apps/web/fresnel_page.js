@@ -4,6 +4,9 @@
 // `fresnel render`. URL parameters use the CLI's names and meanings:
 //   ?model=URL&env=URL&yaw=DEG&pitch=DEG&size=WxH&tonemap=NAME&debug=CHANNEL&exposure=EV
 //   &env-intensity=X&env-rotation=DEG&background=env|blur|transparent|R,G,B&distance=K&fov=DEG&msaa=N
+//   &brdf=D=..,G=..,F=..,diffuse=..&light=SPEC (repeatable, as --light)&no-scene-lights&no-ibl
+//   ?scene=URL: a *.fresnel.json scene file (same origin; the files it names are fetched beside it),
+//   read as `fresnel render SCENE.fresnel.json` reads it; the other parameters then override it as flags do.
 // window.fresnelReady becomes true once the first complete frame of what was asked is on the
 // canvas; window.fresnelError holds the message when loading failed. window.fresnel is the
 // page's interface for scripts and tests (set, openFiles, openUrl, draw, screenshot).
@@ -13,7 +16,7 @@ const $ = id => document.getElementById(id);
 const canvas = $('canvas');
 const params = new URLSearchParams(location.search);
 const SETTINGS = ['size', 'yaw', 'pitch', 'distance', 'fov', 'msaa', 'anisotropy', 'tonemap', 'encoding', 'exposure',
-                  'debug', 'env-intensity', 'env-rotation', 'background'];
+                  'debug', 'env-intensity', 'env-rotation', 'background', 'brdf'];
 const DEFAULT_MODEL = 'models/DamagedHelmet.glb';  // copied here by `make web` when ../shared has it
 
 let M = null, app = 0, frames = 0, drawPending = false;
@@ -50,6 +53,29 @@ function writeFiles(files) {
 }
 const isModel = name => /\.(glb|gltf)$/i.test(name);
 const isEnv = name => /\.(hdr|exr)$/i.test(name);
+const baseName = name => name.split('/').pop();
+const dirName = name => name.includes('/') ? name.substring(0, name.lastIndexOf('/')) : '';
+const join = (dir, name) => (dir && name ? `${dir}/${name}` : dir || name);
+// A `fresnel bake` folder's manifest, and scene files (any other .json).
+const isBakeManifest = name => baseName(name) === 'manifest.json';
+const isScene = name => /\.json$/i.test(name) && !isBakeManifest(name) && baseName(name) !== 'irradiance_sh.json';
+const exists = path => { try { M.FS.stat(path); return true; } catch (e) { return false; } };
+function writeFile(path, bytes) {
+    M.FS.mkdirTree(dirName(path));
+    M.FS.writeFile(path, bytes);
+}
+// The files a scene file names, relative to its folder: its models and its environment file
+// (a panorama or a `fresnel bake` folder). The C++ parser checks the rest.
+function sceneReferences(doc) {
+    const models = [];
+    if (doc && typeof doc.model === 'string' && doc.model !== 'demo') models.push(doc.model);
+    for (const m of (doc && Array.isArray(doc.models) ? doc.models : []))
+        if (m && typeof m.path === 'string' && m.path && m.path !== 'demo' && m.visible !== false) models.push(m.path);
+    const e = doc && doc.environment;
+    let env = typeof e === 'string' ? e : e && typeof e === 'object' && typeof e.file === 'string' ? e.file : null;
+    if (env && (/^(studio|none|auto)$/.test(env) || env.startsWith('color:'))) env = null;
+    return { models, env };
+}
 
 // Draws one frame now (baking the environment first when it changed). Throws the error.
 function drawNow() {
@@ -134,8 +160,19 @@ async function openFiles(files) {
     }
 }
 async function openFilesOrThrow(files) {
+    const scene = files.find(f => isScene(f.name));
+    if (scene) return openSceneFiles(scene, files);
+    const manifest = files.find(f => isBakeManifest(f.name));
+    if (manifest && !files.some(f => isModel(f.name))) {  // a folder written by `fresnel bake`
+        const dir = writeFiles(files);
+        set('env', join(dir, dirName(manifest.name)) || dir);
+        await draw();
+        syncPanel();
+        if (!$('error').hidden) throw new Error($('error').textContent);
+        return;
+    }
     const model = files.find(f => isModel(f.name)), env = files.find(f => isEnv(f.name));
-    if (!model && !env) throw new Error(`${files.map(f => f.name).join(', ')}: not a .glb, .gltf, .hdr or .exr file`);
+    if (!model && !env) throw new Error(`${files.map(f => f.name).join(', ')}: not a .glb, .gltf, .hdr, .exr, scene (.json) file or bake folder`);
     const dir = writeFiles(files);
     if (model) {
         status(`loading ${model.name}…`);
@@ -147,7 +184,97 @@ async function openFilesOrThrow(files) {
     }
     if (env) set('env', `${dir}/${env.name}`);
     await draw();
+    syncPanel();
     if (!$('error').hidden) throw new Error($('error').textContent);
+}
+// A scene file among picked or dropped files (a folder, or the files it names picked with it):
+// every file is written at its place under a fresh folder; a file the scene names but that
+// was picked without its folder is found by its name (and its neighbours put beside it).
+async function openSceneFiles(scene, files) {
+    const dir = writeFiles(files);
+    let doc = null;
+    try { doc = JSON.parse(new TextDecoder().decode(scene.bytes)); } catch (e) { /* the parser says why */ }
+    const { models, env } = sceneReferences(doc);
+    const sceneDir = join(dir, dirName(scene.name));
+    const others = files.filter(f => f !== scene);
+    for (const ref of models) {
+        const path = join(sceneDir, ref);
+        if (exists(path)) continue;
+        for (const f of others) if (!exists(join(dirName(path), baseName(f.name)))) writeFile(join(dirName(path), baseName(f.name)), f.bytes);
+    }
+    if (env) {
+        const path = join(sceneDir, env);
+        if (!exists(path)) {
+            if (isEnv(env)) { const f = others.find(f => baseName(f.name) === baseName(env)); if (f) writeFile(path, f.bytes); }
+            else for (const f of others) if (/\.(ktx2|json)$/i.test(f.name)) writeFile(join(path, baseName(f.name)), f.bytes);
+        }
+    }
+    await openScenePath(join(dir, scene.name));
+}
+// Loads the scene file at `path` (in the page's file system) and draws it.
+async function openScenePath(path, afterOpen) {
+    status(`loading ${baseName(path)}…`);
+    await paint();
+    if (!M.ccall('fresnel_open_scene', 'number', ['number', 'string'], [app, path])) throw new Error(lastError());
+    if (afterOpen) afterOpen();
+    $('warnings').textContent = plain(M.UTF8ToString(M._fresnel_warnings(app)));
+    $('warnings').hidden = !$('warnings').textContent;
+    await draw();
+    syncPanel();
+    if (!$('error').hidden) throw new Error($('error').textContent);
+}
+// A scene file by URL (same origin): it and the files it names, fetched beside it (a .gltf with
+// its buffers and images; a bake folder by its manifest's "files").
+async function fetchScene(url) {
+    const abs = new URL(url, location.href);
+    const name = decodeURIComponent(abs.pathname.split('/').pop());
+    const bytes = await fetchBytes(abs.href);
+    const dir = writeFiles([{ name, bytes }]);
+    let doc = null;
+    try { doc = JSON.parse(new TextDecoder().decode(bytes)); } catch (e) { return `${dir}/${name}`; }  // the parser says why
+    const { models, env } = sceneReferences(doc);
+    const safe = ref => !ref.startsWith('/') && !ref.split('/').includes('..') && !/^[a-z][a-z0-9+.-]*:/i.test(ref);
+    for (const ref of models.filter(safe)) {
+        try {
+            for (const f of await fetchFiles(new URL(ref, abs).href)) writeFile(join(dir, join(dirName(ref), f.name)), f.bytes);
+        } catch (e) { /* the parser names the missing file */ }
+    }
+    if (env && safe(env)) {
+        try {
+            if (isEnv(env)) writeFile(join(dir, env), await fetchBytes(new URL(env, abs).href));
+            else await fetchBakeFolder(new URL(env, abs).href, join(dir, env));
+        } catch (e) { /* the parser names the missing file */ }
+    }
+    return `${dir}/${name}`;
+}
+// A `fresnel bake` folder by URL: its manifest and the files the manifest lists (previews left
+// out), written into the folder `into`; returns `into`.
+async function fetchBakeFolder(url, into) {
+    const folder = new URL(url.replace(/\/?$/, '/'), location.href);
+    const manifest = await fetchBytes(new URL('manifest.json', folder).href);
+    writeFile(join(into, 'manifest.json'), manifest);
+    let listed = [];
+    try { listed = JSON.parse(new TextDecoder().decode(manifest)).files || []; } catch (e) { /* load_baked says why */ }
+    const safe = f => typeof f === 'string' && !f.startsWith('/') && !f.split('/').includes('..') && !f.startsWith('preview/');
+    for (const f of listed.filter(safe))
+        try { writeFile(join(into, f), await fetchBytes(new URL(f, folder).href)); } catch (e) { /* reported on load */ }
+    return into;
+}
+// An environment by URL: a panorama, or a `fresnel bake` folder (a URL without .hdr/.exr); its path here.
+async function fetchEnvironment(url) {
+    const name = decodeURIComponent(new URL(url, location.href).pathname.replace(/\/$/, '').split('/').pop());
+    if (!isEnv(name)) return fetchBakeFolder(url, `/files/${++folders}/${name || 'baked'}`);
+    const dir = writeFiles(await fetchFiles(url));
+    return `${dir}/${name}`;
+}
+async function openScene(url) {
+    try {
+        await openScenePath(await fetchScene(url));
+    } catch (e) {
+        showError(e.message);
+        status('error (the last good scene and environment stay)');
+        throw e;
+    }
 }
 async function fetchBytes(url) {
     const r = await fetch(url);
@@ -171,8 +298,30 @@ async function fetchFiles(url) {
     return files;
 }
 async function openUrl(url) { return openFiles(await fetchFiles(url)); }
+// Picked files, by their path in a picked folder (webkitdirectory) or their name.
 async function readPicked(list) {
-    return Promise.all([...list].map(async f => ({ name: f.name, bytes: new Uint8Array(await f.arrayBuffer()) })));
+    return Promise.all([...list].map(async f => ({ name: f.webkitRelativePath || f.name, bytes: new Uint8Array(await f.arrayBuffer()) })));
+}
+// Dropped files and folders (each file by its path under the dropped folder).
+async function readDropped(dt) {
+    const entries = [...dt.items].map(i => i.webkitGetAsEntry && i.webkitGetAsEntry()).filter(Boolean);
+    if (!entries.some(e => e.isDirectory)) return readPicked(dt.files);
+    const out = [];
+    const walk = async (entry, prefix) => {
+        if (entry.isFile) {
+            const f = await new Promise((res, rej) => entry.file(res, rej));
+            out.push({ name: prefix + f.name, bytes: new Uint8Array(await f.arrayBuffer()) });
+        } else if (entry.isDirectory) {
+            const reader = entry.createReader();
+            for (;;) {
+                const batch = await new Promise((res, rej) => reader.readEntries(res, rej));
+                if (!batch.length) break;
+                for (const e of batch) await walk(e, `${prefix}${entry.name}/`);
+            }
+        }
+    };
+    for (const e of entries) await walk(e, '');
+    return out;
 }
 function screenshot() {
     canvas.toBlob(blob => {
@@ -182,6 +331,161 @@ function screenshot() {
         a.click();
         setTimeout(() => URL.revokeObjectURL(a.href), 1000);
     }, 'image/png');
+}
+
+// Linear RGB (0..1) <-> the colour picker's sRGB hex.
+const toHex = rgb => '#' + rgb.map(c => {
+    c = Math.min(Math.max(c, 0), 1);
+    const e = c <= 0.0031308 ? 12.92 * c : 1.055 * Math.pow(c, 1 / 2.4) - 0.055;
+    return Math.round(e * 255).toString(16).padStart(2, '0');
+}).join('');
+const fromHex = hex => [1, 3, 5].map(i => {
+    const e = parseInt(hex.substr(i, 2), 16) / 255;
+    return e <= 0.04045 ? e / 12.92 : Math.pow((e + 0.055) / 1.055, 2.4);
+});
+const num = v => String(+Number(v).toFixed(4));
+const state = () => JSON.parse(M.UTF8ToString(M._fresnel_state(app)));
+const materials = () => JSON.parse(M.UTF8ToString(M._fresnel_materials(app)));
+function setMaterial(index, key, value) {
+    if (!M.ccall('fresnel_set_material', 'number', ['number', 'number', 'string', 'string'], [app, index, key, String(value)]))
+        throw new Error(lastError());
+}
+// A small labelled control: a range, number, colour or checkbox input calling `change(value)`.
+function field(parent, label, attrs, change) {
+    const l = document.createElement('label');
+    l.append(`${label} `);
+    const el = document.createElement('input');
+    Object.assign(el, attrs);
+    l.append(el);
+    const out = attrs.type === 'range' ? document.createElement('output') : null;
+    if (out) { out.textContent = num(el.value); l.append(out); }
+    el.addEventListener('input', () => {
+        if (out) out.textContent = num(el.value);
+        try { change(el.type === 'checkbox' ? el.checked : el.value); } catch (e) { showError(e.message); return; }
+        scheduleDraw();
+    });
+    parent.append(l);
+    return el;
+}
+
+// The lights of the frame: the scene's and the default pair (listed), the job's extra ones
+// (--light, a scene file's "lights"; edited, removed), and the switches of the CLI's flags.
+function buildLights(st) {
+    const box = $('lights');
+    box.textContent = '';
+    $('scene-lights').checked = st.sceneLights;
+    $('ibl').checked = st.ibl;
+    const describe = l => l.type === 'directional' ? `from azimuth ${num(l.azimuth)}, elevation ${num(l.elevation)}, ${num(l.intensity)} lux`
+                                                   : `at ${l.position.map(num).join(', ')}, ${num(l.intensity)} cd`;
+    const extras = st.lights.filter(l => l.origin === 'extra');
+    for (const l of [...st.lights, ...st.hiddenSceneLights]) {
+        const row = document.createElement('div');
+        row.className = 'light' + (l.origin === 'scene-off' ? ' off' : '');
+        const title = { scene: 'scene', 'scene-off': 'scene (off)', default: 'default', extra: `light ${l.index + 1}` }[l.origin];
+        row.append(`${title}: ${l.type} ${l.origin === 'extra' ? '' : describe(l)}`);
+        if (l.origin === 'extra') {
+            const spec = () => {
+                const [r, g, b] = fromHex(color.value).map(num);
+                return l.type === 'directional' ? `dir:${a.value},${e.value},${i.value},${r},${g},${b}`
+                                                : `point:${x.value},${y.value},${z.value},${i.value},${r},${g},${b}`;
+            };
+            const apply = () => set(`light:${l.index}`, spec());
+            let a, e, x, y, z;
+            if (l.type === 'directional') {
+                a = field(row, 'azimuth', { type: 'range', min: -180, max: 180, step: 1, value: num(l.azimuth) }, apply);
+                e = field(row, 'elevation', { type: 'range', min: -90, max: 90, step: 1, value: num(l.elevation) }, apply);
+            } else if (l.type === 'point') {
+                x = field(row, 'x', { type: 'number', step: 0.1, value: num(l.position[0]) }, apply);
+                y = field(row, 'y', { type: 'number', step: 0.1, value: num(l.position[1]) }, apply);
+                z = field(row, 'z', { type: 'number', step: 0.1, value: num(l.position[2]) }, apply);
+            }
+            let color = { value: toHex(l.color) }, i = { value: num(l.intensity) };
+            if (l.type !== 'spot') {  // a scene file's spot lights: listed and removable (--light has no spot form)
+                color = field(row, 'colour', { type: 'color', value: toHex(l.color) }, apply);
+                i = field(row, l.type === 'directional' ? 'lux' : 'candela', { type: 'number', min: 0, step: 0.1, value: num(l.intensity) }, apply);
+            }
+            const remove = document.createElement('button');
+            remove.textContent = 'remove';
+            remove.addEventListener('click', () => { try { set('light-remove', l.index); } catch (err) { showError(err.message); } draw().then(syncPanel); });
+            row.append(' ', remove);
+        }
+        box.append(row);
+    }
+    $('add-dir').dataset.next = $('add-point').dataset.next = String(extras.length);
+}
+
+// The material editor: the scene's materials; the factors of the core and of the extensions
+// the material has. Edits show at the next frame; revert restores the material as loaded.
+function buildMaterial(list) {
+    const box = $('material-controls'), select = $('material');
+    const keep = select.value;
+    select.textContent = '';
+    list.forEach(m => select.add(new Option(`${m.index}: ${m.name || '(unnamed)'}`, String(m.index))));
+    if (list.some(m => String(m.index) === keep)) select.value = keep;
+    box.textContent = '';
+    const m = list.find(x => String(x.index) === select.value);
+    if (!m) { box.textContent = list.length ? '' : 'no materials (the default material)'; return; }
+    const edit = key => value => setMaterial(m.index, key, value);
+    const range = (label, key, value, min, max, step = 0.01) => field(box, label, { type: 'range', min, max, step, value }, edit(key));
+    const colour = (label, key, rgb) => field(box, label, { type: 'color', value: toHex(rgb) }, v => setMaterial(m.index, key, fromHex(v).join(',')));
+    const base = m.baseColorFactor;
+    const baseColor = field(box, 'base colour', { type: 'color', value: toHex(base.slice(0, 3)) },
+                            v => setMaterial(m.index, 'baseColorFactor', [...fromHex(v), alpha.value].join(',')));
+    const alpha = field(box, 'alpha', { type: 'range', min: 0, max: 1, step: 0.01, value: base[3] },
+                        v => setMaterial(m.index, 'baseColorFactor', [...fromHex(baseColor.value), v].join(',')));
+    range('metallic', 'metallicFactor', m.metallicFactor, 0, 1);
+    range('roughness', 'roughnessFactor', m.roughnessFactor, 0, 1);
+    colour('emissive', 'emissiveFactor', m.emissiveFactor);
+    range('emissive strength', 'emissiveStrength', m.emissiveStrength, 0, 20, 0.1);
+    range('normal scale', 'normalScale', m.normalScale, 0, 2);
+    range('occlusion strength', 'occlusionStrength', m.occlusionStrength, 0, 1);
+    if (m.alphaMode === 'MASK') range('alpha cutoff', 'alphaCutoff', m.alphaCutoff, 0, 1);
+    range('ior', 'ior', m.ior, 1, 3);
+    const section = title => { const h = document.createElement('h2'); h.textContent = title; box.append(h); };
+    if (m.clearcoat) {
+        section('KHR_materials_clearcoat');
+        range('clearcoat', 'clearcoatFactor', m.clearcoat.clearcoatFactor, 0, 1);
+        range('clearcoat roughness', 'clearcoatRoughnessFactor', m.clearcoat.clearcoatRoughnessFactor, 0, 1);
+    }
+    if (m.sheen) {
+        section('KHR_materials_sheen');
+        colour('sheen colour', 'sheenColorFactor', m.sheen.sheenColorFactor);
+        range('sheen roughness', 'sheenRoughnessFactor', m.sheen.sheenRoughnessFactor, 0, 1);
+    }
+    if (m.transmission) {
+        section('KHR_materials_transmission');
+        range('transmission', 'transmissionFactor', m.transmission.transmissionFactor, 0, 1);
+    }
+    if (m.specular) {
+        section('KHR_materials_specular');
+        range('specular', 'specularFactor', m.specular.specularFactor, 0, 1);
+        colour('specular colour', 'specularColorFactor', m.specular.specularColorFactor);
+    }
+}
+
+// The panel's controls from the job (after a scene file, a model, URL parameters).
+function syncPanel() {
+    const st = state();
+    const pick = (id, value) => {
+        const el = $(id);
+        if (el.tagName === 'SELECT' && ![...el.options].some(o => o.value === String(value))) el.add(new Option(String(value), String(value)));
+        el.value = String(value);
+        const out = el.parentElement.querySelector('output');
+        if (out) out.textContent = id === 'env-rotation' ? `${el.value}°` : el.value;
+    };
+    pick('tonemap', st.tonemap);
+    pick('exposure', num(st.exposure));
+    pick('env-intensity', num(st.envIntensity));
+    pick('env-rotation', num(st.envRotation));
+    pick('background', st.background);
+    pick('debug', st.debug);
+    for (const term of st.brdf.split(',')) {
+        const [key, value] = term.split('=');
+        if ($(`brdf-${key}`)) pick(`brdf-${key}`, value);
+    }
+    $('energy-compensation').checked = st.energyCompensation;
+    buildLights(st);
+    buildMaterial(materials());
 }
 
 function bindPanel() {
@@ -204,6 +508,38 @@ function bindPanel() {
     control('tonemap', 'tonemap');
     control('exposure', 'exposure');
     control('debug', 'debug');
+    for (const key of ['D', 'G', 'F', 'diffuse']) {
+        const el = $(`brdf-${key}`);
+        for (const n of M.UTF8ToString(M.ccall('fresnel_brdf_names', 'number', ['number', 'string'], [app, key])).split(' ')) el.add(new Option(n, n));
+        el.addEventListener('input', () => {
+            const terms = ['D', 'G', 'F', 'diffuse'].map(k => `${k}=${$(`brdf-${k}`).value}`).join(',');
+            try { set('brdf', terms); } catch (e) { showError(e.message); return; }
+            scheduleDraw();
+        });
+    }
+    const toggle = (id, apply) => $(id).addEventListener('input', async () => {
+        try { apply($(id).checked); } catch (e) { showError(e.message); }
+        await draw();
+        syncPanel();
+    });
+    toggle('scene-lights', on => set('scene-lights', on ? 1 : 0));
+    toggle('ibl', on => set('no-ibl', on ? 0 : 1));
+    toggle('energy-compensation', on => set('energy-compensation', on ? 1 : 0));
+    const add = spec => async () => {
+        try { set(`light:${$('add-dir').dataset.next || 0}`, spec); } catch (e) { showError(e.message); }
+        await draw();
+        syncPanel();
+    };
+    $('add-dir').addEventListener('click', add('dir:30,45,3'));
+    $('add-point').addEventListener('click', add('point:0,1,1,5'));
+    $('material').addEventListener('input', () => buildMaterial(materials()));
+    $('material-revert').addEventListener('click', () => {
+        try { setMaterial(Number($('material').value), 'reset', ''); } catch (e) { showError(e.message); }
+        buildMaterial(materials());
+        scheduleDraw();
+    });
+    const pickFiles = id => $(id).addEventListener('change', async e => { try { await openFiles(await readPicked(e.target.files)); } catch (err) { showError(err.message); } });
+    for (const id of ['scene-file', 'scene-folder', 'bake-folder', 'bake-files']) pickFiles(id);
     for (const [key, id] of [['tonemap', 'tonemap'], ['debug', 'debug'], ['exposure', 'exposure'],
                              ['env-intensity', 'env-intensity'], ['env-rotation', 'env-rotation'], ['background', 'background']])
         if (params.has(key)) $(id).value = params.get(key);
@@ -243,7 +579,7 @@ function bindPanel() {
     view.addEventListener('drop', async e => {
         e.preventDefault();
         view.classList.remove('dragging');
-        try { await openFiles(await readPicked(e.dataTransfer.files)); } catch (err) { showError(err.message); }
+        try { await openFiles(await readDropped(e.dataTransfer)); } catch (err) { showError(err.message); }
     });
 }
 
@@ -262,14 +598,45 @@ async function main() {
     try {
         for (const key of SETTINGS) if (params.has(key)) set(key, params.get(key));
     } catch (e) { fail(e.message); }
+    // The CLI's light flags (--light replaces a scene file's lights, as on the command line).
+    const lightParams = () => {
+        const lights = params.getAll('light');
+        if (lights.length) set('lights-clear', '');
+        lights.forEach((spec, i) => set(`light:${i}`, spec));
+        if (params.has('no-scene-lights')) set('scene-lights', 0);
+        if (params.has('no-ibl')) set('no-ibl', 1);
+    };
+    try { lightParams(); } catch (e) { fail(e.message); }
     bindPanel();
-    window.fresnel = { set: (k, v) => { set(k, v); return draw(); }, openFiles, openUrl, draw, drawNow, screenshot,
+    const redraw = async () => { await draw(); syncPanel(); };
+    window.fresnel = { set: (k, v) => { set(k, v); return redraw(); }, openFiles, openUrl, openScene, draw, drawNow, screenshot,
+                       state, materials, setMaterial: (i, k, v) => { setMaterial(i, k, v); return draw(); },
+                       addLight: spec => { set(`light:${state().lights.filter(l => l.origin === 'extra').length}`, spec); return redraw(); },
+                       removeLight: i => { set('light-remove', i); return redraw(); },
                        frames: () => frames, error: () => ($('error').hidden ? '' : $('error').textContent) };
+    if (params.has('scene')) {  // a scene file: read as `fresnel render SCENE` reads it, then the other parameters as flags
+        try {
+            status('loading the scene file…');
+            const path = await fetchScene(params.get('scene'));
+            let env = null;  // ?env= overrides the file's environment, as --env does
+            if (params.has('env')) env = /^(studio|none|auto)$|^color:/.test(params.get('env')) ? params.get('env') : await fetchEnvironment(params.get('env'));
+            await openScenePath(path, () => {
+                if (env) set('env', env);
+                for (const key of SETTINGS) if (params.has(key)) set(key, params.get(key));
+                lightParams();
+            });
+        } catch (e) {
+            fail(e.message);
+        }
+        status('ready');
+        requestAnimationFrame(() => { window.fresnelReady = true; });
+        return;
+    }
     try {
-        if (params.has('env')) {
+        if (params.has('env') && /^(studio|none|auto)$|^color:/.test(params.get('env'))) set('env', params.get('env'));
+        else if (params.has('env')) {
             status('loading the environment…');
-            const dir = writeFiles(await fetchFiles(params.get('env')));
-            set('env', `${dir}/${decodeURIComponent(new URL(params.get('env'), location.href).pathname.split('/').pop())}`);
+            set('env', await fetchEnvironment(params.get('env')));
         }
         let model = params.get('model');
         if (model === null) model = (await fetch(DEFAULT_MODEL, { method: 'HEAD' }).then(r => r.ok, () => false)) ? DEFAULT_MODEL : '';
@@ -286,6 +653,7 @@ async function main() {
         await paint();
         drawNow();
         $('progress').hidden = true;
+        syncPanel();
     } catch (e) {
         fail(e.message);
     }

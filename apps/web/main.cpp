@@ -6,12 +6,16 @@
 #include <emscripten/emscripten.h>
 #include <emscripten/html5.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "fresnel/core/error.h"
 #include "fresnel/gpu/context.h"
@@ -19,6 +23,7 @@
 #include "fresnel/render/job.h"
 #include "fresnel/render/orbit_controller.h"
 #include "fresnel/render/renderer.h"
+#include "fresnel/render/scene_file.h"
 
 namespace fresnel::web {
 namespace {
@@ -41,6 +46,41 @@ bool parse_rgb(const std::string& s, glm::vec3& out) {
     return bool(in >> out.x >> c1 >> out.y >> c2 >> out.z) && c1 == ',' && c2 == ',' && in.peek() == EOF;
 }
 
+// "A,B,..." with exactly `n` finite numbers.
+std::vector<float> parse_floats(const std::string& key, const std::string& s, std::size_t n) {
+    std::vector<float> v;
+    std::stringstream in(s);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        float f = 0;
+        if (!parse_float(item, f) || !std::isfinite(f)) throw Error(key, "", "not a number: '" + item + "'");
+        v.push_back(f);
+    }
+    if (v.size() != n) throw Error(key, "", std::to_string(n) + " comma-separated numbers expected, got '" + s + "'");
+    return v;
+}
+
+std::string debug_name(DebugChannel c) {
+    for (const std::string& n : debug_channel_names())
+        if (parse_debug_channel(n) == c) return n;
+    return "none";
+}
+
+// A light as the page edits it: the CLI's --light terms (arriving from azimuth/elevation, or
+// a position; colour and intensity = radiance split at its largest component).
+nlohmann::json light_json(const LightInstance& l, const std::string& origin, int index) {
+    float intensity = std::max({l.radiance.x, l.radiance.y, l.radiance.z, 0.0f});
+    glm::vec3 color = intensity > 0 ? l.radiance / intensity : glm::vec3(1.0f);
+    glm::vec3 from = -l.direction;
+    const float deg = 180.0f / 3.14159265358979f;
+    const char* type = l.type == Light::Type::Directional ? "directional" : l.type == Light::Type::Point ? "point" : "spot";
+    return {{"origin", origin}, {"index", index}, {"type", type},
+            {"azimuth", std::atan2(from.x, from.z) * deg}, {"elevation", std::asin(std::clamp(from.y, -1.0f, 1.0f)) * deg},
+            {"position", {l.position.x, l.position.y, l.position.z}}, {"color", {color.x, color.y, color.z}},
+            {"intensity", intensity}};
+}
+nlohmann::json vec(glm::vec3 v) { return {v.x, v.y, v.z}; }
+
 struct App {
     std::string canvas;
     std::unique_ptr<gpu::Context> context;
@@ -59,6 +99,8 @@ struct App {
     // baked folder, or the bake's error. `pending` is the key handed out by pending_bake().
     std::map<std::string, std::string> baked_folders, bake_errors;
     std::string pending;
+    std::vector<Material> loaded_materials;  // the scene's materials as loaded (the editor's "revert")
+    Job::Environment environment_before_no_ibl;  // what `no-ibl 0` turns back to
 
     // Sets one of the CLI's job settings by its flag name (without the dashes).
     void set(const std::string& key, const std::string& value) {
@@ -108,6 +150,38 @@ struct App {
             else if (value == "transparent") b.mode = Job::Background::Mode::Transparent;
             else if (parse_rgb(value, b.color)) b.mode = Job::Background::Mode::Color;
             else throw Error("--background", "", "env, blur, transparent or R,G,B expected, got '" + value + "'");
+        } else if (key == "brdf") {  // --brdf D=...,G=...,F=...,diffuse=...
+            std::string why;
+            auto m = brdf::parse_brdf_model(value, &why);
+            if (!m) throw Error("--brdf", "", why);
+            job.output.brdf = *m;
+        } else if (key == "scene-lights") {  // 0: --no-scene-lights
+            job.lights.scene_lights = value != "0";
+        } else if (key == "no-ibl") {  // 1: --no-ibl; 0: the environment set before
+            using Kind = Job::Environment::Kind;
+            if (value != "0" && job.environment.kind != Kind::None) {
+                environment_before_no_ibl = job.environment;
+                job.environment.kind = Kind::None;
+            } else if (value == "0" && job.environment.kind == Kind::None) {
+                job.environment = environment_before_no_ibl;
+                if (job.environment.kind == Kind::None) job.environment.kind = Kind::Automatic;
+            }
+        } else if (key == "energy-compensation") {  // 0: --no-energy-compensation
+            job.output.energy_compensation = value != "0";
+        } else if (key.rfind("light:", 0) == 0) {  // light:N = --light SPEC (N = the count adds one)
+            float n = 0;
+            if (!parse_float(key.substr(6), n) || n < 0 || n > float(job.lights.extra.size()))
+                throw Error("--light", "", "no light " + key.substr(6));
+            LightInstance l = parse_light(value);
+            if (std::size_t(n) == job.lights.extra.size()) job.lights.extra.push_back(l);
+            else job.lights.extra[std::size_t(n)] = l;
+        } else if (key == "light-remove") {
+            float n = 0;
+            if (!parse_float(value, n) || n < 0 || n >= float(job.lights.extra.size()))
+                throw Error("--light", "", "no light " + value);
+            job.lights.extra.erase(job.lights.extra.begin() + std::ptrdiff_t(n));
+        } else if (key == "lights-clear") {
+            job.lights.extra.clear();
         } else if (key == "size") {
             int w = 0, h = 0;
             char x = 0;
@@ -131,14 +205,144 @@ struct App {
         j.camera.target.reset();
         j.camera.scene_camera.reset();
         j.camera.look_at.reset();
+        j.source.models.clear();
         Diagnostics diag;
+        show(j, diag);
+    }
+
+    // Loads a scene file (docs/scene-file.md) as `fresnel render SCENE.fresnel.json` does:
+    // read onto the default job by the CLI's parser; the canvas takes its size. Its models and
+    // environment are files the page wrote beside it. What was shown stays when it fails.
+    void open_scene_file(const std::string& path) {
+        Job defaults;
+        defaults.environment.use_cache = false;
+        Diagnostics diag;
+        SceneFile sf = load_scene_file(path, defaults, diag);
+        sf.job.environment.use_cache = false;
+        show(sf.job, diag);
+        set("size", std::to_string(job.output.width) + "x" + std::to_string(job.output.height));
+    }
+
+    void show(const Job& j, Diagnostics& diag) {
         auto s = std::make_unique<Scene>(load_scene(j, diag));
         ResolvedJob r = resolve(j, *s);
         renderer->set_scene(*s, r.scene_index);
         scene = std::move(s);
+        loaded_materials = scene->materials;
         job = j;
         warnings.clear();
         for (const std::string& line : diag.lines()) warnings += line + "\n";
+    }
+
+    // The material editor: one factor of material `index` by its glTF name (the scene
+    // file's override names, and the extensions' factors of the blocks the material has);
+    // "reset" restores the material as loaded. The renderer reads the scene's materials at
+    // every frame, so the next frame shows it.
+    void set_material(int index, const std::string& key, const std::string& value) {
+        if (!scene || index < 0 || std::size_t(index) >= scene->materials.size())
+            throw Error("material", "", "no material " + std::to_string(index));
+        Material& m = scene->materials[std::size_t(index)];
+        auto number = [&] { return parse_floats(key, value, 1)[0]; };
+        auto rgb = [&] { auto v = parse_floats(key, value, 3); return glm::vec3(v[0], v[1], v[2]); };
+        auto need = [&](bool has, const char* ext) {
+            if (!has) throw Error(m.name.empty() ? "material " + std::to_string(index) : m.name, "", std::string("has no ") + ext);
+        };
+        if (key == "reset") m = loaded_materials.at(std::size_t(index));
+        else if (key == "baseColorFactor") { auto v = parse_floats(key, value, 4); m.base_color_factor = {v[0], v[1], v[2], v[3]}; }
+        else if (key == "metallicFactor") m.metallic_factor = number();
+        else if (key == "roughnessFactor") m.roughness_factor = number();
+        else if (key == "emissiveFactor") m.emissive_factor = rgb();
+        else if (key == "emissiveStrength") {
+            if (!m.emissive_strength) m.emissive_strength.emplace();
+            m.emissive_strength->emissive_strength = number();
+        } else if (key == "normalScale") m.normal_scale = number();
+        else if (key == "occlusionStrength") m.occlusion_strength = number();
+        else if (key == "alphaCutoff") m.alpha_cutoff = number();
+        else if (key == "ior") {
+            if (!m.ior) m.ior.emplace();
+            m.ior->ior = number();
+        } else if (key == "clearcoatFactor") { need(bool(m.clearcoat), "KHR_materials_clearcoat"); m.clearcoat->clearcoat_factor = number(); }
+        else if (key == "clearcoatRoughnessFactor") { need(bool(m.clearcoat), "KHR_materials_clearcoat"); m.clearcoat->clearcoat_roughness_factor = number(); }
+        else if (key == "sheenColorFactor") { need(bool(m.sheen), "KHR_materials_sheen"); m.sheen->sheen_color_factor = rgb(); }
+        else if (key == "sheenRoughnessFactor") { need(bool(m.sheen), "KHR_materials_sheen"); m.sheen->sheen_roughness_factor = number(); }
+        else if (key == "transmissionFactor") { need(bool(m.transmission), "KHR_materials_transmission"); m.transmission->transmission_factor = number(); }
+        else if (key == "specularFactor") { need(bool(m.specular), "KHR_materials_specular"); m.specular->specular_factor = number(); }
+        else if (key == "specularColorFactor") { need(bool(m.specular), "KHR_materials_specular"); m.specular->specular_color_factor = rgb(); }
+        else throw Error("material", "", "unknown material setting '" + key + "'");
+    }
+
+    // The materials and their editable values, as JSON (the page's editor).
+    std::string materials_json() const {
+        nlohmann::json out = nlohmann::json::array();
+        if (!scene) return out.dump();
+        for (std::size_t i = 0; i < scene->materials.size(); ++i) {
+            const Material& m = scene->materials[i];
+            glm::vec4 b = m.base_color_factor;
+            nlohmann::json j = {{"index", i}, {"name", m.name}, {"baseColorFactor", {b.x, b.y, b.z, b.w}},
+                                {"metallicFactor", m.metallic_factor}, {"roughnessFactor", m.roughness_factor},
+                                {"emissiveFactor", vec(m.emissive_factor)}, {"emissiveStrength", m.emissive_strength_value()},
+                                {"normalScale", m.normal_scale}, {"occlusionStrength", m.occlusion_strength},
+                                {"alphaCutoff", m.alpha_cutoff}, {"ior", m.ior_value()},
+                                {"alphaMode", m.alpha_mode == AlphaMode::Opaque ? "OPAQUE" : m.alpha_mode == AlphaMode::Mask ? "MASK" : "BLEND"},
+                                {"hasNormalTexture", m.normal.valid()}, {"hasOcclusionTexture", m.occlusion.valid()}};
+            if (m.clearcoat) j["clearcoat"] = {{"clearcoatFactor", m.clearcoat->clearcoat_factor},
+                                               {"clearcoatRoughnessFactor", m.clearcoat->clearcoat_roughness_factor}};
+            if (m.sheen) j["sheen"] = {{"sheenColorFactor", vec(m.sheen->sheen_color_factor)},
+                                       {"sheenRoughnessFactor", m.sheen->sheen_roughness_factor}};
+            if (m.transmission) j["transmission"] = {{"transmissionFactor", m.transmission->transmission_factor}};
+            if (m.specular) j["specular"] = {{"specularFactor", m.specular->specular_factor},
+                                             {"specularColorFactor", vec(m.specular->specular_color_factor)}};
+            out.push_back(j);
+        }
+        return out.dump();
+    }
+
+    // The lights of the frame (the scene's, the job's extra ones, or the default pair) and the
+    // settings the panel shows, as JSON.
+    std::string state_json() {
+        nlohmann::json lights = nlohmann::json::array();
+        bool defaults = false;
+        if (scene) {
+            ResolvedJob r = resolve(job, *scene);
+            defaults = r.default_lights;
+            std::size_t n_scene = job.lights.scene_lights && !defaults ? r.lights.size() - job.lights.extra.size() : 0;
+            for (std::size_t i = 0; i < r.lights.size(); ++i) {
+                if (defaults) lights.push_back(light_json(r.lights[i], "default", int(i)));
+                else if (i < n_scene) lights.push_back(light_json(r.lights[i], "scene", int(i)));
+                else lights.push_back(light_json(r.lights[i], "extra", int(i - n_scene)));
+            }
+        }
+        // The scene's lights when they are switched off, listed (greyed) so that the switch shows what it hides.
+        nlohmann::json hidden = nlohmann::json::array();
+        if (scene && !job.lights.scene_lights) {
+            ResolvedJob r = resolve(job, *scene);
+            for (const LightInstance& l : scene_lights(*scene, r.instances)) hidden.push_back(light_json(l, "scene-off", 0));
+        }
+        using Kind = Job::Environment::Kind;
+        const Job::Environment& e = job.environment;
+        std::string background = "auto";
+        switch (job.background.mode) {
+            case Job::Background::Mode::Automatic: background = "auto"; break;
+            case Job::Background::Mode::Environment: background = "env"; break;
+            case Job::Background::Mode::Blurred: background = "blur"; break;
+            case Job::Background::Mode::Transparent: background = "transparent"; break;
+            case Job::Background::Mode::Color: {
+                std::ostringstream c;
+                c << job.background.color.x << "," << job.background.color.y << "," << job.background.color.z;
+                background = c.str();
+            }
+        }
+        nlohmann::json out = {
+            {"lights", lights}, {"hiddenSceneLights", hidden}, {"defaultLights", defaults},
+            {"sceneLights", job.lights.scene_lights}, {"ibl", e.kind != Kind::None},
+            {"environment", e.kind == Kind::File ? e.path : e.kind == Kind::Studio ? "studio" : e.kind == Kind::None ? "none"
+                                                        : e.kind == Kind::Color ? "color" : "auto"},
+            {"envIntensity", e.intensity}, {"envRotation", e.rotation_deg}, {"background", background},
+            {"tonemap", std::string(tone_mapper_name(job.output.tone_mapper))}, {"exposure", job.output.exposure_ev},
+            {"debug", debug_name(job.output.debug)}, {"brdf", brdf::to_string(job.output.brdf)},
+            {"energyCompensation", job.output.energy_compensation},
+            {"size", {job.output.width, job.output.height}}, {"yaw", job.camera.yaw_deg}, {"pitch", job.camera.pitch_deg}};
+        return out.dump();
     }
 
     // Resolves the job and loads or bakes its lighting when it changed; the environment that
@@ -198,6 +402,7 @@ struct App {
         if (key == lighting_key || !resolved.environment || baked_folders.count(key) || bake_errors.count(key)) return "";
         const ibl::EnvironmentSource& e = *resolved.environment;
         if (e.kind == ibl::EnvironmentSource::Kind::Uniform) return "";  // quick enough here
+        if (e.kind == ibl::EnvironmentSource::Kind::File && ibl::is_baked_dir(e.path)) return "";  // `fresnel bake`'s folder: loaded
         pending = key;
         return (e.kind == ibl::EnvironmentSource::Kind::File ? e.path.string() : std::string("studio")) + "\n" +
                std::to_string(resolved.bake_options.size) + "\n" + std::to_string(resolved.bake_options.samples);
@@ -262,6 +467,34 @@ EMSCRIPTEN_KEEPALIVE int fresnel_open(App* app, const char* path) {
 }
 EMSCRIPTEN_KEEPALIVE int fresnel_set(App* app, const char* key, const char* value) {
     return guarded(app, [&] { app->set(key, value); });
+}
+// Loads a scene file (*.fresnel.json) written into the page's file system with the files it names.
+EMSCRIPTEN_KEEPALIVE int fresnel_open_scene(App* app, const char* path) {
+    return guarded(app, [&] { app->open_scene_file(path); });
+}
+// The material editor (App::set_material), and the materials as JSON.
+EMSCRIPTEN_KEEPALIVE int fresnel_set_material(App* app, int index, const char* key, const char* value) {
+    return guarded(app, [&] { app->set_material(index, key, value); });
+}
+EMSCRIPTEN_KEEPALIVE const char* fresnel_materials(App* app) {
+    if (!app) return "[]";
+    app->text = "[]";
+    guarded(app, [&] { app->text = app->materials_json(); });
+    return app->text.c_str();
+}
+// The frame's lights and the panel's settings as JSON (App::state_json).
+EMSCRIPTEN_KEEPALIVE const char* fresnel_state(App* app) {
+    if (!app) return "{}";
+    app->text = "{}";
+    guarded(app, [&] { app->text = app->state_json(); });
+    return app->text.c_str();
+}
+// The accepted values of one --brdf key (D, G, F, diffuse), separated by spaces.
+EMSCRIPTEN_KEEPALIVE const char* fresnel_brdf_names(App* app, const char* key) {
+    if (!app) return "";
+    app->text.clear();
+    for (const std::string& n : fresnel::brdf::brdf_model_names(key)) app->text += (app->text.empty() ? "" : " ") + n;
+    return app->text.c_str();
 }
 // Loads or bakes the lighting the settings ask for (the environment kept when it fails).
 EMSCRIPTEN_KEEPALIVE int fresnel_prepare(App* app) {

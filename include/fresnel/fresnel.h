@@ -7,6 +7,7 @@
 
 #include "fresnel/core/color.h"
 #include "fresnel/core/error.h"
+#include "fresnel/core/float_text.h"
 #include "fresnel/core/heatmap.h"
 #include "fresnel/core/image.h"
 #include "fresnel/core/metrics.h"

@@ -21,14 +21,15 @@ export function loadChromium(nodeTools) {
 const TYPES = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.css': 'text/css',
                 '.wasm': 'application/wasm', '.json': 'application/json', '.png': 'image/png' };
 
-// Serves webDir at / and assetsDir at /assets/ on 127.0.0.1 (a free port); resolves to
-// { base, close() }.
-export async function serve(webDir, assetsDir) {
+// Serves webDir at / and assetsDir at /assets/ on 127.0.0.1 (a free port), and each folder of
+// `mounts` ({ '/test/': dir }) at its prefix; resolves to { base, close() }.
+export async function serve(webDir, assetsDir, mounts = {}) {
+    const roots = Object.entries({ ...mounts, ...(assetsDir ? { '/assets/': assetsDir } : {}) });
     const server = http.createServer((req, res) => {
         const url = decodeURIComponent(new URL(req.url, 'http://x').pathname);
-        const assets = url.startsWith('/assets/') && assetsDir;
-        const root = path.resolve(assets ? assetsDir : webDir);
-        const file = path.resolve(root, assets ? url.slice('/assets/'.length) : url.slice(1) || 'index.html');
+        const [prefix, dir] = roots.find(([p]) => url.startsWith(p)) || ['/', webDir];
+        const root = path.resolve(dir);
+        const file = path.resolve(root, url.slice(prefix.length) || 'index.html');
         if (!file.startsWith(root + path.sep) || !fs.existsSync(file) || !fs.statSync(file).isFile()) {
             res.writeHead(404);
             res.end('not found');

@@ -5,7 +5,12 @@
 //   1b. the environment bakes in the page's Web Worker (the page's thread stays free);
 //   2. a broken file shows an error in the page, and the page keeps working (the next frame draws);
 //   3. debug channels switch (normal, basecolor): each matches `fresnel render --debug` at >= 30 dB;
-//   4. a .gltf by URL (its buffer and texture fetched beside it) matches `fresnel render` at >= 30 dB.
+//   4. a .gltf by URL (its buffer and texture fetched beside it) matches `fresnel render` at >= 30 dB;
+//   5. the debug channel list holds every `render --debug` name, the --brdf lists every term;
+//   6. a scene file by ?scene= (DamagedHelmet, a light, a `fresnel bake` folder as environment,
+//      tone mapping, exposure, camera, size) matches `fresnel render SCENE.fresnel.json` at >= 30 dB;
+//   7. a material edit changes the frame and reverting restores it; adding a light changes the
+//      frame and removing it restores it.
 // Exit 77 (skipped) when build-web, Chromium, playwright-core or the shared assets are missing.
 // usage: node web_page_test.mjs WEB_DIR FRESNEL_EXE SHARED_DIR NODE_TOOLS_DIR OUT_DIR
 import { spawnSync } from 'node:child_process';
@@ -29,7 +34,20 @@ fs.mkdirSync(outDir, { recursive: true });
 let failures = 0;
 const check = (ok, what) => { console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`); if (!ok) failures++; };
 
-const server = await serve(webDir, path.join(shared, 'assets'));
+// The scene file and what it names, in a folder the server mounts at /test/ (paths relative to it).
+const sceneDir = path.join(outDir, 'scene');
+fs.rmSync(sceneDir, { recursive: true, force: true });
+fs.mkdirSync(sceneDir, { recursive: true });
+fs.copyFileSync(model, path.join(sceneDir, 'DamagedHelmet.glb'));
+const sceneDoc = {
+    fresnel: 1, model: 'DamagedHelmet.glb',
+    camera: { type: 'orbit', yaw: -35, pitch: 10 },
+    lights: [{ type: 'directional', azimuth: 60, elevation: 30, intensity: 2, color: [1, 0.9, 0.8] }],
+    environment: { file: 'studio.baked', rotation: 45, intensity: 0.8 },
+    render: { size: [320, 240], toneMapping: 'aces', exposure: 0.3 },
+};
+fs.writeFileSync(path.join(sceneDir, 'helmet.fresnel.json'), JSON.stringify(sceneDoc, null, 2));
+const server = await serve(webDir, path.join(shared, 'assets'), { '/test/': outDir });
 const base = server.base;
 
 const size = '384x288', yaw = 30, pitch = 15;
@@ -49,7 +67,15 @@ render(path.join(outDir, 'cli_normal.png'), ['--debug', 'normal']);
 render(path.join(outDir, 'cli_basecolor.png'), ['--debug', 'basecolor']);
 const gltfRel = 'models/BoxTextured/specular-glossiness/BoxTextured.gltf';  // .gltf + .bin + .png, specular-glossiness
 render(path.join(outDir, 'cli_gltf.png'), [], [path.join(shared, 'assets', gltfRel), ...cliArgs.slice(1)]);
-console.log(`fresnel render x3: ${Date.now() - t0} ms`);
+{
+    const b = spawnSync(fresnel, ['bake', env, '-o', path.join(sceneDir, 'studio.baked'), '--no-previews'], { encoding: 'utf8' });
+    if (b.status !== 0) throw new Error(`fresnel bake failed: ${b.stderr}`);
+}
+render(path.join(outDir, 'cli_scene.png'), [], [path.join(sceneDir, 'helmet.fresnel.json')]);
+// Every `render --debug` channel, from its help text.
+const help = spawnSync(fresnel, ['render', '--help'], { encoding: 'utf8' }).stdout.replace(/\s+/g, ' ');
+const debugNames = ((help.match(/Show a channel instead of shading: (.*?) \(NaN/) || [])[1] || '').split(' ').filter(Boolean);
+console.log(`fresnel render x5, bake: ${Date.now() - t0} ms`);
 
 const browser = await launch(chromium);
 try {
@@ -107,14 +133,84 @@ try {
         check(!err && d >= 30 && vsShaded < d - 5,
               `--debug ${channel}: ${d.toFixed(2)} dB against fresnel render --debug ${channel} (${vsShaded.toFixed(2)} dB against the shaded frame)${err ? ': ' + err : ''}`);
     }
-    // Another model by URL: a .gltf whose buffer and texture the page fetches beside it.
     await page.evaluate(() => window.fresnel.set('debug', 'none'));
+    // A `fresnel bake` folder picked (its files), instead of the page's own bake.
+    const bakedFiles = fs.readdirSync(path.join(sceneDir, 'studio.baked')).map(f => path.join(sceneDir, 'studio.baked', f));
+    const pick = async (p, selector, files, done) => {
+        const before = await p.evaluate(() => window.fresnel.frames());
+        await p.setInputFiles(selector, files);
+        await p.waitForFunction(([n, d]) => window.fresnel.error() || (window.fresnel.frames() > n && new Function('s', d)(window.fresnel.state())),
+                                [before, done], { timeout: 60000, polling: 50 });
+        return p.evaluate(() => window.fresnel.error());
+    };
+    const bakeError = await pick(page, '#bake-files', bakedFiles, 'return !s.environment.endsWith(".hdr")');
+    await canvasPng(path.join(outDir, 'web_baked.png'));
+    const pb = psnr(path.join(outDir, 'web_baked.png'), path.join(outDir, 'cli.png'));
+    const bakedEnv = await page.evaluate(() => window.fresnel.state().environment);
+    check(!bakeError && pb >= 30 && !/\.hdr$/.test(bakedEnv),
+          `a picked fresnel bake folder as the environment (${bakedEnv}): ${pb.toFixed(2)} dB against fresnel render${bakeError ? ': ' + bakeError : ''}`);
+    // Another model by URL: a .gltf whose buffer and texture the page fetches beside it.
     const gltfError = await page.evaluate(async u => {
         try { await window.fresnel.openUrl(u); return ''; } catch (e) { return e.message; }
     }, `/assets/${gltfRel}`);
     await canvasPng(path.join(outDir, 'web_gltf.png'));
     const g = psnr(path.join(outDir, 'web_gltf.png'), path.join(outDir, 'cli_gltf.png'));
     check(!gltfError && g >= 30, `${gltfRel} by URL (its .bin and .png fetched): ${g.toFixed(2)} dB against fresnel render${gltfError ? ': ' + gltfError : ''}`);
+
+    // The panel's lists: every --debug channel of `fresnel render --help`, every --brdf term.
+    const lists = await page.evaluate(() => Object.fromEntries(['debug', 'brdf-D', 'brdf-G', 'brdf-F', 'brdf-diffuse']
+        .map(id => [id, [...document.getElementById(id).options].map(o => o.value)])));
+    const missing = debugNames.filter(n => !lists.debug.includes(n));
+    check(debugNames.length >= 20 && !missing.length, `the debug list holds all ${debugNames.length} render --debug channels${missing.length ? ' (missing: ' + missing.join(' ') + ')' : ''}`);
+    check(lists['brdf-D'].includes('beckmann') && lists['brdf-G'].includes('kelemen') && lists['brdf-F'].includes('schlick') &&
+          lists['brdf-diffuse'].includes('burley'), `the --brdf terms are listed (D: ${lists['brdf-D'].join(' ')})`);
+
+    // A scene file by URL: read by the library's parser as `fresnel render SCENE.fresnel.json` reads it.
+    const scenePage = await browser.newPage({ viewport: { width: 1000, height: 700 }, deviceScaleFactor: 1 });
+    scenePage.on('console', m => log.push(`[scene ${m.type()}] ${m.text()}`));
+    scenePage.on('pageerror', e => log.push(`[scene exception] ${e.message}`));
+    const sceneOpen = await openPage(scenePage, base, '?scene=/test/scene/helmet.fresnel.json');
+    check(!sceneOpen.error, `?scene=helmet.fresnel.json loads (${sceneOpen.ms} ms to the first frame)${sceneOpen.error ? ': ' + sceneOpen.error : ''}`);
+    const shot = async file => {
+        const url = await scenePage.evaluate(() => document.getElementById('canvas').toDataURL('image/png'));
+        fs.writeFileSync(path.join(outDir, file), Buffer.from(url.split(',')[1], 'base64'));
+        return path.join(outDir, file);
+    };
+    if (!sceneOpen.error) {
+        const st = await scenePage.evaluate(() => window.fresnel.state());
+        const sceneShot = await shot('web_scene.png');
+        const ps = psnr(sceneShot, path.join(outDir, 'cli_scene.png'));
+        check(ps >= 30 && st.tonemap === 'aces' && st.size[0] === 320 && st.lights.some(l => l.origin === 'extra'),
+              `scene file vs fresnel render SCENE.fresnel.json: ${ps.toFixed(2)} dB (>= 30; tone mapping ${st.tonemap}, ${st.size.join('x')}, ` +
+              `${st.lights.length} light(s), environment ${st.environment.replace(/\/files\/\d+\//, '')})`);
+
+        // The material editor: an edit changes the frame, revert restores it.
+        const mats = await scenePage.evaluate(() => window.fresnel.materials());
+        await scenePage.evaluate(() => window.fresnel.setMaterial(0, 'baseColorFactor', '1,0.1,0.1,1'));
+        const edited = await shot('web_scene_material.png');
+        await scenePage.evaluate(() => window.fresnel.setMaterial(0, 'reset', ''));
+        const reverted = await shot('web_scene_reverted.png');
+        const pe = psnr(edited, sceneShot), pr = psnr(reverted, sceneShot);
+        check(mats.length >= 1 && pe < 30 && pr >= 50, `material ${mats[0] && mats[0].name}: base colour edit ${pe.toFixed(2)} dB (< 30), revert ${pr.toFixed(2)} dB (>= 50)`);
+
+        // Lights: adding one changes the frame, removing it restores it.
+        await scenePage.evaluate(() => window.fresnel.addLight('point:0,0,2,80,0.3,0.5,1'));
+        const lit = await shot('web_scene_light.png');
+        const n = await scenePage.evaluate(() => window.fresnel.state().lights.filter(l => l.origin === 'extra').length);
+        await scenePage.evaluate(k => window.fresnel.removeLight(k - 1), n);
+        const unlit = await shot('web_scene_unlit.png');
+        const pl = psnr(lit, sceneShot), pu = psnr(unlit, sceneShot);
+        check(n === 2 && pl < 35 && pu >= 50, `an added point light: ${pl.toFixed(2)} dB (< 35), removed ${pu.toFixed(2)} dB (>= 50)`);
+
+        // The scene file picked with the files it names (without their folder): found by name.
+        await scenePage.evaluate(() => window.fresnel.set('yaw', 120));
+        const pickError = await pick(scenePage, '#scene-file', [path.join(sceneDir, 'helmet.fresnel.json'), path.join(sceneDir, 'DamagedHelmet.glb'), ...bakedFiles],
+                                     'return s.yaw === -35');
+        const pp = psnr(await shot('web_scene_picked.png'), path.join(outDir, 'cli_scene.png'));
+        check(!pickError && pp >= 30, `the scene file picked with its files: ${pp.toFixed(2)} dB against fresnel render SCENE.fresnel.json${pickError ? ': ' + pickError : ''}`);
+        const err = await scenePage.evaluate(() => window.fresnel.error());
+        check(!err, `no error in the scene page${err ? ': ' + err : ''}`);
+    }
     if (failures) console.log(log.join('\n'));
 } finally {
     await browser.close();

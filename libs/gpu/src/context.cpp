@@ -69,7 +69,7 @@ void Context::init_context(const ContextOptions& options) {
         glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
         c.seamless_cube_maps = true;
     }
-    c.timer_queries = !es && (epoxy_gl_version() >= 33 || epoxy_has_gl_extension("GL_ARB_timer_query"));
+    c.timer_queries = !es && (gl::version() >= 33 || gl::has_extension("GL_ARB_timer_query"));
     c.max_anisotropy = 1.0f;
     if (gl::has_extension("GL_EXT_texture_filter_anisotropic") ||
         gl::has_extension("GL_ARB_texture_filter_anisotropic")) {

@@ -36,6 +36,9 @@
 #ifndef GL_DEBUG_TYPE_ERROR
 #define GL_DEBUG_TYPE_ERROR 0x824C
 #endif
+#ifndef GL_TIME_ELAPSED  // timer queries (Capabilities::timer_queries: desktop only)
+#define GL_TIME_ELAPSED 0x88BF
+#endif
 namespace fresnel::gpu::gl {
 using DebugProc = void(GLAPIENTRY*)(GLenum, GLenum, GLuint, GLenum, GLsizei, const GLchar*, const void*);
 inline bool is_desktop() { return false; }
@@ -53,6 +56,8 @@ inline bool has_extension(const char* name) {
 }  // namespace fresnel::gpu::gl
 inline void glDebugMessageCallback(fresnel::gpu::gl::DebugProc, const void*) {}
 inline void glTexImage2DMultisample(GLenum, GLsizei, GLenum, GLsizei, GLsizei, GLboolean) {}
+inline void glGetQueryObjectui64v(GLuint, GLenum, GLuint64* out) { *out = 0; }
+inline void glGetQueryObjectiv(GLuint, GLenum, GLint* out) { *out = 0; }
 #else
 #include <epoxy/gl.h>
 namespace fresnel::gpu::gl {

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "fresnel/core/float_text.h"
 #include "fresnel/ibl/environment.h"
 #include "fresnel/render/shader_features.h"
 #include "fresnel/scene/paths.h"
@@ -611,11 +612,7 @@ namespace {
 
 // A float as the JSON number that reads back to the same float: its shortest decimal form
 // (0.2f is written 0.2, not 0.20000000298023224).
-json num(float v) {
-    char buf[32];
-    auto r = std::to_chars(buf, buf + sizeof buf, v);
-    return json(std::strtod(std::string(buf, r.ptr).c_str(), nullptr));
-}
+json num(float v) { return json(std::strtod(shortest_text(v).c_str(), nullptr)); }
 template <int N>
 json nums(const glm::vec<N, float>& v) {
     json a = json::array();

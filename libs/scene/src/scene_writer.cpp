@@ -19,6 +19,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "fresnel/core/float_text.h"
 #include "fresnel/scene/paths.h"
 
 namespace fresnel {
@@ -537,11 +538,7 @@ void write_gltf(const Scene& in, const fs::path& path, Diagnostics& diagnostics)
 
 namespace {
 // The shortest text that reads back as the same float.
-std::string num(float v) {
-    char buf[32];
-    auto r = std::to_chars(buf, buf + sizeof buf, std::isfinite(v) ? v : 0.0f);
-    return std::string(buf, r.ptr);
-}
+std::string num(float v) { return shortest_text(std::isfinite(v) ? v : 0.0f); }
 // An OBJ v for the glTF-convention texture coordinate `g`: the shortest decimal d with
 // float(1 - d) == g, which is what load_obj computes from it. So a v the OBJ loader read comes
 // back as the same digits whenever the decimals that round to g hold no shorter one: always
@@ -676,11 +673,7 @@ void put_u32(std::vector<std::uint8_t>& b, std::uint32_t v) {
 }
 
 // A float as the JSON number of its shortest decimal form (0.2f is 0.2, not 0.20000000298...).
-ojson number_of(float v) {
-    char buf[32];
-    auto r = std::to_chars(buf, buf + sizeof buf, v);
-    return ojson(std::strtod(std::string(buf, r.ptr).c_str(), nullptr));
-}
+ojson number_of(float v) { return ojson(std::strtod(shortest_text(v).c_str(), nullptr)); }
 template <int N>
 ojson numbers_of(const glm::vec<N, float>& v) {
     ojson a = ojson::array();
