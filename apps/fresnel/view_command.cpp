@@ -23,6 +23,10 @@ Runner add_view_command(CLI::App& app) {
     cmd->add_option("--shaders", o->shaders,
                     "Development: read the shader files from this folder (a copy of the source's shaders/) instead "
                     "of the built-in ones; F5 reloads them, a compile error is shown and the running shaders stay");
+    cmd->add_flag("--watch-shaders", o->watch_shaders,
+                  "Development, with --shaders: reload the shaders by themselves when a file in that folder changes "
+                  "(checked twice a second; as F5, a compile error is shown and the running shaders stay)")
+        ->needs(cmd->get_option("--shaders"));
     cmd->add_option("--frames", o->frames,
                     "Exit after this many frames with the scene and its lighting ready (default with --screenshot: 2)")
         ->check(CLI::Range(1, 100000));

@@ -37,7 +37,7 @@ const std::map<std::string, Signature>& commands() {
         {"print", {0, 0}},        {"stats", {0, 0}},        {"set", {-2, 0}},         {"split", {-3, 0}},        {"quit", {0, 0}},
         {"save", {-1, 0}},        {"save-scene", {-1, 0}},   {"auto-rotate", {2, 0}},  {"reload-shaders", {-4, 0}},
         {"light", {1, 0}},        {"light-remove", {1, 1}},  {"orbit-lights", {1, 0}}, {"hide", {1, 1}},
-        {"show", {1, 1}},         {"pick", {2, 2}},
+        {"show", {1, 1}},         {"pick", {2, 2}},          {"select", {1, 1}},
     };
     return c;
 }
@@ -209,7 +209,7 @@ std::vector<ScriptCommand> read_view_script(const std::string& path) {
                 fail(std::string("light: ") + e.what());
             }
         }
-        for (const char* whole : {"light-remove", "hide", "show"})
+        for (const char* whole : {"light-remove", "hide", "show", "select"})
             if (c.name == whole && (c.number(0) < 0 || c.number(0) != float(int(c.number(0)))))
                 fail(c.name + ": expected an index (>= 0)");
         out.push_back(std::move(c));

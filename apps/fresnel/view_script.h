@@ -33,6 +33,7 @@
 //   light-remove N         remove the N-th added light
 //   orbit-lights on|off    turn the added lights about the model (+Y), 30 degrees a second
 //   hide NODE | show NODE  the node's visibility (KHR_node_visibility: its subtree's meshes and lights)
+//   select NODE            select the node's first primitive (as a click on it; the material editor follows)
 //   pick X Y               click-select at window point X, Y (from the top left); prints one JSON
 //                          line: {"node":N,"mesh":M,"primitive":P,"material":K,"distance":D} or {"node":null}
 //   stats                  print frame time, draw calls, triangles and resident memory as one JSON line

@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <map>
 
 #include "cli_common.h"
 #include "fresnel/gpu/device.h"
@@ -201,7 +202,11 @@ private:
                 redraw = 1;
             }
             else if (bake_ || redraw > 0 || batch || script_pos_ < script_.size() || spinning()) window.poll_events();
-            else {
+            else if (options_.watch_shaders) {
+                window.wait_events(0.5);  // idle, but the shader folder is looked at twice a second
+                if (shaders_changed()) reload_shaders(""), redraw = 3;
+                else continue;            // nothing to draw
+            } else {
                 window.wait_events();  // idle: no CPU until something happens
                 redraw = 3;             // ImGui settles over a few frames
             }
@@ -372,6 +377,12 @@ private:
             }
             if (c.name == "orbit-lights") {
                 orbit_lights_ = c.args[0] == "on";
+                return false;
+            }
+            if (c.name == "select") {
+                std::size_t n = std::size_t(c.number(0));
+                if (!scene_ || n >= scene_->nodes.size() || scene_->nodes[n].mesh < 0) failed("select: node " + c.args[0] + " has no mesh");
+                else select_primitive(int(n), 0);
                 return false;
             }
             if (c.name == "hide" || c.name == "show") {
@@ -681,6 +692,20 @@ private:
             std::fprintf(stderr, "fresnel: error: %s\n", e.what());
             return false;
         }
+    }
+
+    // --watch-shaders: whether a file under --shaders changed (size or time) since the last look.
+    bool shaders_changed() {
+        std::map<std::string, std::pair<std::uintmax_t, fs::file_time_type>> now;
+        std::error_code ec;
+        for (fs::recursive_directory_iterator it(options_.shaders, ec), end; !ec && it != end; it.increment(ec)) {
+            if (!it->is_regular_file(ec)) continue;
+            now[it->path().string()] = {it->file_size(ec), it->last_write_time(ec)};
+        }
+        const bool first = shader_files_.empty();
+        const bool changed = !first && now != shader_files_;
+        shader_files_ = std::move(now);
+        return changed;
     }
 
     // F5: the shader files read again (from `folder`, else --shaders, else the built-in ones)
@@ -1533,6 +1558,7 @@ private:
     std::vector<Material> original_materials_;
     bool materials_edited_ = false;
     int edit_material_ = 0;
+    std::map<std::string, std::pair<std::uintmax_t, fs::file_time_type>> shader_files_;  // --watch-shaders
     bool orbit_lights_ = false, show_gizmos_ = true;
     int selected_light_ = -1, dragging_light_ = -1;
     std::optional<PickHit> picked_;

@@ -16,6 +16,7 @@ struct ViewOptions {
     std::optional<int> frames;  // exit after this many frames with the scene and its lighting ready
     std::string script;         // view_script.h
     std::string shaders;        // --shaders DIR: shader files from DIR (F5 reloads them)
+    bool watch_shaders = false; // --watch-shaders: reload when a file under --shaders changes
     const CLI::App* cmd = nullptr;  // the view subcommand: which flags were given (they override a scene file)
 };
 
