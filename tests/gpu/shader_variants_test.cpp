@@ -115,6 +115,12 @@ TEST(ShaderFeatures, RulesAreCanonicalAndEnumerated) {
     EXPECT_FALSE(valid_features(HasUv0 | HasNormal | SpecularMap));  // the specular pair comes together
     EXPECT_EQ(canonical_features(HasUv0 | HasNormal | Unlit | UseIbl | MetallicRoughnessMap | BaseColorMap),
               HasUv0 | Unlit | BaseColorMap);
+    // KHR_materials_anisotropy needs tangents; its map needs it and is never stood in for.
+    EXPECT_EQ(canonical_features(HasUv0 | HasNormal | Anisotropy | AnisotropyMap), HasUv0 | HasNormal);
+    EXPECT_TRUE(valid_features(HasUv0 | HasNormal | HasTangent | Anisotropy | AnisotropyMap));
+    EXPECT_FALSE(valid_features(HasUv0 | HasNormal | HasTangent | AnisotropyMap));
+    EXPECT_EQ(canonical_features(HasUv0 | HasNormal | HasTangent | Anisotropy | DebugView) & AnisotropyMap, 0u);
+    EXPECT_EQ(canonical_features(HasUv0 | HasNormal | HasTangent | Anisotropy | Unlit), HasUv0 | Unlit);
     // DamagedHelmet's variant exists unchanged.
     const FeatureMask helmet = HasNormal | HasTangent | HasUv0 | UseIbl | BaseColorMap | MetallicRoughnessMap |
                                NormalMap | OcclusionMap | EmissiveMap;
@@ -174,7 +180,7 @@ TEST(ShaderVariants, EveryVariantCompilesAsEs300AndGl330) {
     // the probe shader: every value of every term, and all of them at once.
     {
         FeatureMask richest = *std::max_element(all.begin(), all.end(), [](FeatureMask a, FeatureMask b) {
-            return __builtin_popcount(a) < __builtin_popcount(b);
+            return __builtin_popcountll(a) < __builtin_popcountll(b);
         });
         std::vector<fresnel::brdf::BrdfModel> models;
         for (int i = 1; i < 3; ++i) models.push_back({fresnel::brdf::Distribution(i), {}, {}, {}});
