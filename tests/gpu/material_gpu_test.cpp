@@ -581,7 +581,8 @@ protected:
                                           << kOutputNames[o][ch] << ": C++ " << want << " GPU " << got << " (lod "
                                           << c.lod << ", uv0 " << pt.p.uv0.x << "," << pt.p.uv0.y << ", SG "
                                           << bool(c.material.specular_glossiness) << ", coat "
-                                          << c.material.has_clearcoat() << ", sheen " << c.material.has_sheen() << ")";
+                                          << c.material.has_clearcoat() << ", sheen " << c.material.has_sheen()
+                                          << ", anisotropy " << c.material.has_anisotropy() << ")";
                         }
                     }
                 }
