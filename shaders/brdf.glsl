@@ -163,6 +163,7 @@ struct BrdfTerms {
     float d;
     float v;
     vec3 f;
+    vec3 f_dielectric, f_metal;  // the two lobes' Fresnel terms
     vec3 diffuse;
     vec3 specular;             // specular_dielectric + specular_metal
     vec3 specular_dielectric;  // (1 - metallic) F_dielectric V D
@@ -187,6 +188,8 @@ BrdfTerms brdf_terms(vec3 base_color, float metallic, float perceptual_roughness
     float spec = t.v * t.d;
     vec3 f_metal = brdf_f_metal(base_color, v_dot_h);
     vec3 f_dielectric = brdf_f_dielectric(f0_dielectric * specular_weight, vec3(specular_weight), v_dot_h);
+    t.f_dielectric = f_dielectric;
+    t.f_metal = f_metal;
     t.f = mix(f_dielectric, f_metal, metallic);
     t.diffuse = (1.0 - metallic) * (1.0 - f_dielectric) * base_color / PI *
                 brdf_diffuse_factor(n_dot_l, n_dot_v, v_dot_h, dot(l, v), perceptual_roughness);
@@ -194,6 +197,50 @@ BrdfTerms brdf_terms(vec3 base_color, float metallic, float perceptual_roughness
     t.specular_metal = metallic * f_metal * spec;
     t.specular = t.specular_dielectric + t.specular_metal;
     return t;
+}
+
+// ---- KHR_materials_anisotropy (brdf.h): the anisotropic GGX lobe, stretched along the
+// direction at (bt = ng x at): alpha_t = mix(alpha, 1, strength^2), alpha_b = max(alpha, 1e-3).
+float d_ggx_anisotropic(float n_dot_h, float t_dot_h, float b_dot_h, float at, float ab) {
+    float a2 = at * ab;
+    vec3 f = vec3(ab * t_dot_h, at * b_dot_h, a2 * n_dot_h);
+    float w2 = a2 / dot(f, f);
+    return a2 * w2 * w2 / PI;
+}
+float v_ggx_anisotropic(float n_dot_l, float n_dot_v, float b_dot_v, float t_dot_v, float t_dot_l, float b_dot_l,
+                        float at, float ab) {
+    float ggxv = n_dot_l * length(vec3(at * t_dot_v, ab * b_dot_v, n_dot_v));
+    float ggxl = n_dot_v * length(vec3(at * t_dot_l, ab * b_dot_l, n_dot_l));
+    float g = ggxv + ggxl;
+    return g != 0.0 ? clamp(0.5 / g, 0.0, 1.0) : 0.0;
+}
+float anisotropic_alpha_t(float alpha, float strength) { return alpha + (1.0 - alpha) * strength * strength; }
+// brdf::apply_anisotropy: the specular lobes' D and V replaced by the anisotropic ones.
+void apply_anisotropy(inout BrdfTerms t, float metallic, float perceptual_roughness, vec3 n, vec3 v, vec3 l,
+                      vec3 at_dir, vec3 bt_dir, float strength) {
+    vec3 h = l + v;
+    float hl = length(h);
+    h = hl > 0.0 ? h / hl : n;
+    float alpha = alpha_from_roughness(perceptual_roughness);
+    float at = anisotropic_alpha_t(alpha, strength);
+    float ab = clamp(alpha, 1e-3, 1.0);
+    float n_dot_l = clamp(dot(n, l), 0.0, 1.0);
+    float n_dot_h = clamp(dot(n, h), 1e-3, 1.0);
+    float n_dot_v = dot(n, v);
+    t.v = v_ggx_anisotropic(n_dot_l, n_dot_v, dot(bt_dir, v), dot(at_dir, v), dot(at_dir, l), dot(bt_dir, l), at, ab);
+    t.d = d_ggx_anisotropic(n_dot_h, dot(at_dir, h), dot(bt_dir, h), at, ab);
+    float spec = t.v * t.d;
+    t.specular_dielectric = (1.0 - metallic) * t.f_dielectric * spec;
+    t.specular_metal = metallic * t.f_metal * spec;
+    t.specular = t.specular_dielectric + t.specular_metal;
+}
+// brdf::anisotropic_bent_normal: the normal the anisotropic lobe's image-based light reflects about.
+vec3 anisotropic_bent_normal(vec3 n, vec3 v, float perceptual_roughness, float strength, vec3 bt_dir) {
+    vec3 tangent = cross(bt_dir, v);
+    vec3 normal = cross(tangent, bt_dir);
+    float bend = 1.0 - strength * (1.0 - perceptual_roughness);
+    float bend4 = bend * bend * bend * bend;
+    return normalize(normal + (n - normal) * bend4);
 }
 
 // KHR_materials_clearcoat: the coat's specular lobe times n.l (no Fresnel: the layering

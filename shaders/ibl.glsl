@@ -40,6 +40,15 @@ vec3 ibl_radiance(vec3 r, float roughness) {
     return textureLod(u_specular_env, u_env_rotation * r, roughness * (u_env_levels - 1.0)).rgb * u_env_intensity;
 }
 
+#ifdef MATERIAL_ANISOTROPY
+// KHR_materials_anisotropy: the prefiltered cube along the view reflected about the bent
+// normal (anisotropic_bent_normal in brdf.glsl), at the material's roughness.
+vec3 ibl_radiance_anisotropic(vec3 n, vec3 v, float roughness, float strength, vec3 bt_dir) {
+    vec3 r = normalize(reflect(-v, anisotropic_bent_normal(n, v, roughness, strength, bt_dir)));
+    return ibl_radiance(r, roughness);
+}
+#endif
+
 // Specular occlusion from ambient occlusion (Lagarde & de Rousiers 2014).
 float specular_occlusion(float n_dot_v, float ao, float roughness) {
     return clamp(pow(n_dot_v + ao, exp2(-16.0 * roughness - 1.0)) - 1.0 + ao, 0.0, 1.0);

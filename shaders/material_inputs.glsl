@@ -28,6 +28,10 @@ uniform float u_clearcoat_normal_scale;
 uniform vec3 u_sheen_color_factor;      // KHR_materials_sheen
 uniform float u_sheen_roughness_factor;
 #endif
+#ifdef MATERIAL_ANISOTROPY
+uniform float u_anisotropy_strength;    // KHR_materials_anisotropy
+uniform float u_anisotropy_rotation;    // radians
+#endif
 
 // Per map: sampler, UV set (0/1) and the KHR_texture_transform matrix. (Spelled out:
 // GLSL ES 3.00 has no token pasting.)
@@ -69,6 +73,9 @@ uniform sampler2D u_sheen_color_map; uniform int u_sheen_color_uv; uniform mat3 
 #endif
 #ifdef HAS_SHEEN_ROUGHNESS_MAP
 uniform sampler2D u_sheen_roughness_map; uniform int u_sheen_roughness_uv; uniform mat3 u_sheen_roughness_transform;
+#endif
+#ifdef HAS_ANISOTROPY_MAP
+uniform sampler2D u_anisotropy_map; uniform int u_anisotropy_uv; uniform mat3 u_anisotropy_transform;
 #endif
 
 vec2 map_uv(int set, mat3 transform) {
@@ -119,6 +126,10 @@ struct MaterialInputs {
     vec3 clearcoat_normal;
     vec3 sheen_color;       // KHR_materials_sheen (0 = no sheen)
     float sheen_roughness;  // perceptual
+    float anisotropy_strength;  // KHR_materials_anisotropy (0 = none)
+    vec2 anisotropy_direction;  // in the tangent plane, unit, after the rotation
+    vec3 anisotropic_t;         // the world-space direction the lobe is stretched along
+    vec3 anisotropic_b;         // cross(ng, anisotropic_t)
 };
 
 // t, b, ng: the geometric frame (unit, flipped for back faces), as evaluate's SurfacePoint.
@@ -193,6 +204,29 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     m.sheen_color = max(m.sheen_color, vec3(0.0));
     m.sheen_roughness = clamp(m.sheen_roughness, 0.0, 1.0);
 #endif
+    m.anisotropy_strength = 0.0;
+    m.anisotropy_direction = vec2(1.0, 0.0);
+    m.anisotropic_t = vec3(1.0, 0.0, 0.0);
+    m.anisotropic_b = vec3(0.0, 1.0, 0.0);
+#ifdef MATERIAL_ANISOTROPY
+    // The direction in the geometric tangent frame, the bitangent from the geometric normal
+    // (as the Khronos viewer; fresnel::evaluate).
+    vec2 an_dir = vec2(1.0, 0.0);
+    float an_strength = u_anisotropy_strength;
+#ifdef HAS_ANISOTROPY_MAP
+    vec3 an = sample_map(u_anisotropy_map, u_anisotropy_uv, u_anisotropy_transform).rgb;
+    an_dir = an.xy * 2.0 - 1.0;
+    an_strength *= an.z;
+#endif
+    float an_c = cos(u_anisotropy_rotation), an_s = sin(u_anisotropy_rotation);
+    an_dir = vec2(an_c * an_dir.x - an_s * an_dir.y, an_s * an_dir.x + an_c * an_dir.y);
+    float an_len = length(an_dir);
+    an_dir = an_len > 0.0 ? an_dir / an_len : vec2(1.0, 0.0);
+    m.anisotropy_strength = clamp(an_strength, 0.0, 1.0);
+    m.anisotropy_direction = an_dir;
+    m.anisotropic_t = an_dir.x * t + an_dir.y * b;
+    m.anisotropic_b = cross(ng, m.anisotropic_t);
+#endif
     m.occlusion = 1.0;
 #ifdef HAS_OCCLUSION_MAP
     m.occlusion = 1.0 + u_occlusion_strength * (sample_map(u_occlusion_map, u_occlusion_uv, u_occlusion_transform).r - 1.0);
@@ -231,6 +265,10 @@ vec3 shade_light(MaterialInputs m, vec3 v, vec3 l, vec3 radiance, vec3 comp_diel
     vec3 lit = vec3(0.0);
     if (n_dot_l > 0.0) {
         BrdfTerms t = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight, m.normal, v, l);
+#ifdef MATERIAL_ANISOTROPY
+        if (m.anisotropy_strength > 0.0)
+            apply_anisotropy(t, m.metallic, m.roughness, m.normal, v, l, m.anisotropic_t, m.anisotropic_b, m.anisotropy_strength);
+#endif
         vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;
         vec3 base = t.diffuse + specular;
 #ifdef MATERIAL_SHEEN

@@ -111,7 +111,13 @@ void main() {
 #ifdef MATERIAL_TRANSMISSION
         diffuse = mix(diffuse, ibl_transmission(m, tr, f.n, v, v_position), tr.factor);
 #endif
+#ifdef MATERIAL_ANISOTROPY
+        vec3 specular = m.anisotropy_strength > 0.0
+                            ? ibl_radiance_anisotropic(f.n, v, m.roughness, m.anisotropy_strength, m.anisotropic_b)
+                            : ibl_radiance(r, m.roughness);
+#else
         vec3 specular = ibl_radiance(r, m.roughness);
+#endif
         vec3 fresnel_dielectric = ibl_ggx_fresnel(n_dot_v, m.roughness, m.f0_dielectric, m.specular_weight);
         vec3 fresnel_metal = ibl_ggx_fresnel(n_dot_v, m.roughness, m.base_color.rgb, 1.0);
         float so = specular_occlusion(n_dot_v, m.occlusion, m.roughness);

@@ -225,7 +225,7 @@ fs::path write_variants_quad(const fs::path& dir) {
         nlohmann::json::array({{{"material", 1}, {"variants", {0}}}, {{"material", 2}, {"variants", {1}}}});
     nlohmann::json j = {
         {"asset", {{"version", "2.0"}}},
-        {"extensionsUsed", {"KHR_materials_variants", "KHR_materials_anisotropy", "VENDOR_made_up"}},
+        {"extensionsUsed", {"KHR_materials_variants", "KHR_materials_diffuse_transmission", "VENDOR_made_up"}},
         {"buffers", {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}}},
         {"bufferViews", {{{"buffer", 0}, {"byteLength", sizeof pos}},
                          {{"buffer", 0}, {"byteOffset", sizeof pos}, {"byteLength", sizeof idx}}}},
@@ -254,7 +254,7 @@ TEST(MaterialVariantsCli, InfoListsVariantsAndExtensionsRenderSelects) {
     std::map<std::string, std::string> support;
     for (const auto& e : ij["extensions"]) support[e["name"]] = e["support"];
     EXPECT_EQ(support["KHR_materials_variants"], "supported");
-    EXPECT_EQ(support["KHR_materials_anisotropy"], "read, not shaded");
+    EXPECT_EQ(support["KHR_materials_diffuse_transmission"], "read, not shaded");
     EXPECT_EQ(support["VENDOR_made_up"], "not supported");
     Result text = exec(FRESNEL_EXE, {"info", model.string()}, dir / "info.txt");
     EXPECT_NE(text.out.find("variants    Red, Blue"), std::string::npos) << text.out;

@@ -49,6 +49,8 @@ const Case kCases[] = {
     {"sheen_velvet", {30.5, 32.5}},    // 31.69, 33.51
     {"sheen_rough", {29.5, 30.5}},     // 30.73, 31.72
     {"sheen_textured", {30.0, 29.5}},  // 30.95, 30.50
+    {"anisotropy_metal", {38.0, 38.5}},     // 39.29, 39.74
+    {"anisotropy_textured", {40.5, 39.0}},  // 41.59, 39.93
 };
 
 std::string show(const Result& r) { return "exit " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out + "\nstderr:\n" + r.err; }

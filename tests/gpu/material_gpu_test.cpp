@@ -4,7 +4,7 @@
 // Seeded random materials cover every input: factors (F0 clamping included), every map
 // slot with small random textures on both UV sets, KHR_texture_transform, all wrap modes
 // and filters, sRGB and linear slots, specular-glossiness and metallic-roughness,
-// KHR_materials_ior / _specular / _clearcoat / _sheen / _emissive_strength, alpha modes, vertex
+// KHR_materials_ior / _specular / _clearcoat / _sheen / _anisotropy / _emissive_strength, alpha modes, vertex
 // colour, missing UV sets and tangents. Uniforms are packed by the renderer's own
 // material_uniforms / set_material_uniforms, so the packing is under test too.
 // shaders/material_probe.frag evaluates one surface point per pixel.
@@ -53,7 +53,7 @@ using namespace fresnel;
 
 constexpr int kSide = 8;                 // points per case: kSide x kSide pixels
 constexpr int kTexels = 9;               // input texels per point (material_probe.frag)
-constexpr int kOutputs = 8;              // u_output values (6 = shade_light)
+constexpr int kOutputs = 10;             // u_output values (6 = shade_light)
 constexpr float kRelTol = 1e-4f;         // exact sampling: relative ...
 constexpr float kAbsFloor = 1e-6f;       // ... or absolute near zero
 // shade_light: relative, as gpu_brdf_test (the GGX peak of glossy lobes turns float
@@ -107,7 +107,7 @@ struct Case {
 
 class Gen {
 public:
-    explicit Gen(unsigned seed) : rng_(seed), side_(seed ^ 0x5eedu) {}
+    explicit Gen(unsigned seed) : rng_(seed), side_(seed ^ 0x5eedu), aniso_(seed ^ 0xa2150u) {}
     float u() { return u01_(*cur_); }
     float range(float a, float b) { return a + (b - a) * u(); }
     int pick(int n) { return int(u() * float(n)) % n; }
@@ -213,6 +213,14 @@ public:
             sh.sheen_roughness_texture = slot();
             m.sheen = sh;
         }
+        cur_ = &aniso_;
+        if (chance(0.5f)) {
+            AnisotropyExt an;
+            an.anisotropy_strength = chance(0.15f) ? 0.0f : (chance(0.15f) ? 1.0f : u());
+            an.anisotropy_rotation = range(-7, 7);
+            an.anisotropy_texture = slot();
+            m.anisotropy = an;
+        }
         cur_ = &rng_;
         if (chance(0.3f)) {
             SpecularGlossinessExt sg;
@@ -251,7 +259,7 @@ public:
     }
 
 private:
-    std::mt19937 rng_, side_;
+    std::mt19937 rng_, side_, aniso_;  // aniso_: KHR_materials_anisotropy's own stream
     std::mt19937* cur_ = &rng_;
     std::uniform_real_distribution<float> u01_{0.0f, 1.0f};
 };
@@ -269,6 +277,8 @@ std::array<glm::vec4, kOutputs> cpu_outputs(const Case& c, const TextureSource& 
     o[5] = glm::vec4(e.clearcoat_normal, e.clearcoat_f0);
     o[6] = glm::vec4(shade_light(e, pt.v, pt.l, glm::vec3(1.0f, 0.8f, 0.6f), pt.comp_d, pt.comp_m), 1.0f);
     o[7] = glm::vec4(e.sheen_color, e.sheen_roughness);
+    o[8] = glm::vec4(e.anisotropic_t, e.anisotropy_strength);
+    o[9] = glm::vec4(e.anisotropic_b, e.anisotropy_direction.x);
     return o;
 }
 
@@ -294,7 +304,21 @@ const char* kOutputNames[kOutputs][4] = {
     {"cc_normal.x", "cc_normal.y", "cc_normal.z", "clearcoat_f0"},
     {"shade.r", "shade.g", "shade.b", "one"},
     {"sheen.r", "sheen.g", "sheen.b", "sheen_roughness"},
+    {"aniso_t.x", "aniso_t.y", "aniso_t.z", "anisotropy_strength"},
+    {"aniso_b.x", "aniso_b.y", "aniso_b.z", "aniso_direction.x"},
 };
+
+// The length of the direction the anisotropy map gives at the point (1 without a map):
+// normalising a filtered direction near 0 amplifies any difference, as for normals.
+float anisotropy_direction_length(const Case& c, const TextureSource& tex, const Point& pt) {
+    const TextureSlot* slot = material_map(c.material, MaterialMap::Anisotropy);
+    if (!slot || !map_usable(*slot, MaterialMap::Anisotropy, c.inputs)) return 1.0f;
+    const SampledTexture* t = tex.get(slot->texture, false);
+    glm::vec2 uv = slot->tex_coord == 1 ? pt.p.uv1 : pt.p.uv0;
+    uv = glm::vec2(slot->transform * glm::vec3(uv, 1.0f));
+    glm::vec4 texel = t->sample(uv, c.lod);
+    return glm::length(glm::vec2(texel.x, texel.y) * 2.0f - 1.0f);
+}
 
 class MaterialProbe : public ::testing::Test {
 protected:
@@ -344,8 +368,11 @@ protected:
         // Textures and defines as the renderer makes them (draw_primitive / texture_for).
         MaterialUniforms mu = material_uniforms(c.material);
         std::vector<std::string> defines;
-        for (const FeatureInfo& f : feature_table())
+        for (const FeatureInfo& f : feature_table()) {
+            // Anisotropy needs tangents (canonical_features drops it without; evaluate skips it).
+            if (f.bit == feature::Anisotropy && !c.inputs.has_tangent) continue;
             if (material_features(c.material) & f.bit) defines.emplace_back(f.define);
+        }
         defines.push_back("MATERIAL_EXPLICIT_LOD");
         std::vector<gpu::Texture> maps;
         std::array<bool, kMaterialMapCount> bound{};
@@ -384,7 +411,9 @@ protected:
         state.cull = gpu::Cull::None;
         device.apply(state);
         prog.use();
-        const int points_unit = 15, lut_unit = 13;
+        // Maps take the unit of their index (0..15; the transmission maps, 13 and 14, are never
+        // bound here); llvmpipe has 32 units.
+        const int points_unit = 16, lut_unit = 13;
         device.bind_texture(points_unit, points);
         prog.set("u_points", points_unit);
         device.bind_texture(lut_unit, lut);
@@ -500,13 +529,17 @@ protected:
                 bool short_coat_normal =
                     !exact && c.material.clearcoat &&
                     tangent_length(c, tex, pt, MaterialMap::ClearcoatNormal, c.material.clearcoat->clearcoat_normal_scale) < 0.5f;
+                bool short_direction = !exact && anisotropy_direction_length(c, tex, pt) < 0.5f;
                 for (int o = 0; o < kOutputs; ++o) {
                     for (int ch = 0; ch < 4; ++ch) {
                         if ((o == 4 && ch < 3 && short_normal) || (o == 5 && ch < 3 && short_coat_normal)) continue;
+                        // The anisotropy frame and direction (not the strength) from a short direction.
+                        if (((o == 8 && ch < 3) || o == 9) && short_direction) continue;
                         float want = cpu[std::size_t(o)][ch], got = gpu_out[std::size_t(o)][std::size_t(i)][ch];
                         float err = std::abs(want - got);
                         float scale = std::max(std::abs(want), std::abs(got));
-                        if ((o == 4 || o == 5) && ch < 3) scale = 1.0f;  // components of unit vectors
+                        if ((o == 4 || o == 5 || o == 8 || o == 9) && ch < 3) scale = 1.0f;  // components of (near-)unit vectors
+                        if (o == 9 && ch == 3) scale = 1.0f;
                         bool ok;
                         if (o == 6) {
                             // shade_light: exact sampling only (filtered inputs differ already).
@@ -548,7 +581,8 @@ protected:
                                           << kOutputNames[o][ch] << ": C++ " << want << " GPU " << got << " (lod "
                                           << c.lod << ", uv0 " << pt.p.uv0.x << "," << pt.p.uv0.y << ", SG "
                                           << bool(c.material.specular_glossiness) << ", coat "
-                                          << c.material.has_clearcoat() << ", sheen " << c.material.has_sheen() << ")";
+                                          << c.material.has_clearcoat() << ", sheen " << c.material.has_sheen()
+                                          << ", anisotropy " << c.material.has_anisotropy() << ")";
                         }
                     }
                 }

@@ -27,6 +27,7 @@ constexpr MaterialMapInfo kMaps[kMaterialMapCount] = {
     {"sheen_roughness", "HAS_SHEEN_ROUGHNESS_MAP", false, false},
     {"transmission", "HAS_TRANSMISSION_MAP", false, false},
     {"thickness", "HAS_THICKNESS_MAP", false, false},
+    {"anisotropy", "HAS_ANISOTROPY_MAP", false, false},
 };
 
 // Reads one map at the point, or nullopt when the map is absent or unreadable.
@@ -79,6 +80,7 @@ const TextureSlot* material_map(const Material& m, MaterialMap map) {
     const auto* sp = m.specular ? &*m.specular : nullptr;
     const auto* cc = m.has_clearcoat() ? &*m.clearcoat : nullptr;
     const auto* sh = m.has_sheen() ? &*m.sheen : nullptr;
+    const auto* an = m.has_anisotropy() ? &*m.anisotropy : nullptr;
     const TextureSlot* slot = nullptr;
     switch (map) {
         case MaterialMap::BaseColor: slot = sg ? &sg->diffuse_texture : &m.base_color; break;
@@ -98,6 +100,7 @@ const TextureSlot* material_map(const Material& m, MaterialMap map) {
         case MaterialMap::Thickness:
             slot = is_transmissive(m) && m.volume ? &m.volume->thickness_texture : nullptr;
             break;
+        case MaterialMap::Anisotropy: slot = an ? &an->anisotropy_texture : nullptr; break;
     }
     return slot && slot->valid() ? slot : nullptr;
 }
@@ -105,7 +108,7 @@ const TextureSlot* material_map(const Material& m, MaterialMap map) {
 bool map_usable(const TextureSlot& slot, MaterialMap map, const VertexInputs& inputs) {
     if (!slot.valid() || !inputs.has_uv0) return false;
     if (slot.tex_coord == 1 && !inputs.has_uv1) return false;
-    if (material_map_info(map).normal_map && !inputs.has_tangent) return false;
+    if ((material_map_info(map).normal_map || map == MaterialMap::Anisotropy) && !inputs.has_tangent) return false;
     return true;
 }
 
@@ -218,6 +221,25 @@ EvaluatedMaterial evaluate(const Material& material, const TextureSource& textur
         e.sheen_color = glm::max(e.sheen_color, glm::vec3(0.0f));
         e.sheen_roughness = std::clamp(e.sheen_roughness, 0.0f, 1.0f);
     }
+    if (m.has_anisotropy() && point.inputs.has_tangent) {
+        // KHR_materials_anisotropy, as the Khronos viewer: the direction in the geometric
+        // tangent frame, the bitangent from the geometric normal.
+        const AnisotropyExt& an = *m.anisotropy;
+        glm::vec2 dir(1.0f, 0.0f);
+        float strength = an.anisotropy_strength;
+        if (auto t = maps.sample(MaterialMap::Anisotropy)) {
+            dir = glm::vec2(t->x, t->y) * 2.0f - 1.0f;
+            strength *= t->z;
+        }
+        float c = std::cos(an.anisotropy_rotation), sn = std::sin(an.anisotropy_rotation);
+        dir = glm::vec2(c * dir.x - sn * dir.y, sn * dir.x + c * dir.y);
+        float len = glm::length(dir);
+        dir = len > 0.0f ? dir / len : glm::vec2(1.0f, 0.0f);
+        e.anisotropy_strength = std::clamp(strength, 0.0f, 1.0f);
+        e.anisotropy_direction = dir;
+        e.anisotropic_t = dir.x * point.tangent + dir.y * point.bitangent;
+        e.anisotropic_b = glm::cross(point.normal, e.anisotropic_t);
+    }
     if (auto t = maps.sample(MaterialMap::Occlusion)) e.occlusion = 1.0f + m.occlusion_strength * (t->x - 1.0f);
     e.emissive = m.emissive_factor * m.emissive_strength_value();
     if (auto t = maps.sample(MaterialMap::Emissive)) e.emissive *= glm::vec3(*t);
@@ -280,6 +302,8 @@ glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm:
     glm::vec3 lit(0.0f);
     if (n_dot_l > 0.0f) {
         brdf::Terms t = brdf::evaluate_terms(m.surface, m.normal, v, l, model);
+        if (m.anisotropy_strength > 0.0f)
+            brdf::apply_anisotropy(t, m.surface, m.normal, v, l, m.anisotropic_t, m.anisotropic_b, m.anisotropy_strength);
         glm::vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;
         glm::vec3 base = t.diffuse + specular;
         if (m.sheen_color != glm::vec3(0.0f)) {

@@ -43,6 +43,10 @@ MaterialUniforms material_uniforms(const Material& m) {
         u.sheen_color_factor = m.sheen->sheen_color_factor;
         u.sheen_roughness_factor = m.sheen->sheen_roughness_factor;
     }
+    if (m.has_anisotropy()) {
+        u.anisotropy_strength = m.anisotropy->anisotropy_strength;
+        u.anisotropy_rotation = m.anisotropy->anisotropy_rotation;
+    }
     for (int i = 0; i < kMaterialMapCount; ++i) u.maps[std::size_t(i)] = material_map(m, MaterialMap(i));
     return u;
 }
@@ -54,6 +58,7 @@ FeatureMask material_features(const Material& m) {
     if (m.has_clearcoat()) f |= feature::Clearcoat;
     if (is_transmissive(m)) f |= feature::Transmission;
     if (m.has_sheen()) f |= feature::Sheen;
+    if (m.has_anisotropy()) f |= feature::Anisotropy;
     if (m.alpha_mode == AlphaMode::Mask) f |= feature::AlphaMask;
     if (m.alpha_mode == AlphaMode::Blend) f |= feature::AlphaBlend;
     return f;
@@ -91,6 +96,8 @@ void set_material_uniforms(const gpu::Program& prog, const MaterialUniforms& u,
     prog.set("u_dispersion", u.dispersion);
     prog.set("u_sheen_color_factor", u.sheen_color_factor);
     prog.set("u_sheen_roughness_factor", u.sheen_roughness_factor);
+    prog.set("u_anisotropy_strength", u.anisotropy_strength);
+    prog.set("u_anisotropy_rotation", u.anisotropy_rotation);
     for (int i = 0; i < kMaterialMapCount; ++i) {
         if (units[std::size_t(i)] < 0) continue;
         std::string base = std::string("u_") + material_map_info(MaterialMap(i)).name;

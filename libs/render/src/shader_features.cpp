@@ -38,6 +38,8 @@ constexpr FeatureInfo kFeatures[kCount] = {
     {TransmissionMap, "HAS_TRANSMISSION_MAP"},
     {ThicknessMap, "HAS_THICKNESS_MAP"},
     {Transmission, "MATERIAL_TRANSMISSION"},
+    {Anisotropy, "MATERIAL_ANISOTROPY"},
+    {AnisotropyMap, "HAS_ANISOTROPY_MAP"},
 };
 
 // The maps a draw with these attributes and this material model may bind.
@@ -54,6 +56,7 @@ FeatureMask allowed_maps(FeatureMask m) {
     }
     if (m & Transmission) maps |= TransmissionMap | ThicknessMap;
     if (m & Sheen) maps |= SheenColorMap | SheenRoughnessMap;
+    if (m & Anisotropy) maps |= AnisotropyMap;
     return maps;
 }
 }  // namespace
@@ -73,38 +76,42 @@ FeatureMask canonical_features(FeatureMask m) {
     if (!(m & HasNormal)) m &= ~HasTangent;
     if (m & AlphaMask) m &= ~AlphaBlend;
     if ((m & Unlit) && !(m & DebugView))
-        m &= ~(HasNormal | HasTangent | SpecularGlossiness | Clearcoat | Sheen | UseIbl | Transmission);
+        m &= ~(HasNormal | HasTangent | SpecularGlossiness | Clearcoat | Sheen | UseIbl | Transmission | Anisotropy);
     if (m & SpecularGlossiness) m &= ~Transmission;
+    if (!(m & HasTangent)) m &= ~Anisotropy;
     const FeatureMask allowed = allowed_maps(m);
     m = (m & ~kMaps) | (m & allowed);
     if (!(m & SpecularGlossiness) && (m & (SpecularMap | SpecularColorMap))) m |= SpecularMap | SpecularColorMap;
     if (m & (ClearcoatMap | ClearcoatRoughnessMap)) m |= ClearcoatMap | ClearcoatRoughnessMap;
     if (m & Transmission) m |= allowed & (TransmissionMap | ThicknessMap);
     if (m & (SheenColorMap | SheenRoughnessMap)) m |= SheenColorMap | SheenRoughnessMap;
-    if (m & DebugView) m |= allowed & ~(NormalMap | ClearcoatNormalMap);
+    if (m & DebugView) m |= allowed & ~(NormalMap | ClearcoatNormalMap | AnisotropyMap);
     return m;
 }
 
 bool valid_features(FeatureMask mask) { return (mask & ~kAll) == 0 && canonical_features(mask) == mask; }
 
 std::vector<FeatureMask> all_feature_sets() {
-    // Bits 23..30 (the sheen and transmission maps and model bits, skinning, morphing) come in
-    // groups that no rule on bits 0..22 looks at, except that unlit and specular-glossiness drop
-    // some and the debug view turns the maps on: so every valid mask is a valid mask of bits
-    // 0..22 plus one choice per group, kept when canonical. 2^23 masks instead of 2^31.
+    // Bits 23..32 (the sheen, transmission and anisotropy maps and model bits, skinning,
+    // morphing) come in groups that no rule on bits 0..22 looks at, except that unlit,
+    // specular-glossiness and missing tangents drop some and the debug view turns the maps on:
+    // so every valid mask is a valid mask of bits 0..22 plus one choice per group, kept when
+    // canonical. 2^23 masks instead of 2^33.
     std::vector<FeatureMask> out;
     constexpr FeatureMask kLow = (FeatureMask(1) << 23) - 1;
     const FeatureMask animation[] = {0, Skinned, MorphTargets, Skinned | MorphTargets};
     const FeatureMask sheen[] = {0, Sheen, Sheen | SheenColorMap | SheenRoughnessMap};
     const FeatureMask transmission[] = {0, Transmission, Transmission | TransmissionMap | ThicknessMap};
+    const FeatureMask anisotropy[] = {0, Anisotropy, Anisotropy | AnisotropyMap};
     for (FeatureMask m = 0; m <= kLow; ++m) {
         if (canonical_features(m) != m) continue;
         for (FeatureMask a : animation)
             for (FeatureMask s : sheen)
-                for (FeatureMask t : transmission) {
-                    const FeatureMask x = m | a | s | t;
-                    if (canonical_features(x) == x) out.push_back(x);
-                }
+                for (FeatureMask t : transmission)
+                    for (FeatureMask an : anisotropy) {
+                        const FeatureMask x = m | a | s | t | an;
+                        if (canonical_features(x) == x) out.push_back(x);
+                    }
     }
     std::sort(out.begin(), out.end());
     return out;

@@ -220,14 +220,15 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
         warn(ap + "/NORMAL", std::to_string(bad) + " invalid normals replaced by computed ones");
     if (p.normals.empty()) generate_flat_normals(p);  // only triangles get them
 
-    // Tangents when a normal map needs them and the file has none (MikkTSpace).
+    // Tangents when a normal map or KHR_materials_anisotropy (its direction lies in the tangent
+    // frame; the Khronos viewer derives one from the UVs) needs them and the file has none (MikkTSpace).
     const Material* mat = p.material >= 0 ? &materials[std::size_t(p.material)] : nullptr;
-    const TextureSlot* coat_normal = mat && mat->clearcoat ? &mat->clearcoat->clearcoat_normal_texture : nullptr;
-    bool coat_normal_map = coat_normal && coat_normal->valid();
-    if (mat && (mat->normal.valid() || coat_normal_map) && p.tangents.empty() && p.topology == Topology::Triangles) {
-        const TextureSlot& map = mat->normal.valid() ? mat->normal : *coat_normal;
-        if (!generate_tangents(p, map.tex_coord))
-            warn(ptr, "normal map without texture coordinates; normal map ignored");
+    if (const TextureSlot* map = mat ? tangent_source(*mat) : nullptr;
+        map && p.tangents.empty() && p.topology == Topology::Triangles) {
+        if (!generate_tangents(p, map->tex_coord))
+            warn(ptr, mat->anisotropy && map == &mat->anisotropy->anisotropy_texture
+                          ? "anisotropy without texture coordinates (no tangents); shaded isotropically"
+                          : "normal map without texture coordinates; normal map ignored");
     }
     repair_tangents(p.tangents);
     drop_identity_indices(p);

@@ -35,14 +35,14 @@ const std::vector<std::string>& supported_gltf_extensions() {
         "KHR_materials_pbrSpecularGlossiness", "KHR_materials_clearcoat", "KHR_materials_sheen",
         "EXT_meshopt_compression", "KHR_draco_mesh_compression", "EXT_texture_webp", "KHR_materials_variants",
         "KHR_animation_pointer", "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_dispersion",
-        "KHR_node_visibility",
+        "KHR_node_visibility", "KHR_materials_anisotropy",
     };
     return list;
 }
 
 const std::vector<std::string>& parsed_unshaded_gltf_extensions() {
     static const std::vector<std::string> list = {
-        "KHR_materials_iridescence", "KHR_materials_anisotropy", "KHR_materials_diffuse_transmission",
+        "KHR_materials_iridescence", "KHR_materials_diffuse_transmission",
     };
     return list;
 }

@@ -27,10 +27,8 @@ void apply_material_variant(Scene& scene, int variant) {
             if (m < 0 || std::size_t(m) >= scene.materials.size()) continue;
             p.material = m;
             const Material& mat = scene.materials[std::size_t(m)];
-            const TextureSlot* coat = mat.clearcoat ? &mat.clearcoat->clearcoat_normal_texture : nullptr;
-            bool normal_map = mat.normal.valid() || (coat && coat->valid());
-            if (normal_map && p.tangents.empty() && p.topology == Topology::Triangles)
-                generate_tangents(p, mat.normal.valid() ? mat.normal.tex_coord : coat->tex_coord);
+            const TextureSlot* map = tangent_source(mat);
+            if (map && p.tangents.empty() && p.topology == Topology::Triangles) generate_tangents(p, map->tex_coord);
         }
 }
 

@@ -115,6 +115,13 @@ void generate_flat_normals(Primitive& p) {
     p.generated_normals = true;
 }
 
+const TextureSlot* tangent_source(const Material& m) {
+    if (m.normal.valid()) return &m.normal;
+    if (m.clearcoat && m.clearcoat->clearcoat_normal_texture.valid()) return &m.clearcoat->clearcoat_normal_texture;
+    if (m.has_anisotropy()) return &m.anisotropy->anisotropy_texture;
+    return nullptr;
+}
+
 bool generate_tangents(Primitive& p, int tex_coord) {
     const auto& uv = tex_coord == 1 ? p.uv1 : p.uv0;
     if (p.topology != Topology::Triangles || p.normals.empty() || uv.empty()) return false;

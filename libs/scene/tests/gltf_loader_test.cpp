@@ -942,6 +942,37 @@ TEST(GltfMaterials, KhrMaterialsClearcoat) {
     EXPECT_EQ(d.total(), 0u);
 }
 
+// KHR_materials_anisotropy's direction lies in the tangent frame: a primitive without TANGENT
+// gets MikkTSpace tangents, as for a normal map (the Khronos viewer derives a frame from the UVs);
+// without texture coordinates it warns and stays isotropic.
+TEST(GltfMaterials, AnisotropyGeneratesTangents) {
+    Doc doc;
+    doc.j["extensionsUsed"] = {"KHR_materials_anisotropy"};
+    doc.j["materials"] = json::array({
+        {{"extensions", {{"KHR_materials_anisotropy", {{"anisotropyStrength", 0.5}}}}}},
+        {{"extensions", {{"KHR_materials_anisotropy", json::object()}}}},  // strength 0: not shaded
+    });
+    int pos = doc.positions(kQuad);
+    int nrm = doc.normals(4);
+    int uv = doc.attribute(FLOAT, "VEC2", {0, 0, 1, 0, 1, 1, 0, 1});
+    int ind = doc.indices(UNSIGNED_SHORT, {0, 1, 2, 0, 2, 3});
+    doc.mesh(json::array({
+        {{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}, {"TEXCOORD_0", uv}}}, {"indices", ind}, {"material", 0}},
+        {{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}, {"TEXCOORD_0", uv}}}, {"indices", ind}, {"material", 1}},
+        {{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}, {"indices", ind}, {"material", 0}},
+    }));
+    Diagnostics d;
+    Scene s = load(doc.gltf(), d);
+    ASSERT_EQ(s.meshes.at(0).primitives.size(), 3u);
+    EXPECT_TRUE(s.materials[0].has_anisotropy());
+    EXPECT_FALSE(s.materials[1].has_anisotropy());
+    EXPECT_TRUE(s.meshes[0].primitives[0].generated_tangents);
+    EXPECT_EQ(s.meshes[0].primitives[0].tangents.size(), 4u);
+    EXPECT_FALSE(s.meshes[0].primitives[1].generated_tangents);
+    EXPECT_TRUE(s.meshes[0].primitives[2].tangents.empty());
+    EXPECT_EQ(d.total(), 1u);  // the primitive without UVs
+}
+
 // Extensions land in their blocks as written: the loader does not rewrite factors
 // (specular-glossiness stays its own block; evaluate converts it).
 TEST(GltfMaterials, ExtensionBlocksAsWritten) {

@@ -48,6 +48,11 @@ Bsdf::Bsdf(const EvaluatedMaterial& m, glm::vec3 v, const brdf::BrdfModel& model
     // The lobe's roughness as Khronos narrows it towards ior 1, kept off the delta as alpha_ is.
     transmission_alpha_ = std::max(transmission::apply_ior_to_roughness(alpha_, m.transmission.ior),
                                    kMinTraceRoughness * kMinTraceRoughness);
+    // KHR_materials_anisotropy has no sampling routine of its own: shade_light evaluates the
+    // stretched lobe, and the isotropic GGX lobe samples it at the geometric mean of its two
+    // roughnesses (alpha_t along the direction, alpha across it).
+    if (m.anisotropy_strength > 0.0f)
+        alpha_ = std::sqrt(brdf::anisotropic_alpha_t(alpha_, m.anisotropy_strength) * std::clamp(alpha_, 1e-3f, 1.0f));
     if (lobes_.clearcoat > 0.0f) {
         coat_.n = m.clearcoat_normal;
         sampling::basis(coat_.n, coat_.t, coat_.b);

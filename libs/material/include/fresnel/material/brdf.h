@@ -75,6 +75,7 @@ inline float alpha_from_roughness(float perceptual) {
 struct Terms {
     float d = 0, v = 0;
     glm::vec3 f{0.0f};        // the metal/dielectric-mixed Fresnel
+    glm::vec3 f_dielectric{0.0f}, f_metal{0.0f};  // the two lobes' Fresnel terms
     glm::vec3 diffuse{0.0f};  // f_diffuse (already weighted by 1 - F_dielectric and 1 - metallic)
     glm::vec3 specular{0.0f}; // f_specular = specular_dielectric + specular_metal
     glm::vec3 specular_dielectric{0.0f};  // (1 - metallic) F_dielectric V D
@@ -97,6 +98,8 @@ inline Cosines cosines(glm::vec3 n, glm::vec3 v, glm::vec3 l) {
 // lobe before its weights: fresnel_mix of the dielectric, conductor_fresnel of the metal.
 inline void layer(Terms& t, const Surface& s, glm::vec3 f_dielectric, glm::vec3 f_metal, glm::vec3 diffuse) {
     float spec = t.v * t.d;
+    t.f_dielectric = f_dielectric;
+    t.f_metal = f_metal;
     t.f = glm::mix(f_dielectric, f_metal, s.metallic);
     t.diffuse = (1.0f - s.metallic) * (1.0f - f_dielectric) * diffuse;
     t.specular_dielectric = (1.0f - s.metallic) * f_dielectric * spec;
@@ -124,6 +127,67 @@ inline Terms evaluate_terms(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec
 inline glm::vec3 evaluate(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l) {
     Terms t = evaluate_terms(s, n, v, l);
     return t.diffuse + t.specular;
+}
+
+// ---- KHR_materials_anisotropy: the anisotropic GGX lobe --------------------------------
+// As the Khronos Sample Viewer evaluates it; the same functions as shaders/brdf.glsl. The
+// lobe is stretched along the anisotropy direction t (b = ng x t): alpha_t = mix(alpha, 1,
+// strength^2) along t, alpha_b = alpha (floored at 1e-3) along b.
+
+// Anisotropic GGX D(h) with t.h, b.h, n.h (n.h floored at 1e-3 by the caller).
+inline float d_ggx_anisotropic(float n_dot_h, float t_dot_h, float b_dot_h, float at, float ab) {
+    float a2 = at * ab;
+    glm::vec3 f(ab * t_dot_h, at * b_dot_h, a2 * n_dot_h);
+    float w2 = a2 / glm::dot(f, f);
+    return a2 * w2 * w2 / kPi;
+}
+// Anisotropic height-correlated Smith visibility V = G / (4 n.l n.v), clamped to [0, 1].
+inline float v_ggx_anisotropic(float n_dot_l, float n_dot_v, float b_dot_v, float t_dot_v, float t_dot_l,
+                               float b_dot_l, float at, float ab) {
+    float ggxv = n_dot_l * glm::length(glm::vec3(at * t_dot_v, ab * b_dot_v, n_dot_v));
+    float ggxl = n_dot_v * glm::length(glm::vec3(at * t_dot_l, ab * b_dot_l, n_dot_l));
+    float g = ggxv + ggxl;
+    return g != 0.0f ? std::clamp(0.5f / g, 0.0f, 1.0f) : 0.0f;
+}
+// The lobe's roughness along the anisotropy direction.
+inline float anisotropic_alpha_t(float alpha, float strength) {
+    return alpha + (1.0f - alpha) * strength * strength;
+}
+// Replaces the specular lobes' D and V in t (from evaluate_terms) with the anisotropic ones at
+// (n, v, l) and the direction frame (at, bt); the Fresnel terms and the diffuse lobe stay.
+// As the Khronos viewer: n.l clamped, n.h clamped to [1e-3, 1], n.v not clamped.
+inline void apply_anisotropy(Terms& t, const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l, glm::vec3 at_dir,
+                             glm::vec3 bt_dir, float strength) {
+    glm::vec3 h = l + v;
+    float hl = glm::length(h);
+    h = hl > 0.0f ? h / hl : n;
+    float alpha = alpha_from_roughness(s.perceptual_roughness);
+    float at = anisotropic_alpha_t(alpha, strength);
+    float ab = std::clamp(alpha, 1e-3f, 1.0f);
+    float n_dot_l = std::clamp(glm::dot(n, l), 0.0f, 1.0f);
+    float n_dot_h = std::clamp(glm::dot(n, h), 1e-3f, 1.0f);
+    float n_dot_v = glm::dot(n, v);
+    t.v = v_ggx_anisotropic(n_dot_l, n_dot_v, glm::dot(bt_dir, v), glm::dot(at_dir, v), glm::dot(at_dir, l),
+                            glm::dot(bt_dir, l), at, ab);
+    t.d = d_ggx_anisotropic(n_dot_h, glm::dot(at_dir, h), glm::dot(bt_dir, h), at, ab);
+    float spec = t.v * t.d;
+    t.specular_dielectric = (1.0f - s.metallic) * t.f_dielectric * spec;
+    t.specular_metal = s.metallic * t.f_metal * spec;
+    t.specular = t.specular_dielectric + t.specular_metal;
+}
+
+// The bent normal the image-based light of an anisotropic lobe reflects the view about
+// (the Khronos viewer's getIBLRadianceAnisotropy): the normal tilted towards the one
+// perpendicular to the anisotropy bitangent bt and to bt x v, the more the stronger and
+// smoother the lobe; the prefiltered cube is then read along reflect(-v, bent) at the
+// material's roughness.
+inline glm::vec3 anisotropic_bent_normal(glm::vec3 n, glm::vec3 v, float perceptual_roughness, float strength,
+                                         glm::vec3 bt_dir) {
+    glm::vec3 tangent = glm::cross(bt_dir, v);
+    glm::vec3 normal = glm::cross(tangent, bt_dir);
+    float bend = 1.0f - strength * (1.0f - perceptual_roughness);
+    float bend4 = bend * bend * bend * bend;
+    return glm::normalize(normal + (n - normal) * bend4);
 }
 
 // KHR_materials_clearcoat. The coat's lobe times n.l, at the coat normal nc (no Fresnel:

@@ -12,6 +12,10 @@
 //               coat F0 = ior_to_f0(ior); all only when clearcoatFactor > 0
 //   sheen colour = sheenColorFactor * sheenColorTexture RGB (sRGB), roughness = factor *
 //               sheenRoughnessTexture A; only when the colour factor is non-zero
+//   anisotropy (only with a positive strength and tangents): strength = anisotropyStrength *
+//               anisotropyTexture B; direction = rotate(anisotropyRotation) * (texture RG * 2 - 1,
+//               else (1, 0)), normalised ((1, 0) when 0); anisotropic t = direction.x T +
+//               direction.y B of the geometric frame, b = cross(geometric normal, t)
 //   occlusion = 1 + strength * (occlusionTexture R - 1)
 //   emissive = emissiveFactor * emissiveStrength * emissiveTexture RGB (sRGB)
 //   alpha: OPAQUE -> 1; MASK -> discard below the cutoff, else 1; BLEND -> as computed
@@ -58,8 +62,9 @@ enum class MaterialMap {
     SheenRoughness,      // KHR_materials_sheen sheenRoughnessTexture
     Transmission,        // KHR_materials_transmission transmissionTexture (R)
     Thickness,           // KHR_materials_volume thicknessTexture (G), read only with transmission
+    Anisotropy,          // KHR_materials_anisotropy anisotropyTexture (RG direction, B strength), needs tangents
 };
-inline constexpr int kMaterialMapCount = 15;
+inline constexpr int kMaterialMapCount = 16;
 
 struct MaterialMapInfo {
     const char* name;    // GLSL: u_<name>_map, u_<name>_uv, u_<name>_transform
@@ -79,7 +84,7 @@ struct VertexInputs {
     bool has_uv0 = true, has_uv1 = true, has_tangent = true;
 };
 // Whether a primitive with `inputs` can read `slot` for `map`: any map needs TEXCOORD_0,
-// a map on TEXCOORD_1 needs it too, normal maps need tangents.
+// a map on TEXCOORD_1 needs it too, normal maps and the anisotropy map need tangents.
 bool map_usable(const TextureSlot& slot, MaterialMap map, const VertexInputs& inputs);
 
 // The point being shaded, as the fragment shader sees it.
@@ -110,6 +115,11 @@ struct EvaluatedMaterial {
     glm::vec3 clearcoat_normal{0, 0, 1};
     glm::vec3 sheen_color{0.0f};          // KHR_materials_sheen (0 = no sheen)
     float sheen_roughness = 0.0f;         // perceptual
+    // KHR_materials_anisotropy (strength 0 = none): the direction in the tangent plane (unit,
+    // after the rotation) and the world-space frame the lobe is stretched along.
+    float anisotropy_strength = 0.0f;
+    glm::vec2 anisotropy_direction{1.0f, 0.0f};
+    glm::vec3 anisotropic_t{1, 0, 0}, anisotropic_b{0, 1, 0};
     bool unlit = false;
     TransmissionInputs transmission;      // factor 0 without KHR_materials_transmission
 };
@@ -146,6 +156,7 @@ Material to_metallic_roughness(const Material& material, bool* lost_glossiness_m
 
 // KHR_materials_sheen and _clearcoat layering of one punctual light (pbr.frag's light loop):
 //   base = (f_diffuse + f_specular_dielectric * comp_dielectric + f_specular_metal * comp_metal) n.l
+//   with anisotropy the specular lobes' D and V are the anisotropic ones (brdf::apply_anisotropy)
 //   with sheen: base = f_sheen n.l + base * sheen_albedo_scaling(colour, E(n.v), E(n.l)),
 //               E from brdf::SheenAlbedoTable::standard() (the shader: the table's A channel)
 //   result = radiance * mix(base, clearcoat_specular, clearcoat_mix)

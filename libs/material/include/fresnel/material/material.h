@@ -119,7 +119,7 @@ struct IridescenceExt {                    // KHR_materials_iridescence
     float iridescence_thickness_maximum = 400.0f;  // nm
     TextureSlot iridescence_thickness_texture;     // G
 };
-struct AnisotropyExt {                     // KHR_materials_anisotropy
+struct AnisotropyExt {                     // KHR_materials_anisotropy (shaded: evaluate.h)
     float anisotropy_strength = 0.0f;
     float anisotropy_rotation = 0.0f;      // radians
     TextureSlot anisotropy_texture;        // RG direction, B strength
@@ -210,6 +210,9 @@ struct Material {
         return sheen && (sheen->sheen_color_factor.x > 0.0f || sheen->sheen_color_factor.y > 0.0f ||
                          sheen->sheen_color_factor.z > 0.0f);
     }
+    // Anisotropy is shaded only with a positive strength (strength = factor * texture B; at 0
+    // the lobe is the isotropic one).
+    bool has_anisotropy() const { return anisotropy && anisotropy->anisotropy_strength > 0.0f; }
 };
 
 // Dielectric reflectance at normal incidence of an ior against air: ((ior-1)/(ior+1))^2

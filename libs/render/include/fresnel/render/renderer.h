@@ -31,6 +31,7 @@ enum class DebugChannel {
     Alpha, Uv0, Uv1, D, G, F, Diffuse, Specular, Irradiance, Prefiltered, IblDiffuse, IblSpecular,
     Transmission, Thickness,  // KHR_materials_transmission factor, KHR_materials_volume thickness (0..1)
     Sheen, SheenRoughness,  // KHR_materials_sheen: colour (sRGB), roughness (grey)
+    Anisotropy, AnisotropyDirection,  // KHR_materials_anisotropy: strength (grey), direction (RG = xy * 0.5 + 0.5)
 };
 std::optional<DebugChannel> parse_debug_channel(const std::string& name);
 std::vector<std::string> debug_channel_names();

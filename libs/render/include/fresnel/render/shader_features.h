@@ -52,14 +52,19 @@ enum : FeatureMask {
     TransmissionMap = 1u << 28,
     ThicknessMap = 1u << 29,
     Transmission = 1u << 30,  // MATERIAL_TRANSMISSION: refraction of the opaque scene (transmission.h)
+    // KHR_materials_anisotropy (Material::has_anisotropy; needs tangents) and its map 15
+    // (MaterialMap::Anisotropy).
+    Anisotropy = FeatureMask(1) << 31,
+    AnisotropyMap = FeatureMask(1) << 32,
 };
-constexpr int kCount = 31;
+constexpr int kCount = 33;
 constexpr int kFirstMap = 12;
-constexpr int kMapCount = 15;
+constexpr int kMapCount = 16;
 constexpr FeatureMask kAll = (FeatureMask(1) << kCount) - 1;
 // The bit position of each map, in fresnel::MaterialMap order: maps 0..12 are bits 12..24,
-// the transmission maps (13, 14) bits 28 and 29. A new map appends its position here.
-constexpr int kMapBitPositions[kMapCount] = {12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 28, 29};
+// the transmission maps (13, 14) bits 28 and 29, the anisotropy map (15) bit 32. A new map
+// appends its position here.
+constexpr int kMapBitPositions[kMapCount] = {12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 28, 29, 32};
 // The bit of map `i` (fresnel::MaterialMap(i)).
 constexpr FeatureMask map_bit(int i) { return FeatureMask(1) << kMapBitPositions[i]; }
 constexpr FeatureMask all_map_bits() {
@@ -92,19 +97,23 @@ std::vector<std::string> feature_defines(FeatureMask mask);
 // Each rule drops a bit that cannot change the picture or adds a map whose absence
 // a 1x1 white texture stands in for exactly (x * 1.0 = x), so variants stay few:
 //  - tangents without normals are ignored (glTF 2.0, meshes: "TANGENT ... ignored");
-//  - every map needs UV0; normal and clearcoat-normal maps need tangents;
+//  - every map needs UV0; normal and clearcoat-normal maps need tangents; anisotropy needs
+//    tangents (its direction lies in the tangent frame; without them it is not shaded, as
+//    normal maps are not), and its map the anisotropy;
 //    the clearcoat maps need the clearcoat, the sheen maps the sheen; specular-glossiness reads its own map and
 //    neither the metallic-roughness nor the two KHR_materials_specular maps, which
 //    metallic-roughness reads instead of the specular-glossiness map;
 //  - unlit without the debug view reads only the base colour (map): normals, tangents,
-//    lit maps, specular-glossiness, clearcoat, sheen and the environment are dropped;
+//    lit maps, specular-glossiness, clearcoat, sheen, anisotropy and the environment are dropped;
 //  - KHR_materials_specular's two maps come together, as do the clearcoat and
 //    clearcoat-roughness maps, as do the two sheen maps (the missing one is the white texture);
-//  - the debug view samples every map but the normal maps (white where absent);
+//  - the debug view samples every map but the normal maps and the anisotropy map (white where
+//    absent; a white anisotropy texel is not the default direction (1, 0));
 //  - alpha mask wins over blend (a material has one alpha mode);
 //  - transmission is not shaded for unlit (without the debug view) or specular-glossiness
 //    materials; with it, its two maps always come together (white stands in: factor * 1).
-// Normal maps are never stood in for: a flat normal texel is not exactly (0, 0, 1).
+// Normal maps and the anisotropy map are never stood in for: a flat normal texel is not
+// exactly (0, 0, 1), a white anisotropy texel is direction (1, 1).
 FeatureMask canonical_features(FeatureMask mask);
 
 // A mask the renderer can produce: in range and canonical.

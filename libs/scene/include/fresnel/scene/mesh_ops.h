@@ -69,6 +69,11 @@ void generate_flat_normals(Primitive& p);
 // Returns false (and changes nothing) when the primitive is not triangles or has no normals
 // or no such texture coordinates.
 bool generate_tangents(Primitive& p, int tex_coord);
+// The slot whose UV set a primitive of material `m` without tangents generates them from: the
+// normal map, else the clearcoat normal map, else (KHR_materials_anisotropy, whose direction lies
+// in the tangent frame) the anisotropy texture, TEXCOORD_0 without one; nullptr when nothing
+// needs tangents.
+const TextureSlot* tangent_source(const Material& m);
 
 // Makes every tangent a unit xyz with w = +1 or -1 (w < 0 becomes -1, anything else +1);
 // a zero, infinite or NaN xyz becomes (1, 0, 0, 1).
