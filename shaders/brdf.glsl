@@ -169,10 +169,21 @@ struct BrdfTerms {
     vec3 specular_metal;       // metallic F_metal V D
 };
 
+// KHR_materials_iridescence: the film's Fresnel over the dielectric and the metallic base at
+// one view, and its weight (brdf::IridescenceFresnel; iridescence.glsl evaluates it).
+struct IridescenceFresnel {
+    float factor;  // 0: no film
+    vec3 dielectric;
+    vec3 metal;
+};
+IridescenceFresnel no_film() { return IridescenceFresnel(0.0, vec3(0.0), vec3(0.0)); }
+
 // f0_dielectric: the dielectric F0 colour (0.04 by default); specular_weight scales the
-// dielectric lobe's F0 and F90 (KHR_materials_specular; 1 by default).
-BrdfTerms brdf_terms(vec3 base_color, float metallic, float perceptual_roughness, vec3 f0_dielectric,
-                     float specular_weight, vec3 n, vec3 v, vec3 l) {
+// dielectric lobe's F0 and F90 (KHR_materials_specular; 1 by default). `film`: a thin film
+// over both (brdf::layer): the Fresnel terms become mix(F, F_film, factor), the diffuse keeps
+// mix(1 - F, 1 - max(F_film), factor).
+BrdfTerms brdf_terms_film(vec3 base_color, float metallic, float perceptual_roughness, vec3 f0_dielectric,
+                          float specular_weight, vec3 n, vec3 v, vec3 l, IridescenceFresnel film) {
     BrdfTerms t;
     vec3 h = l + v;
     float hl = length(h);
@@ -187,13 +198,26 @@ BrdfTerms brdf_terms(vec3 base_color, float metallic, float perceptual_roughness
     float spec = t.v * t.d;
     vec3 f_metal = brdf_f_metal(base_color, v_dot_h);
     vec3 f_dielectric = brdf_f_dielectric(f0_dielectric * specular_weight, vec3(specular_weight), v_dot_h);
+    vec3 diffuse_weight = 1.0 - f_dielectric;
+    if (film.factor > 0.0) {
+        float film_max = max(max(film.dielectric.r, film.dielectric.g), film.dielectric.b);
+        diffuse_weight = mix(diffuse_weight, vec3(1.0 - film_max), film.factor);
+        f_dielectric = mix(f_dielectric, film.dielectric, film.factor);
+        f_metal = mix(f_metal, film.metal, film.factor);
+    }
     t.f = mix(f_dielectric, f_metal, metallic);
-    t.diffuse = (1.0 - metallic) * (1.0 - f_dielectric) * base_color / PI *
+    t.diffuse = (1.0 - metallic) * diffuse_weight * base_color / PI *
                 brdf_diffuse_factor(n_dot_l, n_dot_v, v_dot_h, dot(l, v), perceptual_roughness);
     t.specular_dielectric = (1.0 - metallic) * f_dielectric * spec;
     t.specular_metal = metallic * f_metal * spec;
     t.specular = t.specular_dielectric + t.specular_metal;
     return t;
+}
+
+BrdfTerms brdf_terms(vec3 base_color, float metallic, float perceptual_roughness, vec3 f0_dielectric,
+                     float specular_weight, vec3 n, vec3 v, vec3 l) {
+    return brdf_terms_film(base_color, metallic, perceptual_roughness, f0_dielectric, specular_weight, n, v, l,
+                           no_film());
 }
 
 // KHR_materials_clearcoat: the coat's specular lobe times n.l (no Fresnel: the layering

@@ -26,9 +26,13 @@ vec3 debug_value(int channel, MaterialInputs m, vec3 n, vec3 ng, vec3 t, vec3 b,
     }
     if (channel == 24) return linear_to_srgb(clamp(m.sheen_color, 0.0, 1.0));  // KHR_materials_sheen (0 without)
     if (channel == 25) return vec3(m.sheen_roughness);
+    if (channel == 28) return vec3(m.iridescence);  // KHR_materials_iridescence (0 without)
+    if (channel == 29) return vec3(clamp(m.iridescence_thickness / 1000.0, 0.0, 1.0));  // micrometres
     vec3 l = v;
     if (u_light_count > 0) light_incident(0, v_position, l);
-    BrdfTerms bt = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight, n, v, l);
+    // With the thin film where there is one (F shows the film's colours).
+    BrdfTerms bt = brdf_terms_film(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight, n, v, l,
+                                   material_film(m, v));
     float n_dot_l = clamped_dot(n, l), n_dot_v = clamped_dot(n, v);
     if (channel == 13) return vec3(clamp(bt.d, 0.0, 1.0));
     if (channel == 14) return vec3(clamp(bt.v * 4.0 * n_dot_l * n_dot_v, 0.0, 1.0));

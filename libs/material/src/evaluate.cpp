@@ -27,6 +27,8 @@ constexpr MaterialMapInfo kMaps[kMaterialMapCount] = {
     {"sheen_roughness", "HAS_SHEEN_ROUGHNESS_MAP", false, false},
     {"transmission", "HAS_TRANSMISSION_MAP", false, false},
     {"thickness", "HAS_THICKNESS_MAP", false, false},
+    {"iridescence", "HAS_IRIDESCENCE_MAP", false, false},
+    {"iridescence_thickness", "HAS_IRIDESCENCE_THICKNESS_MAP", false, false},
 };
 
 // Reads one map at the point, or nullopt when the map is absent or unreadable.
@@ -79,6 +81,7 @@ const TextureSlot* material_map(const Material& m, MaterialMap map) {
     const auto* sp = m.specular ? &*m.specular : nullptr;
     const auto* cc = m.has_clearcoat() ? &*m.clearcoat : nullptr;
     const auto* sh = m.has_sheen() ? &*m.sheen : nullptr;
+    const auto* ir = m.has_iridescence() ? &*m.iridescence : nullptr;
     const TextureSlot* slot = nullptr;
     switch (map) {
         case MaterialMap::BaseColor: slot = sg ? &sg->diffuse_texture : &m.base_color; break;
@@ -98,6 +101,8 @@ const TextureSlot* material_map(const Material& m, MaterialMap map) {
         case MaterialMap::Thickness:
             slot = is_transmissive(m) && m.volume ? &m.volume->thickness_texture : nullptr;
             break;
+        case MaterialMap::Iridescence: slot = ir ? &ir->iridescence_texture : nullptr; break;
+        case MaterialMap::IridescenceThickness: slot = ir ? &ir->iridescence_thickness_texture : nullptr; break;
     }
     return slot && slot->valid() ? slot : nullptr;
 }
@@ -218,6 +223,18 @@ EvaluatedMaterial evaluate(const Material& material, const TextureSource& textur
         e.sheen_color = glm::max(e.sheen_color, glm::vec3(0.0f));
         e.sheen_roughness = std::clamp(e.sheen_roughness, 0.0f, 1.0f);
     }
+    if (m.has_iridescence()) {
+        const IridescenceExt& ir = *m.iridescence;
+        e.iridescence = ir.iridescence_factor;
+        if (auto t = maps.sample(MaterialMap::Iridescence)) e.iridescence *= t->x;
+        e.iridescence = std::clamp(e.iridescence, 0.0f, 1.0f);
+        e.iridescence_ior = ir.iridescence_ior;
+        e.iridescence_thickness = ir.iridescence_thickness_maximum;
+        // mix(minimum, maximum, G), written so that G = 1 gives the maximum exactly (the white
+        // texture stands in for an absent map).
+        if (auto t = maps.sample(MaterialMap::IridescenceThickness))
+            e.iridescence_thickness = ir.iridescence_thickness_minimum * (1.0f - t->y) + ir.iridescence_thickness_maximum * t->y;
+    }
     if (auto t = maps.sample(MaterialMap::Occlusion)) e.occlusion = 1.0f + m.occlusion_strength * (t->x - 1.0f);
     e.emissive = m.emissive_factor * m.emissive_strength_value();
     if (auto t = maps.sample(MaterialMap::Emissive)) e.emissive *= glm::vec3(*t);
@@ -279,7 +296,12 @@ glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm:
     float n_dot_l = std::clamp(glm::dot(m.normal, l), 0.0f, 1.0f);
     glm::vec3 lit(0.0f);
     if (n_dot_l > 0.0f) {
-        brdf::Terms t = brdf::evaluate_terms(m.surface, m.normal, v, l, model);
+        brdf::IridescenceFresnel film;
+        if (m.iridescence > 0.0f)
+            film = brdf::iridescence_at(m.iridescence, m.iridescence_ior, m.iridescence_thickness,
+                                        std::clamp(glm::dot(m.normal, v), 0.0f, 1.0f), m.surface.dielectric_f0(),
+                                        m.surface.base_color);
+        brdf::Terms t = brdf::evaluate_terms(m.surface, m.normal, v, l, model, film);
         glm::vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;
         glm::vec3 base = t.diffuse + specular;
         if (m.sheen_color != glm::vec3(0.0f)) {

@@ -38,6 +38,7 @@ constexpr NamedChannel kChannels[] = {
     {"ibl-diffuse", DebugChannel::IblDiffuse}, {"ibl-specular", DebugChannel::IblSpecular},
     {"transmission", DebugChannel::Transmission}, {"thickness", DebugChannel::Thickness},
     {"sheen", DebugChannel::Sheen}, {"sheen-roughness", DebugChannel::SheenRoughness},
+    {"iridescence", DebugChannel::Iridescence}, {"iridescence-thickness", DebugChannel::IridescenceThickness},
 };
 
 constexpr int kMaxLights = kMaxShaderLights;

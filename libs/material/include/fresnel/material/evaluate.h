@@ -12,6 +12,9 @@
 //               coat F0 = ior_to_f0(ior); all only when clearcoatFactor > 0
 //   sheen colour = sheenColorFactor * sheenColorTexture RGB (sRGB), roughness = factor *
 //               sheenRoughnessTexture A; only when the colour factor is non-zero
+//   iridescence = iridescenceFactor * iridescenceTexture R, film ior = iridescenceIor,
+//               thickness = mix(minimum, maximum, iridescenceThicknessTexture G) nm, without
+//               the texture the maximum; only when the factor is positive
 //   occlusion = 1 + strength * (occlusionTexture R - 1)
 //   emissive = emissiveFactor * emissiveStrength * emissiveTexture RGB (sRGB)
 //   alpha: OPAQUE -> 1; MASK -> discard below the cutoff, else 1; BLEND -> as computed
@@ -58,8 +61,12 @@ enum class MaterialMap {
     SheenRoughness,      // KHR_materials_sheen sheenRoughnessTexture
     Transmission,        // KHR_materials_transmission transmissionTexture (R)
     Thickness,           // KHR_materials_volume thicknessTexture (G), read only with transmission
+    // (KHR_materials_anisotropy's anisotropyTexture comes before these on its branch; the
+    // merge renumbers the two below to 16 and 17.)
+    Iridescence,           // KHR_materials_iridescence iridescenceTexture (R)
+    IridescenceThickness,  // KHR_materials_iridescence iridescenceThicknessTexture (G)
 };
-inline constexpr int kMaterialMapCount = 15;
+inline constexpr int kMaterialMapCount = 17;
 
 struct MaterialMapInfo {
     const char* name;    // GLSL: u_<name>_map, u_<name>_uv, u_<name>_transform
@@ -110,6 +117,9 @@ struct EvaluatedMaterial {
     glm::vec3 clearcoat_normal{0, 0, 1};
     glm::vec3 sheen_color{0.0f};          // KHR_materials_sheen (0 = no sheen)
     float sheen_roughness = 0.0f;         // perceptual
+    float iridescence = 0.0f;             // KHR_materials_iridescence strength (0 = no film)
+    float iridescence_ior = 1.3f;
+    float iridescence_thickness = 0.0f;   // nm
     bool unlit = false;
     TransmissionInputs transmission;      // factor 0 without KHR_materials_transmission
 };
@@ -146,6 +156,8 @@ Material to_metallic_roughness(const Material& material, bool* lost_glossiness_m
 
 // KHR_materials_sheen and _clearcoat layering of one punctual light (pbr.frag's light loop):
 //   base = (f_diffuse + f_specular_dielectric * comp_dielectric + f_specular_metal * comp_metal) n.l
+//   with a thin film (KHR_materials_iridescence) the terms' Fresnel is mixed with the film's,
+//               brdf::iridescence_at(n.v) (brdf::layer)
 //   with sheen: base = f_sheen n.l + base * sheen_albedo_scaling(colour, E(n.v), E(n.l)),
 //               E from brdf::SheenAlbedoTable::standard() (the shader: the table's A channel)
 //   result = radiance * mix(base, clearcoat_specular, clearcoat_mix)

@@ -44,6 +44,10 @@ struct MaterialUniforms {
     float dispersion = 0.0f;
     glm::vec3 sheen_color_factor{0.0f};  // with MATERIAL_SHEEN only
     float sheen_roughness_factor = 0.0f;
+    float iridescence_factor = 0.0f;  // with MATERIAL_IRIDESCENCE only
+    float iridescence_ior = 1.3f;
+    float iridescence_thickness_minimum = 100.0f;  // nm
+    float iridescence_thickness_maximum = 400.0f;
     // The slot each map reads (material_map), nullptr for none; index = MaterialMap.
     std::array<const TextureSlot*, kMaterialMapCount> maps{};
 };
@@ -51,7 +55,7 @@ struct MaterialUniforms {
 MaterialUniforms material_uniforms(const Material& m);
 
 // The shader feature bits (shader_features.h) of the material model: unlit,
-// specular-glossiness, clearcoat, sheen, transmission, alpha mode (feature_defines() spells them as #defines).
+// specular-glossiness, clearcoat, sheen, transmission, iridescence, alpha mode (feature_defines() spells them as #defines).
 FeatureMask material_features(const Material& m);
 
 // Sets the values on `program` (in use); units[i]: the texture unit map i is bound to (-1: none).

@@ -31,6 +31,9 @@ enum class DebugChannel {
     Alpha, Uv0, Uv1, D, G, F, Diffuse, Specular, Irradiance, Prefiltered, IblDiffuse, IblSpecular,
     Transmission, Thickness,  // KHR_materials_transmission factor, KHR_materials_volume thickness (0..1)
     Sheen, SheenRoughness,  // KHR_materials_sheen: colour (sRGB), roughness (grey)
+    // 26, 27: KHR_materials_anisotropy (its branch).
+    Iridescence = 28,      // KHR_materials_iridescence strength (grey)
+    IridescenceThickness,  // the film's thickness in micrometres (grey, 1 = 1000 nm and above)
 };
 std::optional<DebugChannel> parse_debug_channel(const std::string& name);
 std::vector<std::string> debug_channel_names();
