@@ -18,6 +18,13 @@ BsdfLobes lobe_probabilities(const EvaluatedMaterial& m, glm::vec3 v) {
     float n_dot_v = std::clamp(glm::dot(m.normal, v), 0.0f, 1.0f);
     glm::vec3 f_dielectric = brdf::f_schlick(s.dielectric_f0() * s.specular_weight, glm::vec3(s.specular_weight), n_dot_v);
     glm::vec3 f_metal = brdf::f_schlick(s.base_color, glm::vec3(1.0f), n_dot_v);
+    if (m.iridescence > 0.0f) {
+        // KHR_materials_iridescence: the lobes' weights follow the film's Fresnel too.
+        brdf::IridescenceFresnel film = brdf::iridescence_at(m.iridescence, m.iridescence_ior, m.iridescence_thickness,
+                                                             n_dot_v, s.dielectric_f0(), s.base_color);
+        f_dielectric = glm::mix(f_dielectric, film.dielectric, film.factor);
+        f_metal = glm::mix(f_metal, film.metal, film.factor);
+    }
     float spec = (1.0f - s.metallic) * luminance(f_dielectric) + s.metallic * luminance(f_metal);
     float diff = (1.0f - s.metallic) * luminance((1.0f - f_dielectric) * s.base_color);
     // KHR_materials_sheen has no sampling routine of its own: its broad lobe is sampled by
