@@ -94,7 +94,7 @@ std::string describe(const Job& job) {
 // The sampled group (see the top) and the share of its sources compiled besides the
 // pairwise cover.
 constexpr FeatureMask kFilmGroup = feature::Iridescence | feature::IridescenceMap | feature::IridescenceThicknessMap;
-constexpr std::size_t kFilmStride = 16;
+constexpr std::size_t kFilmStride = 64;
 
 // The sources of one stage to compile, from its distinct masks: all without the film group,
 // a stride of those with it, and a pairwise cover of the film's choices with every other bit
