@@ -11,7 +11,7 @@
 //
 // One group is sampled instead of enumerated: the KHR_materials_iridescence bits (the film
 // and its two maps) would triple the fragment shader's ~20k sources. Every source without
-// them compiles; of those with them, every kFilmStride-th (in mask order) and, on top,
+// them compiles; of those with them, every kFilmStride-th (64th, in mask order) and, on top,
 // enough that each film choice meets every other bit the stage reads both set and clear
 // (pairwise coverage, asserted). The film's code is a few #ifdef MATERIAL_IRIDESCENCE
 // blocks that add a function and mix its result into values every variant has.
