@@ -178,6 +178,17 @@ struct IridescenceFresnel {
 };
 IridescenceFresnel no_film() { return IridescenceFresnel(0.0, vec3(0.0), vec3(0.0)); }
 
+// brdf::film_diffuse_weight: what the diffuse (or the transmission replacing it) keeps below
+// the dielectric's Fresnel, 1 - F, under a film mix(1 - F, 1 - max(F_film), factor).
+vec3 film_diffuse_weight(vec3 f_dielectric, IridescenceFresnel film) {
+    vec3 weight = 1.0 - f_dielectric;
+    if (film.factor > 0.0) {
+        float film_max = max(max(film.dielectric.r, film.dielectric.g), film.dielectric.b);
+        weight = mix(weight, vec3(1.0 - film_max), film.factor);
+    }
+    return weight;
+}
+
 // f0_dielectric: the dielectric F0 colour (0.04 by default); specular_weight scales the
 // dielectric lobe's F0 and F90 (KHR_materials_specular; 1 by default). `film`: a thin film
 // over both (brdf::layer): the Fresnel terms become mix(F, F_film, factor), the diffuse keeps
@@ -198,10 +209,8 @@ BrdfTerms brdf_terms_film(vec3 base_color, float metallic, float perceptual_roug
     float spec = t.v * t.d;
     vec3 f_metal = brdf_f_metal(base_color, v_dot_h);
     vec3 f_dielectric = brdf_f_dielectric(f0_dielectric * specular_weight, vec3(specular_weight), v_dot_h);
-    vec3 diffuse_weight = 1.0 - f_dielectric;
+    vec3 diffuse_weight = film_diffuse_weight(f_dielectric, film);
     if (film.factor > 0.0) {
-        float film_max = max(max(film.dielectric.r, film.dielectric.g), film.dielectric.b);
-        diffuse_weight = mix(diffuse_weight, vec3(1.0 - film_max), film.factor);
         f_dielectric = mix(f_dielectric, film.dielectric, film.factor);
         f_metal = mix(f_metal, film.metal, film.factor);
     }

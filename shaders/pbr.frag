@@ -120,8 +120,7 @@ void main() {
         // into both lobes' split-sum Fresnel; the diffuse keeps 1 - max(F_film) (brdf::layer).
         IridescenceFresnel film = material_film(m, v);
         if (film.factor > 0.0) {
-            float film_max = max(max(film.dielectric.r, film.dielectric.g), film.dielectric.b);
-            diffuse_weight = mix(diffuse_weight, vec3(1.0 - film_max), film.factor);
+            diffuse_weight = film_diffuse_weight(fresnel_dielectric, film);
             fresnel_dielectric = mix(fresnel_dielectric, film.dielectric, film.factor);
             fresnel_metal = mix(fresnel_metal, film.metal, film.factor);
         }

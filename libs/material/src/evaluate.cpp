@@ -270,6 +270,13 @@ EvaluatedMaterial evaluate(const Material& material, const TextureSource& textur
 
 bool is_transmissive(const Material& m) { return m.transmission && !m.specular_glossiness && !m.unlit; }
 
+brdf::IridescenceFresnel film_at(const EvaluatedMaterial& m, glm::vec3 v) {
+    if (!(m.iridescence > 0.0f)) return {};
+    return brdf::iridescence_at(m.iridescence, m.iridescence_ior, m.iridescence_thickness,
+                                std::clamp(glm::dot(m.normal, v), 0.0f, 1.0f), m.surface.dielectric_f0(),
+                                m.surface.base_color);
+}
+
 glm::vec3 shade_light_transmission(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 l_transmitted,
                                    float ray_length, glm::vec3 radiance) {
     const TransmissionInputs& tr = m.transmission;
@@ -285,7 +292,8 @@ glm::vec3 shade_light_transmission(const EvaluatedMaterial& m, glm::vec3 v, glm:
                                                  glm::vec3(1.0f), s.base_color, tr.ior);
     glm::vec3 transmitted = transmission::volume_attenuation(radiance * btdf, ray_length, tr.attenuation_color,
                                                              tr.attenuation_distance);
-    glm::vec3 term = (1.0f - s.metallic) * (1.0f - f_dielectric) * tr.factor *
+    // The share of the diffuse it replaces: 1 - F, under a thin film brdf::film_diffuse_weight.
+    glm::vec3 term = (1.0f - s.metallic) * brdf::film_diffuse_weight(f_dielectric, film_at(m, v)) * tr.factor *
                      (transmitted - radiance * n_dot_l * brdf::lambert(s.base_color));
     if (m.clearcoat > 0.0f) term *= 1.0f - brdf::clearcoat_mix(m.clearcoat, m.clearcoat_f0, m.clearcoat_normal, v);
     return term;
@@ -296,12 +304,7 @@ glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm:
     float n_dot_l = std::clamp(glm::dot(m.normal, l), 0.0f, 1.0f);
     glm::vec3 lit(0.0f);
     if (n_dot_l > 0.0f) {
-        brdf::IridescenceFresnel film;
-        if (m.iridescence > 0.0f)
-            film = brdf::iridescence_at(m.iridescence, m.iridescence_ior, m.iridescence_thickness,
-                                        std::clamp(glm::dot(m.normal, v), 0.0f, 1.0f), m.surface.dielectric_f0(),
-                                        m.surface.base_color);
-        brdf::Terms t = brdf::evaluate_terms(m.surface, m.normal, v, l, model, film);
+        brdf::Terms t = brdf::evaluate_terms(m.surface, m.normal, v, l, model, film_at(m, v));
         glm::vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;
         glm::vec3 base = t.diffuse + specular;
         if (m.sheen_color != glm::vec3(0.0f)) {

@@ -122,6 +122,18 @@ struct IridescenceFresnel {
 IridescenceFresnel iridescence_at(float factor, float film_ior, float thickness, float n_dot_v,
                                   glm::vec3 f0_dielectric, glm::vec3 base_color);
 
+// What the diffuse keeps below the dielectric's Fresnel f_dielectric: 1 - F, and under a thin
+// film mix(1 - F, 1 - max(F_film), factor) (the Khronos viewer's rgb_mix). Also the weight of
+// the transmission that replaces the diffuse (KHR_materials_transmission).
+inline glm::vec3 film_diffuse_weight(glm::vec3 f_dielectric, const IridescenceFresnel& film) {
+    glm::vec3 weight = 1.0f - f_dielectric;
+    if (film.factor > 0.0f) {
+        float film_max = std::max({film.dielectric.x, film.dielectric.y, film.dielectric.z});
+        weight = glm::mix(weight, glm::vec3(1.0f - film_max), film.factor);
+    }
+    return weight;
+}
+
 // Appendix B's layering of the lobes, given t.d and t.v, the two Fresnel terms and the diffuse
 // lobe before its weights: fresnel_mix of the dielectric, conductor_fresnel of the metal.
 // With a thin film (KHR_materials_iridescence, as the Khronos Sample Viewer layers it) both
@@ -130,10 +142,8 @@ IridescenceFresnel iridescence_at(float factor, float film_ior, float thickness,
 inline void layer(Terms& t, const Surface& s, glm::vec3 f_dielectric, glm::vec3 f_metal, glm::vec3 diffuse,
                   const IridescenceFresnel& film = {}) {
     float spec = t.v * t.d;
-    glm::vec3 diffuse_weight = 1.0f - f_dielectric;
+    const glm::vec3 diffuse_weight = film_diffuse_weight(f_dielectric, film);
     if (film.factor > 0.0f) {
-        float film_max = std::max({film.dielectric.x, film.dielectric.y, film.dielectric.z});
-        diffuse_weight = glm::mix(diffuse_weight, glm::vec3(1.0f - film_max), film.factor);
         f_dielectric = glm::mix(f_dielectric, film.dielectric, film.factor);
         f_metal = glm::mix(f_metal, film.metal, film.factor);
     }

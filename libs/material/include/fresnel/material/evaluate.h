@@ -163,6 +163,10 @@ Material to_metallic_roughness(const Material& material, bool* lost_glossiness_m
 //   result = radiance * mix(base, clearcoat_specular, clearcoat_mix)
 // comp_* are the energy-compensation factors (1 without); `model` selects the BRDF's terms
 // (brdf_model.h; the default is glTF's). The twin of shade_light in shaders/material_inputs.glsl.
+// The thin film of `m` at the view v (KHR_materials_iridescence; factor 0 without one): the
+// film shade_light and shade_light_transmission use.
+brdf::IridescenceFresnel film_at(const EvaluatedMaterial& m, glm::vec3 v);
+
 glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 radiance,
                       glm::vec3 comp_dielectric = glm::vec3(1.0f), glm::vec3 comp_metal = glm::vec3(1.0f),
                       const brdf::BrdfModel& model = {});
@@ -174,7 +178,8 @@ bool is_transmissive(const Material& material);
 
 // The transmission term a punctual light adds to shade_light (the twin of
 // shade_light_transmission in shaders/transmission.glsl): the BTDF replaces the Lambert lobe in
-// proportion to the transmission factor, under the dielectric Fresnel and the coat:
+// proportion to the transmission factor, under the dielectric Fresnel (and a thin film's:
+// brdf::film_diffuse_weight) and the coat:
 //   (1 - cc_mix) (1 - metallic) (1 - F_d) T [attenuate(radiance btdf_punctual(l_transmitted)) - radiance n.l lambert]
 // l: the direction to the light; l_transmitted: to the light from the point where the
 // transmission ray leaves (ray_length = the ray's length, for the volume's attenuation).
