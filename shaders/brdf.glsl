@@ -170,10 +170,32 @@ struct BrdfTerms {
     vec3 specular_metal;       // metallic F_metal V D
 };
 
+// KHR_materials_iridescence: the film's Fresnel over the dielectric and the metallic base at
+// one view, and its weight (brdf::IridescenceFresnel; iridescence.glsl evaluates it).
+struct IridescenceFresnel {
+    float factor;  // 0: no film
+    vec3 dielectric;
+    vec3 metal;
+};
+IridescenceFresnel no_film() { return IridescenceFresnel(0.0, vec3(0.0), vec3(0.0)); }
+
+// brdf::film_diffuse_weight: what the diffuse (or the transmission replacing it) keeps below
+// the dielectric's Fresnel, 1 - F, under a film mix(1 - F, 1 - max(F_film), factor).
+vec3 film_diffuse_weight(vec3 f_dielectric, IridescenceFresnel film) {
+    vec3 weight = 1.0 - f_dielectric;
+    if (film.factor > 0.0) {
+        float film_max = max(max(film.dielectric.r, film.dielectric.g), film.dielectric.b);
+        weight = mix(weight, vec3(1.0 - film_max), film.factor);
+    }
+    return weight;
+}
+
 // f0_dielectric: the dielectric F0 colour (0.04 by default); specular_weight scales the
-// dielectric lobe's F0 and F90 (KHR_materials_specular; 1 by default).
-BrdfTerms brdf_terms(vec3 base_color, float metallic, float perceptual_roughness, vec3 f0_dielectric,
-                     float specular_weight, vec3 n, vec3 v, vec3 l) {
+// dielectric lobe's F0 and F90 (KHR_materials_specular; 1 by default). `film`: a thin film
+// over both (brdf::layer): the Fresnel terms become mix(F, F_film, factor), the diffuse keeps
+// mix(1 - F, 1 - max(F_film), factor).
+BrdfTerms brdf_terms_film(vec3 base_color, float metallic, float perceptual_roughness, vec3 f0_dielectric,
+                          float specular_weight, vec3 n, vec3 v, vec3 l, IridescenceFresnel film) {
     BrdfTerms t;
     vec3 h = l + v;
     float hl = length(h);
@@ -188,10 +210,15 @@ BrdfTerms brdf_terms(vec3 base_color, float metallic, float perceptual_roughness
     float spec = t.v * t.d;
     vec3 f_metal = brdf_f_metal(base_color, v_dot_h);
     vec3 f_dielectric = brdf_f_dielectric(f0_dielectric * specular_weight, vec3(specular_weight), v_dot_h);
-    t.f_dielectric = f_dielectric;
+    vec3 diffuse_weight = film_diffuse_weight(f_dielectric, film);
+    if (film.factor > 0.0) {
+        f_dielectric = mix(f_dielectric, film.dielectric, film.factor);
+        f_metal = mix(f_metal, film.metal, film.factor);
+    }
+    t.f_dielectric = f_dielectric;  // with the film: what apply_anisotropy weights its lobes by
     t.f_metal = f_metal;
     t.f = mix(f_dielectric, f_metal, metallic);
-    t.diffuse = (1.0 - metallic) * (1.0 - f_dielectric) * base_color / PI *
+    t.diffuse = (1.0 - metallic) * diffuse_weight * base_color / PI *
                 brdf_diffuse_factor(n_dot_l, n_dot_v, v_dot_h, dot(l, v), perceptual_roughness);
     t.specular_dielectric = (1.0 - metallic) * f_dielectric * spec;
     t.specular_metal = metallic * f_metal * spec;
@@ -241,6 +268,12 @@ vec3 anisotropic_bent_normal(vec3 n, vec3 v, float perceptual_roughness, float s
     float bend = 1.0 - strength * (1.0 - perceptual_roughness);
     float bend4 = bend * bend * bend * bend;
     return normalize(normal + (n - normal) * bend4);
+}
+
+BrdfTerms brdf_terms(vec3 base_color, float metallic, float perceptual_roughness, vec3 f0_dielectric,
+                     float specular_weight, vec3 n, vec3 v, vec3 l) {
+    return brdf_terms_film(base_color, metallic, perceptual_roughness, f0_dielectric, specular_weight, n, v, l,
+                           no_film());
 }
 
 // KHR_materials_clearcoat: the coat's specular lobe times n.l (no Fresnel: the layering

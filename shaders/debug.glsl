@@ -28,9 +28,13 @@ vec3 debug_value(int channel, MaterialInputs m, vec3 n, vec3 ng, vec3 t, vec3 b,
     if (channel == 25) return vec3(m.sheen_roughness);
     if (channel == 26) return vec3(m.anisotropy_strength);  // KHR_materials_anisotropy (0 without)
     if (channel == 27) return m.anisotropy_strength > 0.0 ? vec3(m.anisotropy_direction * 0.5 + 0.5, 0.0) : vec3(0.0);
+    if (channel == 28) return vec3(m.iridescence);  // KHR_materials_iridescence (0 without)
+    if (channel == 29) return vec3(clamp(m.iridescence_thickness / 1000.0, 0.0, 1.0));  // micrometres
     vec3 l = v;
     if (u_light_count > 0) light_incident(0, v_position, l);
-    BrdfTerms bt = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight, n, v, l);
+    // With the thin film where there is one (F shows the film's colours).
+    BrdfTerms bt = brdf_terms_film(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight, n, v, l,
+                                   material_film(m, v));
 #ifdef MATERIAL_ANISOTROPY
     if (m.anisotropy_strength > 0.0)
         apply_anisotropy(bt, m.metallic, m.roughness, n, v, l, m.anisotropic_t, m.anisotropic_b, m.anisotropy_strength);

@@ -32,6 +32,13 @@ uniform float u_sheen_roughness_factor;
 uniform float u_anisotropy_strength;    // KHR_materials_anisotropy
 uniform float u_anisotropy_rotation;    // radians
 #endif
+#ifdef MATERIAL_IRIDESCENCE
+#include "iridescence.glsl"
+uniform float u_iridescence_factor;     // KHR_materials_iridescence
+uniform float u_iridescence_ior;
+uniform float u_iridescence_thickness_minimum;  // nm
+uniform float u_iridescence_thickness_maximum;
+#endif
 
 // Per map: sampler, UV set (0/1) and the KHR_texture_transform matrix. (Spelled out:
 // GLSL ES 3.00 has no token pasting.)
@@ -76,6 +83,12 @@ uniform sampler2D u_sheen_roughness_map; uniform int u_sheen_roughness_uv; unifo
 #endif
 #ifdef HAS_ANISOTROPY_MAP
 uniform sampler2D u_anisotropy_map; uniform int u_anisotropy_uv; uniform mat3 u_anisotropy_transform;
+#endif
+#ifdef HAS_IRIDESCENCE_MAP
+uniform sampler2D u_iridescence_map; uniform int u_iridescence_uv; uniform mat3 u_iridescence_transform;
+#endif
+#ifdef HAS_IRIDESCENCE_THICKNESS_MAP
+uniform sampler2D u_iridescence_thickness_map; uniform int u_iridescence_thickness_uv; uniform mat3 u_iridescence_thickness_transform;
 #endif
 
 vec2 map_uv(int set, mat3 transform) {
@@ -130,6 +143,9 @@ struct MaterialInputs {
     vec2 anisotropy_direction;  // in the tangent plane, unit, after the rotation
     vec3 anisotropic_t;         // the world-space direction the lobe is stretched along
     vec3 anisotropic_b;         // cross(ng, anisotropic_t)
+    float iridescence;            // KHR_materials_iridescence strength (0 = no film)
+    float iridescence_ior;
+    float iridescence_thickness;  // nm
 };
 
 // t, b, ng: the geometric frame (unit, flipped for back faces), as evaluate's SurfacePoint.
@@ -227,6 +243,23 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     m.anisotropic_t = an_dir.x * t + an_dir.y * b;
     m.anisotropic_b = cross(ng, m.anisotropic_t);
 #endif
+    m.iridescence = 0.0;
+    m.iridescence_ior = 1.3;
+    m.iridescence_thickness = 0.0;
+#ifdef MATERIAL_IRIDESCENCE
+    m.iridescence = u_iridescence_factor;
+#ifdef HAS_IRIDESCENCE_MAP
+    m.iridescence *= sample_map(u_iridescence_map, u_iridescence_uv, u_iridescence_transform).r;
+#endif
+    m.iridescence = clamp(m.iridescence, 0.0, 1.0);
+    m.iridescence_ior = u_iridescence_ior;
+    m.iridescence_thickness = u_iridescence_thickness_maximum;
+#ifdef HAS_IRIDESCENCE_THICKNESS_MAP
+    // mix(minimum, maximum, G), exactly the maximum at G = 1 (the white stand-in).
+    float film_g = sample_map(u_iridescence_thickness_map, u_iridescence_thickness_uv, u_iridescence_thickness_transform).g;
+    m.iridescence_thickness = u_iridescence_thickness_minimum * (1.0 - film_g) + u_iridescence_thickness_maximum * film_g;
+#endif
+#endif
     m.occlusion = 1.0;
 #ifdef HAS_OCCLUSION_MAP
     m.occlusion = 1.0 + u_occlusion_strength * (sample_map(u_occlusion_map, u_occlusion_uv, u_occlusion_transform).r - 1.0);
@@ -258,13 +291,24 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     return m;
 }
 
+// The thin film at the view (KHR_materials_iridescence; no film without MATERIAL_IRIDESCENCE).
+IridescenceFresnel material_film(MaterialInputs m, vec3 v) {
+#ifdef MATERIAL_IRIDESCENCE
+    if (m.iridescence > 0.0)
+        return iridescence_at(m.iridescence, m.iridescence_ior, m.iridescence_thickness, clamped_dot(m.normal, v),
+                              m.f0_dielectric, m.base_color.rgb);
+#endif
+    return no_film();
+}
+
 // One punctual light on the material, with KHR_materials_clearcoat layering: the twin of
 // fresnel::shade_light (evaluate.h). comp_*: energy compensation of the specular lobes.
 vec3 shade_light(MaterialInputs m, vec3 v, vec3 l, vec3 radiance, vec3 comp_dielectric, vec3 comp_metal) {
     float n_dot_l = clamped_dot(m.normal, l);
     vec3 lit = vec3(0.0);
     if (n_dot_l > 0.0) {
-        BrdfTerms t = brdf_terms(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight, m.normal, v, l);
+        BrdfTerms t = brdf_terms_film(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight,
+                                      m.normal, v, l, material_film(m, v));
 #ifdef MATERIAL_ANISOTROPY
         if (m.anisotropy_strength > 0.0)
             apply_anisotropy(t, m.metallic, m.roughness, m.normal, v, l, m.anisotropic_t, m.anisotropic_b, m.anisotropy_strength);

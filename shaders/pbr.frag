@@ -120,8 +120,19 @@ void main() {
 #endif
         vec3 fresnel_dielectric = ibl_ggx_fresnel(n_dot_v, m.roughness, m.f0_dielectric, m.specular_weight);
         vec3 fresnel_metal = ibl_ggx_fresnel(n_dot_v, m.roughness, m.base_color.rgb, 1.0);
+        vec3 diffuse_weight = 1.0 - fresnel_dielectric;
+#ifdef MATERIAL_IRIDESCENCE
+        // KHR_materials_iridescence, as the Khronos Sample Viewer: the film's Fresnel at n.v mixed
+        // into both lobes' split-sum Fresnel; the diffuse keeps 1 - max(F_film) (brdf::layer).
+        IridescenceFresnel film = material_film(m, v);
+        if (film.factor > 0.0) {
+            diffuse_weight = film_diffuse_weight(fresnel_dielectric, film);
+            fresnel_dielectric = mix(fresnel_dielectric, film.dielectric, film.factor);
+            fresnel_metal = mix(fresnel_metal, film.metal, film.factor);
+        }
+#endif
         float so = specular_occlusion(n_dot_v, m.occlusion, m.roughness);
-        vec3 dielectric = diffuse * (1.0 - fresnel_dielectric) * m.occlusion + specular * fresnel_dielectric * so;
+        vec3 dielectric = diffuse * diffuse_weight * m.occlusion + specular * fresnel_dielectric * so;
         vec3 metal = specular * fresnel_metal * so;
         vec3 ibl = mix(dielectric, metal, m.metallic);
 #ifdef MATERIAL_SHEEN

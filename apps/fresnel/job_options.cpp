@@ -375,7 +375,8 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
         cmd->add_option("--debug", o->debug,
                         "Show a channel instead of shading: basecolor metallic roughness normal geometry-normal tangent "
                         "bitangent occlusion emissive alpha uv0 uv1 D G F diffuse specular irradiance prefiltered ibl-diffuse "
-                        "ibl-specular transmission thickness sheen sheen-roughness anisotropy anisotropy-direction (NaN/Inf show as magenta)")
+                        "ibl-specular transmission thickness sheen sheen-roughness anisotropy anisotropy-direction "
+                        "iridescence iridescence-thickness (NaN/Inf show as magenta)")
             ->capture_default_str();
     }
     cmd->add_flag("--allow-external-files", o->allow_external,

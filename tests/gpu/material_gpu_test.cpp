@@ -4,7 +4,7 @@
 // Seeded random materials cover every input: factors (F0 clamping included), every map
 // slot with small random textures on both UV sets, KHR_texture_transform, all wrap modes
 // and filters, sRGB and linear slots, specular-glossiness and metallic-roughness,
-// KHR_materials_ior / _specular / _clearcoat / _sheen / _anisotropy / _emissive_strength, alpha modes, vertex
+// KHR_materials_ior / _specular / _clearcoat / _sheen / _anisotropy / _iridescence / _emissive_strength, alpha modes, vertex
 // colour, missing UV sets and tangents. Uniforms are packed by the renderer's own
 // material_uniforms / set_material_uniforms, so the packing is under test too.
 // shaders/material_probe.frag evaluates one surface point per pixel.
@@ -53,7 +53,7 @@ using namespace fresnel;
 
 constexpr int kSide = 8;                 // points per case: kSide x kSide pixels
 constexpr int kTexels = 9;               // input texels per point (material_probe.frag)
-constexpr int kOutputs = 10;             // u_output values (6 = shade_light)
+constexpr int kOutputs = 11;             // u_output values (6 = shade_light)
 constexpr float kRelTol = 1e-4f;         // exact sampling: relative ...
 constexpr float kAbsFloor = 1e-6f;       // ... or absolute near zero
 // shade_light: relative, as gpu_brdf_test (the GGX peak of glossy lobes turns float
@@ -107,7 +107,7 @@ struct Case {
 
 class Gen {
 public:
-    explicit Gen(unsigned seed) : rng_(seed), side_(seed ^ 0x5eedu), aniso_(seed ^ 0xa2150u) {}
+    explicit Gen(unsigned seed) : rng_(seed), side_(seed ^ 0x5eedu), aniso_(seed ^ 0xa2150u), film_(seed ^ 0xf11du) {}
     float u() { return u01_(*cur_); }
     float range(float a, float b) { return a + (b - a) * u(); }
     int pick(int n) { return int(u() * float(n)) % n; }
@@ -221,6 +221,17 @@ public:
             an.anisotropy_texture = slot();
             m.anisotropy = an;
         }
+        cur_ = &film_;
+        if (chance(0.5f)) {
+            IridescenceExt ir;
+            ir.iridescence_factor = chance(0.15f) ? 0.0f : (chance(0.2f) ? 1.0f : u());
+            ir.iridescence_texture = slot();
+            ir.iridescence_ior = chance(0.2f) ? 1.0f : range(1.0f, 2.5f);
+            ir.iridescence_thickness_minimum = chance(0.2f) ? 0.0f : range(0.0f, 400.0f);
+            ir.iridescence_thickness_maximum = chance(0.1f) ? 0.0f : range(0.0f, 1200.0f);
+            ir.iridescence_thickness_texture = slot();
+            m.iridescence = ir;
+        }
         cur_ = &rng_;
         if (chance(0.3f)) {
             SpecularGlossinessExt sg;
@@ -259,7 +270,7 @@ public:
     }
 
 private:
-    std::mt19937 rng_, side_, aniso_;  // aniso_: KHR_materials_anisotropy's own stream
+    std::mt19937 rng_, side_, aniso_, film_;  // aniso_, film_: KHR_materials_anisotropy's and _iridescence's own streams
     std::mt19937* cur_ = &rng_;
     std::uniform_real_distribution<float> u01_{0.0f, 1.0f};
 };
@@ -279,6 +290,7 @@ std::array<glm::vec4, kOutputs> cpu_outputs(const Case& c, const TextureSource& 
     o[7] = glm::vec4(e.sheen_color, e.sheen_roughness);
     o[8] = glm::vec4(e.anisotropic_t, e.anisotropy_strength);
     o[9] = glm::vec4(e.anisotropic_b, e.anisotropy_direction.x);
+    o[10] = glm::vec4(e.iridescence, e.iridescence_thickness, e.iridescence_ior, 0.0f);
     return o;
 }
 
@@ -306,6 +318,7 @@ const char* kOutputNames[kOutputs][4] = {
     {"sheen.r", "sheen.g", "sheen.b", "sheen_roughness"},
     {"aniso_t.x", "aniso_t.y", "aniso_t.z", "anisotropy_strength"},
     {"aniso_b.x", "aniso_b.y", "aniso_b.z", "aniso_direction.x"},
+    {"iridescence", "iridescence_thickness", "iridescence_ior", "zero"},
 };
 
 // The length of the direction the anisotropy map gives at the point (1 without a map):
@@ -411,9 +424,8 @@ protected:
         state.cull = gpu::Cull::None;
         device.apply(state);
         prog.use();
-        // Maps take the unit of their index (0..15; the transmission maps, 13 and 14, are never
-        // bound here); llvmpipe has 32 units.
-        const int points_unit = 16, lut_unit = 13;
+        // Above the maps' units (map i on unit i): llvmpipe has 32 units.
+        const int points_unit = kMaterialMapCount + 1, lut_unit = kMaterialMapCount;
         device.bind_texture(points_unit, points);
         prog.set("u_points", points_unit);
         device.bind_texture(lut_unit, lut);
@@ -571,6 +583,9 @@ protected:
                                 norm = std::max(1.0f, std::max({m.sheen->sheen_color_factor.x, m.sheen->sheen_color_factor.y,
                                                                 m.sheen->sheen_color_factor.z}));
                             if (o == 5 && ch < 3 && m.clearcoat) norm = 1.0f + std::abs(m.clearcoat->clearcoat_normal_scale);
+                            if (o == 8 && ch == 1 && m.iridescence)  // thickness: mix(min, max, G) in nm
+                                norm = std::max(1.0f, std::abs(m.iridescence->iridescence_thickness_maximum -
+                                                               m.iridescence->iridescence_thickness_minimum));
                             ok = err <= kFilteredAbsTol * norm;
                             worst_abs = std::max(worst_abs, err / norm);
                         }
@@ -582,7 +597,8 @@ protected:
                                           << c.lod << ", uv0 " << pt.p.uv0.x << "," << pt.p.uv0.y << ", SG "
                                           << bool(c.material.specular_glossiness) << ", coat "
                                           << c.material.has_clearcoat() << ", sheen " << c.material.has_sheen()
-                                          << ", anisotropy " << c.material.has_anisotropy() << ")";
+                                          << ", anisotropy " << c.material.has_anisotropy() << ", film "
+                                          << c.material.has_iridescence() << ")";
                         }
                     }
                 }

@@ -1,5 +1,11 @@
 #include "fresnel/material/brdf.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include <glm/common.hpp>
+#include <glm/exponential.hpp>
+
 #include "fresnel/material/sampling.h"
 
 namespace fresnel::brdf {
@@ -85,6 +91,88 @@ float SheenAlbedoTable::operator()(float n_dot_v, float sheen_roughness) const {
 const SheenAlbedoTable& SheenAlbedoTable::standard() {
     static const SheenAlbedoTable table;  // immutable once built (thread-safe initialisation)
     return table;
+}
+
+}  // namespace fresnel::brdf
+
+namespace fresnel::brdf {
+
+namespace {
+glm::vec3 sq(glm::vec3 x) { return x * x; }
+float sq(float x) { return x * x; }
+// ((a - b) / (a + b))^2: the normal-incidence reflectance between iors a and b.
+glm::vec3 ior_pair_f0(glm::vec3 a, float b) { return sq((a - b) / (a + b)); }
+float ior_pair_f0(float a, float b) { return sq((a - b) / (a + b)); }
+}  // namespace
+
+glm::vec3 iridescence_sensitivity(float opd, glm::vec3 shift) {
+    // Belcour & Barla's Gaussian fit of the XYZ matching functions, evaluated in Fourier
+    // space at phase 2 pi opd (opd in nm, so 1e-9 m), with a second lobe for X's blue bump.
+    const float phase = 2.0f * kPi * opd * 1.0e-9f;
+    const glm::vec3 val(5.4856e-13f, 4.4201e-13f, 5.2481e-13f);
+    const glm::vec3 pos(1.6810e+06f, 1.7953e+06f, 2.2084e+06f);
+    const glm::vec3 var(4.3278e+09f, 9.3046e+09f, 6.6121e+09f);
+    glm::vec3 xyz;
+    for (int i = 0; i < 3; ++i)
+        xyz[i] = val[i] * std::sqrt(2.0f * kPi * var[i]) * std::cos(pos[i] * phase + shift[i]) *
+                 std::exp(-sq(phase) * var[i]);
+    xyz.x += 9.7470e-14f * std::sqrt(2.0f * kPi * 4.5282e+09f) * std::cos(2.2399e+06f * phase + shift.x) *
+             std::exp(-4.5282e+09f * sq(phase));
+    xyz /= 1.0685e-7f;
+    // CIE XYZ -> linear Rec.709 (sRGB primaries, D65).
+    return {3.2404542f * xyz.x - 1.5371385f * xyz.y - 0.4985314f * xyz.z,
+            -0.9692660f * xyz.x + 1.8760108f * xyz.y + 0.0415560f * xyz.z,
+            0.0556434f * xyz.x - 0.2040259f * xyz.y + 1.0572252f * xyz.z};
+}
+
+glm::vec3 iridescence_fresnel(float outside_ior, float film_ior, float cos_theta1, float thickness,
+                              glm::vec3 base_f0) {
+    // The film's ior, eased to the outside's as the film vanishes.
+    const float t = std::clamp(thickness / 0.03f, 0.0f, 1.0f);
+    const float eta2 = outside_ior + (film_ior - outside_ior) * (t * t * (3.0f - 2.0f * t));
+    // Snell's law into the film; none gets in beyond the critical angle.
+    const float cos2_theta2 = 1.0f - sq(outside_ior / eta2) * (1.0f - sq(cos_theta1));
+    if (cos2_theta2 < 0.0f) return glm::vec3(1.0f);
+    const float cos_theta2 = std::sqrt(cos2_theta2);
+
+    // Outside -> film: Schlick reflectance, transmission both ways, and the phase shifts
+    // (pi on reflection off the denser side).
+    const float r12 = f_schlick(ior_pair_f0(eta2, outside_ior), 1.0f, cos_theta1);
+    const float t121 = 1.0f - r12;
+    const float phi12 = eta2 < outside_ior ? kPi : 0.0f;
+    const float phi21 = kPi - phi12;
+    // Film -> base: the base's ior from its F0 (a dielectric's notion, used for metals too).
+    const glm::vec3 sqrt_f0 = glm::sqrt(glm::clamp(base_f0, 0.0f, 0.9999f));
+    const glm::vec3 eta3 = (1.0f + sqrt_f0) / (1.0f - sqrt_f0);
+    const glm::vec3 r23 = f_schlick(ior_pair_f0(eta3, eta2), glm::vec3(1.0f), cos_theta2);
+    glm::vec3 phi23(0.0f);
+    for (int i = 0; i < 3; ++i)
+        if (eta3[i] < eta2) phi23[i] = kPi;
+
+    // The Airy sum: the m = 0 term (no interference) plus orders 1 and 2, each weighted by
+    // the sensitivity at m times the optical path difference and m times the phase.
+    const float opd = 2.0f * eta2 * thickness * cos_theta2;
+    const glm::vec3 phi = glm::vec3(phi21) + phi23;
+    const glm::vec3 r123 = glm::clamp(r12 * r23, 1e-5f, 0.9999f);
+    const glm::vec3 sqrt_r123 = glm::sqrt(r123);
+    const glm::vec3 rs = sq(t121) * r23 / (1.0f - r123);
+    glm::vec3 result = r12 + rs;
+    glm::vec3 cm = rs - t121;
+    for (int m = 1; m <= 2; ++m) {
+        cm *= sqrt_r123;
+        result += cm * 2.0f * iridescence_sensitivity(float(m) * opd, float(m) * phi);
+    }
+    return glm::max(result, glm::vec3(0.0f));
+}
+
+IridescenceFresnel iridescence_at(float factor, float film_ior, float thickness, float n_dot_v,
+                                  glm::vec3 f0_dielectric, glm::vec3 base_color) {
+    IridescenceFresnel film;
+    if (!(factor > 0.0f) || !(thickness > 0.0f)) return film;
+    film.factor = factor;
+    film.dielectric = iridescence_fresnel(1.0f, film_ior, n_dot_v, thickness, f0_dielectric);
+    film.metal = iridescence_fresnel(1.0f, film_ior, n_dot_v, thickness, base_color);
+    return film;
 }
 
 }  // namespace fresnel::brdf

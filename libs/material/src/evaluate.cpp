@@ -28,6 +28,8 @@ constexpr MaterialMapInfo kMaps[kMaterialMapCount] = {
     {"transmission", "HAS_TRANSMISSION_MAP", false, false},
     {"thickness", "HAS_THICKNESS_MAP", false, false},
     {"anisotropy", "HAS_ANISOTROPY_MAP", false, false},
+    {"iridescence", "HAS_IRIDESCENCE_MAP", false, false},
+    {"iridescence_thickness", "HAS_IRIDESCENCE_THICKNESS_MAP", false, false},
 };
 
 // Reads one map at the point, or nullopt when the map is absent or unreadable.
@@ -81,6 +83,7 @@ const TextureSlot* material_map(const Material& m, MaterialMap map) {
     const auto* cc = m.has_clearcoat() ? &*m.clearcoat : nullptr;
     const auto* sh = m.has_sheen() ? &*m.sheen : nullptr;
     const auto* an = m.has_anisotropy() ? &*m.anisotropy : nullptr;
+    const auto* ir = m.has_iridescence() ? &*m.iridescence : nullptr;
     const TextureSlot* slot = nullptr;
     switch (map) {
         case MaterialMap::BaseColor: slot = sg ? &sg->diffuse_texture : &m.base_color; break;
@@ -101,6 +104,8 @@ const TextureSlot* material_map(const Material& m, MaterialMap map) {
             slot = is_transmissive(m) && m.volume ? &m.volume->thickness_texture : nullptr;
             break;
         case MaterialMap::Anisotropy: slot = an ? &an->anisotropy_texture : nullptr; break;
+        case MaterialMap::Iridescence: slot = ir ? &ir->iridescence_texture : nullptr; break;
+        case MaterialMap::IridescenceThickness: slot = ir ? &ir->iridescence_thickness_texture : nullptr; break;
     }
     return slot && slot->valid() ? slot : nullptr;
 }
@@ -240,6 +245,18 @@ EvaluatedMaterial evaluate(const Material& material, const TextureSource& textur
         e.anisotropic_t = dir.x * point.tangent + dir.y * point.bitangent;
         e.anisotropic_b = glm::cross(point.normal, e.anisotropic_t);
     }
+    if (m.has_iridescence()) {
+        const IridescenceExt& ir = *m.iridescence;
+        e.iridescence = ir.iridescence_factor;
+        if (auto t = maps.sample(MaterialMap::Iridescence)) e.iridescence *= t->x;
+        e.iridescence = std::clamp(e.iridescence, 0.0f, 1.0f);
+        e.iridescence_ior = ir.iridescence_ior;
+        e.iridescence_thickness = ir.iridescence_thickness_maximum;
+        // mix(minimum, maximum, G), written so that G = 1 gives the maximum exactly (the white
+        // texture stands in for an absent map).
+        if (auto t = maps.sample(MaterialMap::IridescenceThickness))
+            e.iridescence_thickness = ir.iridescence_thickness_minimum * (1.0f - t->y) + ir.iridescence_thickness_maximum * t->y;
+    }
     if (auto t = maps.sample(MaterialMap::Occlusion)) e.occlusion = 1.0f + m.occlusion_strength * (t->x - 1.0f);
     e.emissive = m.emissive_factor * m.emissive_strength_value();
     if (auto t = maps.sample(MaterialMap::Emissive)) e.emissive *= glm::vec3(*t);
@@ -275,6 +292,13 @@ EvaluatedMaterial evaluate(const Material& material, const TextureSource& textur
 
 bool is_transmissive(const Material& m) { return m.transmission && !m.specular_glossiness && !m.unlit; }
 
+brdf::IridescenceFresnel film_at(const EvaluatedMaterial& m, glm::vec3 v) {
+    if (!(m.iridescence > 0.0f)) return {};
+    return brdf::iridescence_at(m.iridescence, m.iridescence_ior, m.iridescence_thickness,
+                                std::clamp(glm::dot(m.normal, v), 0.0f, 1.0f), m.surface.dielectric_f0(),
+                                m.surface.base_color);
+}
+
 glm::vec3 shade_light_transmission(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 l_transmitted,
                                    float ray_length, glm::vec3 radiance) {
     const TransmissionInputs& tr = m.transmission;
@@ -290,7 +314,8 @@ glm::vec3 shade_light_transmission(const EvaluatedMaterial& m, glm::vec3 v, glm:
                                                  glm::vec3(1.0f), s.base_color, tr.ior);
     glm::vec3 transmitted = transmission::volume_attenuation(radiance * btdf, ray_length, tr.attenuation_color,
                                                              tr.attenuation_distance);
-    glm::vec3 term = (1.0f - s.metallic) * (1.0f - f_dielectric) * tr.factor *
+    // The share of the diffuse it replaces: 1 - F, under a thin film brdf::film_diffuse_weight.
+    glm::vec3 term = (1.0f - s.metallic) * brdf::film_diffuse_weight(f_dielectric, film_at(m, v)) * tr.factor *
                      (transmitted - radiance * n_dot_l * brdf::lambert(s.base_color));
     if (m.clearcoat > 0.0f) term *= 1.0f - brdf::clearcoat_mix(m.clearcoat, m.clearcoat_f0, m.clearcoat_normal, v);
     return term;
@@ -301,7 +326,7 @@ glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm:
     float n_dot_l = std::clamp(glm::dot(m.normal, l), 0.0f, 1.0f);
     glm::vec3 lit(0.0f);
     if (n_dot_l > 0.0f) {
-        brdf::Terms t = brdf::evaluate_terms(m.surface, m.normal, v, l, model);
+        brdf::Terms t = brdf::evaluate_terms(m.surface, m.normal, v, l, model, film_at(m, v));
         if (m.anisotropy_strength > 0.0f)
             brdf::apply_anisotropy(t, m.surface, m.normal, v, l, m.anisotropic_t, m.anisotropic_b, m.anisotropy_strength);
         glm::vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;

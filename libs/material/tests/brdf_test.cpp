@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -491,4 +492,85 @@ TEST(Anisotropy, BentNormal) {
     EXPECT_NEAR(glm::dot(bent, b), 0.0f, 1e-6f);
     EXPECT_NEAR(glm::length(bent), 1.0f, 1e-6f);
     EXPECT_NEAR(glm::dot(bent, glm::cross(glm::cross(b, v), b)) / glm::length(glm::cross(glm::cross(b, v), b)), 1.0f, 1e-5f);
+}
+
+// ---- KHR_materials_iridescence: the thin film ------------------------------------------
+
+// The film's Fresnel against values computed independently in double precision (Python,
+// the extension's evalIridescence formulas written out again: Schlick interfaces, phase
+// shifts, two Airy orders through the Gaussian XYZ fit, XYZ -> Rec.709).
+TEST(Iridescence, FresnelMatchesIndependentValues) {
+    struct Case {
+        float film_ior, cos_theta, thickness;
+        glm::vec3 base_f0, want;
+    };
+    const Case cases[] = {
+        {1.3f, 0.8f, 400.0f, glm::vec3(0.04f), glm::vec3(0.0f, 0.01919324f, 0.03831472f)},
+        {1.8f, 0.5f, 600.0f, glm::vec3(0.04f), glm::vec3(0.07061839f, 0.1480442f, 0.1047857f)},
+        {1.3f, 0.9f, 250.0f, glm::vec3(0.9f, 0.6f, 0.3f), glm::vec3(0.9088217f, 0.5777316f, 0.1509913f)},
+    };
+    for (const Case& c : cases) {
+        glm::vec3 f = iridescence_fresnel(1.0f, c.film_ior, c.cos_theta, c.thickness, c.base_f0);
+        for (int i = 0; i < 3; ++i)
+            EXPECT_NEAR(f[i], c.want[i], 2e-5f + 1e-4f * c.want[i]) << "ior " << c.film_ior << " d " << c.thickness << " ch " << i;
+    }
+}
+
+// Physics the fit must keep: a quarter-wave film (n d = 550 nm / 4) of ior 1.3 on glass (ior
+// 1.5, F0 0.04) is an anti-reflection coating at normal incidence (the ideal single-wavelength
+// value is ((1.5 - 1.3^2) / (1.5 + 1.3^2))^2 = 0.0035); a film far thicker than the light's
+// coherence length reflects the incoherent sum R12 + T^2 R23 / (1 - R12 R23).
+TEST(Iridescence, QuarterWaveFilmIsAntiReflectiveAndThickFilmIsIncoherent) {
+    glm::vec3 ar = iridescence_fresnel(1.0f, 1.3f, 1.0f, 550.0f / (4.0f * 1.3f), glm::vec3(0.04f));
+    EXPECT_LT(ar.y, 0.006f);
+    for (int i = 0; i < 3; ++i) EXPECT_LT(ar[i], 0.02f) << i;  // bare glass: 0.04
+    for (float c : {1.0f, 0.7f, 0.3f}) {
+        glm::vec3 thick = iridescence_fresnel(1.0f, 1.3f, c, 20000.0f, glm::vec3(0.04f, 0.3f, 0.8f));
+        float f12 = (0.3f / 2.3f) * (0.3f / 2.3f);
+        float r12 = f_schlick(f12, 1.0f, c);
+        float cos2 = std::sqrt(1.0f - (1.0f - c * c) / (1.3f * 1.3f));
+        for (int i = 0; i < 3; ++i) {
+            float f0 = glm::vec3(0.04f, 0.3f, 0.8f)[i];
+            float eta3 = (1.0f + std::sqrt(f0)) / (1.0f - std::sqrt(f0));
+            float r23 = f_schlick(((eta3 - 1.3f) / (eta3 + 1.3f)) * ((eta3 - 1.3f) / (eta3 + 1.3f)), 1.0f, cos2);
+            float want = r12 + (1.0f - r12) * (1.0f - r12) * r23 / (1.0f - r12 * r23);
+            EXPECT_NEAR(thick[i], want, 1e-5f) << "cos " << c << " ch " << i;
+        }
+    }
+    // Light from the denser side beyond the film's critical angle is reflected totally.
+    EXPECT_EQ(iridescence_fresnel(1.5f, 1.0f, 0.2f, 300.0f, glm::vec3(0.04f)), glm::vec3(1.0f));
+}
+
+// Thickness 0 is no film (the Khronos viewer turns it off there): the layering is the plain
+// BRDF's, bit for bit; with a film, factor 1 puts its Fresnel in place of Schlick's.
+TEST(Iridescence, NoFilmAtZeroThicknessAndTheFactorMixes) {
+    Surface s = white(0.0f, 0.4f);
+    s.base_color = glm::vec3(0.8f, 0.5f, 0.3f);
+    glm::vec3 n(0, 0, 1), v = glm::normalize(glm::vec3(0.4f, 0.1f, 1.0f)), l = glm::normalize(glm::vec3(-0.3f, 0.2f, 1.0f));
+    float n_dot_v = glm::dot(n, v);
+    EXPECT_EQ(iridescence_at(1.0f, 1.3f, 0.0f, n_dot_v, s.dielectric_f0(), s.base_color).factor, 0.0f);
+    EXPECT_EQ(iridescence_at(0.0f, 1.3f, 400.0f, n_dot_v, s.dielectric_f0(), s.base_color).factor, 0.0f);
+    Terms plain = evaluate_terms(s, n, v, l);
+    Terms off = evaluate_terms(s, n, v, l, iridescence_at(1.0f, 1.3f, 0.0f, n_dot_v, s.dielectric_f0(), s.base_color));
+    EXPECT_EQ(plain.diffuse, off.diffuse);
+    EXPECT_EQ(plain.specular, off.specular);
+    for (float metallic : {0.0f, 1.0f}) {
+        s.metallic = metallic;
+        IridescenceFresnel film = iridescence_at(1.0f, 1.3f, 400.0f, n_dot_v, s.dielectric_f0(), s.base_color);
+        ASSERT_EQ(film.factor, 1.0f);
+        Terms t = evaluate_terms(s, n, v, l, film);
+        glm::vec3 want = metallic > 0.0f ? film.metal : film.dielectric;
+        for (int i = 0; i < 3; ++i) EXPECT_NEAR(t.f[i], want[i], 1e-6f) << metallic;
+        float film_max = std::max({film.dielectric.x, film.dielectric.y, film.dielectric.z});
+        glm::vec3 diffuse = (1.0f - metallic) * (1.0f - film_max) * s.base_color / float(kPiD);
+        for (int i = 0; i < 3; ++i) EXPECT_NEAR(t.diffuse[i], diffuse[i], 1e-6f) << metallic;
+        // Half the film: halfway between the plain terms and the film's.
+        Terms p = evaluate_terms(s, n, v, l);
+        film.factor = 0.5f;
+        Terms h = evaluate_terms(s, n, v, l, film);
+        for (int i = 0; i < 3; ++i) {
+            EXPECT_NEAR(h.specular[i], 0.5f * (p.specular[i] + t.specular[i]), 1e-5f * (1.0f + p.specular[i]));
+            EXPECT_NEAR(h.diffuse[i], 0.5f * (p.diffuse[i] + t.diffuse[i]), 1e-6f);
+        }
+    }
 }

@@ -178,6 +178,28 @@ TEST(MaterialEvaluate, ClearcoatOnlyWithAPositiveFactor) {
     expect_near(e.clearcoat_normal, glm::vec3(0, 0, 1));
 }
 
+TEST(MaterialEvaluate, IridescenceFactorAndThickness) {
+    Textures tex;
+    int t = tex.add(solid(1, 1, {153, 51, 0, 255}));
+    Material m;
+    IridescenceExt ir;
+    ir.iridescence_factor = 0.0f;
+    ir.iridescence_texture = slot(t);
+    m.iridescence = ir;
+    EXPECT_EQ(evaluate(m, tex, {}).iridescence, 0.0f);  // factor 0: no film
+    m.iridescence->iridescence_factor = 0.5f;
+    m.iridescence->iridescence_ior = 1.8f;
+    m.iridescence->iridescence_thickness_minimum = 200.0f;
+    m.iridescence->iridescence_thickness_maximum = 700.0f;
+    EvaluatedMaterial e = evaluate(m, tex, {});
+    EXPECT_NEAR(e.iridescence, 0.5f * 0.6f, kTol);  // factor * R (linear)
+    EXPECT_EQ(e.iridescence_ior, 1.8f);
+    EXPECT_EQ(e.iridescence_thickness, 700.0f);      // no thickness map: the maximum
+    m.iridescence->iridescence_thickness_texture = slot(t);
+    e = evaluate(m, tex, {});
+    EXPECT_NEAR(e.iridescence_thickness, 200.0f + 500.0f * 0.2f, 1e-3f);  // mix(min, max, G)
+}
+
 TEST(MaterialEvaluate, NormalMapWithScaleInTheGivenFrame) {
     Textures tex;
     // (1, 0.5, 1) in [0,1]^3 -> tangent-space (1, 0, 1) (+1/255 rounding of 128).
@@ -384,6 +406,27 @@ TEST(ShadeLight, ClearcoatLayering) {
     float w = brdf::clearcoat_mix(1.0f, 0.04f, e.clearcoat_normal, v);
     glm::vec3 coat = 2.0f * glm::vec3(brdf::clearcoat_specular(e.clearcoat_normal, v, l, 0.01f));
     expect_near(coated, base * (1.0f - w) + coat * w, 1e-5f);
+}
+
+TEST(ShadeLight, IridescenceReplacesTheFresnelAndVanishesAtZeroThickness) {
+    Material m;
+    m.metallic_factor = 0.3f;
+    m.roughness_factor = 0.4f;
+    EvaluatedMaterial e = evaluate(m, NoTextures{}, {});
+    glm::vec3 v = glm::normalize(glm::vec3(0.3f, 0.0f, 1.0f)), l = glm::normalize(glm::vec3(-0.5f, 0.2f, 1.0f));
+    glm::vec3 plain = shade_light(e, v, l, glm::vec3(2.0f));
+    e.iridescence = 1.0f;
+    e.iridescence_ior = 1.3f;
+    e.iridescence_thickness = 0.0f;
+    EXPECT_EQ(shade_light(e, v, l, glm::vec3(2.0f)), plain);
+    e.iridescence_thickness = 400.0f;
+    brdf::IridescenceFresnel film = brdf::iridescence_at(1.0f, 1.3f, 400.0f, glm::dot(e.normal, v),
+                                                         e.surface.dielectric_f0(), e.surface.base_color);
+    glm::vec3 want = 2.0f * glm::dot(e.normal, l) *
+                     [&] { brdf::Terms t = brdf::evaluate_terms(e.surface, e.normal, v, l, film); return t.diffuse + t.specular; }();
+    glm::vec3 got = shade_light(e, v, l, glm::vec3(2.0f));
+    expect_near(got, want, 1e-5f);
+    EXPECT_GT(glm::length(got - plain), 1e-3f);  // the film changes the colour
 }
 
 }  // namespace

@@ -47,6 +47,12 @@ MaterialUniforms material_uniforms(const Material& m) {
         u.anisotropy_strength = m.anisotropy->anisotropy_strength;
         u.anisotropy_rotation = m.anisotropy->anisotropy_rotation;
     }
+    if (m.has_iridescence()) {
+        u.iridescence_factor = m.iridescence->iridescence_factor;
+        u.iridescence_ior = m.iridescence->iridescence_ior;
+        u.iridescence_thickness_minimum = m.iridescence->iridescence_thickness_minimum;
+        u.iridescence_thickness_maximum = m.iridescence->iridescence_thickness_maximum;
+    }
     for (int i = 0; i < kMaterialMapCount; ++i) u.maps[std::size_t(i)] = material_map(m, MaterialMap(i));
     return u;
 }
@@ -59,6 +65,7 @@ FeatureMask material_features(const Material& m) {
     if (is_transmissive(m)) f |= feature::Transmission;
     if (m.has_sheen()) f |= feature::Sheen;
     if (m.has_anisotropy()) f |= feature::Anisotropy;
+    if (m.has_iridescence()) f |= feature::Iridescence;
     if (m.alpha_mode == AlphaMode::Mask) f |= feature::AlphaMask;
     if (m.alpha_mode == AlphaMode::Blend) f |= feature::AlphaBlend;
     return f;
@@ -98,6 +105,10 @@ void set_material_uniforms(const gpu::Program& prog, const MaterialUniforms& u,
     prog.set("u_sheen_roughness_factor", u.sheen_roughness_factor);
     prog.set("u_anisotropy_strength", u.anisotropy_strength);
     prog.set("u_anisotropy_rotation", u.anisotropy_rotation);
+    prog.set("u_iridescence_factor", u.iridescence_factor);
+    prog.set("u_iridescence_ior", u.iridescence_ior);
+    prog.set("u_iridescence_thickness_minimum", u.iridescence_thickness_minimum);
+    prog.set("u_iridescence_thickness_maximum", u.iridescence_thickness_maximum);
     for (int i = 0; i < kMaterialMapCount; ++i) {
         if (units[std::size_t(i)] < 0) continue;
         std::string base = std::string("u_") + material_map_info(MaterialMap(i)).name;

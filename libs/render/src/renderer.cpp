@@ -39,6 +39,7 @@ constexpr NamedChannel kChannels[] = {
     {"transmission", DebugChannel::Transmission}, {"thickness", DebugChannel::Thickness},
     {"sheen", DebugChannel::Sheen}, {"sheen-roughness", DebugChannel::SheenRoughness},
     {"anisotropy", DebugChannel::Anisotropy}, {"anisotropy-direction", DebugChannel::AnisotropyDirection},
+    {"iridescence", DebugChannel::Iridescence}, {"iridescence-thickness", DebugChannel::IridescenceThickness},
 };
 
 constexpr int kMaxLights = kMaxShaderLights;

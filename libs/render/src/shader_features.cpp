@@ -6,7 +6,7 @@ namespace fresnel {
 
 namespace {
 using namespace feature;
-constexpr FeatureInfo kFeatures[kCount] = {
+constexpr FeatureInfo kFeatures[] = {
     {HasNormal, "HAS_NORMAL"},
     {HasTangent, "HAS_TANGENT"},
     {HasUv0, "HAS_UV0"},
@@ -40,7 +40,19 @@ constexpr FeatureInfo kFeatures[kCount] = {
     {Transmission, "MATERIAL_TRANSMISSION"},
     {Anisotropy, "MATERIAL_ANISOTROPY"},
     {AnisotropyMap, "HAS_ANISOTROPY_MAP"},
+    {Iridescence, "MATERIAL_IRIDESCENCE"},
+    {IridescenceMap, "HAS_IRIDESCENCE_MAP"},
+    {IridescenceThicknessMap, "HAS_IRIDESCENCE_THICKNESS_MAP"},
 };
+constexpr bool table_is_kall_in_bit_order() {
+    FeatureMask seen = 0;
+    for (const FeatureInfo& f : kFeatures) {
+        if ((f.bit & (f.bit - 1)) != 0 || f.bit <= seen) return false;  // one bit each, ascending
+        seen |= f.bit;
+    }
+    return seen == kAll;
+}
+static_assert(table_is_kall_in_bit_order(), "kFeatures lists the bits of kAll, one each, in bit order");
 
 // The maps a draw with these attributes and this material model may bind.
 FeatureMask allowed_maps(FeatureMask m) {
@@ -57,6 +69,7 @@ FeatureMask allowed_maps(FeatureMask m) {
     if (m & Transmission) maps |= TransmissionMap | ThicknessMap;
     if (m & Sheen) maps |= SheenColorMap | SheenRoughnessMap;
     if (m & Anisotropy) maps |= AnisotropyMap;
+    if (m & Iridescence) maps |= IridescenceMap | IridescenceThicknessMap;
     return maps;
 }
 }  // namespace
@@ -76,7 +89,8 @@ FeatureMask canonical_features(FeatureMask m) {
     if (!(m & HasNormal)) m &= ~HasTangent;
     if (m & AlphaMask) m &= ~AlphaBlend;
     if ((m & Unlit) && !(m & DebugView))
-        m &= ~(HasNormal | HasTangent | SpecularGlossiness | Clearcoat | Sheen | UseIbl | Transmission | Anisotropy);
+        m &= ~(HasNormal | HasTangent | SpecularGlossiness | Clearcoat | Sheen | UseIbl | Transmission | Anisotropy |
+               Iridescence);
     if (m & SpecularGlossiness) m &= ~Transmission;
     if (!(m & HasTangent)) m &= ~Anisotropy;
     const FeatureMask allowed = allowed_maps(m);
@@ -85,6 +99,7 @@ FeatureMask canonical_features(FeatureMask m) {
     if (m & (ClearcoatMap | ClearcoatRoughnessMap)) m |= ClearcoatMap | ClearcoatRoughnessMap;
     if (m & Transmission) m |= allowed & (TransmissionMap | ThicknessMap);
     if (m & (SheenColorMap | SheenRoughnessMap)) m |= SheenColorMap | SheenRoughnessMap;
+    if (m & (IridescenceMap | IridescenceThicknessMap)) m |= IridescenceMap | IridescenceThicknessMap;
     if (m & DebugView) m |= allowed & ~(NormalMap | ClearcoatNormalMap | AnisotropyMap);
     return m;
 }
@@ -92,26 +107,28 @@ FeatureMask canonical_features(FeatureMask m) {
 bool valid_features(FeatureMask mask) { return (mask & ~kAll) == 0 && canonical_features(mask) == mask; }
 
 std::vector<FeatureMask> all_feature_sets() {
-    // Bits 23..32 (the sheen, transmission and anisotropy maps and model bits, skinning,
-    // morphing) come in groups that no rule on bits 0..22 looks at, except that unlit,
+    // Bits 23..35 (the sheen, transmission, anisotropy and iridescence maps and model bits,
+    // skinning, morphing) come in groups that no rule on bits 0..22 looks at, except that unlit,
     // specular-glossiness and missing tangents drop some and the debug view turns the maps on:
     // so every valid mask is a valid mask of bits 0..22 plus one choice per group, kept when
-    // canonical. 2^23 masks instead of 2^33.
+    // canonical. 2^23 masks instead of 2^36.
     std::vector<FeatureMask> out;
     constexpr FeatureMask kLow = (FeatureMask(1) << 23) - 1;
     const FeatureMask animation[] = {0, Skinned, MorphTargets, Skinned | MorphTargets};
     const FeatureMask sheen[] = {0, Sheen, Sheen | SheenColorMap | SheenRoughnessMap};
     const FeatureMask transmission[] = {0, Transmission, Transmission | TransmissionMap | ThicknessMap};
     const FeatureMask anisotropy[] = {0, Anisotropy, Anisotropy | AnisotropyMap};
+    const FeatureMask iridescence[] = {0, Iridescence, Iridescence | IridescenceMap | IridescenceThicknessMap};
     for (FeatureMask m = 0; m <= kLow; ++m) {
         if (canonical_features(m) != m) continue;
         for (FeatureMask a : animation)
             for (FeatureMask s : sheen)
                 for (FeatureMask t : transmission)
-                    for (FeatureMask an : anisotropy) {
-                        const FeatureMask x = m | a | s | t | an;
-                        if (canonical_features(x) == x) out.push_back(x);
-                    }
+                    for (FeatureMask an : anisotropy)
+                        for (FeatureMask i : iridescence) {
+                            const FeatureMask x = m | a | s | t | an | i;
+                            if (canonical_features(x) == x) out.push_back(x);
+                        }
     }
     std::sort(out.begin(), out.end());
     return out;

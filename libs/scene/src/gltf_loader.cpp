@@ -35,14 +35,14 @@ const std::vector<std::string>& supported_gltf_extensions() {
         "KHR_materials_pbrSpecularGlossiness", "KHR_materials_clearcoat", "KHR_materials_sheen",
         "EXT_meshopt_compression", "KHR_draco_mesh_compression", "EXT_texture_webp", "KHR_materials_variants",
         "KHR_animation_pointer", "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_dispersion",
-        "KHR_node_visibility", "KHR_materials_anisotropy",
+        "KHR_node_visibility", "KHR_materials_anisotropy", "KHR_materials_iridescence",
     };
     return list;
 }
 
 const std::vector<std::string>& parsed_unshaded_gltf_extensions() {
     static const std::vector<std::string> list = {
-        "KHR_materials_iridescence", "KHR_materials_diffuse_transmission",
+        "KHR_materials_diffuse_transmission",
     };
     return list;
 }
@@ -549,7 +549,7 @@ private:
             IridescenceExt b;
             b.iridescence_factor = std::clamp(num(*e, "iridescenceFactor", p, 0.0), 0.0f, 1.0f);
             b.iridescence_texture = texture_ref(*e, "iridescenceTexture", p);
-            b.iridescence_ior = num(*e, "iridescenceIor", p, 1.3);
+            b.iridescence_ior = std::max(1.0f, num(*e, "iridescenceIor", p, 1.3));  // the schema's minimum
             b.iridescence_thickness_minimum = std::max(0.0f, num(*e, "iridescenceThicknessMinimum", p, 100.0));
             b.iridescence_thickness_maximum = std::max(0.0f, num(*e, "iridescenceThicknessMaximum", p, 400.0));
             b.iridescence_thickness_texture = texture_ref(*e, "iridescenceThicknessTexture", p);

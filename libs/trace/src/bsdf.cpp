@@ -18,6 +18,13 @@ BsdfLobes lobe_probabilities(const EvaluatedMaterial& m, glm::vec3 v) {
     float n_dot_v = std::clamp(glm::dot(m.normal, v), 0.0f, 1.0f);
     glm::vec3 f_dielectric = brdf::f_schlick(s.dielectric_f0() * s.specular_weight, glm::vec3(s.specular_weight), n_dot_v);
     glm::vec3 f_metal = brdf::f_schlick(s.base_color, glm::vec3(1.0f), n_dot_v);
+    if (m.iridescence > 0.0f) {
+        // KHR_materials_iridescence: the lobes' weights follow the film's Fresnel too.
+        brdf::IridescenceFresnel film = brdf::iridescence_at(m.iridescence, m.iridescence_ior, m.iridescence_thickness,
+                                                             n_dot_v, s.dielectric_f0(), s.base_color);
+        f_dielectric = glm::mix(f_dielectric, film.dielectric, film.factor);
+        f_metal = glm::mix(f_metal, film.metal, film.factor);
+    }
     float spec = (1.0f - s.metallic) * luminance(f_dielectric) + s.metallic * luminance(f_metal);
     float diff = (1.0f - s.metallic) * luminance((1.0f - f_dielectric) * s.base_color);
     // KHR_materials_sheen has no sampling routine of its own: its broad lobe is sampled by
@@ -74,7 +81,8 @@ glm::vec3 Bsdf::eval_transmission(glm::vec3 l) const {
     float a = transmission_alpha_;
     float dv = brdf::d_ggx(std::clamp(glm::dot(n, h), 0.0f, 1.0f), a) * brdf::v_smith_ggx_correlated(n_dot_lm, n_dot_v, a);
     glm::vec3 f_dielectric = brdf::f_schlick(s.dielectric_f0() * s.specular_weight, glm::vec3(s.specular_weight), v_dot_h);
-    glm::vec3 f = (1.0f - s.metallic) * (1.0f - f_dielectric) * tr.factor * s.base_color * dv * n_dot_lm;
+    glm::vec3 f = (1.0f - s.metallic) * brdf::film_diffuse_weight(f_dielectric, film_at(m_, v_)) * tr.factor *
+                  s.base_color * dv * n_dot_lm;
     if (m_.clearcoat > 0.0f) f *= 1.0f - brdf::clearcoat_mix(m_.clearcoat, m_.clearcoat_f0, m_.clearcoat_normal, v_);
     return f;
 }
@@ -90,7 +98,8 @@ glm::vec3 Bsdf::eval(glm::vec3 l) const {
         glm::vec3 h = glm::normalize(l + v_);
         glm::vec3 f_dielectric = brdf::f_schlick(s.dielectric_f0() * s.specular_weight, glm::vec3(s.specular_weight),
                                                  std::clamp(glm::dot(v_, h), 0.0f, 1.0f));
-        glm::vec3 diffuse = (1.0f - s.metallic) * (1.0f - f_dielectric) * brdf::lambert(s.base_color) * n_dot_l;
+        glm::vec3 diffuse = (1.0f - s.metallic) * brdf::film_diffuse_weight(f_dielectric, film_at(m_, v_)) *
+                            brdf::lambert(s.base_color) * n_dot_l;
         if (m_.clearcoat > 0.0f)
             diffuse *= 1.0f - brdf::clearcoat_mix(m_.clearcoat, m_.clearcoat_f0, m_.clearcoat_normal, v_);
         f -= tr.factor * diffuse;

@@ -94,14 +94,64 @@ inline Cosines cosines(glm::vec3 n, glm::vec3 v, glm::vec3 l) {
             std::clamp(glm::dot(n, h), 0.0f, 1.0f), std::clamp(glm::dot(v, h), 0.0f, 1.0f)};
 }
 
+// ---- KHR_materials_iridescence: thin-film interference (Belcour & Barla 2017) ----------
+// The Fresnel of a dielectric film (ior film_ior, thickness in nm) between the outside and
+// the base, as the extension and the Khronos Sample Viewer evaluate it (evalIridescence): the
+// base's ior from its F0, Schlick reflectances at both interfaces, the phase shifts of each
+// reflection, and the Airy sum's first two orders integrated against the CIE XYZ matching
+// functions in Fourier space (Gaussian fits), in linear Rec.709. The same functions as
+// shaders/iridescence.glsl.
+
+// The spectral sensitivity term: the XYZ matching functions' Fourier transform at optical
+// path difference opd (nm) with phase shift `shift` (per channel), in linear Rec.709.
+glm::vec3 iridescence_sensitivity(float opd, glm::vec3 shift);
+
+// F_iridescence for light from a medium of outside_ior at cos_theta1 = n.v. The film's ior
+// eases to outside_ior below 0.03 nm (so thickness 0 is no film); total internal reflection
+// in the film gives 1.
+glm::vec3 iridescence_fresnel(float outside_ior, float film_ior, float cos_theta1, float thickness,
+                              glm::vec3 base_f0);
+
+// The film's Fresnel over the dielectric and the metallic base at one view, and its weight.
+struct IridescenceFresnel {
+    float factor = 0.0f;          // 0: no film
+    glm::vec3 dielectric{0.0f};   // over the dielectric base (F0 = its F0 colour)
+    glm::vec3 metal{0.0f};        // over the metal (F0 = base colour)
+};
+// The film at n.v: factor 0 when factor or thickness is 0 (the Khronos viewer turns the
+// film off at thickness 0), else both Fresnels from air (outside ior 1).
+IridescenceFresnel iridescence_at(float factor, float film_ior, float thickness, float n_dot_v,
+                                  glm::vec3 f0_dielectric, glm::vec3 base_color);
+
+// What the diffuse keeps below the dielectric's Fresnel f_dielectric: 1 - F, and under a thin
+// film mix(1 - F, 1 - max(F_film), factor) (the Khronos viewer's rgb_mix). Also the weight of
+// the transmission that replaces the diffuse (KHR_materials_transmission).
+inline glm::vec3 film_diffuse_weight(glm::vec3 f_dielectric, const IridescenceFresnel& film) {
+    glm::vec3 weight = 1.0f - f_dielectric;
+    if (film.factor > 0.0f) {
+        float film_max = std::max({film.dielectric.x, film.dielectric.y, film.dielectric.z});
+        weight = glm::mix(weight, glm::vec3(1.0f - film_max), film.factor);
+    }
+    return weight;
+}
+
 // Appendix B's layering of the lobes, given t.d and t.v, the two Fresnel terms and the diffuse
 // lobe before its weights: fresnel_mix of the dielectric, conductor_fresnel of the metal.
-inline void layer(Terms& t, const Surface& s, glm::vec3 f_dielectric, glm::vec3 f_metal, glm::vec3 diffuse) {
+// With a thin film (KHR_materials_iridescence, as the Khronos Sample Viewer layers it) both
+// Fresnel terms become mix(F, F_film, factor), and the diffuse below the dielectric keeps
+// mix(1 - F, 1 - max(F_film), factor) (the viewer's rgb_mix).
+inline void layer(Terms& t, const Surface& s, glm::vec3 f_dielectric, glm::vec3 f_metal, glm::vec3 diffuse,
+                  const IridescenceFresnel& film = {}) {
     float spec = t.v * t.d;
-    t.f_dielectric = f_dielectric;
+    const glm::vec3 diffuse_weight = film_diffuse_weight(f_dielectric, film);
+    if (film.factor > 0.0f) {
+        f_dielectric = glm::mix(f_dielectric, film.dielectric, film.factor);
+        f_metal = glm::mix(f_metal, film.metal, film.factor);
+    }
+    t.f_dielectric = f_dielectric;  // with the film: what apply_anisotropy weights its lobes by
     t.f_metal = f_metal;
     t.f = glm::mix(f_dielectric, f_metal, s.metallic);
-    t.diffuse = (1.0f - s.metallic) * (1.0f - f_dielectric) * diffuse;
+    t.diffuse = (1.0f - s.metallic) * diffuse_weight * diffuse;
     t.specular_dielectric = (1.0f - s.metallic) * f_dielectric * spec;
     t.specular_metal = s.metallic * f_metal * spec;
     t.specular = t.specular_dielectric + t.specular_metal;
@@ -112,7 +162,9 @@ inline void layer(Terms& t, const Surface& s, glm::vec3 f_dielectric, glm::vec3 
 //                specular weight w = 1 unless KHR_materials_ior / _specular say otherwise)
 //   metal      = F_schlick(base, 1, v·h) * V*D                      (conductor_fresnel)
 //   f          = mix(dielectric, metal, metallic)
-inline Terms evaluate_terms(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l) {
+// `film`: a thin film over both (KHR_materials_iridescence; see layer()).
+inline Terms evaluate_terms(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l,
+                            const IridescenceFresnel& film = {}) {
     Terms t;
     const Cosines c = cosines(n, v, l);
     float alpha = alpha_from_roughness(s.perceptual_roughness);
@@ -120,7 +172,7 @@ inline Terms evaluate_terms(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec
     t.v = v_smith_ggx_correlated(c.n_dot_l, c.n_dot_v, alpha);
     glm::vec3 f_metal = f_schlick(s.base_color, glm::vec3(1.0f), c.v_dot_h);
     glm::vec3 f_dielectric = f_schlick(s.dielectric_f0() * s.specular_weight, glm::vec3(s.specular_weight), c.v_dot_h);
-    layer(t, s, f_dielectric, f_metal, lambert(s.base_color));
+    layer(t, s, f_dielectric, f_metal, lambert(s.base_color), film);
     return t;
 }
 

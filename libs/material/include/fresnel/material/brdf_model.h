@@ -165,9 +165,10 @@ inline float diffuse_oren_nayar_factor(float n_dot_l, float n_dot_v, float l_dot
 
 // evaluate_terms (brdf.h) with the model's terms in place of the defaults: the same layering
 // (fresnel_mix of the dielectric, conductor_fresnel of the metal), D, V and F chosen by `m`,
-// and the diffuse lobe scaled by the Burley or Oren-Nayar factor.
-inline Terms evaluate_terms(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l, const BrdfModel& m) {
-    if (m.is_default()) return evaluate_terms(s, n, v, l);
+// and the diffuse lobe scaled by the Burley or Oren-Nayar factor; `film` as in brdf.h.
+inline Terms evaluate_terms(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec3 l, const BrdfModel& m,
+                            const IridescenceFresnel& film = {}) {
+    if (m.is_default()) return evaluate_terms(s, n, v, l, film);
     Terms t;
     const auto [n_dot_l, n_dot_v, n_dot_h, v_dot_h] = cosines(n, v, l);
     float alpha = alpha_from_roughness(s.perceptual_roughness);
@@ -209,7 +210,7 @@ inline Terms evaluate_terms(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec
             diffuse = diffuse_oren_nayar_factor(n_dot_l, n_dot_v, glm::dot(l, v), s.perceptual_roughness);
             break;
     }
-    layer(t, s, f_dielectric, f_metal, lambert(s.base_color) * diffuse);
+    layer(t, s, f_dielectric, f_metal, lambert(s.base_color) * diffuse, film);
     return t;
 }
 

@@ -16,6 +16,9 @@
 //               anisotropyTexture B; direction = rotate(anisotropyRotation) * (texture RG * 2 - 1,
 //               else (1, 0)), normalised ((1, 0) when 0); anisotropic t = direction.x T +
 //               direction.y B of the geometric frame, b = cross(geometric normal, t)
+//   iridescence = iridescenceFactor * iridescenceTexture R, film ior = iridescenceIor,
+//               thickness = mix(minimum, maximum, iridescenceThicknessTexture G) nm, without
+//               the texture the maximum; only when the factor is positive
 //   occlusion = 1 + strength * (occlusionTexture R - 1)
 //   emissive = emissiveFactor * emissiveStrength * emissiveTexture RGB (sRGB)
 //   alpha: OPAQUE -> 1; MASK -> discard below the cutoff, else 1; BLEND -> as computed
@@ -63,8 +66,10 @@ enum class MaterialMap {
     Transmission,        // KHR_materials_transmission transmissionTexture (R)
     Thickness,           // KHR_materials_volume thicknessTexture (G), read only with transmission
     Anisotropy,          // KHR_materials_anisotropy anisotropyTexture (RG direction, B strength), needs tangents
+    Iridescence,           // KHR_materials_iridescence iridescenceTexture (R)
+    IridescenceThickness,  // KHR_materials_iridescence iridescenceThicknessTexture (G)
 };
-inline constexpr int kMaterialMapCount = 16;
+inline constexpr int kMaterialMapCount = 18;
 
 struct MaterialMapInfo {
     const char* name;    // GLSL: u_<name>_map, u_<name>_uv, u_<name>_transform
@@ -120,6 +125,9 @@ struct EvaluatedMaterial {
     float anisotropy_strength = 0.0f;
     glm::vec2 anisotropy_direction{1.0f, 0.0f};
     glm::vec3 anisotropic_t{1, 0, 0}, anisotropic_b{0, 1, 0};
+    float iridescence = 0.0f;             // KHR_materials_iridescence strength (0 = no film)
+    float iridescence_ior = 1.3f;
+    float iridescence_thickness = 0.0f;   // nm
     bool unlit = false;
     TransmissionInputs transmission;      // factor 0 without KHR_materials_transmission
 };
@@ -157,11 +165,17 @@ Material to_metallic_roughness(const Material& material, bool* lost_glossiness_m
 // KHR_materials_sheen and _clearcoat layering of one punctual light (pbr.frag's light loop):
 //   base = (f_diffuse + f_specular_dielectric * comp_dielectric + f_specular_metal * comp_metal) n.l
 //   with anisotropy the specular lobes' D and V are the anisotropic ones (brdf::apply_anisotropy)
+//   with a thin film (KHR_materials_iridescence) the terms' Fresnel is mixed with the film's,
+//               brdf::iridescence_at(n.v) (brdf::layer)
 //   with sheen: base = f_sheen n.l + base * sheen_albedo_scaling(colour, E(n.v), E(n.l)),
 //               E from brdf::SheenAlbedoTable::standard() (the shader: the table's A channel)
 //   result = radiance * mix(base, clearcoat_specular, clearcoat_mix)
 // comp_* are the energy-compensation factors (1 without); `model` selects the BRDF's terms
 // (brdf_model.h; the default is glTF's). The twin of shade_light in shaders/material_inputs.glsl.
+// The thin film of `m` at the view v (KHR_materials_iridescence; factor 0 without one): the
+// film shade_light and shade_light_transmission use.
+brdf::IridescenceFresnel film_at(const EvaluatedMaterial& m, glm::vec3 v);
+
 glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 radiance,
                       glm::vec3 comp_dielectric = glm::vec3(1.0f), glm::vec3 comp_metal = glm::vec3(1.0f),
                       const brdf::BrdfModel& model = {});
@@ -173,7 +187,8 @@ bool is_transmissive(const Material& material);
 
 // The transmission term a punctual light adds to shade_light (the twin of
 // shade_light_transmission in shaders/transmission.glsl): the BTDF replaces the Lambert lobe in
-// proportion to the transmission factor, under the dielectric Fresnel and the coat:
+// proportion to the transmission factor, under the dielectric Fresnel (and a thin film's:
+// brdf::film_diffuse_weight) and the coat:
 //   (1 - cc_mix) (1 - metallic) (1 - F_d) T [attenuate(radiance btdf_punctual(l_transmitted)) - radiance n.l lambert]
 // l: the direction to the light; l_transmitted: to the light from the point where the
 // transmission ray leaves (ray_length = the ray's length, for the volume's attenuation).

@@ -93,14 +93,13 @@ struct SpecularGlossinessExt {
 };
 
 // Shaded (transmission.h): KHR_materials_transmission, _volume, _dispersion; (evaluate.h)
-// KHR_materials_sheen. Kept, not shaded: the others below.
+// KHR_materials_sheen, _iridescence. Kept, not shaded: anisotropy, diffuse transmission.
 struct SheenExt {                          // KHR_materials_sheen (shaded: evaluate.h)
     glm::vec3 sheen_color_factor{0.0f};
     TextureSlot sheen_color_texture;       // RGB, sRGB
     float sheen_roughness_factor = 0.0f;
     TextureSlot sheen_roughness_texture;   // A
 };
-// Kept, not shaded.
 struct TransmissionExt {                   // KHR_materials_transmission
     float transmission_factor = 0.0f;
     TextureSlot transmission_texture;      // R
@@ -111,7 +110,7 @@ struct VolumeExt {                         // KHR_materials_volume
     float attenuation_distance = std::numeric_limits<float>::infinity();
     glm::vec3 attenuation_color{1.0f};
 };
-struct IridescenceExt {                    // KHR_materials_iridescence
+struct IridescenceExt {                    // KHR_materials_iridescence (shaded: evaluate.h)
     float iridescence_factor = 0.0f;
     TextureSlot iridescence_texture;       // R
     float iridescence_ior = 1.3f;
@@ -213,6 +212,9 @@ struct Material {
     // Anisotropy is shaded only with a positive strength (strength = factor * texture B; at 0
     // the lobe is the isotropic one).
     bool has_anisotropy() const { return anisotropy && anisotropy->anisotropy_strength > 0.0f; }
+    // The thin film is shaded only with a positive factor (the default 0 is none, as the
+    // strength is factor * texture).
+    bool has_iridescence() const { return iridescence && iridescence->iridescence_factor > 0.0f; }
 };
 
 // Dielectric reflectance at normal incidence of an ior against air: ((ior-1)/(ior+1))^2

@@ -32,6 +32,8 @@ enum class DebugChannel {
     Transmission, Thickness,  // KHR_materials_transmission factor, KHR_materials_volume thickness (0..1)
     Sheen, SheenRoughness,  // KHR_materials_sheen: colour (sRGB), roughness (grey)
     Anisotropy, AnisotropyDirection,  // KHR_materials_anisotropy: strength (grey), direction (RG = xy * 0.5 + 0.5)
+    Iridescence = 28,      // KHR_materials_iridescence strength (grey)
+    IridescenceThickness,  // the film's thickness in micrometres (grey, 1 = 1000 nm and above)
 };
 std::optional<DebugChannel> parse_debug_channel(const std::string& name);
 std::vector<std::string> debug_channel_names();

@@ -56,15 +56,22 @@ enum : FeatureMask {
     // (MaterialMap::Anisotropy).
     Anisotropy = FeatureMask(1) << 31,
     AnisotropyMap = FeatureMask(1) << 32,
+    // KHR_materials_iridescence: the model bit and maps 16 and 17 (MaterialMap::Iridescence,
+    // ::IridescenceThickness).
+    Iridescence = FeatureMask(1) << 33,              // MATERIAL_IRIDESCENCE: the thin film (Material::has_iridescence)
+    IridescenceMap = FeatureMask(1) << 34,           // iridescenceTexture
+    IridescenceThicknessMap = FeatureMask(1) << 35,  // iridescenceThicknessTexture
 };
-constexpr int kCount = 33;
+constexpr int kCount = 36;
 constexpr int kFirstMap = 12;
-constexpr int kMapCount = 16;
-constexpr FeatureMask kAll = (FeatureMask(1) << kCount) - 1;
+constexpr int kMapCount = 18;
+// Bit positions below kCount that no feature uses (none now).
+constexpr FeatureMask kReserved = 0;
+constexpr FeatureMask kAll = ((FeatureMask(1) << kCount) - 1) & ~kReserved;
 // The bit position of each map, in fresnel::MaterialMap order: maps 0..12 are bits 12..24,
-// the transmission maps (13, 14) bits 28 and 29, the anisotropy map (15) bit 32. A new map
-// appends its position here.
-constexpr int kMapBitPositions[kMapCount] = {12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 28, 29, 32};
+// the transmission maps (13, 14) bits 28 and 29, the anisotropy map (15) bit 32, the
+// iridescence maps (16, 17) bits 34 and 35. A new map appends its position here.
+constexpr int kMapBitPositions[kMapCount] = {12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 28, 29, 32, 34, 35};
 // The bit of map `i` (fresnel::MaterialMap(i)).
 constexpr FeatureMask map_bit(int i) { return FeatureMask(1) << kMapBitPositions[i]; }
 constexpr FeatureMask all_map_bits() {
@@ -86,7 +93,7 @@ struct FeatureInfo {
     FeatureMask bit;
     const char* define;  // the GLSL #define ("HAS_NORMAL", ...)
 };
-// Every feature bit in bit order.
+// Every feature bit in bit order (the bits of kAll; kReserved has none).
 std::span<const FeatureInfo> feature_table();
 
 // The #defines of a variant: one per set bit, in bit order, then "MAX_LIGHTS 16".
@@ -111,7 +118,9 @@ std::vector<std::string> feature_defines(FeatureMask mask);
 //    absent; a white anisotropy texel is not the default direction (1, 0));
 //  - alpha mask wins over blend (a material has one alpha mode);
 //  - transmission is not shaded for unlit (without the debug view) or specular-glossiness
-//    materials; with it, its two maps always come together (white stands in: factor * 1).
+//    materials; with it, its two maps always come together (white stands in: factor * 1);
+//  - the iridescence maps need the iridescence and come together (white stands in: factor * 1,
+//    mix(minimum, maximum, 1) = maximum, the thickness without a map); unlit drops the film.
 // Normal maps and the anisotropy map are never stood in for: a flat normal texel is not
 // exactly (0, 0, 1), a white anisotropy texel is direction (1, 1).
 FeatureMask canonical_features(FeatureMask mask);
