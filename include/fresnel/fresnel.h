@@ -21,6 +21,7 @@
 #include "fresnel/scene/mesh_ops.h"
 #include "fresnel/scene/obj_loader.h"
 #include "fresnel/scene/paths.h"
+#include "fresnel/scene/pick.h"
 #include "fresnel/scene/pose.h"
 #include "fresnel/scene/procedural.h"
 #include "fresnel/scene/scene_writer.h"

@@ -583,7 +583,7 @@ protected:
                                 norm = std::max(1.0f, std::max({m.sheen->sheen_color_factor.x, m.sheen->sheen_color_factor.y,
                                                                 m.sheen->sheen_color_factor.z}));
                             if (o == 5 && ch < 3 && m.clearcoat) norm = 1.0f + std::abs(m.clearcoat->clearcoat_normal_scale);
-                            if (o == 8 && ch == 1 && m.iridescence)  // thickness: mix(min, max, G) in nm
+                            if (o == 10 && ch == 1 && m.iridescence)  // thickness: mix(min, max, G) in nm
                                 norm = std::max(1.0f, std::abs(m.iridescence->iridescence_thickness_maximum -
                                                                m.iridescence->iridescence_thickness_minimum));
                             ok = err <= kFilteredAbsTol * norm;
