@@ -32,10 +32,12 @@ demo: deps
 	$(BUILD)/bin/fresnel render -o demo.png --size 1024x768
 	@echo "wrote demo.png"
 
-# Every test: unit, GPU (llvmpipe), image and corpus tests in the release build,
+# Every test: unit, GPU (llvmpipe), image and corpus tests in the release build, the web page
+# (make web, then web_page_test in headless Chromium: ~1 min to build, ~1 min to test),
 # then the loader tests and the corpus again under AddressSanitizer + UBSan.
 test: deps
 	@$(MAKE) --no-print-directory build
+	@$(MAKE) --no-print-directory web
 	@scripts/install-test-tools.sh $(BUILD)/node-tools
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	@$(MAKE) --no-print-directory asan
