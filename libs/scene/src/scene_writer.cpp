@@ -296,18 +296,6 @@ int wrap_enum(Wrap w) { return w == Wrap::ClampToEdge ? 33071 : w == Wrap::Mirro
 
 }  // namespace
 
-namespace {
-// Whether a material needs a tangent space from the mesh (the validator's
-// MESH_PRIMITIVE_NO_TANGENT_SPACE): anisotropy always, a coat normal map without a base one.
-// Returns the texture coordinate set tangents are built on.
-std::optional<int> tangent_space_need(const Material& m, const Scene& scene) {
-    if (slot_ok(m.normal, scene)) return std::nullopt;  // the loader made them (or the file had them)
-    if (m.anisotropy) return m.anisotropy->anisotropy_texture.valid() ? m.anisotropy->anisotropy_texture.tex_coord : 0;
-    if (m.has_clearcoat() && slot_ok(m.clearcoat->clearcoat_normal_texture, scene))
-        return m.clearcoat->clearcoat_normal_texture.tex_coord;
-    return std::nullopt;
-}
-}  // namespace
 
 void write_gltf(const Scene& in, const fs::path& path, Diagnostics& diagnostics) {
     // Primitives whose material needs a tangent space get MikkTSpace tangents, on a copy.
@@ -317,9 +305,14 @@ void write_gltf(const Scene& in, const fs::path& path, Diagnostics& diagnostics)
             const Primitive& p = in.meshes[mi].primitives[pi];
             if (p.tangents.size() == p.positions.size() || p.material < 0 || std::size_t(p.material) >= in.materials.size())
                 continue;
-            if (auto uv = tangent_space_need(in.materials[std::size_t(p.material)], in)) {
+            // The loader's rule (tangent_source); an anisotropy block of strength 0 still makes
+            // the validator ask for a tangent space (MESH_PRIMITIVE_NO_TANGENT_SPACE).
+            const Material& m = in.materials[std::size_t(p.material)];
+            const TextureSlot* src = tangent_source(m);
+            if (!src && m.anisotropy) src = &m.anisotropy->anisotropy_texture;
+            if (src) {
                 if (!with_tangents) with_tangents = in;
-                generate_tangents(with_tangents->meshes[mi].primitives[pi], *uv);
+                generate_tangents(with_tangents->meshes[mi].primitives[pi], src->valid() ? src->tex_coord : 0);
             }
         }
     const Scene& scene = with_tangents ? *with_tangents : in;
