@@ -733,6 +733,63 @@ public:
                   n->clearcoat_roughness_factor != o.clearcoat_roughness_factor, "clearcoatRoughnessFactor",
                   number_of(n->clearcoat_roughness_factor));
         }
+        if (const auto& n = now.sheen; n) {
+            const SheenExt o = was.sheen.value_or(SheenExt{});
+            value("KHR_materials_sheen", bool(was.sheen), n->sheen_color_factor != o.sheen_color_factor,
+                  "sheenColorFactor", numbers_of<3>(n->sheen_color_factor));
+            value("KHR_materials_sheen", bool(was.sheen), n->sheen_roughness_factor != o.sheen_roughness_factor,
+                  "sheenRoughnessFactor", number_of(n->sheen_roughness_factor));
+        }
+        if (const auto& n = now.transmission; n) {
+            const TransmissionExt o = was.transmission.value_or(TransmissionExt{});
+            value("KHR_materials_transmission", bool(was.transmission), n->transmission_factor != o.transmission_factor,
+                  "transmissionFactor", number_of(n->transmission_factor));
+        }
+        if (const auto& n = now.volume; n) {
+            const VolumeExt o = was.volume.value_or(VolumeExt{});
+            value("KHR_materials_volume", bool(was.volume), n->thickness_factor != o.thickness_factor,
+                  "thicknessFactor", number_of(n->thickness_factor));
+            // An infinite distance (no attenuation, the default) is written by leaving the key out.
+            if (n->attenuation_distance != o.attenuation_distance || !was.volume) {
+                if (std::isfinite(n->attenuation_distance))
+                    set(ext("KHR_materials_volume"), "attenuationDistance", number_of(n->attenuation_distance));
+                else if (ext("KHR_materials_volume").erase("attenuationDistance"))
+                    ++changed_;
+            }
+            value("KHR_materials_volume", bool(was.volume), n->attenuation_color != o.attenuation_color,
+                  "attenuationColor", numbers_of<3>(n->attenuation_color));
+        }
+        if (const auto& n = now.dispersion; n)
+            value("KHR_materials_dispersion", bool(was.dispersion),
+                  !was.dispersion || n->dispersion != was.dispersion->dispersion, "dispersion", number_of(n->dispersion));
+        if (const auto& n = now.iridescence; n) {
+            const IridescenceExt o = was.iridescence.value_or(IridescenceExt{});
+            const char* x = "KHR_materials_iridescence";
+            value(x, bool(was.iridescence), n->iridescence_factor != o.iridescence_factor, "iridescenceFactor",
+                  number_of(n->iridescence_factor));
+            value(x, bool(was.iridescence), n->iridescence_ior != o.iridescence_ior, "iridescenceIor",
+                  number_of(n->iridescence_ior));
+            value(x, bool(was.iridescence), n->iridescence_thickness_minimum != o.iridescence_thickness_minimum,
+                  "iridescenceThicknessMinimum", number_of(n->iridescence_thickness_minimum));
+            value(x, bool(was.iridescence), n->iridescence_thickness_maximum != o.iridescence_thickness_maximum,
+                  "iridescenceThicknessMaximum", number_of(n->iridescence_thickness_maximum));
+        }
+        if (const auto& n = now.anisotropy; n) {
+            const AnisotropyExt o = was.anisotropy.value_or(AnisotropyExt{});
+            value("KHR_materials_anisotropy", bool(was.anisotropy), n->anisotropy_strength != o.anisotropy_strength,
+                  "anisotropyStrength", number_of(n->anisotropy_strength));
+            value("KHR_materials_anisotropy", bool(was.anisotropy), n->anisotropy_rotation != o.anisotropy_rotation,
+                  "anisotropyRotation", number_of(n->anisotropy_rotation));
+        }
+        if (const auto& n = now.diffuse_transmission; n) {
+            const DiffuseTransmissionExt o = was.diffuse_transmission.value_or(DiffuseTransmissionExt{});
+            const char* x = "KHR_materials_diffuse_transmission";
+            value(x, bool(was.diffuse_transmission), n->diffuse_transmission_factor != o.diffuse_transmission_factor,
+                  "diffuseTransmissionFactor", number_of(n->diffuse_transmission_factor));
+            value(x, bool(was.diffuse_transmission),
+                  n->diffuse_transmission_color_factor != o.diffuse_transmission_color_factor,
+                  "diffuseTransmissionColorFactor", numbers_of<3>(n->diffuse_transmission_color_factor));
+        }
     }
     // True when any value patch() writes differs between the two.
     static bool differs(const Material& a, const Material& b) {
@@ -748,7 +805,24 @@ public:
                opt(a.specular, b.specular, [](const auto& e) { return e.specular_factor; }) ||
                opt(a.specular, b.specular, [](const auto& e) { return e.specular_color_factor; }) ||
                opt(a.clearcoat, b.clearcoat, [](const auto& e) { return e.clearcoat_factor; }) ||
-               opt(a.clearcoat, b.clearcoat, [](const auto& e) { return e.clearcoat_roughness_factor; });
+               opt(a.clearcoat, b.clearcoat, [](const auto& e) { return e.clearcoat_roughness_factor; }) ||
+               opt(a.sheen, b.sheen, [](const auto& e) { return e.sheen_color_factor; }) ||
+               opt(a.sheen, b.sheen, [](const auto& e) { return e.sheen_roughness_factor; }) ||
+               opt(a.transmission, b.transmission, [](const auto& e) { return e.transmission_factor; }) ||
+               opt(a.volume, b.volume, [](const auto& e) { return e.thickness_factor; }) ||
+               opt(a.volume, b.volume, [](const auto& e) { return e.attenuation_distance; }) ||
+               opt(a.volume, b.volume, [](const auto& e) { return e.attenuation_color; }) ||
+               opt(a.dispersion, b.dispersion, [](const auto& e) { return e.dispersion; }) ||
+               opt(a.iridescence, b.iridescence, [](const auto& e) { return e.iridescence_factor; }) ||
+               opt(a.iridescence, b.iridescence, [](const auto& e) { return e.iridescence_ior; }) ||
+               opt(a.iridescence, b.iridescence, [](const auto& e) { return e.iridescence_thickness_minimum; }) ||
+               opt(a.iridescence, b.iridescence, [](const auto& e) { return e.iridescence_thickness_maximum; }) ||
+               opt(a.anisotropy, b.anisotropy, [](const auto& e) { return e.anisotropy_strength; }) ||
+               opt(a.anisotropy, b.anisotropy, [](const auto& e) { return e.anisotropy_rotation; }) ||
+               opt(a.diffuse_transmission, b.diffuse_transmission,
+                   [](const auto& e) { return e.diffuse_transmission_factor; }) ||
+               opt(a.diffuse_transmission, b.diffuse_transmission,
+                   [](const auto& e) { return e.diffuse_transmission_color_factor; });
     }
     int changed() const { return changed_; }
 
