@@ -337,10 +337,14 @@ private:
             }
             if (c.name == "stats") {
                 std::string gpu = gpu_ms_ >= 0.0 ? std::to_string(gpu_ms_) : std::string("null");
+                gpu::LiveObjects gl = gpu::Device().live_objects();
                 std::printf("{\"frame_ms\":%.2f,\"gpu_ms\":%s,\"width\":%d,\"height\":%d,\"draw_calls\":%d,"
-                            "\"triangles\":%zu,\"programs\":%zu,\"rss_kb\":%ld}\n",
+                            "\"triangles\":%zu,\"programs\":%zu,\"rss_kb\":%ld,\"gl_objects\":{\"total\":%d,"
+                            "\"buffers\":%d,\"vertex_arrays\":%d,\"textures\":%d,\"renderbuffers\":%d,"
+                            "\"framebuffers\":%d,\"programs\":%d,\"shaders\":%d}}\n",
                             frame_ms_, gpu.c_str(), fb_.width, fb_.height, stats_.draw_calls, stats_.triangles,
-                            renderer_->program_count(), resident_kb());
+                            renderer_->program_count(), resident_kb(), gl.total(), gl.buffers, gl.vertex_arrays,
+                            gl.textures, gl.renderbuffers, gl.framebuffers, gl.programs, gl.shaders);
                 std::fflush(stdout);
                 continue;
             }
@@ -1444,6 +1448,8 @@ private:
                 lighting_ = bake_->result.get();
                 lighting_key_ = bake_->key;
                 good_environment_ = job_.environment;
+                std::fprintf(stderr, "fresnel: lighting ready: %s\n",
+                             bake_->resolved.environment ? bake_->resolved.environment->describe().c_str() : "none");
             } catch (const std::exception& e) {
                 error_ = e.what();
                 std::fprintf(stderr, "fresnel: error: %s\n", e.what());

@@ -262,6 +262,86 @@ echo "exit $?" >>err.txt
     EXPECT_GE(m.psnr_db, 40.0) << line;
 }
 
+// Drag and drop as a file manager does it (XDND, by tests/cli/xdnd_drop.cpp): a broken glTF
+// (its error shown, the viewer stays), a model, then an environment dropped onto the window;
+// Ctrl+C's command line names both, and F12's screenshot is what that command renders.
+TEST_F(View, DroppedFilesOpenAndBrokenOnesLeaveTheViewerRunning) {
+#ifndef XDND_DROP_EXE
+    GTEST_SKIP() << "built without Xlib (no xdnd_drop)";
+#else
+    fs::path model = kShared / "assets/models/BoxTextured/BoxTextured.glb";
+    fs::path env = kShared / "assets/env/studio_small_03_1k.hdr";
+    if (!fs::exists(model) || !fs::exists(env)) GTEST_SKIP() << "needs the shared assets";
+    if (display_prefix_.empty() || std::system("command -v xdotool >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "needs Xvfb and xdotool";
+    std::ofstream(dir_ / "broken.gltf") << "{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [{\"mesh\": 7}]}";
+    fs::path script = dir_ / "drop.sh";
+    std::ofstream(script) << R"SH(set -u
+cd "$1"
+"$2" view --size 320x240 --msaa 1 --anisotropy 1 >out.txt 2>err.txt &
+pid=$!
+wait_for() {
+  for i in $(seq 900); do
+    eval "$1" && return 0
+    kill -0 $pid 2>/dev/null || { echo "the viewer exited early (waiting for: $1)" >>err.txt; exit 0; }
+    sleep 0.1
+  done
+  echo "timed out: $1" >>err.txt
+  kill $pid; wait $pid; exit 0
+}
+wait_for 'xdotool search --name "fresnel view" >/dev/null 2>&1'
+win=$(xdotool search --name "fresnel view" | head -1)
+xdotool mousemove 160 120; sleep 0.5
+xdotool key ctrl+c
+wait_for '[ "$(grep -c "fresnel render" out.txt)" -ge 1 ]'
+"$3" "$win" 160 120 "$PWD/broken.gltf" >>drop.txt 2>&1; echo "drop broken $?" >>drop.txt
+wait_for 'grep -q "broken.gltf" err.txt'
+"$3" "$win" 160 120 "$4" >>drop.txt 2>&1; echo "drop model $?" >>drop.txt
+sleep 1
+"$3" "$win" 160 120 "$5" >>drop.txt 2>&1; echo "drop env $?" >>drop.txt
+wait_for 'grep -q "lighting ready: .*studio_small_03" err.txt'
+sleep 1
+xdotool mousemove 150 110; sleep 0.5
+xdotool key ctrl+c
+wait_for '[ "$(grep -c "fresnel render" out.txt)" -ge 2 ]'
+xdotool key F12
+wait_for 'ls fresnel-*.png >/dev/null 2>&1'
+sleep 1
+xdotool key Escape
+wait $pid
+echo "exit $?" >>err.txt
+)SH";
+    std::string cmd = display_prefix_ + "sh " + quote(script.string()) + " " + quote(dir_.string()) + " " +
+                      quote(FRESNEL_EXE) + " " + quote(XDND_DROP_EXE) + " " + quote(model.string()) + " " +
+                      quote(env.string());
+    std::system(cmd.c_str());  // checked through what it wrote
+    std::string err = slurp(dir_ / "err.txt"), out = slurp(dir_ / "out.txt"), drops = slurp(dir_ / "drop.txt");
+    EXPECT_NE(drops.find("drop broken 0"), std::string::npos) << drops;
+    EXPECT_NE(drops.find("drop model 0"), std::string::npos) << drops;
+    EXPECT_NE(drops.find("drop env 0"), std::string::npos) << drops;
+    EXPECT_NE(err.find("exit 0"), std::string::npos) << err;
+    // The loader's message, naming the file and the place.
+    EXPECT_NE(err.find("broken.gltf"), std::string::npos) << err;
+    EXPECT_NE(err.find("/nodes/0"), std::string::npos) << err;
+    std::size_t at = out.rfind("fresnel render ");
+    ASSERT_NE(at, std::string::npos) << out << err;
+    std::string line = out.substr(at, out.find('\n', at) - at);
+    EXPECT_NE(line.find("BoxTextured.glb"), std::string::npos) << line;
+    EXPECT_NE(line.find("studio_small_03_1k.hdr"), std::string::npos) << line;
+    fs::path screenshot;
+    for (const auto& e : fs::directory_iterator(dir_))
+        if (e.path().filename().string().starts_with("fresnel-")) screenshot = e.path();
+    ASSERT_FALSE(screenshot.empty()) << err;
+    std::string render = line.substr(std::string("fresnel").size());
+    Result r = run_shell("cd " + quote(dir_.string()) + " && " + quote(FRESNEL_EXE) + render);
+    ASSERT_EQ(r.exit_code, 0) << r.err << line;
+    fresnel::ImageMetrics m =
+        fresnel::compare_images(fresnel::read_image8(dir_ / "view.png"), fresnel::read_image8(screenshot), false);
+    std::printf("after the drops, copied command vs F12 screenshot: %.1f dB\n", m.psnr_db);
+    EXPECT_GE(m.psnr_db, 40.0) << line;
+#endif
+}
+
 // --script: orbit, a broken model (reported with its line; the scene stays), a debug
 // channel and a missing environment (reported; the lighting stays), each screenshot equal
 // to `fresnel render` for the same view.
@@ -335,6 +415,29 @@ TEST_F(View, HundredOpensKeepResidentMemoryFlat) {
     std::printf("resident memory after 20 opens %ld kB, after 100 %ld kB\n", rss[0], rss[1]);
     EXPECT_GT(rss[0], 0);
     EXPECT_LE(double(rss[1]), double(rss[0]) * 1.10 + 8192.0);
+    // The GL objects alive (the driver's count) after the 20th and the 100th open: the same
+    // models were open both times, so any difference is a leak. Programs may still be added
+    // (a variant first needed later), nothing else.
+    auto field = [&](const std::string& key) {
+        std::vector<long> v;
+        std::string pat = "\"" + key + "\":";
+        for (std::size_t at = stats.find("\"gl_objects\""); at != std::string::npos;
+             at = stats.find("\"gl_objects\"", at + 1)) {
+            std::size_t k = stats.find(pat, at);
+            if (k != std::string::npos) v.push_back(std::atol(stats.c_str() + k + pat.size()));
+        }
+        return v;
+    };
+    for (const char* key : {"buffers", "vertex_arrays", "textures", "renderbuffers", "framebuffers"}) {
+        std::vector<long> n = field(key);
+        ASSERT_EQ(n.size(), 2u) << key << ": " << stats;
+        std::printf("live GL %s after 20 opens %ld, after 100 %ld\n", key, n[0], n[1]);
+        EXPECT_GT(n[0], 0) << key;
+        EXPECT_EQ(n[1], n[0]) << key;
+    }
+    std::vector<long> programs = field("programs");
+    ASSERT_EQ(programs.size(), 2u);
+    EXPECT_LE(programs[1], programs[0] + 8);
 }
 
 // `set material`: a red base colour factor reddens the helmet (and nothing else: the

@@ -114,6 +114,50 @@ std::vector<std::uint8_t> Device::read_default_rgba8(int x, int y, int w, int h)
     return px;
 }
 
+namespace {
+// Counts the names in [1, bound] for which `is` holds, where bound covers every name the
+// driver has handed out: past the name a fresh object gets now (drivers hand out increasing
+// names, or reuse the lowest free one) and past the last live name found by 4096 names.
+template <class Gen, class Is, class Del>
+int count_live(Gen gen, Is is, Del del) {
+    GLuint fresh = gen();
+    del(fresh);
+    int live = 0;
+    GLuint last_live = 0;
+    for (GLuint name = 1; name <= fresh + 64u || name <= last_live + 4096u; ++name) {
+        if (name == fresh) continue;
+        if (is(name) == GL_TRUE) {
+            ++live;
+            last_live = name;
+        }
+    }
+    return live;
+}
+}  // namespace
+
+LiveObjects Device::live_objects() {
+    LiveObjects o;
+    auto gen_with = [](void (*gen)(GLsizei, GLuint*)) {
+        return [gen] {
+            GLuint n = 0;
+            gen(1, &n);
+            return n;
+        };
+    };
+    auto del_with = [](void (*del)(GLsizei, const GLuint*)) { return [del](GLuint n) { del(1, &n); }; };
+    o.buffers = count_live(gen_with(glGenBuffers), glIsBuffer, del_with(glDeleteBuffers));
+    o.vertex_arrays = count_live(gen_with(glGenVertexArrays), glIsVertexArray, del_with(glDeleteVertexArrays));
+    o.textures = count_live(gen_with(glGenTextures), glIsTexture, del_with(glDeleteTextures));
+    o.renderbuffers = count_live(gen_with(glGenRenderbuffers), glIsRenderbuffer, del_with(glDeleteRenderbuffers));
+    o.framebuffers = count_live(gen_with(glGenFramebuffers), glIsFramebuffer, del_with(glDeleteFramebuffers));
+    // Programs and shaders share one namespace.
+    auto gen_program = [] { return glCreateProgram(); };
+    auto del_program = [](GLuint n) { glDeleteProgram(n); };
+    o.programs = count_live(gen_program, glIsProgram, del_program);
+    o.shaders = count_live(gen_program, glIsShader, del_program);
+    return o;
+}
+
 std::string Device::take_errors() {
     std::string out;
     for (int i = 0; i < 16; ++i) {

@@ -22,6 +22,14 @@ struct PipelineState {
     bool front_ccw = true;  // false for nodes whose world matrix mirrors (negative determinant)
 };
 
+// The GL objects alive in the current context, as the driver reports them (glIs* over the
+// names it has handed out), for leak checks: a scene opened and closed leaves these unchanged.
+struct LiveObjects {
+    int buffers = 0, vertex_arrays = 0, textures = 0, renderbuffers = 0, framebuffers = 0, programs = 0,
+        shaders = 0;
+    int total() const { return buffers + vertex_arrays + textures + renderbuffers + framebuffers + programs + shaders; }
+};
+
 class Device {
 public:
     void bind_framebuffer(const Framebuffer* fb);  // nullptr = default framebuffer
@@ -40,6 +48,8 @@ public:
     std::vector<float> read_rgba32f(const Framebuffer& fb, int width, int height);
     // Reads 8-bit RGBA from the default framebuffer (a window's, or a pbuffer's), rows bottom to top.
     std::vector<std::uint8_t> read_default_rgba8(int x, int y, int width, int height);
+    // Counts the live objects (a few ms: one glIs* call per name handed out so far).
+    LiveObjects live_objects();
     // Returns "" or the names of pending GL errors (clears them).
     std::string take_errors();
     void finish();
