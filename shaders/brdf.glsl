@@ -91,7 +91,7 @@ float brdf_v(float n_dot_l, float n_dot_v, float n_dot_h, float v_dot_h, float a
 #endif
 }
 
-#if BRDF_F == 1
+#if BRDF_F == 1 || BRDF_F == 3
 float f_dielectric_exact(float c, float eta) {
     c = clamp(c, 0.0, 1.0);
     float g2 = eta * eta - 1.0 + c * c;
@@ -109,6 +109,41 @@ float f_exact_channel(float f0, float f90, float v_dot_h) {
     return f0 + (f90 - f0) * t;
 }
 #endif
+#if BRDF_F == 3
+// brdf::f_conductor_exact: the Fresnel equations of a conductor n + ik, (Rs + Rp) / 2, with
+// a + ib = sqrt(eta^2 - sin^2) and a^2, b^2 each from the form without cancellation.
+float f_conductor_exact(float c, float n, float k) {
+    c = clamp(c, 0.0, 1.0);
+    float c2 = c * c, s2 = 1.0 - c2;
+    float t0 = n * n - k * k - s2;
+    float nk2 = 4.0 * n * n * k * k;
+    float m = sqrt(t0 * t0 + nk2);
+    float a2 = t0 >= 0.0 ? 0.5 * (m + t0) : (m - t0 > 0.0 ? 0.5 * nk2 / (m - t0) : 0.0);
+    float b2 = t0 <= 0.0 ? 0.5 * (m - t0) : 0.5 * nk2 / (m + t0);
+    float a = sqrt(a2);
+    float ds = (a + c) * (a + c) + b2;
+    if (!(ds > 0.0)) return 1.0;
+    float rs = ((a - c) * (a - c) + b2) / ds;
+    float ac = a * c;
+    float dp = (ac + s2) * (ac + s2) + b2 * c2;
+    float rp = dp > 0.0 ? rs * ((ac - s2) * (ac - s2) + b2 * c2) / dp : rs;
+    return min(0.5 * (rs + rp), 1.0);
+}
+vec3 f_conductor_exact(vec3 n, vec3 k, float v_dot_h) {
+    return vec3(f_conductor_exact(v_dot_h, n.r, k.r), f_conductor_exact(v_dot_h, n.g, k.g),
+                f_conductor_exact(v_dot_h, n.b, k.b));
+}
+// The metal lobe: a measured metal's n, k (BRDF_CONDUCTOR_N, BRDF_CONDUCTOR_K: brdf_model_defines)
+// or brdf::conductor_from_f0 of the base colour (Gulbrandsen 2014 with edge tint 1).
+vec3 f_exact_metal(vec3 base_color, float v_dot_h) {
+#ifdef BRDF_CONDUCTOR_N
+    return f_conductor_exact(BRDF_CONDUCTOR_N, BRDF_CONDUCTOR_K, v_dot_h);
+#else
+    vec3 r = clamp(base_color, 0.0, 1.0);
+    return f_conductor_exact((1.0 - r) / (1.0 + r), 2.0 * sqrt(r) / (1.0 + r), v_dot_h);
+#endif
+}
+#endif
 #if BRDF_F == 2
 vec3 f_spherical_gaussian(vec3 f0, vec3 f90, float v_dot_h) {
     float c = clamp(v_dot_h, 0.0, 1.0);
@@ -118,7 +153,7 @@ vec3 f_spherical_gaussian(vec3 f0, vec3 f90, float v_dot_h) {
 
 // The dielectric lobe's Fresnel (F90 = the specular weight) and the conductor's (F90 = 1).
 vec3 brdf_f_dielectric(vec3 f0, vec3 f90, float v_dot_h) {
-#if BRDF_F == 1
+#if BRDF_F == 1 || BRDF_F == 3
     return vec3(f_exact_channel(f0.r, f90.r, v_dot_h), f_exact_channel(f0.g, f90.g, v_dot_h),
                 f_exact_channel(f0.b, f90.b, v_dot_h));
 #elif BRDF_F == 2
@@ -128,7 +163,9 @@ vec3 brdf_f_dielectric(vec3 f0, vec3 f90, float v_dot_h) {
 #endif
 }
 vec3 brdf_f_metal(vec3 base_color, float v_dot_h) {
-#if BRDF_F == 2
+#if BRDF_F == 3
+    return f_exact_metal(base_color, v_dot_h);
+#elif BRDF_F == 2
     return f_spherical_gaussian(base_color, vec3(1.0), v_dot_h);
 #else
     return f_schlick(base_color, vec3(1.0), v_dot_h);

@@ -399,7 +399,9 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
     cmd->add_option("--brdf", o->brdf,
                     "BRDF terms of the glTF model, any of D=ggx|beckmann|blinn-phong, "
                     "G=smith-height-correlated|smith-separable|schlick-ggx|cook-torrance|kelemen, "
-                    "F=schlick|exact-dielectric|spherical-gaussian, diffuse=lambert|burley|oren-nayar, comma-separated "
+                    "F=schlick|exact-dielectric|spherical-gaussian|exact (metals as conductors of n, k: from the base "
+                    "colour, or F=exact:iron|gold|aluminium|chromium|copper|lead|platinum|silver), "
+                    "diffuse=lambert|burley|oren-nayar, comma-separated "
                     "(default: the first of each, glTF's). render: punctual lights only (image-based light keeps glTF's "
                     "split sum; --debug D, G, F, diffuse, specular show the terms); trace: every light and bounce");
     if (raster) {

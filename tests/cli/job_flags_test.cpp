@@ -69,7 +69,7 @@ TEST(JobFlags, EveryFieldRoundTrips) {
     job.output.encoding = Encoding::Gamma22;
     job.output.debug = DebugChannel::Roughness;
     job.output.energy_compensation = false;
-    job.output.brdf = *fresnel::brdf::parse_brdf_model("D=beckmann,G=kelemen,diffuse=oren-nayar");
+    job.output.brdf = *fresnel::brdf::parse_brdf_model("D=beckmann,G=kelemen,F=exact:gold,diffuse=oren-nayar");
     job.lights.scene_lights = false;
     std::string line = render_command_line(job, "view.png");
     EXPECT_NE(line.find("'/models/my helmet.glb'"), std::string::npos) << line;

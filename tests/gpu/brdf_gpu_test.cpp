@@ -375,9 +375,14 @@ TEST_F(BrdfValues, AlternativeTermsMatchCpp) {
     std::vector<BrdfModel> models;
     for (int i = 1; i < 3; ++i) models.push_back(BrdfModel{Distribution(i), {}, {}, {}});
     for (int i = 1; i < 5; ++i) models.push_back(BrdfModel{{}, Geometry(i), {}, {}});
-    for (int i = 1; i < 3; ++i) models.push_back(BrdfModel{{}, {}, Fresnel(i), {}});
+    for (int i = 1; i < 4; ++i) models.push_back(BrdfModel{{}, {}, Fresnel(i), {}});
     for (int i = 1; i < 3; ++i) models.push_back(BrdfModel{{}, {}, {}, Diffuse(i)});
+    // F=exact with measured metals (their n, k as defines): a noble metal, a transition metal.
+    models.push_back(BrdfModel{{}, {}, Fresnel::Exact, {}, Conductor::Gold});
+    models.push_back(BrdfModel{{}, {}, Fresnel::Exact, {}, Conductor::Iron});
     models.push_back(BrdfModel{Distribution::BlinnPhong, Geometry::SchlickGgx, Fresnel::ExactDielectric, Diffuse::Burley});
+    models.push_back(BrdfModel{Distribution::Beckmann, Geometry::SmithSeparable, Fresnel::Exact, Diffuse::OrenNayar,
+                               Conductor::Aluminium});
     for (const BrdfModel& m : models) {
         SCOPED_TRACE(to_string(m));
         check_brdf(cases, false, m);

@@ -255,7 +255,8 @@ TEST(ShaderVariants, EveryVariantCompilesAsEs300AndGl330) {
         std::vector<fresnel::brdf::BrdfModel> models;
         for (int i = 1; i < 3; ++i) models.push_back({fresnel::brdf::Distribution(i), {}, {}, {}});
         for (int i = 1; i < 5; ++i) models.push_back({{}, fresnel::brdf::Geometry(i), {}, {}});
-        for (int i = 1; i < 3; ++i) models.push_back({{}, {}, fresnel::brdf::Fresnel(i), {}});
+        for (int i = 1; i < 4; ++i) models.push_back({{}, {}, fresnel::brdf::Fresnel(i), {}});
+        models.push_back({{}, {}, fresnel::brdf::Fresnel::Exact, {}, fresnel::brdf::Conductor::Copper});
         for (int i = 1; i < 3; ++i) models.push_back({{}, {}, {}, fresnel::brdf::Diffuse(i)});
         models.push_back({fresnel::brdf::Distribution::Beckmann, fresnel::brdf::Geometry::Kelemen,
                           fresnel::brdf::Fresnel::ExactDielectric, fresnel::brdf::Diffuse::OrenNayar});

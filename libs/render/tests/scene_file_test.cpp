@@ -416,6 +416,7 @@ TEST_F(SceneFileTest, SavedJobReadsBackTheSame) {
     job.output.debug = DebugChannel::Roughness;
     job.output.energy_compensation = false;
     job.output.shading = ShadingModel::Gltf;
+    job.output.brdf = *fresnel::brdf::parse_brdf_model("D=beckmann,F=exact:gold");
 
     fs::path saved = dir_ / "saved.fresnel.json";
     Diagnostics wd;
@@ -426,6 +427,7 @@ TEST_F(SceneFileTest, SavedJobReadsBackTheSame) {
     EXPECT_EQ(doc["models"][0]["path"], "models/a.gltf");
     EXPECT_EQ(doc["environment"]["file"], "sky.hdr");
     EXPECT_EQ(doc["camera"]["pitch"].dump(), "-33.3");  // floats in their shortest form
+    EXPECT_EQ(doc["render"]["brdf"], "D=beckmann,G=smith-height-correlated,F=exact:gold,diffuse=lambert");
 
     SceneFile back = load_scene_file(saved, Job{}, diag_);
     EXPECT_EQ(diag_.total(), 0u) << (diag_.lines().empty() ? "" : diag_.lines().front());

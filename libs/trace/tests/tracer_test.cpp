@@ -246,11 +246,20 @@ TEST(Tracer, AlternativeBrdfTermsInTheFurnaceMatchTheirAlbedo) {
     OrbitParams far;
     far.distance_k = 30.0f;
     far.yfov_deg = 4.0f;
-    const brdf::BrdfModel model{brdf::Distribution::Beckmann, brdf::Geometry::CookTorrance, brdf::Fresnel::ExactDielectric,
-                                brdf::Diffuse::OrenNayar};
-    for (float roughness : {0.5f, 1.0f}) {
+    const brdf::BrdfModel dielectric{brdf::Distribution::Beckmann, brdf::Geometry::CookTorrance,
+                                     brdf::Fresnel::ExactDielectric, brdf::Diffuse::OrenNayar};
+    // And F=exact on a metal: a measured gold conductor in place of the base colour.
+    const brdf::BrdfModel gold{{}, {}, brdf::Fresnel::Exact, {}, brdf::Conductor::Gold};
+    struct Case {
+        brdf::BrdfModel model;
+        float metallic, roughness;
+    };
+    for (const Case& k : {Case{dielectric, 0.0f, 0.5f}, Case{dielectric, 0.0f, 1.0f}, Case{gold, 1.0f, 0.5f}}) {
+        const brdf::BrdfModel& model = k.model;
+        const float roughness = k.roughness;
+        SCOPED_TRACE(brdf::to_string(model));
         Material m;
-        m.metallic_factor = 0.0f;
+        m.metallic_factor = k.metallic;
         m.roughness_factor = roughness;
         m.base_color_factor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
         TraceSettings ts = small(32);
@@ -259,6 +268,7 @@ TEST(Tracer, AlternativeBrdfTermsInTheFurnaceMatchTheirAlbedo) {
         MeanErr me = covered_mean(t.image);
         brdf::Surface s;
         s.base_color = glm::vec3(0.8f);
+        s.metallic = k.metallic;
         s.perceptual_roughness = roughness;
         // E(mu) = integral of f cos over l (midpoint rule in cos(theta_l) and phi), weighted 2 mu.
         double expected = 0;

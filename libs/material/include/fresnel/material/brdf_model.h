@@ -22,7 +22,13 @@ namespace fresnel::brdf {
 
 enum class Distribution { Ggx, Beckmann, BlinnPhong };
 enum class Geometry { SmithHeightCorrelated, SmithSeparable, SchlickGgx, CookTorrance, Kelemen };
-enum class Fresnel { Schlick, ExactDielectric, SphericalGaussian };
+// Exact: the dielectric lobe as ExactDielectric, the metal lobe by the Fresnel equations of a
+// conductor (f_conductor_exact) of the complex ior BrdfModel::conductor names.
+enum class Fresnel { Schlick, ExactDielectric, SphericalGaussian, Exact };
+// The conductor of Fresnel::Exact's metal lobe: BaseColor maps the base colour (its F0, per
+// channel) to n, k (conductor_from_f0); the others are measured metals (measured_conductor)
+// that replace the base colour in the metal lobe.
+enum class Conductor { BaseColor, Iron, Gold, Aluminium, Chromium, Copper, Lead, Platinum, Silver };
 enum class Diffuse { Lambert, Burley, OrenNayar };
 
 struct BrdfModel {
@@ -30,19 +36,26 @@ struct BrdfModel {
     Geometry g = Geometry::SmithHeightCorrelated;
     Fresnel f = Fresnel::Schlick;
     Diffuse diffuse = Diffuse::Lambert;
+    Conductor conductor = Conductor::BaseColor;  // read with Fresnel::Exact only ("F=exact:gold")
     bool is_default() const { return *this == BrdfModel{}; }
     bool operator==(const BrdfModel&) const = default;
 };
 
 // "D=beckmann,G=kelemen,F=schlick,diffuse=burley" (any subset, any order; the terms' names as
-// in brdf_model_names). nullopt with `error` set for an unknown key or value.
+// in brdf_model_names; F=exact takes a metal, "F=exact:gold", of brdf_conductor_names). nullopt
+// with `error` set for an unknown key, value or metal.
 std::optional<BrdfModel> parse_brdf_model(std::string_view text, std::string* error = nullptr);
-// The canonical text of a model ("D=ggx,G=smith-height-correlated,F=schlick,diffuse=lambert").
+// The canonical text of a model ("D=ggx,G=smith-height-correlated,F=schlick,diffuse=lambert";
+// "F=exact:gold" with a measured metal).
 std::string to_string(const BrdfModel& m);
 // Every accepted value of one key ("D", "G", "F", "diffuse"), in enum order.
 const std::vector<std::string>& brdf_model_names(std::string_view key);
+// The conductors of F=exact, in enum order ("base-color", the default, then the metals).
+const std::vector<std::string>& brdf_conductor_names();
 // The shader defines of a model: none for the default, else "BRDF_D 1" etc. for the
-// non-default terms (the enum values).
+// non-default terms (the enum values), and for a measured metal its n and k as
+// "BRDF_CONDUCTOR_N vec3(...)" and "BRDF_CONDUCTOR_K vec3(...)" (the floats of
+// measured_conductor, printed so that they read back exactly).
 std::vector<std::string> brdf_model_defines(const BrdfModel& m);
 
 // ---- The alternative terms ----
@@ -140,6 +153,88 @@ inline glm::vec3 f_spherical_gaussian(glm::vec3 f0, glm::vec3 f90, float v_dot_h
     return f0 + (f90 - f0) * std::exp2((-5.55473f * c - 6.98316f) * c);
 }
 
+// ---- Conductors (Fresnel::Exact) ----
+
+// The Fresnel equations of a conductor of complex ior n + ik (relative to the outside; k = 0
+// is a dielectric) for unpolarised light at the cosine c of the angle of incidence, as
+// (Rs + Rp) / 2 (Born and Wolf; pbrt-v4's FrComplex computes the same with complex numbers):
+// with a + ib = sqrt(eta^2 - sin^2),
+//   Rs = ((a - c)^2 + b^2) / ((a + c)^2 + b^2),
+//   Rp = Rs ((a c - sin^2)^2 + b^2 c^2) / ((a c + sin^2)^2 + b^2 c^2).
+// a^2 and b^2 are each taken from whichever form has no cancellation (k >> n makes
+// |eta^2 - sin^2| + Re(eta^2 - sin^2) a difference), and the sums of squares keep Rs and Rp
+// in [0, 1]: exact at normal incidence (((n-1)^2 + k^2) / ((n+1)^2 + k^2)) and 1 at grazing.
+inline float f_conductor_exact(float c, float n, float k) {
+    c = std::clamp(c, 0.0f, 1.0f);
+    float c2 = c * c, s2 = 1.0f - c2;
+    float t0 = n * n - k * k - s2;             // Re(eta^2 - sin^2)
+    float nk2 = 4.0f * n * n * k * k;          // Im(eta^2 - sin^2)^2
+    float m = std::sqrt(t0 * t0 + nk2);        // |eta^2 - sin^2| = a^2 + b^2
+    float a2 = t0 >= 0.0f ? 0.5f * (m + t0) : (m - t0 > 0.0f ? 0.5f * nk2 / (m - t0) : 0.0f);
+    float b2 = t0 <= 0.0f ? 0.5f * (m - t0) : 0.5f * nk2 / (m + t0);
+    float a = std::sqrt(a2);
+    float ds = (a + c) * (a + c) + b2;
+    if (!(ds > 0.0f)) return 1.0f;  // n = 1, k = 0 at grazing: the limit of the dielectric
+    float rs = ((a - c) * (a - c) + b2) / ds;
+    float ac = a * c;
+    float dp = (ac + s2) * (ac + s2) + b2 * c2;
+    float rp = dp > 0.0f ? rs * ((ac - s2) * (ac - s2) + b2 * c2) / dp : rs;
+    return std::min(0.5f * (rs + rp), 1.0f);
+}
+
+struct ComplexIor {
+    glm::vec3 n, k;  // per RGB channel
+};
+
+// The conductor whose normal-incidence reflectance is f0 (per channel): Gulbrandsen's
+// "Artist Friendly Metallic Fresnel" (JCGT 3(4), 2014) maps a reflectivity r and an edge tint
+// g to n = g (1 - r)/(1 + r) + (1 - g)(1 + sqrt r)/(1 - sqrt r), k = sqrt((r (n+1)^2 - (n-1)^2)/(1 - r)).
+// We take g = 1, which has the closed form n = (1 - r)/(1 + r), k = 2 sqrt(r)/(1 + r): it
+// reproduces r exactly at normal incidence for every r in [0, 1] (no division by 1 - r), and
+// it is near the edge tint of the bright metals of the measured table below (their g: 0.96 to
+// 1 for silver, aluminium and gold's and copper's red and green). The others' are lower (gold's
+// blue 0.75, lead and platinum about 0.8, iron and chromium 0.54 to 0.69): their curves dip
+// below this one towards grazing; name them (F=exact:iron) for that.
+inline ComplexIor conductor_from_f0(glm::vec3 f0) {
+    ComplexIor c;
+    for (int i = 0; i < 3; ++i) {
+        float r = std::clamp(f0[i], 0.0f, 1.0f);
+        c.n[i] = (1.0f - r) / (1.0f + r);
+        c.k[i] = 2.0f * std::sqrt(r) / (1.0f + r);
+    }
+    return c;
+}
+
+// Measured metals: n and k at red, green and blue, as the labPBR 1.3 material standard's
+// table of predefined metals gives them (shaderLABS, "labPBR Material Standard", the f0 / metal
+// channel values 230 to 237). Their normal-incidence reflectances: iron (0.53, 0.51, 0.50),
+// gold (0.94, 0.78, 0.37), aluminium (0.91, 0.91, 0.92), chromium (0.56, 0.55, 0.55), copper
+// (0.93, 0.72, 0.50), lead (0.63, 0.63, 0.64), platinum (0.68, 0.64, 0.59), silver (0.96, 0.95, 0.92).
+inline ComplexIor measured_conductor(Conductor c) {
+    switch (c) {
+        case Conductor::BaseColor: break;
+        case Conductor::Iron: return {{2.9114f, 2.9497f, 2.5845f}, {3.0893f, 2.9318f, 2.7670f}};
+        case Conductor::Gold: return {{0.18299f, 0.42108f, 1.3734f}, {3.4242f, 2.3459f, 1.7704f}};
+        case Conductor::Aluminium: return {{1.3456f, 0.96521f, 0.61722f}, {7.4746f, 6.3995f, 5.3031f}};
+        case Conductor::Chromium: return {{3.1071f, 3.1812f, 2.3230f}, {3.3314f, 3.3291f, 3.1350f}};
+        case Conductor::Copper: return {{0.27105f, 0.67693f, 1.3164f}, {3.6092f, 2.6248f, 2.2921f}};
+        case Conductor::Lead: return {{1.9100f, 1.8300f, 1.4400f}, {3.5100f, 3.4000f, 3.1800f}};
+        case Conductor::Platinum: return {{2.3757f, 2.0847f, 1.8453f}, {4.2655f, 3.7153f, 3.1365f}};
+        case Conductor::Silver: return {{0.15943f, 0.14512f, 0.13547f}, {3.9291f, 3.1900f, 2.3808f}};
+    }
+    return {glm::vec3(1.0f), glm::vec3(0.0f)};  // BaseColor has no table: conductor_from_f0
+}
+
+inline glm::vec3 f_conductor_exact(const ComplexIor& ior, float v_dot_h) {
+    return {f_conductor_exact(v_dot_h, ior.n.x, ior.k.x), f_conductor_exact(v_dot_h, ior.n.y, ior.k.y),
+            f_conductor_exact(v_dot_h, ior.n.z, ior.k.z)};
+}
+// Fresnel::Exact's metal lobe: the conductor of `which`, or of the base colour.
+inline glm::vec3 f_exact_metal(glm::vec3 base_color, Conductor which, float v_dot_h) {
+    return f_conductor_exact(which == Conductor::BaseColor ? conductor_from_f0(base_color) : measured_conductor(which),
+                             v_dot_h);
+}
+
 // Burley (Disney 2012) diffuse, relative to Lambert: (1 + (F90 - 1)(1 - n.l)^5)(1 + (F90 - 1)(1 - n.v)^5)
 // with F90 = 0.5 + 2 r (v.h)^2, r the perceptual roughness.
 inline float diffuse_burley_factor(float n_dot_l, float n_dot_v, float v_dot_h, float perceptual_roughness) {
@@ -200,6 +295,10 @@ inline Terms evaluate_terms(const Surface& s, glm::vec3 n, glm::vec3 v, glm::vec
         case Fresnel::SphericalGaussian:
             f_metal = f_spherical_gaussian(s.base_color, glm::vec3(1.0f), v_dot_h);
             f_dielectric = f_spherical_gaussian(f0d, f90d, v_dot_h);
+            break;
+        case Fresnel::Exact:
+            f_metal = f_exact_metal(s.base_color, m.conductor, v_dot_h);
+            f_dielectric = f_exact_dielectric(f0d, f90d, v_dot_h);
             break;
     }
     float diffuse = 1.0f;
