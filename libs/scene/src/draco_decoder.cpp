@@ -4,8 +4,12 @@
 #include <cmath>
 #include <limits>
 
+#include <draco/compression/config/compression_shared.h>
 #include <draco/compression/decode.h>
+#include <draco/compression/point_cloud/point_cloud_decoder.h>
+#include <draco/core/varint_decoding.h>
 #include <draco/mesh/mesh.h>
+#include <draco/metadata/metadata_decoder.h>
 
 namespace fresnel::gltf {
 
@@ -21,6 +25,61 @@ double normalize(double v, int ctype) {
         case 5123: return v / 65535.0;
         default: return v;
     }
+}
+// The counts a Draco mesh stream declares before its connectivity, read without decoding it, so
+// that a hostile stream cannot make Draco allocate for billions of faces or points (Draco sizes
+// its corner table and attribute arrays from these fields before it reads what they describe).
+struct StreamCounts {
+    std::uint64_t faces = 0;
+    std::uint64_t points = 0;  // sequential: the point count; edgebreaker: a bound on the vertices
+};
+
+// Reads the header, the metadata (by Draco's own decoder: it checks its sizes against the
+// buffer) and the connectivity counts, in the layouts of bitstreams 1.x to 2.2.
+bool read_stream_counts(const std::uint8_t* data, std::size_t size, StreamCounts& out, std::string& why) {
+    draco::DecoderBuffer b;
+    b.Init(reinterpret_cast<const char*>(data), size);
+    draco::DracoHeader h;
+    if (!draco::PointCloudDecoder::DecodeHeader(&b, &h).ok()) return why = "no Draco header", false;
+    if (h.encoder_type != draco::TRIANGULAR_MESH) return why = "not a triangle mesh", false;
+    if (h.version_major < 1 || h.version_major > draco::kDracoMeshBitstreamVersionMajor ||
+        (h.version_major == draco::kDracoMeshBitstreamVersionMajor &&
+         h.version_minor > draco::kDracoMeshBitstreamVersionMinor))
+        return why = "unknown bitstream version " + std::to_string(h.version_major) + "." +
+                     std::to_string(h.version_minor),
+               false;
+    const std::uint16_t version = DRACO_BITSTREAM_VERSION(h.version_major, h.version_minor);
+    b.set_bitstream_version(version);
+    if (version >= DRACO_BITSTREAM_VERSION(1, 3) && (h.flags & METADATA_FLAG_MASK)) {
+        draco::GeometryMetadata metadata;
+        draco::MetadataDecoder md;
+        if (!md.DecodeGeometryMetadata(&b, &metadata)) return why = "its metadata cannot be read", false;
+    }
+    // u32 before bitstream 2.0 (sequential: before 2.2), varints after.
+    auto count = [&](bool fixed, std::uint64_t& v) {
+        std::uint32_t x = 0;
+        bool ok = fixed ? b.Decode(&x) : draco::DecodeVarint(&x, &b);
+        v = x;
+        return ok;
+    };
+    if (h.encoder_method == draco::MESH_SEQUENTIAL_ENCODING) {
+        bool fixed = version < DRACO_BITSTREAM_VERSION(2, 2);
+        if (!count(fixed, out.faces) || !count(fixed, out.points)) return why = "truncated connectivity", false;
+        return true;
+    }
+    if (h.encoder_method != draco::MESH_EDGEBREAKER_ENCODING) return why = "unknown encoding method", false;
+    std::uint8_t traversal = 0;
+    if (!b.Decode(&traversal)) return why = "truncated connectivity", false;
+    bool fixed = version < DRACO_BITSTREAM_VERSION(2, 0);
+    std::uint64_t new_vertices = 0, encoded_vertices = 0, symbols = 0, split_symbols = 0;
+    if (version < DRACO_BITSTREAM_VERSION(2, 2) && !count(fixed, new_vertices))
+        return why = "truncated connectivity", false;
+    std::uint8_t attribute_data = 0;
+    if (!count(fixed, encoded_vertices) || !count(fixed, out.faces) || !b.Decode(&attribute_data) ||
+        !count(fixed, symbols) || !count(fixed, split_symbols))
+        return why = "truncated connectivity", false;
+    out.points = encoded_vertices + split_symbols + new_vertices;
+    return true;
 }
 }  // namespace
 
@@ -70,6 +129,26 @@ std::map<int, AccessorData> decode_draco_primitive(const JsonReader& r, const js
     }
 
     auto bytes = accessors.view_bytes(view, ptr + "/bufferView");
+    // No stream packs more than 256 points or faces into a byte (Draco's best is a few bits per
+    // vertex); a declared count beyond that, or beyond what the accessors say, is refused before
+    // Draco allocates for it.
+    StreamCounts counts;
+    std::string why;
+    if (!read_stream_counts(bytes.data(), bytes.size(), counts, why))
+        fail(ptr + "/bufferView", "not a Draco mesh stream (" + why + ")");
+    const std::uint64_t dense = 1024 + 256 * std::uint64_t(bytes.size());
+    if (points > dense)
+        fail(ptr, "the accessors promise " + std::to_string(points) + " points from a Draco stream of " +
+                      std::to_string(bytes.size()) + " bytes");
+    if (iacc >= 0 && counts.faces * 3 != ishape.count)
+        fail(ptr, "the Draco stream declares " + std::to_string(counts.faces) + " triangles, indices accessor " +
+                      std::to_string(iacc) + " " + std::to_string(ishape.count) + " indices");
+    if (counts.faces > dense || counts.faces > std::uint64_t(max_vertices))
+        fail(ptr, "the Draco stream declares " + std::to_string(counts.faces) + " triangles in " +
+                      std::to_string(bytes.size()) + " bytes");
+    if (counts.points > points + counts.faces * 3 || counts.points > dense)
+        fail(ptr, "the Draco stream declares " + std::to_string(counts.points) + " vertices, the accessors " +
+                      std::to_string(points) + " points");
     draco::DecoderBuffer buffer;
     buffer.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
