@@ -108,6 +108,11 @@ void main() {
         // Split-sum image-based light, weighted as the glTF BRDF's dielectric/metal mix.
         vec3 r = reflect(-v, f.n);
         vec3 diffuse = ibl_irradiance(f.n) * m.base_color.rgb;
+#ifdef MATERIAL_DIFFUSE_TRANSMISSION
+        // KHR_materials_diffuse_transmission, as the Khronos viewer: the share transmitted sees the
+        // irradiance from behind the surface, in its own colour (brdf::diffuse_transmission_mix).
+        diffuse = mix(diffuse, ibl_irradiance(-f.n) * m.diffuse_transmission_color, m.diffuse_transmission);
+#endif
 #ifdef MATERIAL_TRANSMISSION
         diffuse = mix(diffuse, ibl_transmission(m, tr, f.n, v, v_position), tr.factor);
 #endif
