@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Writes the material-extension test scenes: one UV sphere per .gltf (embedded buffer and
 PNG textures, TEXCOORD_0 and TANGENT along the parallels), each with one material that uses
-KHR_materials_sheen, _anisotropy or _iridescence.
+KHR_materials_sheen, _anisotropy, _iridescence or _diffuse_transmission.
 
 Usage: make-extension-spheres.py OUT_DIR [NAME ...]   (no names: every scene)
 
@@ -39,7 +39,14 @@ def thickness_map(x, y):  # G: thickness between the minimum and the maximum
     return (0, (255 * x) // 63, 0, 255)
 
 
-TEXTURES = {'stripes': stripes, 'ramp': ramp, 'anisotropy': anisotropy_map, 'thickness': thickness_map}
+def primaries(x, y):  # diffuse transmission colour (RGB, sRGB): bands along u of 0 and 255 only, which
+    # read the same through the sRGB curve and linearly; the Khronos renderer 1.1.0 samples this
+    # slot linearly (its texture info keeps the default), where the extension says sRGB.
+    return [(255, 255, 0), (0, 255, 255), (255, 0, 255), (255, 255, 255)][(x // 8) % 4] + (255,)
+
+
+TEXTURES = {'stripes': stripes, 'ramp': ramp, 'anisotropy': anisotropy_map, 'thickness': thickness_map,
+            'primaries': primaries}
 
 
 def scenes():
@@ -71,6 +78,21 @@ def scenes():
                                     'extensions': {'KHR_materials_iridescence': {
                                         'iridescenceFactor': 1.0, 'iridescenceIor': 1.8,
                                         'iridescenceThicknessMaximum': 600}}}, []),
+        'diffuse_transmission_leaf': ({'pbrMetallicRoughness': mr((0.2, 0.5, 0.1), 0.0, 0.6),
+                                       'extensions': {'KHR_materials_diffuse_transmission': {
+                                           'diffuseTransmissionFactor': 0.8,
+                                           'diffuseTransmissionColorFactor': [0.4, 0.9, 0.2]}}}, []),
+        'diffuse_transmission_textured': ({'pbrMetallicRoughness': mr((0.5, 0.5, 0.5), 0.0, 0.5),
+                                           'extensions': {'KHR_materials_diffuse_transmission': {
+                                               'diffuseTransmissionFactor': 1.0,
+                                               'diffuseTransmissionTexture': {'index': 0},
+                                               'diffuseTransmissionColorFactor': [1.0, 0.8, 0.6],
+                                               'diffuseTransmissionColorTexture': {'index': 1}}}}, ['ramp', 'primaries']),
+        # Not tuned on (README: the "unseen" row): a weaker, reddish transmission on a blue base.
+        'diffuse_transmission_unseen': ({'pbrMetallicRoughness': mr((0.1, 0.2, 0.6), 0.1, 0.3),
+                                         'extensions': {'KHR_materials_diffuse_transmission': {
+                                             'diffuseTransmissionFactor': 0.4,
+                                             'diffuseTransmissionColorFactor': [1.0, 0.3, 0.3]}}}, []),
     }
 
 
