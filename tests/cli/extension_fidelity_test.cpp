@@ -144,7 +144,7 @@ TEST_F(ExtensionFidelity, AgreesWithKhronosSampleRenderer) {
             const fs::path ours = render(c.scene, kViews[v]);
             if (ours.empty()) continue;
             double db = psnr(ours, ref);
-            std::printf("%-24s %-6s %6.2f dB (floor %.1f)\n", c.scene, kViews[v].name, db, c.floor_db[v]);
+            std::printf("%-30s %-6s %6.2f dB (floor %.1f)\n", c.scene, kViews[v].name, db, c.floor_db[v]);
             EXPECT_GE(db, c.floor_db[v]) << c.scene << " " << kViews[v].name;
         }
 }
