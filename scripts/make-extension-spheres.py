@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Writes the material-extension test scenes: one UV sphere per .gltf (embedded buffer and
 PNG textures, TEXCOORD_0 and TANGENT along the parallels), each with one material that uses
-KHR_materials_sheen, _anisotropy or _iridescence.
+KHR_materials_sheen, _anisotropy, _iridescence or _diffuse_transmission (one of them also with a
+directional light).
 
 Usage: make-extension-spheres.py OUT_DIR [NAME ...]   (no names: every scene)
 
@@ -39,7 +40,19 @@ def thickness_map(x, y):  # G: thickness between the minimum and the maximum
     return (0, (255 * x) // 63, 0, 255)
 
 
-TEXTURES = {'stripes': stripes, 'ramp': ramp, 'anisotropy': anisotropy_map, 'thickness': thickness_map}
+def primaries(x, y):  # diffuse transmission colour (RGB, sRGB): bands along u of 0 and 255 only, which
+    # read the same through the sRGB curve and linearly; the Khronos renderer 1.1.0 samples this
+    # slot linearly (its texture info keeps the default), where the extension says sRGB.
+    return [(255, 255, 0), (0, 255, 255), (255, 0, 255), (255, 255, 255)][(x // 8) % 4] + (255,)
+
+
+TEXTURES = {'stripes': stripes, 'ramp': ramp, 'anisotropy': anisotropy_map, 'thickness': thickness_map,
+            'primaries': primaries}
+
+
+# A directional light of 4 lux travelling towards the camera's side (+Z) and -X: the node turned
+# 150 degrees about +Y (the light shines along the node's -Z).
+BACKLIGHT = {'type': 'directional', 'intensity': 4.0, 'color': [1, 1, 1], 'rotation': [0.0, 0.9659258, 0.0, 0.2588190]}
 
 
 def scenes():
@@ -71,6 +84,27 @@ def scenes():
                                     'extensions': {'KHR_materials_iridescence': {
                                         'iridescenceFactor': 1.0, 'iridescenceIor': 1.8,
                                         'iridescenceThicknessMaximum': 600}}}, []),
+        'diffuse_transmission_leaf': ({'pbrMetallicRoughness': mr((0.2, 0.5, 0.1), 0.0, 0.6),
+                                       'extensions': {'KHR_materials_diffuse_transmission': {
+                                           'diffuseTransmissionFactor': 0.8,
+                                           'diffuseTransmissionColorFactor': [0.4, 0.9, 0.2]}}}, []),
+        'diffuse_transmission_textured': ({'pbrMetallicRoughness': mr((0.5, 0.5, 0.5), 0.0, 0.5),
+                                           'extensions': {'KHR_materials_diffuse_transmission': {
+                                               'diffuseTransmissionFactor': 1.0,
+                                               'diffuseTransmissionTexture': {'index': 0},
+                                               'diffuseTransmissionColorFactor': [1.0, 0.8, 0.6],
+                                               'diffuseTransmissionColorTexture': {'index': 1}}}}, ['ramp', 'primaries']),
+        # Lit from behind by a directional light (KHR_lights_punctual) as well as the environment:
+        # the transmitted lobe of punctual lights. Rendered with the scene's light.
+        'diffuse_transmission_backlit': ({'pbrMetallicRoughness': mr((0.5, 0.3, 0.2), 0.0, 0.5),
+                                          'extensions': {'KHR_materials_diffuse_transmission': {
+                                              'diffuseTransmissionFactor': 0.6,
+                                              'diffuseTransmissionColorFactor': [1.0, 0.6, 0.3]}}}, [], BACKLIGHT),
+        # Not tuned on (README: the "unseen" row): a weaker, reddish transmission on a blue base.
+        'diffuse_transmission_unseen': ({'pbrMetallicRoughness': mr((0.1, 0.2, 0.6), 0.1, 0.3),
+                                         'extensions': {'KHR_materials_diffuse_transmission': {
+                                             'diffuseTransmissionFactor': 0.4,
+                                             'diffuseTransmissionColorFactor': [1.0, 0.3, 0.3]}}}, []),
     }
 
 
@@ -94,7 +128,7 @@ def sphere():
     return pos, nor, tan, uv, idx
 
 
-def write(out_dir, name, material, textures):
+def write(out_dir, name, material, textures, light=None):
     pos, nor, tan, uv, idx = sphere()
     parts = [struct.pack(f'<{len(pos)}f', *pos), struct.pack(f'<{len(nor)}f', *nor),
              struct.pack(f'<{len(tan)}f', *tan), struct.pack(f'<{len(uv)}f', *uv), struct.pack(f'<{len(idx)}I', *idx)]
@@ -124,6 +158,11 @@ def write(out_dir, name, material, textures):
                          for t in textures]
         doc['samplers'] = [{'magFilter': 9729, 'minFilter': 9987, 'wrapS': 10497, 'wrapT': 10497}]
         doc['textures'] = [{'source': i, 'sampler': 0} for i in range(len(textures))]
+    if light:
+        doc['extensionsUsed'].append('KHR_lights_punctual')
+        doc['extensions'] = {'KHR_lights_punctual': {'lights': [{k: v for k, v in light.items() if k != 'rotation'}]}}
+        doc['nodes'].append({'rotation': light['rotation'], 'extensions': {'KHR_lights_punctual': {'light': 0}}})
+        doc['scenes'][0]['nodes'].append(1)
     with open(os.path.join(out_dir, name + '.gltf'), 'w') as f:
         json.dump(doc, f)
 

@@ -202,6 +202,7 @@ struct BrdfTerms {
     vec3 f;
     vec3 f_dielectric, f_metal;  // the two lobes' Fresnel terms
     vec3 diffuse;
+    vec3 diffuse_weight;       // (1 - metallic) (1 - F_dielectric), film_diffuse_weight under a film
     vec3 specular;             // specular_dielectric + specular_metal
     vec3 specular_dielectric;  // (1 - metallic) F_dielectric V D
     vec3 specular_metal;       // metallic F_metal V D
@@ -225,6 +226,13 @@ vec3 film_diffuse_weight(vec3 f_dielectric, IridescenceFresnel film) {
         weight = mix(weight, vec3(1.0 - film_max), film.factor);
     }
     return weight;
+}
+
+// brdf::diffuse_transmission_mix (KHR_materials_diffuse_transmission, as the Khronos viewer):
+// the diffuse lobe of one light times its cosine, mix(reflected_cos, lambert(color) n.(-l), factor).
+vec3 diffuse_transmission_mix(vec3 reflected_cos, float n_dot_minus_l, float factor, vec3 color) {
+    if (!(factor > 0.0)) return reflected_cos;
+    return mix(reflected_cos, color / PI * n_dot_minus_l, factor);
 }
 
 // f0_dielectric: the dielectric F0 colour (0.04 by default); specular_weight scales the
@@ -255,8 +263,9 @@ BrdfTerms brdf_terms_film(vec3 base_color, float metallic, float perceptual_roug
     t.f_dielectric = f_dielectric;  // with the film: what apply_anisotropy weights its lobes by
     t.f_metal = f_metal;
     t.f = mix(f_dielectric, f_metal, metallic);
-    t.diffuse = (1.0 - metallic) * diffuse_weight * base_color / PI *
-                brdf_diffuse_factor(n_dot_l, n_dot_v, v_dot_h, dot(l, v), perceptual_roughness);
+    t.diffuse_weight = (1.0 - metallic) * diffuse_weight;
+    t.diffuse = t.diffuse_weight * (base_color / PI *
+                brdf_diffuse_factor(n_dot_l, n_dot_v, v_dot_h, dot(l, v), perceptual_roughness));
     t.specular_dielectric = (1.0 - metallic) * f_dielectric * spec;
     t.specular_metal = metallic * f_metal * spec;
     t.specular = t.specular_dielectric + t.specular_metal;

@@ -39,6 +39,10 @@ uniform float u_iridescence_ior;
 uniform float u_iridescence_thickness_minimum;  // nm
 uniform float u_iridescence_thickness_maximum;
 #endif
+#ifdef MATERIAL_DIFFUSE_TRANSMISSION
+uniform float u_diffuse_transmission_factor;       // KHR_materials_diffuse_transmission
+uniform vec3 u_diffuse_transmission_color_factor;
+#endif
 
 // Per map: sampler, UV set (0/1) and the KHR_texture_transform matrix. (Spelled out:
 // GLSL ES 3.00 has no token pasting.)
@@ -89,6 +93,12 @@ uniform sampler2D u_iridescence_map; uniform int u_iridescence_uv; uniform mat3 
 #endif
 #ifdef HAS_IRIDESCENCE_THICKNESS_MAP
 uniform sampler2D u_iridescence_thickness_map; uniform int u_iridescence_thickness_uv; uniform mat3 u_iridescence_thickness_transform;
+#endif
+#ifdef HAS_DIFFUSE_TRANSMISSION_MAP
+uniform sampler2D u_diffuse_transmission_map; uniform int u_diffuse_transmission_uv; uniform mat3 u_diffuse_transmission_transform;
+#endif
+#ifdef HAS_DIFFUSE_TRANSMISSION_COLOR_MAP
+uniform sampler2D u_diffuse_transmission_color_map; uniform int u_diffuse_transmission_color_uv; uniform mat3 u_diffuse_transmission_color_transform;
 #endif
 
 vec2 map_uv(int set, mat3 transform) {
@@ -146,6 +156,8 @@ struct MaterialInputs {
     float iridescence;            // KHR_materials_iridescence strength (0 = no film)
     float iridescence_ior;
     float iridescence_thickness;  // nm
+    float diffuse_transmission;        // KHR_materials_diffuse_transmission factor (0 = none)
+    vec3 diffuse_transmission_color;
 };
 
 // t, b, ng: the geometric frame (unit, flipped for back faces), as evaluate's SurfacePoint.
@@ -260,6 +272,21 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     m.iridescence_thickness = u_iridescence_thickness_minimum * (1.0 - film_g) + u_iridescence_thickness_maximum * film_g;
 #endif
 #endif
+    m.diffuse_transmission = 0.0;
+    m.diffuse_transmission_color = vec3(1.0);
+#ifdef MATERIAL_DIFFUSE_TRANSMISSION
+    m.diffuse_transmission = u_diffuse_transmission_factor;
+#ifdef HAS_DIFFUSE_TRANSMISSION_MAP
+    m.diffuse_transmission *= sample_map(u_diffuse_transmission_map, u_diffuse_transmission_uv, u_diffuse_transmission_transform).a;
+#endif
+    m.diffuse_transmission = clamp(m.diffuse_transmission, 0.0, 1.0);
+    m.diffuse_transmission_color = u_diffuse_transmission_color_factor;
+#ifdef HAS_DIFFUSE_TRANSMISSION_COLOR_MAP
+    m.diffuse_transmission_color *= sample_map(u_diffuse_transmission_color_map, u_diffuse_transmission_color_uv,
+                                               u_diffuse_transmission_color_transform).rgb;  // sRGB, decoded by the sampler
+#endif
+    m.diffuse_transmission_color = max(m.diffuse_transmission_color, vec3(0.0));
+#endif
     m.occlusion = 1.0;
 #ifdef HAS_OCCLUSION_MAP
     m.occlusion = 1.0 + u_occlusion_strength * (sample_map(u_occlusion_map, u_occlusion_uv, u_occlusion_transform).r - 1.0);
@@ -305,8 +332,10 @@ IridescenceFresnel material_film(MaterialInputs m, vec3 v) {
 // fresnel::shade_light (evaluate.h). comp_*: energy compensation of the specular lobes.
 vec3 shade_light(MaterialInputs m, vec3 v, vec3 l, vec3 radiance, vec3 comp_dielectric, vec3 comp_metal) {
     float n_dot_l = clamped_dot(m.normal, l);
+    // KHR_materials_diffuse_transmission: a light behind the surface lights its transmitted lobe.
+    float n_dot_minus_l = m.diffuse_transmission > 0.0 ? clamped_dot(-m.normal, l) : 0.0;
     vec3 lit = vec3(0.0);
-    if (n_dot_l > 0.0) {
+    if (n_dot_l > 0.0 || n_dot_minus_l > 0.0) {
         BrdfTerms t = brdf_terms_film(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight,
                                       m.normal, v, l, material_film(m, v));
 #ifdef MATERIAL_ANISOTROPY
@@ -315,15 +344,28 @@ vec3 shade_light(MaterialInputs m, vec3 v, vec3 l, vec3 radiance, vec3 comp_diel
 #endif
         vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;
         vec3 base = t.diffuse + specular;
+        vec3 sheen = vec3(0.0);
+        float scaling = 1.0;
 #ifdef MATERIAL_SHEEN
         // The Charlie lobe over the base, which keeps 1 - max(c) E (fresnel::shade_light).
-        float n_dot_v = clamped_dot(m.normal, v);
-        float n_dot_h = clamped_dot(m.normal, normalize(l + v));
-        float c = max3(m.sheen_color);
-        float scaling = min(1.0 - c * sheen_albedo(n_dot_v, m.sheen_roughness), 1.0 - c * sheen_albedo(n_dot_l, m.sheen_roughness));
-        base = sheen_specular(m.sheen_color, m.sheen_roughness, n_dot_l, n_dot_v, n_dot_h) + base * scaling;
+        if (m.sheen_color != vec3(0.0)) {
+            float n_dot_v = clamped_dot(m.normal, v);
+            float n_dot_h = clamped_dot(m.normal, normalize(l + v));
+            float c = max3(m.sheen_color);
+            scaling = min(1.0 - c * sheen_albedo(n_dot_v, m.sheen_roughness), 1.0 - c * sheen_albedo(n_dot_l, m.sheen_roughness));
+            if (n_dot_l > 0.0) sheen = sheen_specular(m.sheen_color, m.sheen_roughness, n_dot_l, n_dot_v, n_dot_h);
+        }
 #endif
-        lit = radiance * n_dot_l * base;
+        if (m.diffuse_transmission > 0.0) {
+            // The diffuse lobe times its cosine, the reflected and the transmitted lobe mixed; the
+            // transmitted one takes the diffuse's weight (w lambert(c) = lambert(w c)).
+            vec3 diffuse = diffuse_transmission_mix(n_dot_l * t.diffuse, n_dot_minus_l, m.diffuse_transmission,
+                                                    t.diffuse_weight * m.diffuse_transmission_color);
+            vec3 specular_cos = n_dot_l > 0.0 ? n_dot_l * (sheen + specular * scaling) : vec3(0.0);
+            lit = radiance * (specular_cos + diffuse * scaling);
+        } else {
+            lit = radiance * n_dot_l * (sheen + base * scaling);
+        }
     }
 #ifdef MATERIAL_CLEARCOAT
     // mix(base, coat, clearcoat * Fc), Fc the Schlick Fresnel of the coat at its normal

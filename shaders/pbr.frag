@@ -108,6 +108,11 @@ void main() {
         // Split-sum image-based light, weighted as the glTF BRDF's dielectric/metal mix.
         vec3 r = reflect(-v, f.n);
         vec3 diffuse = ibl_irradiance(f.n) * m.base_color.rgb;
+#ifdef MATERIAL_DIFFUSE_TRANSMISSION
+        // KHR_materials_diffuse_transmission, as the Khronos viewer: the share transmitted sees the
+        // irradiance from behind the surface, in its own colour (brdf::diffuse_transmission_mix).
+        diffuse = mix(diffuse, ibl_irradiance(-f.n) * m.diffuse_transmission_color, m.diffuse_transmission);
+#endif
 #ifdef MATERIAL_TRANSMISSION
         diffuse = mix(diffuse, ibl_transmission(m, tr, f.n, v, v_position), tr.factor);
 #endif
@@ -161,8 +166,13 @@ void main() {
         color += refraction;
     }
 #endif
-    // Occlusion applies to indirect light only.
-    color += u_ambient * m.base_color.rgb * (1.0 - m.metallic) * m.occlusion;
+    // Occlusion applies to indirect light only. A uniform ambient lights both sides: with diffuse
+    // transmission the diffuse albedo is mix(base, transmission colour, factor).
+    vec3 ambient_albedo = m.base_color.rgb;
+#ifdef MATERIAL_DIFFUSE_TRANSMISSION
+    ambient_albedo = mix(ambient_albedo, m.diffuse_transmission_color, m.diffuse_transmission);
+#endif
+    color += u_ambient * ambient_albedo * (1.0 - m.metallic) * m.occlusion;
 #ifdef MATERIAL_CLEARCOAT
     color += m.emissive * (1.0 - cc_mix);  // emission passes through the coat
 #else

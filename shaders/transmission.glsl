@@ -93,9 +93,12 @@ vec3 shade_light_transmission(MaterialInputs m, TransmissionInputs tr, vec3 v, v
     vec3 btdf = btdf_punctual(m.normal, v, lt, alpha_from_roughness(m.roughness), m.f0_dielectric, vec3(1.0),
                               m.base_color.rgb, tr.ior);
     vec3 transmitted = volume_attenuation(radiance * btdf, ray_length, tr.attenuation_color, tr.attenuation_distance);
-    // The share of the diffuse it replaces: 1 - F, under a thin film brdf's film_diffuse_weight.
+    // The diffuse it replaces (with diffuse transmission, the mix of both Lambert lobes), under
+    // its weight 1 - F (under a thin film brdf's film_diffuse_weight).
+    vec3 diffuse = diffuse_transmission_mix(n_dot_l * (m.base_color.rgb / PI), clamped_dot(-m.normal, l),
+                                            m.diffuse_transmission, m.diffuse_transmission_color);
     vec3 term = (1.0 - m.metallic) * film_diffuse_weight(f_dielectric, material_film(m, v)) * tr.factor *
-                (transmitted - radiance * n_dot_l * m.base_color.rgb / PI);
+                (transmitted - radiance * diffuse);
 #ifdef MATERIAL_CLEARCOAT
     term *= 1.0 - m.clearcoat * f_schlick(m.clearcoat_f0, 1.0, clamped_dot(m.clearcoat_normal, v));
 #endif

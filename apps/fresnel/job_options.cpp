@@ -376,7 +376,8 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
                         "Show a channel instead of shading: basecolor metallic roughness normal geometry-normal tangent "
                         "bitangent occlusion emissive alpha uv0 uv1 D G F diffuse specular irradiance prefiltered ibl-diffuse "
                         "ibl-specular transmission thickness sheen sheen-roughness anisotropy anisotropy-direction "
-                        "iridescence iridescence-thickness (NaN/Inf show as magenta)")
+                        "iridescence iridescence-thickness diffuse-transmission diffuse-transmission-color (NaN/Inf show "
+                        "as magenta)")
             ->capture_default_str();
     }
     cmd->add_flag("--allow-external-files", o->allow_external,

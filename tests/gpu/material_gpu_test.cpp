@@ -4,7 +4,8 @@
 // Seeded random materials cover every input: factors (F0 clamping included), every map
 // slot with small random textures on both UV sets, KHR_texture_transform, all wrap modes
 // and filters, sRGB and linear slots, specular-glossiness and metallic-roughness,
-// KHR_materials_ior / _specular / _clearcoat / _sheen / _anisotropy / _iridescence / _emissive_strength, alpha modes, vertex
+// KHR_materials_ior / _specular / _clearcoat / _sheen / _anisotropy / _iridescence / _diffuse_transmission
+// (with lights behind the surface) / _emissive_strength, alpha modes, vertex
 // colour, missing UV sets and tangents. Uniforms are packed by the renderer's own
 // material_uniforms / set_material_uniforms, so the packing is under test too.
 // shaders/material_probe.frag evaluates one surface point per pixel.
@@ -53,7 +54,7 @@ using namespace fresnel;
 
 constexpr int kSide = 8;                 // points per case: kSide x kSide pixels
 constexpr int kTexels = 9;               // input texels per point (material_probe.frag)
-constexpr int kOutputs = 11;             // u_output values (6 = shade_light)
+constexpr int kOutputs = 12;             // u_output values (6 = shade_light)
 constexpr float kRelTol = 1e-4f;         // exact sampling: relative ...
 constexpr float kAbsFloor = 1e-6f;       // ... or absolute near zero
 // shade_light: relative, as gpu_brdf_test (the GGX peak of glossy lobes turns float
@@ -107,7 +108,8 @@ struct Case {
 
 class Gen {
 public:
-    explicit Gen(unsigned seed) : rng_(seed), side_(seed ^ 0x5eedu), aniso_(seed ^ 0xa2150u), film_(seed ^ 0xf11du) {}
+    explicit Gen(unsigned seed)
+        : rng_(seed), side_(seed ^ 0x5eedu), aniso_(seed ^ 0xa2150u), film_(seed ^ 0xf11du), dt_(seed ^ 0xd1f7u) {}
     float u() { return u01_(*cur_); }
     float range(float a, float b) { return a + (b - a) * u(); }
     int pick(int n) { return int(u() * float(n)) % n; }
@@ -232,6 +234,15 @@ public:
             ir.iridescence_thickness_texture = slot();
             m.iridescence = ir;
         }
+        cur_ = &dt_;
+        if (chance(0.5f)) {
+            DiffuseTransmissionExt dt;
+            dt.diffuse_transmission_factor = chance(0.15f) ? 0.0f : (chance(0.2f) ? 1.0f : u());
+            dt.diffuse_transmission_texture = slot();
+            dt.diffuse_transmission_color_factor = glm::vec3(u(), u(), u());
+            dt.diffuse_transmission_color_texture = slot();
+            m.diffuse_transmission = dt;
+        }
         cur_ = &rng_;
         if (chance(0.3f)) {
             SpecularGlossinessExt sg;
@@ -266,11 +277,17 @@ public:
             pt.comp_m = glm::vec3(range(1, 1.5f), range(1, 1.5f), range(1, 1.5f));
             c.points.push_back(pt);
         }
+        // KHR_materials_diffuse_transmission: half the lights behind the surface (its own stream).
+        cur_ = &dt_;
+        if (m.diffuse_transmission)
+            for (Point& pt : c.points)
+                if (chance(0.5f)) pt.l = -pt.l;
+        cur_ = &rng_;
         return c;
     }
 
 private:
-    std::mt19937 rng_, side_, aniso_, film_;  // aniso_, film_: KHR_materials_anisotropy's and _iridescence's own streams
+    std::mt19937 rng_, side_, aniso_, film_, dt_;  // aniso_, film_, dt_: KHR_materials_anisotropy's, _iridescence's, _diffuse_transmission's own streams
     std::mt19937* cur_ = &rng_;
     std::uniform_real_distribution<float> u01_{0.0f, 1.0f};
 };
@@ -291,6 +308,7 @@ std::array<glm::vec4, kOutputs> cpu_outputs(const Case& c, const TextureSource& 
     o[8] = glm::vec4(e.anisotropic_t, e.anisotropy_strength);
     o[9] = glm::vec4(e.anisotropic_b, e.anisotropy_direction.x);
     o[10] = glm::vec4(e.iridescence, e.iridescence_thickness, e.iridescence_ior, 0.0f);
+    o[11] = glm::vec4(e.diffuse_transmission_color, e.diffuse_transmission);
     return o;
 }
 
@@ -319,6 +337,7 @@ const char* kOutputNames[kOutputs][4] = {
     {"aniso_t.x", "aniso_t.y", "aniso_t.z", "anisotropy_strength"},
     {"aniso_b.x", "aniso_b.y", "aniso_b.z", "aniso_direction.x"},
     {"iridescence", "iridescence_thickness", "iridescence_ior", "zero"},
+    {"dt_color.r", "dt_color.g", "dt_color.b", "diffuse_transmission"},
 };
 
 // The length of the direction the anisotropy map gives at the point (1 without a map):
@@ -598,7 +617,8 @@ protected:
                                           << bool(c.material.specular_glossiness) << ", coat "
                                           << c.material.has_clearcoat() << ", sheen " << c.material.has_sheen()
                                           << ", anisotropy " << c.material.has_anisotropy() << ", film "
-                                          << c.material.has_iridescence() << ")";
+                                          << c.material.has_iridescence() << ", diffuse transmission "
+                                          << c.material.has_diffuse_transmission() << ")";
                         }
                     }
                 }

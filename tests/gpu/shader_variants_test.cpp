@@ -11,12 +11,13 @@
 // (The anisotropy group together with the sheen or transmission group is compiled on a few
 // base sets only; EveryVariantCompilesAsEs300AndGl330 says why.)
 //
-// One group is sampled instead of enumerated: the KHR_materials_iridescence bits (the film
-// and its two maps) would triple the fragment shader's ~20k sources. Every source without
-// them compiles; of those with them, every kFilmStride-th (64th, in mask order) and, on top,
-// enough that each film choice meets every other bit the stage reads both set and clear
-// (pairwise coverage, asserted). The film's code is a few #ifdef MATERIAL_IRIDESCENCE
-// blocks that add a function and mix its result into values every variant has.
+// Two groups are sampled instead of enumerated: the KHR_materials_iridescence bits (the film
+// and its two maps) and the KHR_materials_diffuse_transmission bits (the model and its two
+// maps), which together would multiply the fragment shader's ~20k sources by nine. Every
+// source without them compiles; of those with them, every kFilmStride-th (64th, in mask order)
+// and, on top, enough that each choice of the two groups meets every other bit the stage reads
+// both set and clear (pairwise coverage, asserted). Their code is a few #ifdef blocks that add
+// a function or a uniform and mix the result into values every variant has.
 #include <gtest/gtest.h>
 
 #include <glslang/Public/ResourceLimits.h>
@@ -27,6 +28,7 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <set>
@@ -95,7 +97,9 @@ std::string describe(const Job& job) {
 
 // The sampled group (see the top) and the share of its sources compiled besides the
 // pairwise cover.
-constexpr FeatureMask kFilmGroup = feature::Iridescence | feature::IridescenceMap | feature::IridescenceThicknessMap;
+constexpr FeatureMask kSampledGroup = feature::Iridescence | feature::IridescenceMap | feature::IridescenceThicknessMap |
+                                   feature::DiffuseTransmission | feature::DiffuseTransmissionMap |
+                                   feature::DiffuseTransmissionColorMap;
 constexpr std::size_t kFilmStride = 64;
 
 // The sources of one stage to compile, from its distinct masks: all without the film group,
@@ -103,14 +107,14 @@ constexpr std::size_t kFilmStride = 64;
 // in `read` (each choice with each bit set and clear, where such a source exists).
 std::vector<FeatureMask> sources_to_compile(const std::set<FeatureMask>& distinct, FeatureMask read) {
     std::vector<FeatureMask> out, filmed;
-    for (FeatureMask m : distinct) (m & kFilmGroup ? filmed : out).push_back(m);
-    std::set<std::pair<FeatureMask, int>> need;  // (film choice, bit index * 2 + value)
+    for (FeatureMask m : distinct) (m & kSampledGroup ? filmed : out).push_back(m);
+    std::set<std::pair<FeatureMask, int>> need;  // (group choice, bit index * 2 + value)
     for (FeatureMask m : filmed)
         for (int b = 0; b < 64; ++b)
-            if ((read & ~kFilmGroup) >> b & 1) need.insert({m & kFilmGroup, b * 2 + int(m >> b & 1)});
+            if ((read & ~kSampledGroup) >> b & 1) need.insert({m & kSampledGroup, b * 2 + int(m >> b & 1)});
     auto take = [&](FeatureMask m) {
         out.push_back(m);
-        for (int b = 0; b < 64; ++b) need.erase({m & kFilmGroup, b * 2 + int(m >> b & 1)});
+        for (int b = 0; b < 64; ++b) need.erase({m & kSampledGroup, b * 2 + int(m >> b & 1)});
     };
     std::vector<bool> taken(filmed.size(), false);
     for (std::size_t i = 0; i < filmed.size(); i += kFilmStride) taken[i] = true, take(filmed[i]);
@@ -118,10 +122,10 @@ std::vector<FeatureMask> sources_to_compile(const std::set<FeatureMask>& distinc
         if (taken[i]) continue;
         const FeatureMask m = filmed[i];
         bool useful = false;
-        for (int b = 0; b < 64 && !useful; ++b) useful = need.count({m & kFilmGroup, b * 2 + int(m >> b & 1)}) > 0;
+        for (int b = 0; b < 64 && !useful; ++b) useful = need.count({m & kSampledGroup, b * 2 + int(m >> b & 1)}) > 0;
         if (useful) taken[i] = true, take(m);
     }
-    EXPECT_TRUE(need.empty()) << need.size() << " (film choice, bit value) pairs not covered";
+    EXPECT_TRUE(need.empty()) << need.size() << " (group choice, bit value) pairs not covered";
     return out;
 }
 
@@ -135,7 +139,9 @@ struct GlslangProcess {
 TEST(ShaderFeatures, RulesAreCanonicalAndEnumerated) {
     using namespace feature;
     const std::vector<FeatureMask> all = all_feature_sets();
-    const std::set<FeatureMask> set(all.begin(), all.end());
+    // Ascending and distinct, so a binary search finds a mask (millions of masks: no std::set).
+    ASSERT_TRUE(std::adjacent_find(all.begin(), all.end(), std::greater_equal<FeatureMask>()) == all.end());
+    const auto enumerated = [&](FeatureMask m) { return std::binary_search(all.begin(), all.end(), m); };
     // canonical_features is idempotent, and everything it returns is enumerated.
     std::uint64_t state = 0x9e3779b97f4a7c15ull;  // splitmix64: 4M raw masks spread over all bits
     for (int i = 0; i < (1 << 22); ++i) {
@@ -145,7 +151,7 @@ TEST(ShaderFeatures, RulesAreCanonicalAndEnumerated) {
         const FeatureMask m = (z ^ (z >> 31)) & kAll;
         FeatureMask c = canonical_features(m);
         ASSERT_EQ(canonical_features(c), c) << std::hex << m;
-        ASSERT_TRUE(set.count(c)) << std::hex << m;
+        ASSERT_TRUE(enumerated(c)) << std::hex << m;
     }
     for (FeatureMask m : all) EXPECT_TRUE(valid_features(m));
     // The rules the renderer relies on.
@@ -162,6 +168,11 @@ TEST(ShaderFeatures, RulesAreCanonicalAndEnumerated) {
     EXPECT_FALSE(valid_features(HasUv0 | HasNormal | HasTangent | AnisotropyMap));
     EXPECT_EQ(canonical_features(HasUv0 | HasNormal | HasTangent | Anisotropy | DebugView) & AnisotropyMap, 0u);
     EXPECT_EQ(canonical_features(HasUv0 | HasNormal | HasTangent | Anisotropy | Unlit), HasUv0 | Unlit);
+    // KHR_materials_diffuse_transmission's maps need it and come together; unlit drops it.
+    EXPECT_FALSE(valid_features(HasUv0 | HasNormal | DiffuseTransmissionMap | DiffuseTransmissionColorMap));
+    EXPECT_EQ(canonical_features(HasUv0 | HasNormal | DiffuseTransmission | DiffuseTransmissionColorMap),
+              HasUv0 | HasNormal | DiffuseTransmission | DiffuseTransmissionMap | DiffuseTransmissionColorMap);
+    EXPECT_EQ(canonical_features(HasUv0 | HasNormal | DiffuseTransmission | Unlit), HasUv0 | Unlit);
     // DamagedHelmet's variant exists unchanged.
     const FeatureMask helmet = HasNormal | HasTangent | HasUv0 | UseIbl | BaseColorMap | MetallicRoughnessMap |
                                NormalMap | OcclusionMap | EmissiveMap;
@@ -228,7 +239,7 @@ TEST(ShaderVariants, EveryVariantCompilesAsEs300AndGl330) {
         }
         const std::vector<FeatureMask> sources = sources_to_compile(distinct, read);
         std::printf("%s: %zu distinct sources over %zu feature sets (%zu of them with anisotropy and sheen or "
-                    "transmission, on %zu base sets), %zu compiled (the film group sampled)\n",
+                    "transmission, on %zu base sets), %zu compiled (the film and diffuse transmission groups sampled)\n",
                     file, distinct.size(), all.size(), crossed_kept, bases.size(), sources.size());
         per_target += sources.size();
         for (GlslTarget t : {GlslTarget::Es30, GlslTarget::Gl33})

@@ -30,6 +30,8 @@ constexpr MaterialMapInfo kMaps[kMaterialMapCount] = {
     {"anisotropy", "HAS_ANISOTROPY_MAP", false, false},
     {"iridescence", "HAS_IRIDESCENCE_MAP", false, false},
     {"iridescence_thickness", "HAS_IRIDESCENCE_THICKNESS_MAP", false, false},
+    {"diffuse_transmission", "HAS_DIFFUSE_TRANSMISSION_MAP", false, false},
+    {"diffuse_transmission_color", "HAS_DIFFUSE_TRANSMISSION_COLOR_MAP", true, false},
 };
 
 // Reads one map at the point, or nullopt when the map is absent or unreadable.
@@ -84,6 +86,7 @@ const TextureSlot* material_map(const Material& m, MaterialMap map) {
     const auto* sh = m.has_sheen() ? &*m.sheen : nullptr;
     const auto* an = m.has_anisotropy() ? &*m.anisotropy : nullptr;
     const auto* ir = m.has_iridescence() ? &*m.iridescence : nullptr;
+    const auto* dt = m.has_diffuse_transmission() ? &*m.diffuse_transmission : nullptr;
     const TextureSlot* slot = nullptr;
     switch (map) {
         case MaterialMap::BaseColor: slot = sg ? &sg->diffuse_texture : &m.base_color; break;
@@ -106,6 +109,8 @@ const TextureSlot* material_map(const Material& m, MaterialMap map) {
         case MaterialMap::Anisotropy: slot = an ? &an->anisotropy_texture : nullptr; break;
         case MaterialMap::Iridescence: slot = ir ? &ir->iridescence_texture : nullptr; break;
         case MaterialMap::IridescenceThickness: slot = ir ? &ir->iridescence_thickness_texture : nullptr; break;
+        case MaterialMap::DiffuseTransmission: slot = dt ? &dt->diffuse_transmission_texture : nullptr; break;
+        case MaterialMap::DiffuseTransmissionColor: slot = dt ? &dt->diffuse_transmission_color_texture : nullptr; break;
     }
     return slot && slot->valid() ? slot : nullptr;
 }
@@ -257,6 +262,15 @@ EvaluatedMaterial evaluate(const Material& material, const TextureSource& textur
         if (auto t = maps.sample(MaterialMap::IridescenceThickness))
             e.iridescence_thickness = ir.iridescence_thickness_minimum * (1.0f - t->y) + ir.iridescence_thickness_maximum * t->y;
     }
+    if (m.has_diffuse_transmission()) {
+        const DiffuseTransmissionExt& dt = *m.diffuse_transmission;
+        e.diffuse_transmission = dt.diffuse_transmission_factor;
+        if (auto t = maps.sample(MaterialMap::DiffuseTransmission)) e.diffuse_transmission *= t->w;
+        e.diffuse_transmission = std::clamp(e.diffuse_transmission, 0.0f, 1.0f);
+        e.diffuse_transmission_color = dt.diffuse_transmission_color_factor;
+        if (auto t = maps.sample(MaterialMap::DiffuseTransmissionColor)) e.diffuse_transmission_color *= glm::vec3(*t);
+        e.diffuse_transmission_color = glm::max(e.diffuse_transmission_color, glm::vec3(0.0f));
+    }
     if (auto t = maps.sample(MaterialMap::Occlusion)) e.occlusion = 1.0f + m.occlusion_strength * (t->x - 1.0f);
     e.emissive = m.emissive_factor * m.emissive_strength_value();
     if (auto t = maps.sample(MaterialMap::Emissive)) e.emissive *= glm::vec3(*t);
@@ -314,9 +328,13 @@ glm::vec3 shade_light_transmission(const EvaluatedMaterial& m, glm::vec3 v, glm:
                                                  glm::vec3(1.0f), s.base_color, tr.ior);
     glm::vec3 transmitted = transmission::volume_attenuation(radiance * btdf, ray_length, tr.attenuation_color,
                                                              tr.attenuation_distance);
-    // The share of the diffuse it replaces: 1 - F, under a thin film brdf::film_diffuse_weight.
+    // The diffuse it replaces (with diffuse transmission, the mix of both Lambert lobes), under
+    // its weight 1 - F (under a thin film brdf::film_diffuse_weight).
+    float n_dot_minus_l = std::clamp(-glm::dot(m.normal, l), 0.0f, 1.0f);
+    glm::vec3 diffuse = brdf::diffuse_transmission_mix(n_dot_l * brdf::lambert(s.base_color), n_dot_minus_l,
+                                                       m.diffuse_transmission, m.diffuse_transmission_color);
     glm::vec3 term = (1.0f - s.metallic) * brdf::film_diffuse_weight(f_dielectric, film_at(m, v)) * tr.factor *
-                     (transmitted - radiance * n_dot_l * brdf::lambert(s.base_color));
+                     (transmitted - radiance * diffuse);
     if (m.clearcoat > 0.0f) term *= 1.0f - brdf::clearcoat_mix(m.clearcoat, m.clearcoat_f0, m.clearcoat_normal, v);
     return term;
 }
@@ -324,24 +342,37 @@ glm::vec3 shade_light_transmission(const EvaluatedMaterial& m, glm::vec3 v, glm:
 glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 radiance,
                       glm::vec3 comp_dielectric, glm::vec3 comp_metal, const brdf::BrdfModel& model) {
     float n_dot_l = std::clamp(glm::dot(m.normal, l), 0.0f, 1.0f);
+    // KHR_materials_diffuse_transmission: a light behind the surface lights its transmitted lobe.
+    float n_dot_minus_l = m.diffuse_transmission > 0.0f ? std::clamp(-glm::dot(m.normal, l), 0.0f, 1.0f) : 0.0f;
     glm::vec3 lit(0.0f);
-    if (n_dot_l > 0.0f) {
+    if (n_dot_l > 0.0f || n_dot_minus_l > 0.0f) {
         brdf::Terms t = brdf::evaluate_terms(m.surface, m.normal, v, l, model, film_at(m, v));
         if (m.anisotropy_strength > 0.0f)
             brdf::apply_anisotropy(t, m.surface, m.normal, v, l, m.anisotropic_t, m.anisotropic_b, m.anisotropy_strength);
         glm::vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;
         glm::vec3 base = t.diffuse + specular;
+        glm::vec3 sheen(0.0f);
+        float scaling = 1.0f;
         if (m.sheen_color != glm::vec3(0.0f)) {
             // KHR_materials_sheen: the Charlie lobe over the base, which keeps 1 - max(c) E.
             float n_dot_v = std::clamp(glm::dot(m.normal, v), 0.0f, 1.0f);
             glm::vec3 h = glm::normalize(l + v);
             float n_dot_h = std::clamp(glm::dot(m.normal, h), 0.0f, 1.0f);
             const brdf::SheenAlbedoTable& e = brdf::SheenAlbedoTable::standard();
-            float scaling = brdf::sheen_albedo_scaling(m.sheen_color, e(n_dot_v, m.sheen_roughness),
-                                                       e(n_dot_l, m.sheen_roughness));
-            base = brdf::sheen_specular(m.sheen_color, m.sheen_roughness, n_dot_l, n_dot_v, n_dot_h) + base * scaling;
+            scaling = brdf::sheen_albedo_scaling(m.sheen_color, e(n_dot_v, m.sheen_roughness),
+                                                 e(n_dot_l, m.sheen_roughness));
+            if (n_dot_l > 0.0f) sheen = brdf::sheen_specular(m.sheen_color, m.sheen_roughness, n_dot_l, n_dot_v, n_dot_h);
         }
-        lit = radiance * n_dot_l * base;
+        if (m.diffuse_transmission > 0.0f) {
+            // The diffuse lobe times its cosine: the reflected and the transmitted lobe mixed.
+            // The transmitted lobe takes the diffuse's weight: w lambert(c) = lambert(w c).
+            glm::vec3 diffuse = brdf::diffuse_transmission_mix(n_dot_l * t.diffuse, n_dot_minus_l, m.diffuse_transmission,
+                                                               t.diffuse_weight * m.diffuse_transmission_color);
+            glm::vec3 specular_cos = n_dot_l > 0.0f ? n_dot_l * (sheen + specular * scaling) : glm::vec3(0.0f);
+            lit = radiance * (specular_cos + diffuse * scaling);
+        } else {
+            lit = radiance * n_dot_l * (sheen + base * scaling);
+        }
     }
     if (m.clearcoat > 0.0f) {
         float cc_mix = brdf::clearcoat_mix(m.clearcoat, m.clearcoat_f0, m.clearcoat_normal, v);

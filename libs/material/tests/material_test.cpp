@@ -200,6 +200,33 @@ TEST(MaterialEvaluate, IridescenceFactorAndThickness) {
     EXPECT_NEAR(e.iridescence_thickness, 200.0f + 500.0f * 0.2f, 1e-3f);  // mix(min, max, G)
 }
 
+TEST(MaterialEvaluate, DiffuseTransmissionFactorAndColour) {
+    // The specification's defaults: factor 0 (none), colour white.
+    DiffuseTransmissionExt defaults;
+    EXPECT_EQ(defaults.diffuse_transmission_factor, 0.0f);
+    EXPECT_EQ(defaults.diffuse_transmission_color_factor, glm::vec3(1.0f));
+    Textures tex;
+    // A (the factor texture's channel) 0.6 linear; RGB (the colour texture's) sRGB.
+    int t = tex.add(solid(1, 1, {153, 51, 255, 153}));
+    Material m;
+    DiffuseTransmissionExt dt;
+    dt.diffuse_transmission_texture = slot(t);
+    dt.diffuse_transmission_color_texture = slot(t);
+    m.diffuse_transmission = dt;
+    EvaluatedMaterial e = evaluate(m, tex, {});
+    EXPECT_FALSE(m.has_diffuse_transmission());
+    EXPECT_EQ(e.diffuse_transmission, 0.0f);  // factor 0: none, and its maps are not read
+    EXPECT_EQ(material_map(m, MaterialMap::DiffuseTransmission), nullptr);
+    m.diffuse_transmission->diffuse_transmission_factor = 0.5f;
+    m.diffuse_transmission->diffuse_transmission_color_factor = glm::vec3(0.4f, 0.9f, 0.2f);
+    e = evaluate(m, tex, {});
+    EXPECT_NEAR(e.diffuse_transmission, 0.5f * 0.6f, kTol);  // factor * A (linear)
+    expect_near(e.diffuse_transmission_color,
+                glm::vec3(0.4f * srgb_to_linear(0.6f), 0.9f * srgb_to_linear(0.2f), 0.2f), 1e-5f);  // RGB, sRGB
+    EXPECT_TRUE(material_map_info(MaterialMap::DiffuseTransmissionColor).srgb);
+    EXPECT_FALSE(material_map_info(MaterialMap::DiffuseTransmission).srgb);
+}
+
 TEST(MaterialEvaluate, NormalMapWithScaleInTheGivenFrame) {
     Textures tex;
     // (1, 0.5, 1) in [0,1]^3 -> tangent-space (1, 0, 1) (+1/255 rounding of 128).
@@ -427,6 +454,69 @@ TEST(ShadeLight, IridescenceReplacesTheFresnelAndVanishesAtZeroThickness) {
     glm::vec3 got = shade_light(e, v, l, glm::vec3(2.0f));
     expect_near(got, want, 1e-5f);
     EXPECT_GT(glm::length(got - plain), 1e-3f);  // the film changes the colour
+}
+
+
+TEST(ShadeLight, DiffuseTransmissionLightsTheBackAsTheKhronosViewer) {
+    Material m;
+    m.base_color_factor = glm::vec4(0.3f, 0.6f, 0.2f, 1.0f);
+    m.metallic_factor = 0.2f;
+    m.roughness_factor = 0.5f;
+    EvaluatedMaterial e = evaluate(m, NoTextures{}, {});
+    glm::vec3 v = glm::normalize(glm::vec3(0.3f, 0.0f, 1.0f)), l = glm::normalize(glm::vec3(-0.5f, 0.2f, 1.0f));
+    const glm::vec3 plain = shade_light(e, v, l, glm::vec3(2.0f));
+    EXPECT_EQ(shade_light(e, v, -l, glm::vec3(2.0f)), glm::vec3(0.0f));  // without it, nothing from behind
+    e.diffuse_transmission = 0.0f;
+    e.diffuse_transmission_color = glm::vec3(0.4f, 0.9f, 0.2f);
+    EXPECT_EQ(shade_light(e, v, l, glm::vec3(2.0f)), plain);  // factor 0: unchanged
+    e.diffuse_transmission = 0.8f;
+    // In front: the reflected diffuse keeps 1 - factor, the specular stays.
+    brdf::Terms t = brdf::evaluate_terms(e.surface, e.normal, v, l);
+    float n_dot_l = glm::dot(e.normal, l);
+    expect_near(shade_light(e, v, l, glm::vec3(2.0f)), 2.0f * n_dot_l * (0.2f * t.diffuse + t.specular), 1e-5f);
+    // Behind: factor (1 - metallic) (1 - F) colour / pi n.(-l), F at h = normalize(l + v) as the viewer.
+    glm::vec3 lb = glm::normalize(glm::vec3(0.2f, -0.3f, -1.0f));
+    brdf::Terms tb = brdf::evaluate_terms(e.surface, e.normal, v, lb);
+    glm::vec3 want = 2.0f * 0.8f * 0.8f * (1.0f - tb.f_dielectric) * e.diffuse_transmission_color / brdf::kPi *
+                     -glm::dot(e.normal, lb);
+    expect_near(shade_light(e, v, lb, glm::vec3(2.0f)), want, 1e-5f);
+}
+
+TEST(ShadeLight, DiffuseTransmissionConservesTheDiffuseEnergy) {
+    // Reflected plus transmitted diffuse, over the whole sphere of light directions, is at most
+    // the albedo: with a white transmission colour exactly the reflected diffuse alone.
+    Material m;
+    m.base_color_factor = glm::vec4(0.9f, 0.5f, 0.7f, 1.0f);
+    m.metallic_factor = 0.0f;
+    m.roughness_factor = 1.0f;
+    m.specular = SpecularExt{};
+    m.specular->specular_factor = 0.0f;  // no specular lobe, so the diffuse has weight 1
+    EvaluatedMaterial e = evaluate(m, NoTextures{}, {});
+    const glm::vec3 v = glm::normalize(glm::vec3(0.4f, 0.1f, 1.0f));
+    auto integral = [&](float dt, glm::vec3 colour) {
+        e.diffuse_transmission = dt;
+        e.diffuse_transmission_color = colour;
+        glm::dvec3 sum(0.0);
+        const int n = 256;
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < 2 * n; ++j) {  // midpoints in (cos theta, phi) over the sphere: d omega = dz dphi
+                float z = -1.0f + 2.0f * (float(i) + 0.5f) / float(n);
+                float phi = 2.0f * brdf::kPi * (float(j) + 0.5f) / float(2 * n);
+                float r = std::sqrt(std::max(1.0f - z * z, 0.0f));
+                glm::vec3 l(r * std::cos(phi), r * std::sin(phi), z);
+                sum += glm::dvec3(shade_light(e, v, l, glm::vec3(1.0f)));
+            }
+        return glm::vec3(sum * (4.0 * double(brdf::kPi) / (double(n) * 2.0 * double(n))));
+    };
+    const glm::vec3 albedo(0.9f, 0.5f, 0.7f);
+    expect_near(integral(0.0f, glm::vec3(1.0f)), albedo, 2e-3f);
+    const glm::vec3 half = integral(0.5f, albedo);  // the same colour through: still the albedo
+    expect_near(half, albedo, 2e-3f);
+    const glm::vec3 leaf = integral(0.8f, glm::vec3(0.4f, 0.9f, 0.2f));
+    const glm::vec3 want = 0.2f * albedo + 0.8f * glm::vec3(0.4f, 0.9f, 0.2f);
+    expect_near(leaf, want, 2e-3f);
+    EXPECT_LE(leaf.x, 1.0f);
+    EXPECT_LE(leaf.y, 1.0f);
 }
 
 }  // namespace

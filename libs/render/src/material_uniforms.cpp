@@ -53,6 +53,10 @@ MaterialUniforms material_uniforms(const Material& m) {
         u.iridescence_thickness_minimum = m.iridescence->iridescence_thickness_minimum;
         u.iridescence_thickness_maximum = m.iridescence->iridescence_thickness_maximum;
     }
+    if (m.has_diffuse_transmission()) {
+        u.diffuse_transmission_factor = m.diffuse_transmission->diffuse_transmission_factor;
+        u.diffuse_transmission_color_factor = m.diffuse_transmission->diffuse_transmission_color_factor;
+    }
     for (int i = 0; i < kMaterialMapCount; ++i) u.maps[std::size_t(i)] = material_map(m, MaterialMap(i));
     return u;
 }
@@ -66,6 +70,7 @@ FeatureMask material_features(const Material& m) {
     if (m.has_sheen()) f |= feature::Sheen;
     if (m.has_anisotropy()) f |= feature::Anisotropy;
     if (m.has_iridescence()) f |= feature::Iridescence;
+    if (m.has_diffuse_transmission()) f |= feature::DiffuseTransmission;
     if (m.alpha_mode == AlphaMode::Mask) f |= feature::AlphaMask;
     if (m.alpha_mode == AlphaMode::Blend) f |= feature::AlphaBlend;
     return f;
@@ -109,6 +114,8 @@ void set_material_uniforms(const gpu::Program& prog, const MaterialUniforms& u,
     prog.set("u_iridescence_ior", u.iridescence_ior);
     prog.set("u_iridescence_thickness_minimum", u.iridescence_thickness_minimum);
     prog.set("u_iridescence_thickness_maximum", u.iridescence_thickness_maximum);
+    prog.set("u_diffuse_transmission_factor", u.diffuse_transmission_factor);
+    prog.set("u_diffuse_transmission_color_factor", u.diffuse_transmission_color_factor);
     for (int i = 0; i < kMaterialMapCount; ++i) {
         if (units[std::size_t(i)] < 0) continue;
         std::string base = std::string("u_") + material_map_info(MaterialMap(i)).name;

@@ -40,6 +40,8 @@ constexpr NamedChannel kChannels[] = {
     {"sheen", DebugChannel::Sheen}, {"sheen-roughness", DebugChannel::SheenRoughness},
     {"anisotropy", DebugChannel::Anisotropy}, {"anisotropy-direction", DebugChannel::AnisotropyDirection},
     {"iridescence", DebugChannel::Iridescence}, {"iridescence-thickness", DebugChannel::IridescenceThickness},
+    {"diffuse-transmission", DebugChannel::DiffuseTransmission},
+    {"diffuse-transmission-color", DebugChannel::DiffuseTransmissionColor},
 };
 
 constexpr int kMaxLights = kMaxShaderLights;

@@ -43,6 +43,9 @@ constexpr FeatureInfo kFeatures[] = {
     {Iridescence, "MATERIAL_IRIDESCENCE"},
     {IridescenceMap, "HAS_IRIDESCENCE_MAP"},
     {IridescenceThicknessMap, "HAS_IRIDESCENCE_THICKNESS_MAP"},
+    {DiffuseTransmission, "MATERIAL_DIFFUSE_TRANSMISSION"},
+    {DiffuseTransmissionMap, "HAS_DIFFUSE_TRANSMISSION_MAP"},
+    {DiffuseTransmissionColorMap, "HAS_DIFFUSE_TRANSMISSION_COLOR_MAP"},
 };
 constexpr bool table_is_kall_in_bit_order() {
     FeatureMask seen = 0;
@@ -70,6 +73,7 @@ FeatureMask allowed_maps(FeatureMask m) {
     if (m & Sheen) maps |= SheenColorMap | SheenRoughnessMap;
     if (m & Anisotropy) maps |= AnisotropyMap;
     if (m & Iridescence) maps |= IridescenceMap | IridescenceThicknessMap;
+    if (m & DiffuseTransmission) maps |= DiffuseTransmissionMap | DiffuseTransmissionColorMap;
     return maps;
 }
 }  // namespace
@@ -90,7 +94,7 @@ FeatureMask canonical_features(FeatureMask m) {
     if (m & AlphaMask) m &= ~AlphaBlend;
     if ((m & Unlit) && !(m & DebugView))
         m &= ~(HasNormal | HasTangent | SpecularGlossiness | Clearcoat | Sheen | UseIbl | Transmission | Anisotropy |
-               Iridescence);
+               Iridescence | DiffuseTransmission);
     if (m & SpecularGlossiness) m &= ~Transmission;
     if (!(m & HasTangent)) m &= ~Anisotropy;
     const FeatureMask allowed = allowed_maps(m);
@@ -100,6 +104,8 @@ FeatureMask canonical_features(FeatureMask m) {
     if (m & Transmission) m |= allowed & (TransmissionMap | ThicknessMap);
     if (m & (SheenColorMap | SheenRoughnessMap)) m |= SheenColorMap | SheenRoughnessMap;
     if (m & (IridescenceMap | IridescenceThicknessMap)) m |= IridescenceMap | IridescenceThicknessMap;
+    if (m & (DiffuseTransmissionMap | DiffuseTransmissionColorMap))
+        m |= DiffuseTransmissionMap | DiffuseTransmissionColorMap;
     if (m & DebugView) m |= allowed & ~(NormalMap | ClearcoatNormalMap | AnisotropyMap);
     return m;
 }
@@ -107,11 +113,11 @@ FeatureMask canonical_features(FeatureMask m) {
 bool valid_features(FeatureMask mask) { return (mask & ~kAll) == 0 && canonical_features(mask) == mask; }
 
 std::vector<FeatureMask> all_feature_sets() {
-    // Bits 23..35 (the sheen, transmission, anisotropy and iridescence maps and model bits,
+    // Bits 23..38 (the sheen, transmission, anisotropy, iridescence and diffuse transmission maps and model bits,
     // skinning, morphing) come in groups that no rule on bits 0..22 looks at, except that unlit,
     // specular-glossiness and missing tangents drop some and the debug view turns the maps on:
     // so every valid mask is a valid mask of bits 0..22 plus one choice per group, kept when
-    // canonical. 2^23 masks instead of 2^36.
+    // canonical. 2^23 masks instead of 2^39.
     std::vector<FeatureMask> out;
     constexpr FeatureMask kLow = (FeatureMask(1) << 23) - 1;
     const FeatureMask animation[] = {0, Skinned, MorphTargets, Skinned | MorphTargets};
@@ -119,16 +125,19 @@ std::vector<FeatureMask> all_feature_sets() {
     const FeatureMask transmission[] = {0, Transmission, Transmission | TransmissionMap | ThicknessMap};
     const FeatureMask anisotropy[] = {0, Anisotropy, Anisotropy | AnisotropyMap};
     const FeatureMask iridescence[] = {0, Iridescence, Iridescence | IridescenceMap | IridescenceThicknessMap};
+    const FeatureMask diffuse_transmission[] = {0, DiffuseTransmission,
+                                                DiffuseTransmission | DiffuseTransmissionMap | DiffuseTransmissionColorMap};
     for (FeatureMask m = 0; m <= kLow; ++m) {
         if (canonical_features(m) != m) continue;
         for (FeatureMask a : animation)
             for (FeatureMask s : sheen)
                 for (FeatureMask t : transmission)
                     for (FeatureMask an : anisotropy)
-                        for (FeatureMask i : iridescence) {
-                            const FeatureMask x = m | a | s | t | an | i;
-                            if (canonical_features(x) == x) out.push_back(x);
-                        }
+                        for (FeatureMask i : iridescence)
+                            for (FeatureMask dt : diffuse_transmission) {
+                                const FeatureMask x = m | a | s | t | an | i | dt;
+                                if (canonical_features(x) == x) out.push_back(x);
+                            }
     }
     std::sort(out.begin(), out.end());
     return out;

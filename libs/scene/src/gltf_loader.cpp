@@ -36,14 +36,13 @@ const std::vector<std::string>& supported_gltf_extensions() {
         "EXT_meshopt_compression", "KHR_draco_mesh_compression", "EXT_texture_webp", "KHR_materials_variants",
         "KHR_animation_pointer", "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_dispersion",
         "KHR_node_visibility", "KHR_materials_anisotropy", "KHR_materials_iridescence",
+        "KHR_materials_diffuse_transmission",
     };
     return list;
 }
 
 const std::vector<std::string>& parsed_unshaded_gltf_extensions() {
-    static const std::vector<std::string> list = {
-        "KHR_materials_diffuse_transmission",
-    };
+    static const std::vector<std::string> list = {};  // none now
     return list;
 }
 
@@ -522,7 +521,6 @@ private:
             b.sheen_roughness_texture = texture_ref(*e, "sheenRoughnessTexture", p);
             out.sheen = b;
         }
-        // Kept, not shaded (yet): parsed with the specification's defaults.
         if (const json* e = r_.find(ext, "KHR_materials_transmission")) {
             std::string p = at("KHR_materials_transmission");
             TransmissionExt b;

@@ -27,6 +27,10 @@ BsdfLobes lobe_probabilities(const EvaluatedMaterial& m, glm::vec3 v) {
     }
     float spec = (1.0f - s.metallic) * luminance(f_dielectric) + s.metallic * luminance(f_metal);
     float diff = (1.0f - s.metallic) * luminance((1.0f - f_dielectric) * s.base_color);
+    // KHR_materials_diffuse_transmission: the share dt of the diffuse goes through, in its colour.
+    const float dt = std::clamp(m.diffuse_transmission, 0.0f, 1.0f);
+    float diff_t = dt * (1.0f - s.metallic) * luminance((1.0f - f_dielectric) * m.diffuse_transmission_color);
+    diff *= 1.0f - dt;
     // KHR_materials_sheen has no sampling routine of its own: its broad lobe is sampled by
     // the cosine lobe, which covers the whole hemisphere (its weight joins the diffuse's).
     diff += luminance(m.sheen_color);
@@ -34,12 +38,14 @@ BsdfLobes lobe_probabilities(const EvaluatedMaterial& m, glm::vec3 v) {
     const float t = std::clamp(m.transmission.factor, 0.0f, 1.0f);
     BsdfLobes p;
     p.diffuse = std::max(diff, 0.0f) * (1.0f - coat) * (1.0f - t);
-    p.transmission = std::max(diff, 0.0f) * (1.0f - coat) * t;
+    p.diffuse_transmission = std::max(diff_t, 0.0f) * (1.0f - coat) * (1.0f - t);
+    p.transmission = std::max(diff + diff_t, 0.0f) * (1.0f - coat) * t;
     p.specular = std::max(spec, 0.0f) * (1.0f - coat);
     p.clearcoat = coat;
-    float sum = p.diffuse + p.specular + p.clearcoat + p.transmission;
+    float sum = p.diffuse + p.specular + p.clearcoat + p.transmission + p.diffuse_transmission;
     if (!(sum > 0.0f)) return BsdfLobes{};
     p.diffuse /= sum;
+    p.diffuse_transmission /= sum;
     p.specular /= sum;
     p.clearcoat /= sum;
     p.transmission /= sum;
@@ -88,22 +94,27 @@ glm::vec3 Bsdf::eval_transmission(glm::vec3 l) const {
 }
 
 glm::vec3 Bsdf::eval(glm::vec3 l) const {
+    // With KHR_materials_diffuse_transmission, shade_light has the transmitted Lambert lobe below.
     glm::vec3 f = shade_light(m_, v_, l, glm::vec3(1.0f), glm::vec3(1.0f), glm::vec3(1.0f), model_);
     const TransmissionInputs& tr = m_.transmission;
     if (tr.factor > 0.0f) {
         float n_dot_l = glm::dot(base_.n, l);
-        if (n_dot_l < 0.0f) return eval_transmission(l);
-        // Above the surface the transmission takes its share T of the diffuse lobe.
+        if (n_dot_l < 0.0f && !(m_.diffuse_transmission > 0.0f)) return eval_transmission(l);
+        // The transmission takes its share T of the diffuse lobe (with diffuse transmission, of
+        // both Lambert lobes' mix).
         const brdf::Surface& s = m_.surface;
-        glm::vec3 h = glm::normalize(l + v_);
+        const brdf::Cosines c = brdf::cosines(base_.n, v_, l);
         glm::vec3 f_dielectric = brdf::f_schlick(s.dielectric_f0() * s.specular_weight, glm::vec3(s.specular_weight),
-                                                 std::clamp(glm::dot(v_, h), 0.0f, 1.0f));
+                                                 c.v_dot_h);
         glm::vec3 diffuse = (1.0f - s.metallic) * brdf::film_diffuse_weight(f_dielectric, film_at(m_, v_)) *
-                            brdf::lambert(s.base_color) * n_dot_l;
+                            brdf::diffuse_transmission_mix(brdf::lambert(s.base_color) * c.n_dot_l,
+                                                           std::max(-n_dot_l, 0.0f), m_.diffuse_transmission,
+                                                           m_.diffuse_transmission_color);
         if (m_.clearcoat > 0.0f)
             diffuse *= 1.0f - brdf::clearcoat_mix(m_.clearcoat, m_.clearcoat_f0, m_.clearcoat_normal, v_);
         f -= tr.factor * diffuse;
         f = glm::max(f, glm::vec3(0.0f));
+        if (n_dot_l < 0.0f) f += eval_transmission(l);
     }
     return f;
 }
@@ -121,10 +132,14 @@ float Bsdf::pdf(glm::vec3 l) const {
         glm::vec3 ll = coat_.to_local(l);
         if (ll.z > 0.0f) pdf += lobes_.clearcoat * sampling::pdf_ggx_reflection(v_coat_, ll, coat_alpha_);
     }
-    if (lobes_.transmission > 0.0f) {
+    if (lobes_.transmission > 0.0f || lobes_.diffuse_transmission > 0.0f) {
         glm::vec3 ll = base_.to_local(l);
-        if (ll.z < 0.0f)
-            pdf += lobes_.transmission * sampling::pdf_ggx_reflection(v_base_, glm::vec3(ll.x, ll.y, -ll.z), transmission_alpha_);
+        if (ll.z < 0.0f) {
+            const glm::vec3 mirrored(ll.x, ll.y, -ll.z);
+            if (lobes_.transmission > 0.0f)
+                pdf += lobes_.transmission * sampling::pdf_ggx_reflection(v_base_, mirrored, transmission_alpha_);
+            if (lobes_.diffuse_transmission > 0.0f) pdf += lobes_.diffuse_transmission * sampling::pdf_cosine(mirrored);
+        }
     }
     return pdf;
 }
@@ -132,7 +147,7 @@ float Bsdf::pdf(glm::vec3 l) const {
 BsdfSample Bsdf::sample(glm::vec3 u) const {
     BsdfSample s;
     const BsdfLobes& p = lobes_;
-    if (p.diffuse + p.specular + p.clearcoat + p.transmission <= 0.0f) return s;
+    if (p.diffuse + p.specular + p.clearcoat + p.transmission + p.diffuse_transmission <= 0.0f) return s;
     glm::vec2 u2(u.y, u.z);
     // Each lobe's samples below its own horizon are lost (the pdf of a lobe is 0 there, so
     // keeping them would make the mixture's pdf wrong where another lobe reaches).
@@ -148,6 +163,13 @@ BsdfSample Bsdf::sample(glm::vec3 u) const {
         if (v_coat_.z <= 0.0f) return s;
         local = sampling::sample_ggx_reflection(v_coat_, u2, coat_alpha_);
         s.l = coat_.to_world(local);
+    } else if (u.x < p.diffuse + p.specular + p.clearcoat + p.diffuse_transmission) {
+        // Diffuse transmission: cosine-weighted about -n.
+        local = sampling::sample_cosine(u2);
+        local.z = -local.z;
+        s.l = base_.to_world(local);
+        s.transmitted = true;
+        s.diffuse_transmitted = true;
     } else {
         // Transmission: a reflection sample of the lobe mirrored through the surface.
         if (v_base_.z <= 0.0f) return s;

@@ -509,12 +509,14 @@ struct Integrator {
                 glm::vec3 l;
                 float dist = 0;
                 glm::vec3 li = light_incident(light, p, l, dist);
-                if (li.x + li.y + li.z <= 0.0f || glm::dot(l, ng) <= 0.0f) continue;
-                glm::vec3 f = shade_light(m, wo, l, li, glm::vec3(1.0f), glm::vec3(1.0f), settings.brdf);
+                // KHR_materials_diffuse_transmission: lights behind the surface light its transmitted lobe.
+                const bool behind = glm::dot(l, ng) <= 0.0f;
+                if (li.x + li.y + li.z <= 0.0f || (behind && !(m.diffuse_transmission > 0.0f))) continue;
+                glm::vec3 f = behind ? bsdf.eval(l) * li : shade_light(m, wo, l, li, glm::vec3(1.0f), glm::vec3(1.0f), settings.brdf);
                 if (f.x + f.y + f.z <= 0.0f) continue;
                 ++rays;
                 float tmax = std::isfinite(dist) ? dist * (1.0f - 1e-4f) : INFINITY;
-                if (!scene.occluded(p_out, l, tmax, splitmix64(rng.next()))) L += beta * f;
+                if (!scene.occluded(behind ? offset_ray(p, -ng) : p_out, l, tmax, splitmix64(rng.next()))) L += beta * f;
             }
             glm::vec2 u_env = rng.uniform2();
             if (env) {
@@ -544,7 +546,7 @@ struct Integrator {
             // refracted view ray does, attenuated along it, as the Khronos viewer models it.
             transmitted = bs.transmitted;
             glm::vec3 exit = p;
-            if (bs.transmitted && m.transmission.thickness > 0.0f) {
+            if (bs.transmitted && !bs.diffuse_transmitted && m.transmission.thickness > 0.0f) {
                 glm::vec3 ray = transmission::volume_ray(m.normal, wo, m.transmission.thickness, m.transmission.ior,
                                                          glm::vec3(1.0f));
                 exit = p + ray;

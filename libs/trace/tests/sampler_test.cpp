@@ -221,6 +221,11 @@ std::vector<SphereDistribution> all_distributions() {
         out.push_back(bsdf("metal r0.3", material(1.0f, 0.3f), v));
         out.push_back(bsdf("half-metal r0.8 clearcoat", material(0.5f, 0.8f, 1.0f), v));
     }
+    // KHR_materials_diffuse_transmission: the cosine lobe about -n joins the mixture.
+    EvaluatedMaterial leaf = material(0.0f, 0.5f);
+    leaf.diffuse_transmission = 0.7f;
+    leaf.diffuse_transmission_color = glm::vec3(0.4f, 0.9f, 0.2f);
+    for (double v : {10.0, 60.0}) out.push_back(bsdf("diffuse transmission r0.5", leaf, v));
     return out;
 }
 

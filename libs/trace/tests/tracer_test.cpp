@@ -348,6 +348,41 @@ TEST(Tracer, DirectionalLightAndShadow) {
     EXPECT_GT(t.image.at(shadow_x, 24)[3], 0.99f);
 }
 
+TEST(Tracer, DiffuseTransmissionIsLitFromBehind) {
+    // KHR_materials_diffuse_transmission: a Lambertian quad lit only from below at 45 degrees
+    // shows, from above, E cos45 dt colour / pi (the transmitted lobe, reached by next-event
+    // estimation through the surface); without the extension, black.
+    Material m = lambert(0.5f, true);
+    DiffuseTransmissionExt dt;
+    dt.diffuse_transmission_factor = 0.6f;
+    dt.diffuse_transmission_color_factor = glm::vec3(0.9f, 0.5f, 0.2f);
+    m.diffuse_transmission = dt;
+    Scene s = spheres(m, {});
+    Primitive quad;
+    quad.positions = {{-4, 0, -4}, {-4, 0, 4}, {4, 0, 4}, {4, 0, -4}};
+    quad.normals.assign(4, glm::vec3(0, 1, 0));
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    quad.material = 0;
+    s.meshes[0].primitives = {quad};
+    Node floor;
+    floor.mesh = 0;
+    s.nodes = {floor};
+    s.scenes = {{0}};
+    LightInstance sun;
+    sun.type = Light::Type::Directional;
+    sun.direction = glm::normalize(glm::vec3(1, 1, 0));  // travelling upwards: the floor's underside is lit
+    sun.radiance = glm::vec3(3.0f);
+    CameraSetup cam;
+    cam.view = glm::lookAt(glm::vec3(0, 5, 0), glm::vec3(0, 0, 0), glm::vec3(0, 0, -1));
+    cam.projection = glm::perspective(glm::radians(40.0f), 1.0f, 0.1f, 20.0f);
+    Traced t = run(s, nullptr, small(4, 1), {}, {sun}, &cam);
+    const glm::vec3 want = 3.0f * std::sqrt(0.5f) * 0.6f * glm::vec3(0.9f, 0.5f, 0.2f) / kPi;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(t.image.at(8, 24)[c], want[c], 0.02f * want[c] + 1e-4f) << c;
+    s.materials[0].diffuse_transmission.reset();
+    Traced none = run(s, nullptr, small(4, 1), {}, {sun}, &cam);
+    EXPECT_LT(none.image.at(8, 24)[0], 1e-4f);
+}
+
 TEST(Tracer, OneBounceUnshadowedEnvironmentIsTheRasterisersTransport) {
     // --bounces 1 --no-env-visibility: direct light only and the environment never shadowed,
     // so even where three spheres occlude each other a Lambertian surface of albedo a under a

@@ -77,6 +77,7 @@ struct Terms {
     glm::vec3 f{0.0f};        // the metal/dielectric-mixed Fresnel
     glm::vec3 f_dielectric{0.0f}, f_metal{0.0f};  // the two lobes' Fresnel terms
     glm::vec3 diffuse{0.0f};  // f_diffuse (already weighted by 1 - F_dielectric and 1 - metallic)
+    glm::vec3 diffuse_weight{0.0f};  // that weight: (1 - metallic) (1 - F_dielectric), film_diffuse_weight under a film
     glm::vec3 specular{0.0f}; // f_specular = specular_dielectric + specular_metal
     glm::vec3 specular_dielectric{0.0f};  // (1 - metallic) F_dielectric V D
     glm::vec3 specular_metal{0.0f};     // metallic F_metal V D
@@ -135,6 +136,18 @@ inline glm::vec3 film_diffuse_weight(glm::vec3 f_dielectric, const IridescenceFr
     return weight;
 }
 
+// KHR_materials_diffuse_transmission, as the Khronos Sample Viewer shades it: the diffuse lobe
+// of one light times its cosine, mix(reflected_cos, lambert(color) n.(-l), factor), where
+// reflected_cos is the reflected lobe times n.l and n_dot_minus_l = max(-n.l, 0): the share
+// `factor` of the diffuse light goes through the surface as a Lambert lobe of `color` (not the
+// base colour), lit from behind. The result takes the diffuse's weights (1 - F, 1 - metallic).
+// For image-based light the same mix holds with the irradiance at n and at -n.
+inline glm::vec3 diffuse_transmission_mix(glm::vec3 reflected_cos, float n_dot_minus_l, float factor,
+                                          glm::vec3 color) {
+    if (!(factor > 0.0f)) return reflected_cos;
+    return glm::mix(reflected_cos, lambert(color) * n_dot_minus_l, factor);
+}
+
 // Appendix B's layering of the lobes, given t.d and t.v, the two Fresnel terms and the diffuse
 // lobe before its weights: fresnel_mix of the dielectric, conductor_fresnel of the metal.
 // With a thin film (KHR_materials_iridescence, as the Khronos Sample Viewer layers it) both
@@ -151,7 +164,8 @@ inline void layer(Terms& t, const Surface& s, glm::vec3 f_dielectric, glm::vec3 
     t.f_dielectric = f_dielectric;  // with the film: what apply_anisotropy weights its lobes by
     t.f_metal = f_metal;
     t.f = glm::mix(f_dielectric, f_metal, s.metallic);
-    t.diffuse = (1.0f - s.metallic) * diffuse_weight * diffuse;
+    t.diffuse_weight = (1.0f - s.metallic) * diffuse_weight;
+    t.diffuse = t.diffuse_weight * diffuse;
     t.specular_dielectric = (1.0f - s.metallic) * f_dielectric * spec;
     t.specular_metal = s.metallic * f_metal * spec;
     t.specular = t.specular_dielectric + t.specular_metal;

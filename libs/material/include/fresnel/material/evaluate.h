@@ -19,6 +19,9 @@
 //   iridescence = iridescenceFactor * iridescenceTexture R, film ior = iridescenceIor,
 //               thickness = mix(minimum, maximum, iridescenceThicknessTexture G) nm, without
 //               the texture the maximum; only when the factor is positive
+//   diffuse transmission = diffuseTransmissionFactor * diffuseTransmissionTexture A, colour =
+//               diffuseTransmissionColorFactor * diffuseTransmissionColorTexture RGB (sRGB); only
+//               when the factor is positive (KHR_materials_diffuse_transmission)
 //   occlusion = 1 + strength * (occlusionTexture R - 1)
 //   emissive = emissiveFactor * emissiveStrength * emissiveTexture RGB (sRGB)
 //   alpha: OPAQUE -> 1; MASK -> discard below the cutoff, else 1; BLEND -> as computed
@@ -68,8 +71,10 @@ enum class MaterialMap {
     Anisotropy,          // KHR_materials_anisotropy anisotropyTexture (RG direction, B strength), needs tangents
     Iridescence,           // KHR_materials_iridescence iridescenceTexture (R)
     IridescenceThickness,  // KHR_materials_iridescence iridescenceThicknessTexture (G)
+    DiffuseTransmission,       // KHR_materials_diffuse_transmission diffuseTransmissionTexture (A)
+    DiffuseTransmissionColor,  // KHR_materials_diffuse_transmission diffuseTransmissionColorTexture (RGB, sRGB)
 };
-inline constexpr int kMaterialMapCount = 18;
+inline constexpr int kMaterialMapCount = 20;
 
 struct MaterialMapInfo {
     const char* name;    // GLSL: u_<name>_map, u_<name>_uv, u_<name>_transform
@@ -128,6 +133,10 @@ struct EvaluatedMaterial {
     float iridescence = 0.0f;             // KHR_materials_iridescence strength (0 = no film)
     float iridescence_ior = 1.3f;
     float iridescence_thickness = 0.0f;   // nm
+    // KHR_materials_diffuse_transmission (factor 0 = none): the share of the diffuse lobe
+    // transmitted through the surface as a Lambert lobe of this colour (brdf::diffuse_transmission_mix).
+    float diffuse_transmission = 0.0f;
+    glm::vec3 diffuse_transmission_color{1.0f};
     bool unlit = false;
     TransmissionInputs transmission;      // factor 0 without KHR_materials_transmission
 };
@@ -167,6 +176,9 @@ Material to_metallic_roughness(const Material& material, bool* lost_glossiness_m
 //   with anisotropy the specular lobes' D and V are the anisotropic ones (brdf::apply_anisotropy)
 //   with a thin film (KHR_materials_iridescence) the terms' Fresnel is mixed with the film's,
 //               brdf::iridescence_at(n.v) (brdf::layer)
+//   with diffuse transmission (KHR_materials_diffuse_transmission), as the Khronos viewer: the
+//               diffuse lobe times its cosine is mix(f_diffuse n.l, w lambert(colour) n.(-l), factor)
+//               (w: the diffuse's weight 1 - F, (1 - metallic)), so lights behind the surface light it
 //   with sheen: base = f_sheen n.l + base * sheen_albedo_scaling(colour, E(n.v), E(n.l)),
 //               E from brdf::SheenAlbedoTable::standard() (the shader: the table's A channel)
 //   result = radiance * mix(base, clearcoat_specular, clearcoat_mix)
@@ -189,7 +201,8 @@ bool is_transmissive(const Material& material);
 // shade_light_transmission in shaders/transmission.glsl): the BTDF replaces the Lambert lobe in
 // proportion to the transmission factor, under the dielectric Fresnel (and a thin film's:
 // brdf::film_diffuse_weight) and the coat:
-//   (1 - cc_mix) (1 - metallic) (1 - F_d) T [attenuate(radiance btdf_punctual(l_transmitted)) - radiance n.l lambert]
+//   (1 - cc_mix) (1 - metallic) (1 - F_d) T [attenuate(radiance btdf_punctual(l_transmitted)) - radiance diffuse]
+// diffuse = n.l lambert, or with diffuse transmission brdf::diffuse_transmission_mix of it.
 // l: the direction to the light; l_transmitted: to the light from the point where the
 // transmission ray leaves (ray_length = the ray's length, for the volume's attenuation).
 glm::vec3 shade_light_transmission(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 l_transmitted,

@@ -93,7 +93,7 @@ struct SpecularGlossinessExt {
 };
 
 // Shaded (transmission.h): KHR_materials_transmission, _volume, _dispersion; (evaluate.h)
-// KHR_materials_sheen, _iridescence. Kept, not shaded: anisotropy, diffuse transmission.
+// KHR_materials_sheen, _iridescence, _anisotropy, _diffuse_transmission.
 struct SheenExt {                          // KHR_materials_sheen (shaded: evaluate.h)
     glm::vec3 sheen_color_factor{0.0f};
     TextureSlot sheen_color_texture;       // RGB, sRGB
@@ -126,7 +126,7 @@ struct AnisotropyExt {                     // KHR_materials_anisotropy (shaded: 
 struct DispersionExt {                     // KHR_materials_dispersion
     float dispersion = 0.0f;
 };
-struct DiffuseTransmissionExt {            // KHR_materials_diffuse_transmission
+struct DiffuseTransmissionExt {            // KHR_materials_diffuse_transmission (shaded: evaluate.h)
     float diffuse_transmission_factor = 0.0f;
     TextureSlot diffuse_transmission_texture;        // A
     glm::vec3 diffuse_transmission_color_factor{1.0f};
@@ -215,6 +215,11 @@ struct Material {
     // The thin film is shaded only with a positive factor (the default 0 is none, as the
     // strength is factor * texture).
     bool has_iridescence() const { return iridescence && iridescence->iridescence_factor > 0.0f; }
+    // Diffuse transmission is shaded only with a positive factor (the default 0 is none, as the
+    // share transmitted is factor * texture A; the Khronos viewer's mix(..., 0) is the same).
+    bool has_diffuse_transmission() const {
+        return diffuse_transmission && diffuse_transmission->diffuse_transmission_factor > 0.0f;
+    }
 };
 
 // Dielectric reflectance at normal incidence of an ior against air: ((ior-1)/(ior+1))^2

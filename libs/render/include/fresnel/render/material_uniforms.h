@@ -50,6 +50,8 @@ struct MaterialUniforms {
     float iridescence_ior = 1.3f;
     float iridescence_thickness_minimum = 100.0f;  // nm
     float iridescence_thickness_maximum = 400.0f;
+    float diffuse_transmission_factor = 0.0f;  // with MATERIAL_DIFFUSE_TRANSMISSION only
+    glm::vec3 diffuse_transmission_color_factor{1.0f};
     // The slot each map reads (material_map), nullptr for none; index = MaterialMap.
     std::array<const TextureSlot*, kMaterialMapCount> maps{};
 };
@@ -57,7 +59,7 @@ struct MaterialUniforms {
 MaterialUniforms material_uniforms(const Material& m);
 
 // The shader feature bits (shader_features.h) of the material model: unlit,
-// specular-glossiness, clearcoat, sheen, transmission, anisotropy, iridescence, alpha mode (feature_defines() spells them as #defines).
+// specular-glossiness, clearcoat, sheen, transmission, anisotropy, iridescence, diffuse transmission, alpha mode (feature_defines() spells them as #defines).
 FeatureMask material_features(const Material& m);
 
 // Sets the values on `program` (in use); units[i]: the texture unit map i is bound to (-1: none).

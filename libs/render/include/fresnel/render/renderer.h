@@ -34,6 +34,8 @@ enum class DebugChannel {
     Anisotropy, AnisotropyDirection,  // KHR_materials_anisotropy: strength (grey), direction (RG = xy * 0.5 + 0.5)
     Iridescence = 28,      // KHR_materials_iridescence strength (grey)
     IridescenceThickness,  // the film's thickness in micrometres (grey, 1 = 1000 nm and above)
+    DiffuseTransmission = 30,  // KHR_materials_diffuse_transmission factor (grey)
+    DiffuseTransmissionColor,  // its colour (sRGB)
 };
 std::optional<DebugChannel> parse_debug_channel(const std::string& name);
 std::vector<std::string> debug_channel_names();

@@ -61,17 +61,24 @@ enum : FeatureMask {
     Iridescence = FeatureMask(1) << 33,              // MATERIAL_IRIDESCENCE: the thin film (Material::has_iridescence)
     IridescenceMap = FeatureMask(1) << 34,           // iridescenceTexture
     IridescenceThicknessMap = FeatureMask(1) << 35,  // iridescenceThicknessTexture
+    // KHR_materials_diffuse_transmission: the model bit and maps 18 and 19
+    // (MaterialMap::DiffuseTransmission, ::DiffuseTransmissionColor).
+    DiffuseTransmission = FeatureMask(1) << 36,          // MATERIAL_DIFFUSE_TRANSMISSION (Material::has_diffuse_transmission)
+    DiffuseTransmissionMap = FeatureMask(1) << 37,       // diffuseTransmissionTexture
+    DiffuseTransmissionColorMap = FeatureMask(1) << 38,  // diffuseTransmissionColorTexture
 };
-constexpr int kCount = 36;
+constexpr int kCount = 39;
 constexpr int kFirstMap = 12;
-constexpr int kMapCount = 18;
+constexpr int kMapCount = 20;
 // Bit positions below kCount that no feature uses (none now).
 constexpr FeatureMask kReserved = 0;
 constexpr FeatureMask kAll = ((FeatureMask(1) << kCount) - 1) & ~kReserved;
 // The bit position of each map, in fresnel::MaterialMap order: maps 0..12 are bits 12..24,
 // the transmission maps (13, 14) bits 28 and 29, the anisotropy map (15) bit 32, the
-// iridescence maps (16, 17) bits 34 and 35. A new map appends its position here.
-constexpr int kMapBitPositions[kMapCount] = {12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 28, 29, 32, 34, 35};
+// iridescence maps (16, 17) bits 34 and 35, the diffuse transmission maps (18, 19) bits 37 and
+// 38. A new map appends its position here.
+constexpr int kMapBitPositions[kMapCount] = {12, 13, 14, 15, 16, 17, 18, 19, 20, 21,
+                                             22, 23, 24, 28, 29, 32, 34, 35, 37, 38};
 // The bit of map `i` (fresnel::MaterialMap(i)).
 constexpr FeatureMask map_bit(int i) { return FeatureMask(1) << kMapBitPositions[i]; }
 constexpr FeatureMask all_map_bits() {
@@ -120,7 +127,9 @@ std::vector<std::string> feature_defines(FeatureMask mask);
 //  - transmission is not shaded for unlit (without the debug view) or specular-glossiness
 //    materials; with it, its two maps always come together (white stands in: factor * 1);
 //  - the iridescence maps need the iridescence and come together (white stands in: factor * 1,
-//    mix(minimum, maximum, 1) = maximum, the thickness without a map); unlit drops the film.
+//    mix(minimum, maximum, 1) = maximum, the thickness without a map); unlit drops the film;
+//  - the diffuse transmission maps need the diffuse transmission and come together (white stands
+//    in: factor * 1, colour * 1); unlit drops it.
 // Normal maps and the anisotropy map are never stood in for: a flat normal texel is not
 // exactly (0, 0, 1), a white anisotropy texel is direction (1, 1).
 FeatureMask canonical_features(FeatureMask mask);

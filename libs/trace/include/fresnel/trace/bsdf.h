@@ -9,6 +9,8 @@
 //   transmission  KHR_materials_transmission, thin-walled: the Khronos BTDF's lobe, GGX
 //              visible normals at apply_ior_to_roughness(alpha, ior) mirrored through the
 //              surface (transmission.h); it takes the share T of the diffuse lobe's weight
+//   diffuse transmission  KHR_materials_diffuse_transmission: cosine-weighted about -n, with the
+//              share of the diffuse lobe's weight the factor gives, its colour for the base's
 // and the pdf of a direction is the mixture's (one-sample MIS over the lobes).
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
@@ -24,6 +26,7 @@ inline constexpr float kMinTraceRoughness = 0.03f;
 
 struct BsdfLobes {
     float diffuse = 0, specular = 0, clearcoat = 0, transmission = 0;  // probabilities, summing to 1 (or all 0)
+    float diffuse_transmission = 0;
 };
 BsdfLobes lobe_probabilities(const EvaluatedMaterial& m, glm::vec3 v);
 
@@ -32,6 +35,7 @@ struct BsdfSample {
     glm::vec3 f_cos{0.0f};  // f(v, l) cos(theta_l)
     float pdf = 0.0f;       // over solid angle; 0: no sample (absorbed)
     bool transmitted = false;  // through the surface (the transmission lobe): l is below it
+    bool diffuse_transmitted = false;  // ... by the diffuse transmission lobe (no volume to cross)
 };
 
 // The BSDF at one shading point, seen from v (unit, towards the viewer; m.normal and
