@@ -114,6 +114,23 @@ bool decode_jpeg_turbo(std::span<const std::uint8_t> bytes, const std::string& n
 }
 }  // namespace
 
+namespace {
+// The formats stb_image reads besides PNG, JPEG and GIF (TGA, BMP, PNM, PSD, PIC) store their
+// pixels raw or run-length encoded, at most 128 pixels a byte; stb_image reads zeros past the
+// end of the data, so without this a 19-byte TGA header would become a 4212x3963 texture.
+void check_plausible_size(std::span<const std::uint8_t> bytes, const std::string& name, int w, int h) {
+    auto starts = [&](const char* magic, std::size_t n) {
+        return bytes.size() >= n && std::memcmp(bytes.data(), magic, n) == 0;
+    };
+    if (starts("\x89PNG", 4) || starts("\xFF\xD8", 2) || starts("GIF8", 4)) return;  // compressed streams
+    const std::uint64_t pixels = std::uint64_t(w) * std::uint64_t(h);
+    if (pixels > std::uint64_t(bytes.size()) * 128)
+        throw Error(name, "", "the image declares " + std::to_string(w) + "x" + std::to_string(h) + " pixels in " +
+                                  std::to_string(bytes.size()) + " bytes of uncompressed or run-length data: "
+                                  "truncated, or not an image");
+}
+}  // namespace
+
 Image8 decode_image8(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits) {
     if (bytes.empty()) throw Error(name, "", "image data is empty");
     if (bytes.size() > std::size_t(INT32_MAX)) throw Error(name, "", "image data is too large");
@@ -122,6 +139,7 @@ Image8 decode_image8(std::span<const std::uint8_t> bytes, const std::string& nam
     if (!peek_image_size(bytes, w, h))
         throw Error(name, "", std::string("not a decodable image: ") + (stbi_failure_reason() ? stbi_failure_reason() : "unknown format"));
     check_size(name, w, h, 4, limits);
+    check_plausible_size(bytes, name, w, h);
     int comp = 0;
     stbi_uc* px = stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &comp, 4);
     if (!px) throw Error(name, "", std::string("image decoding failed: ") + (stbi_failure_reason() ? stbi_failure_reason() : "?"));

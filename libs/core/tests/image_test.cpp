@@ -262,6 +262,24 @@ TEST(ImageDecode, RejectsTruncatedPng) {
     }
 }
 
+// fuzz_webp: 19 bytes that stb_image takes for a greyscale TGA of 4212x3963 (it reads zeros
+// past the end). Refused by size before decoding; a real TGA of that header still decodes.
+TEST(ImageDecode, TgaHeaderClaimingMorePixelsThanItsBytesIsRefused) {
+    const std::vector<std::uint8_t> tiny = {0xaa, 0x00, 0x03, 0x01, 0x00, 0x00, 0x00, 0x00, 0x61, 0x73,
+                                            0x73, 0x65, 0x74, 0x10, 0x7b, 0x0f, 0x0f, 0xe5, 0x00};
+    try {
+        fresnel::decode_image8(tiny, "tiny.tga");
+        FAIL() << "decoded";
+    } catch (const fresnel::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("pixels in 19 bytes"), std::string::npos) << e.what();
+    }
+    // An uncompressed 3x2 greyscale TGA (18-byte header, 6 pixel bytes) is fine.
+    std::vector<std::uint8_t> tga = {0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 3, 0, 2, 0, 8, 0, 10, 20, 30, 40, 50, 60};
+    fresnel::Image8 img = fresnel::decode_image8(tga, "small.tga");
+    EXPECT_EQ(img.width, 3);
+    EXPECT_EQ(img.height, 2);
+}
+
 TEST(ImageDecode, Crc32Reference) {
     // Sanity check of the test's own CRC: the standard check value.
     const char* s = "123456789";
