@@ -115,7 +115,7 @@ bool decode_jpeg_turbo(std::span<const std::uint8_t> bytes, const std::string& n
 }  // namespace
 
 namespace {
-// The formats stb_image reads besides PNG, JPEG and GIF (TGA, BMP, PNM, PSD, PIC) store their
+// The formats stb_image reads here besides PNG, JPEG and GIF (TGA, BMP) store their
 // pixels raw or run-length encoded, at most 128 pixels a byte; stb_image reads zeros past the
 // end of the data, so without this a 19-byte TGA header would become a 4212x3963 texture.
 void check_plausible_size(std::span<const std::uint8_t> bytes, const std::string& name, int w, int h) {

@@ -4,6 +4,12 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 // Size limits are ours (ImageLimits, checked from the header before decoding), not stb's.
 #define STBI_FAILURE_USERMSG
+// Only the formats models bring (PNG, JPEG; BMP, TGA and GIF in OBJ/MTL material libraries; HDR):
+// Debian's stb_image 2.27's 16-bit PNM path overflows its buffer on a truncated file
+// (fuzz_webp, fuzz/regressions/webp/pnm-16-bit-truncated), and PSD and PIC are no texture formats.
+#define STBI_NO_PNM
+#define STBI_NO_PSD
+#define STBI_NO_PIC
 // PNG deflate through zlib (level 6): as small as stb's own compressor at its level 8, and
 // about twice as fast (a 512^2 frame: 12 ms against ~25 ms).
 #ifndef FRESNEL_NO_ZLIB  // the web build: stb's own deflate (Emscripten's zlib is a port it would download)

@@ -280,6 +280,15 @@ TEST(ImageDecode, TgaHeaderClaimingMorePixelsThanItsBytesIsRefused) {
     EXPECT_EQ(img.height, 2);
 }
 
+// fuzz_webp: a truncated 16-bit PNM made Debian's stb_image write past its buffer; PNM is not read.
+TEST(ImageDecode, PnmIsNotRead) {
+    const std::string pnm = "P6 1 1 661 ";
+    std::vector<std::uint8_t> bytes(pnm.begin(), pnm.end());
+    bytes.push_back(0);
+    Error e = capture_error([&] { decode_image8(bytes, "x.ppm"); });
+    EXPECT_EQ(e.file(), "x.ppm");
+}
+
 TEST(ImageDecode, Crc32Reference) {
     // Sanity check of the test's own CRC: the standard check value.
     const char* s = "123456789";
