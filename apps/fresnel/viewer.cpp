@@ -339,11 +339,11 @@ private:
                 std::string gpu = gpu_ms_ >= 0.0 ? std::to_string(gpu_ms_) : std::string("null");
                 gpu::LiveObjects gl = gpu::Device().live_objects();
                 std::printf("{\"frame_ms\":%.2f,\"gpu_ms\":%s,\"width\":%d,\"height\":%d,\"draw_calls\":%d,"
-                            "\"triangles\":%zu,\"programs\":%zu,\"rss_kb\":%ld,\"gl_objects\":{\"total\":%d,"
+                            "\"triangles\":%zu,\"programs\":%zu,\"rss_kb\":%ld,\"texture_bytes\":%zu,\"gl_objects\":{\"total\":%d,"
                             "\"buffers\":%d,\"vertex_arrays\":%d,\"textures\":%d,\"renderbuffers\":%d,"
                             "\"framebuffers\":%d,\"programs\":%d,\"shaders\":%d}}\n",
                             frame_ms_, gpu.c_str(), fb_.width, fb_.height, stats_.draw_calls, stats_.triangles,
-                            renderer_->program_count(), resident_kb(), gl.total(), gl.buffers, gl.vertex_arrays,
+                            renderer_->program_count(), resident_kb(), renderer_->texture_bytes(), gl.total(), gl.buffers, gl.vertex_arrays,
                             gl.textures, gl.renderbuffers, gl.framebuffers, gl.programs, gl.shaders);
                 std::fflush(stdout);
                 continue;
@@ -1281,7 +1281,8 @@ private:
             ImGui::Text("%dx%d pixels, frame %.1f ms (CPU, draw + finish)", fb_.width, fb_.height, frame_ms_);
             if (gpu_ms_ >= 0.0) ImGui::Text("GPU %.2f ms (timer query)", gpu_ms_);
             else ImGui::TextDisabled("GPU time: this context has no timer queries (OpenGL ES 3.0)");
-            ImGui::Text("resident memory %.1f MiB", double(resident_kb()) / 1024.0);
+            ImGui::Text("resident memory %.1f MiB, texture memory %.1f MiB", double(resident_kb()) / 1024.0,
+                        double(renderer_->texture_bytes()) / (1024.0 * 1024.0));
             ImGui::Text("%d draw calls, %zu triangles, %zu programs", stats_.draw_calls, stats_.triangles,
                         renderer_->program_count());
             ImGui::TextWrapped("%s", window_->context().renderer().c_str());

@@ -435,6 +435,14 @@ TEST_F(View, HundredOpensKeepResidentMemoryFlat) {
         EXPECT_GT(n[0], 0) << key;
         EXPECT_EQ(n[1], n[0]) << key;
     }
+    std::vector<long> tex;
+    for (std::size_t at = stats.find("\"texture_bytes\":"); at != std::string::npos;
+         at = stats.find("\"texture_bytes\":", at + 1))
+        tex.push_back(std::atol(stats.c_str() + at + 16));
+    ASSERT_EQ(tex.size(), 2u) << stats;
+    std::printf("texture memory after 20 opens %ld bytes, after 100 %ld\n", tex[0], tex[1]);
+    EXPECT_GT(tex[0], 0);
+    EXPECT_EQ(tex[1], tex[0]);
     std::vector<long> programs = field("programs");
     ASSERT_EQ(programs.size(), 2u);
     EXPECT_LE(programs[1], programs[0] + 8);

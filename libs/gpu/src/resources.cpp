@@ -55,6 +55,27 @@ FormatInfo info(TextureFormat f) {
     }
     return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
 }
+std::size_t texel_bytes(TextureFormat f) {
+    switch (f) {
+        case TextureFormat::RGBA8:
+        case TextureFormat::SRGB8_ALPHA8:
+        case TextureFormat::RG16F: return 4;
+        case TextureFormat::RGBA16F: return 8;
+        case TextureFormat::RGBA32F: return 16;
+        case TextureFormat::R8: return 1;
+    }
+    return 4;
+}
+// Texels of a w x h image and, with `chain`, its mip levels down to 1 x 1.
+std::size_t texels(int w, int h, bool chain) {
+    std::size_t n = 0;
+    for (;;) {
+        n += std::size_t(w) * std::size_t(h);
+        if (!chain || (w == 1 && h == 1)) return n;
+        w = std::max(1, w / 2);
+        h = std::max(1, h / 2);
+    }
+}
 // 32-bit float textures filter linearly on GL 3.3; on ES 3.0 only with OES_texture_float_linear
 // (without it a LINEAR-filtered RGBA32F texture is incomplete and samples as zero).
 bool filterable(TextureFormat f) {
@@ -74,6 +95,7 @@ Texture Texture::create_2d(int width, int height, TextureFormat format, const vo
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexImage2D(GL_TEXTURE_2D, 0, fi.internal, width, height, 0, fi.format, fi.type, data);
     if (mipmaps) glGenerateMipmap(GL_TEXTURE_2D);
+    t.bytes_ = texels(width, height, mipmaps) * texel_bytes(format);
     const bool linear = filterable(format);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
                     linear ? (mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR) : (mipmaps ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST));
@@ -98,9 +120,11 @@ Texture Texture::create_2d_levels(TextureFormat format, std::span<const MipLevel
     glBindTexture(GL_TEXTURE_2D, t.id_);
     FormatInfo fi = info(format);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    for (std::size_t l = 0; l < levels.size(); ++l)
+    for (std::size_t l = 0; l < levels.size(); ++l) {
         glTexImage2D(GL_TEXTURE_2D, GLint(l), fi.internal, levels[l].width, levels[l].height, 0, fi.format, fi.type,
                      levels[l].data);
+        t.bytes_ += texels(levels[l].width, levels[l].height, false) * texel_bytes(format);
+    }
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, GLint(levels.size() - 1));
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, levels.size() > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -118,6 +142,7 @@ Texture Texture::create_2d_multisample(int width, int height, TextureFormat form
     glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, t.id_);
     // Fixed sample locations, as renderbuffers have: the depth renderbuffer attaches beside it.
     glTexImage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, samples, info(format).internal, width, height, GL_TRUE);
+    t.bytes_ = texels(width, height, false) * texel_bytes(format) * std::size_t(std::max(samples, 1));
     glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
     return t;
 }
@@ -130,10 +155,12 @@ Texture Texture::create_cube(int size, TextureFormat format, int levels) {
     glGenTextures(1, &t.id_);
     glBindTexture(GL_TEXTURE_CUBE_MAP, t.id_);
     FormatInfo fi = info(format);
-    for (int level = 0; level < levels; ++level)
+    for (int level = 0; level < levels; ++level) {
         for (int face = 0; face < 6; ++face)
             glTexImage2D(GLenum(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face), level, fi.internal, std::max(1, size >> level),
                          std::max(1, size >> level), 0, fi.format, fi.type, nullptr);
+        t.bytes_ += 6 * texels(std::max(1, size >> level), std::max(1, size >> level), false) * texel_bytes(format);
+    }
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, levels - 1);
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);

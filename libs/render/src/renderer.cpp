@@ -775,6 +775,16 @@ bool gpu_animatable(const Scene& scene) {
 }
 
 std::size_t Renderer::program_count() const { return impl_->shaders.size(); }
+std::size_t Renderer::texture_bytes() const {
+    const Impl& m = *impl_;
+    std::size_t n = 0;
+    for (const auto& [key, t] : m.textures) n += t.texture.bytes();
+    for (const gpu::Texture* t : {&m.resolved, &m.msaa_texture, &m.output, &m.transmission_texture, &m.env_specular,
+                                  &m.env_irradiance, &m.env_sheen, &m.charlie_lut, &m.lut_texture})
+        n += t->bytes();
+    if (m.white_map) n += m.white_map->bytes();
+    return n;
+}
 void Renderer::set_shader_folder(const std::string& folder) { impl_->shaders.set_source_folder(folder); }
 std::string Renderer::reload_shaders() { return impl_->shaders.reload(); }
 

@@ -116,8 +116,12 @@ public:
     int height() const { return height_; }
     Kind kind() const { return kind_; }
     TextureFormat format() const { return format_; }
+    // The texel storage it was created with: every mip level, face and sample (what the
+    // statistics panel reports as texture memory; drivers may pad).
+    std::size_t bytes() const { return bytes_; }
 
 private:
+    std::size_t bytes_ = 0;
     int width_ = 0, height_ = 0;
     Kind kind_ = Kind::Tex2D;
     TextureFormat format_ = TextureFormat::RGBA8;

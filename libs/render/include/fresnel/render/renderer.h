@@ -168,6 +168,9 @@ public:
 
     // Number of shader variants compiled so far (they are cached by feature set).
     std::size_t program_count() const;
+    // Bytes of texel storage the renderer holds on the GPU: the scene's textures, the
+    // environment's maps and tables, and the render targets (textures; renderbuffers aside).
+    std::size_t texture_bytes() const;
 
     // The uploaded texture of the scene's texture `texture` (for a GUI's thumbnails): the
     // GPU layer's texture name and size; nothing when the renderer has not uploaded it. The
