@@ -151,6 +151,31 @@ exit $rc
         return m.psnr_db;
     }
 
+    // The last `fresnel render` line a session printed (Ctrl+C), or "" (a failure) when none.
+    static std::string last_command_line(const std::string& out) {
+        std::size_t at = out.rfind("fresnel render ");
+        if (at == std::string::npos) return {};
+        return out.substr(at, out.find('\n', at) - at);
+    }
+    // Runs a copied command line (its -o view.png) with the real program in dir_ and returns
+    // its PSNR against the session's F12 screenshot (fresnel-*.png in dir_); -1 on failure.
+    double copied_command_vs_f12(const std::string& line) {
+        fs::path screenshot;
+        for (const auto& e : fs::directory_iterator(dir_))
+            if (e.path().filename().string().starts_with("fresnel-")) screenshot = e.path();
+        if (screenshot.empty()) {
+            ADD_FAILURE() << "no F12 screenshot in " << dir_;
+            return -1.0;
+        }
+        std::string render = line.substr(std::string("fresnel").size());
+        Result r = run_shell("cd " + quote(dir_.string()) + " && " + quote(FRESNEL_EXE) + render);
+        if (r.exit_code != 0) {
+            ADD_FAILURE() << r.err << line;
+            return -1.0;
+        }
+        return fresnel::compare_images(fresnel::read_image8(dir_ / "view.png"), fresnel::read_image8(screenshot), false)
+            .psnr_db;
+    }
     std::string display_prefix_;
     fs::path dir_;
 };
@@ -242,24 +267,14 @@ echo "exit $?" >>err.txt
     std::system(cmd.c_str());  // checked through what it wrote
     std::string err = slurp(dir_ / "err.txt"), out = slurp(dir_ / "out.txt");
     EXPECT_NE(err.find("exit 0"), std::string::npos) << err;
-    std::size_t at = out.rfind("fresnel render ");  // the second: after the drag and the resize
-    ASSERT_NE(at, std::string::npos) << out << err;
-    std::string line = out.substr(at, out.find('\n', at) - at);
+    std::string line = last_command_line(out);  // the second: after the drag and the resize
+    ASSERT_FALSE(line.empty()) << out << err;
     // The drag turned the camera (40 px right, 20 px down), and the window was resized.
     EXPECT_NE(line.find("--yaw -12 --pitch 6"), std::string::npos) << line;
     EXPECT_NE(line.find("--size 600x340"), std::string::npos) << line;
-    fs::path screenshot;
-    for (const auto& e : fs::directory_iterator(dir_))
-        if (e.path().filename().string().starts_with("fresnel-")) screenshot = e.path();
-    ASSERT_FALSE(screenshot.empty()) << err;
-    // Run the copied command (its -o view.png) with the real program.
-    std::string render = line.substr(std::string("fresnel").size());
-    Result r = run_shell("cd " + quote(dir_.string()) + " && " + quote(FRESNEL_EXE) + render);
-    ASSERT_EQ(r.exit_code, 0) << r.err << line;
-    fresnel::ImageMetrics m =
-        fresnel::compare_images(fresnel::read_image8(dir_ / "view.png"), fresnel::read_image8(screenshot), false);
-    std::printf("copied command vs F12 screenshot: %.1f dB\n", m.psnr_db);
-    EXPECT_GE(m.psnr_db, 40.0) << line;
+    double psnr = copied_command_vs_f12(line);
+    std::printf("copied command vs F12 screenshot: %.1f dB\n", psnr);
+    EXPECT_GE(psnr, 40.0) << line << err;
 }
 
 // Drag and drop as a file manager does it (XDND, by tests/cli/xdnd_drop.cpp): a broken glTF
@@ -323,22 +338,13 @@ echo "exit $?" >>err.txt
     // The loader's message, naming the file and the place.
     EXPECT_NE(err.find("broken.gltf"), std::string::npos) << err;
     EXPECT_NE(err.find("/nodes/0"), std::string::npos) << err;
-    std::size_t at = out.rfind("fresnel render ");
-    ASSERT_NE(at, std::string::npos) << out << err;
-    std::string line = out.substr(at, out.find('\n', at) - at);
+    std::string line = last_command_line(out);
+    ASSERT_FALSE(line.empty()) << out << err;
     EXPECT_NE(line.find("BoxTextured.glb"), std::string::npos) << line;
     EXPECT_NE(line.find("studio_small_03_1k.hdr"), std::string::npos) << line;
-    fs::path screenshot;
-    for (const auto& e : fs::directory_iterator(dir_))
-        if (e.path().filename().string().starts_with("fresnel-")) screenshot = e.path();
-    ASSERT_FALSE(screenshot.empty()) << err;
-    std::string render = line.substr(std::string("fresnel").size());
-    Result r = run_shell("cd " + quote(dir_.string()) + " && " + quote(FRESNEL_EXE) + render);
-    ASSERT_EQ(r.exit_code, 0) << r.err << line;
-    fresnel::ImageMetrics m =
-        fresnel::compare_images(fresnel::read_image8(dir_ / "view.png"), fresnel::read_image8(screenshot), false);
-    std::printf("after the drops, copied command vs F12 screenshot: %.1f dB\n", m.psnr_db);
-    EXPECT_GE(m.psnr_db, 40.0) << line;
+    double psnr = copied_command_vs_f12(line);
+    std::printf("after the drops, copied command vs F12 screenshot: %.1f dB\n", psnr);
+    EXPECT_GE(psnr, 40.0) << line << err;
 #endif
 }
 
