@@ -69,7 +69,18 @@ x=$!
 i=0
 while [ ! -s "$d/n" ] && [ $i -lt 400 ]; do sleep 0.05; i=$((i + 1)); done
 if [ ! -s "$d/n" ]; then kill $x 2>/dev/null; cat "$d/log" >&2; rm -rf "$d"; exit 97; fi
-DISPLAY=:$(cat "$d/n") "$@"
+export DISPLAY=:$(cat "$d/n")
+# The number comes once the server listens; a client's first answer says it serves (CI once saw
+# GLFW fail to open a display the server had just named).
+if command -v xdotool >/dev/null 2>&1; then
+  i=0
+  until xdotool getdisplaygeometry >/dev/null 2>&1; do
+    i=$((i + 1))
+    if [ $i -ge 200 ]; then echo "Xvfb on $DISPLAY never answered" >&2; cat "$d/log" >&2; kill $x; rm -rf "$d"; exit 97; fi
+    sleep 0.05
+  done
+fi
+"$@"
 rc=$?
 kill $x 2>/dev/null
 wait $x 2>/dev/null

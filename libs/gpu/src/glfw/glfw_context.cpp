@@ -26,11 +26,17 @@ public:
 private:
     GLFWwindow* window_;
 };
+// GLFW's own account of its last error ("X11: Failed to open display :3"), or "".
+std::string glfw_reason() {
+    const char* description = nullptr;
+    glfwGetError(&description);
+    return description ? std::string(": ") + description : std::string();
+}
 }  // namespace
 
 std::unique_ptr<Context> create_window_context(int width, int height, const std::string& title,
                                                const ContextOptions& options) {
-    if (!glfwInit()) throw Error("GLFW", "", "cannot initialise GLFW (no display?)");
+    if (!glfwInit()) throw Error("GLFW", "", "cannot initialise GLFW (no display?)" + glfw_reason());
     const bool es = options.api == Api::OpenGLES30;
     glfwWindowHint(GLFW_CLIENT_API, es ? GLFW_OPENGL_ES_API : GLFW_OPENGL_API);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
@@ -44,8 +50,9 @@ std::unique_ptr<Context> create_window_context(int width, int height, const std:
     glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);  // high-DPI: the size is in unscaled screen units
     GLFWwindow* w = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (!w) {
+        const std::string reason = glfw_reason();
         glfwTerminate();
-        throw Error("GLFW", "", std::string("cannot create an ") + api_name(options.api) + " window");
+        throw Error("GLFW", "", std::string("cannot create an ") + api_name(options.api) + " window" + reason);
     }
     glfwMakeContextCurrent(w);
     auto c = std::make_unique<GlfwContext>(w);
