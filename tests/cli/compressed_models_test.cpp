@@ -6,9 +6,12 @@
 // so a loader that ignored it could not pass. `meshopt` at its default level stores
 // normals as 8-bit octahedral vectors (gltf-transform's choice), which moves highlights:
 // ~42 dB against the original on DamagedHelmet. That variant is checked against the same
-// file decoded by gltf-transform's own decoders instead (tests/cli/gltf_decompress.cjs,
-// >= 60 dB: meshoptimizer 0.18's filter rounds 0.2 % of components one step away from the
-// JavaScript decoder's), and `meshopt --level medium` (no filters) against the original.
+// file decoded by reference decoders instead (tests/cli/gltf_decompress.cjs: meshoptimizer's
+// reference decoder, whose filter rounding fresnel's own filters reproduce byte for byte,
+// and Draco's JavaScript build): the same vertex data renders the same image, >= 80 dB
+// (99 is the cap). Decoding with Debian's meshoptimizer 0.18 filters moved 0.2 % of the
+// 8-bit normal components one step, which gave 56-67 dB depending on the machine.
+// `meshopt --level medium` (no filters) is checked against the original.
 // Skips without ../shared or gltf-transform.
 #include <gtest/gtest.h>
 
@@ -173,13 +176,13 @@ TEST_P(CompressedModels, RenderLikeTheOriginal) {
 
 const Case kCases[] = {
     {"DamagedHelmet", "draco", "", "KHR_draco_mesh_compression", false, 45},
-    {"DamagedHelmet", "draco", "", "KHR_draco_mesh_compression", true, 60},
-    {"DamagedHelmet", "meshopt", "", "EXT_meshopt_compression", true, 60},
+    {"DamagedHelmet", "draco", "", "KHR_draco_mesh_compression", true, 80},
+    {"DamagedHelmet", "meshopt", "", "EXT_meshopt_compression", true, 80},
     {"DamagedHelmet", "meshopt", "--level medium", "EXT_meshopt_compression", false, 45},
     {"DamagedHelmet", "quantize", "", "KHR_mesh_quantization", false, 45},
     {"DamagedHelmet", "webp", "--lossless", "EXT_texture_webp", false, 45},
     {"Duck", "draco", "", "KHR_draco_mesh_compression", false, 45},
-    {"Duck", "meshopt", "", "EXT_meshopt_compression", true, 60},
+    {"Duck", "meshopt", "", "EXT_meshopt_compression", true, 80},
     {"Duck", "meshopt", "--level medium", "EXT_meshopt_compression", false, 45},
     {"Duck", "quantize", "", "KHR_mesh_quantization", false, 45},
     {"Duck", "webp", "--lossless", "EXT_texture_webp", false, 45},

@@ -2,6 +2,8 @@
 
 #include <meshoptimizer.h>
 
+#include "meshopt_filters.h"
+
 namespace fresnel::gltf {
 
 namespace {
@@ -90,9 +92,10 @@ void decode_meshopt_views(const JsonReader& r, json& doc, std::vector<std::vecto
             fail(ptr, "the " + std::to_string(length) + " compressed bytes do not decode to " + std::to_string(count) + " " +
                           mode + " elements of " + std::to_string(stride) + " bytes (meshoptimizer error " +
                           std::to_string(rc) + ")");
-        if (filter == "OCTAHEDRAL") meshopt_decodeFilterOct(out.data(), count, stride);
-        else if (filter == "QUATERNION") meshopt_decodeFilterQuat(out.data(), count, stride);
-        else if (filter == "EXPONENTIAL") meshopt_decodeFilterExp(out.data(), count, stride);
+        // The filters are ours (meshopt_filters.h): the reference decoder's rounding on every machine.
+        if (filter == "OCTAHEDRAL") meshopt_filter_octahedral(out.data(), count, stride);
+        else if (filter == "QUATERNION") meshopt_filter_quaternion(out.data(), count, stride);
+        else if (filter == "EXPONENTIAL") meshopt_filter_exponential(out.data(), count, stride);
         // The view now reads the decoded bytes like any other.
         buffers.push_back(std::move(out));
         v["buffer"] = buffers.size() - 1;

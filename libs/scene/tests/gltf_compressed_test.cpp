@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -18,6 +20,7 @@
 #include <webp/encode.h>
 
 #include "fresnel/scene/gltf_loader.h"
+#include "../src/meshopt_filters.h"
 
 using namespace fresnel;
 using json = nlohmann::json;
@@ -173,6 +176,97 @@ TEST(GltfMeshopt, OctahedralFilterNormals) {
             EXPECT_NEAR(p.normals[i].x, 0.6f, 0.03f);
             EXPECT_NEAR(p.normals[i].z, 0.8f, 0.03f);
         }
+}
+
+// ---- the filters, byte for byte as the extension's reference decoder -----------------
+// The expected hashes are FNV-1a 64 of what meshoptimizer 1.2's js/meshopt_decoder_reference.js
+// writes for the same inputs (the inputs come from the same xorshift32 stream; the script that
+// printed them is in the comment of each case). Debian's meshoptimizer 0.18 decodes 8-bit
+// octahedral normals within one step of these; ours must match them exactly.
+
+std::uint64_t fnv1a(const std::vector<std::uint8_t>& bytes) {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    for (std::uint8_t b : bytes) h = (h ^ b) * 0x100000001b3ull;
+    return h;
+}
+
+struct Xorshift32 {
+    std::uint32_t s = 2463534242u;
+    std::uint32_t operator()() {
+        s ^= s << 13;
+        s ^= s >> 17;
+        s ^= s << 5;
+        return s;
+    }
+};
+
+template <typename T>
+std::vector<std::uint8_t> bytes_of(const std::vector<T>& v) {
+    std::vector<std::uint8_t> b(v.size() * sizeof(T));
+    std::memcpy(b.data(), v.data(), b.size());
+    return b;
+}
+
+TEST(GltfMeshoptFilters, MatchTheReferenceDecoderExactly) {
+    Xorshift32 rnd;
+    // 8-bit octahedral: every x, y in [-127, 127], one = 127, w = 0x55 (kept).
+    std::vector<std::uint8_t> oct8;
+    for (int x = -127; x <= 127; ++x)
+        for (int y = -127; y <= 127; ++y)
+            oct8.insert(oct8.end(), {std::uint8_t(x & 255), std::uint8_t(y & 255), 127, 0x55});
+    std::vector<std::uint8_t> library = oct8;
+    gltf::meshopt_filter_octahedral(oct8.data(), oct8.size() / 4, 4);
+    EXPECT_EQ(fnv1a(oct8), 0x4920947a9fb36abdull);
+    // Debian's library agrees within one step (the reason for owning these lines).
+    meshopt_decodeFilterOct(library.data(), library.size() / 4, 4);
+    int differ = 0;
+    for (std::size_t i = 0; i < oct8.size(); ++i) {
+        int d = int(std::int8_t(oct8[i])) - int(std::int8_t(library[i]));
+        EXPECT_LE(std::abs(d), 1) << i;
+        differ += d != 0;
+    }
+    std::printf("8-bit octahedral: %d of %zu components one step from meshoptimizer %d.%d's\n", differ, oct8.size(),
+                MESHOPTIMIZER_VERSION / 1000, MESHOPTIMIZER_VERSION % 1000 / 10);
+    // and every decoded normal has length 127 to within rounding
+    for (std::size_t i = 0; i < oct8.size(); i += 4) {
+        double x = std::int8_t(oct8[i]), y = std::int8_t(oct8[i + 1]), z = std::int8_t(oct8[i + 2]);
+        EXPECT_NEAR(std::sqrt(x * x + y * y + z * z), 127.0, 1.5) << i;
+        EXPECT_EQ(oct8[i + 3], 0x55);
+    }
+
+    // 16-bit octahedral: one in [1, 32767], x and y in [-one, one].
+    std::vector<std::int16_t> oct16;
+    for (int i = 0; i < 20000; ++i) {
+        int one = 1 + int(rnd() % 32767);
+        int x = int(rnd() % std::uint32_t(2 * one + 1)) - one;
+        int y = int(rnd() % std::uint32_t(2 * one + 1)) - one;
+        int w = int(rnd() & 0x7fff);
+        oct16.insert(oct16.end(), {std::int16_t(x), std::int16_t(y), std::int16_t(one), std::int16_t(w)});
+    }
+    auto b16 = bytes_of(oct16);
+    gltf::meshopt_filter_octahedral(b16.data(), b16.size() / 8, 8);
+    EXPECT_EQ(fnv1a(b16), 0x72d5ebd4aafee488ull);
+
+    // Quaternions: any 16-bit words, hostile scales included.
+    std::vector<std::uint16_t> quat;
+    for (int i = 0; i < 20000 * 4; ++i) quat.push_back(std::uint16_t(rnd() & 0xffff));
+    auto bq = bytes_of(quat);
+    gltf::meshopt_filter_quaternion(bq.data(), bq.size() / 8, 8);
+    EXPECT_EQ(fnv1a(bq), 0x80f4fa5620463639ull);
+
+    // Exponential: any 32-bit words, three per element.
+    std::vector<std::uint32_t> expo;
+    for (int i = 0; i < 20000 * 3; ++i) expo.push_back(rnd());
+    auto be = bytes_of(expo);
+    gltf::meshopt_filter_exponential(be.data(), be.size() / 12, 12);
+    EXPECT_EQ(fnv1a(be), 0x845771aa4c29c818ull);
+
+    // Hostile 8-bit octahedral: any bytes (a zero or negative `one` gives NaN or infinities,
+    // stored as 0 or wrapped, as a JavaScript Int8Array stores them).
+    std::vector<std::uint8_t> any;
+    for (int i = 0; i < 20000 * 4; ++i) any.push_back(std::uint8_t(rnd() & 255));
+    gltf::meshopt_filter_octahedral(any.data(), any.size() / 4, 4);
+    EXPECT_EQ(fnv1a(any), 0x635f62021bf5a0c1ull);
 }
 
 TEST(GltfMeshopt, EveryTruncationIsAClearError) {
