@@ -368,9 +368,10 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
         cmd->add_option("--msaa", o->msaa, "MSAA samples (1 = off; --shading ogl1 and ogl1-pixel default to 1, as OpenGL 1)")
             ->default_str("4")->check(CLI::Range(1, 16));
         cmd->add_option("--anisotropy", o->anisotropy,
-                        "Anisotropic filtering of the detail maps (base colour, metallic-roughness, normal, specular "
-                        "colour, clearcoat normal) with trilinear samplers, 1 = off. 16 matches the Khronos Sample "
-                        "Viewer's images best; on software rasterisers each level above 1 costs frame time")
+                        "Most anisotropic filtering of the detail maps (base colour, metallic-roughness, normal, "
+                        "specular colour, clearcoat normal, sheen colour) with trilinear samplers, in the shader as "
+                        "SwiftShader filters (the Khronos Sample Viewer's reference images): up to N probes along "
+                        "the footprint's major axis, only where it is that anisotropic. 1 = one trilinear probe")
             ->capture_default_str()->check(CLI::Range(1.0f, 16.0f));
         cmd->add_option("--debug", o->debug,
                         "Show a channel instead of shading: basecolor metallic roughness normal geometry-normal tangent "

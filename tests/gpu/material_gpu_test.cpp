@@ -321,7 +321,7 @@ float tangent_length(const Case& c, const TextureSource& tex, const Point& pt, M
     const SampledTexture* t = tex.get(slot->texture, false);
     glm::vec2 uv = slot->tex_coord == 1 ? pt.p.uv1 : pt.p.uv0;
     uv = glm::vec2(slot->transform * glm::vec3(uv, 1.0f));
-    glm::vec3 tn = glm::vec3(t->sample(uv, c.lod + kNormalMapLodBias)) * 2.0f - 1.0f;
+    glm::vec3 tn = glm::vec3(t->sample(uv, c.lod)) * 2.0f - 1.0f;
     return glm::length(tn * glm::vec3(scale, scale, 1.0f));
 }
 

@@ -59,7 +59,6 @@ public:
             float rho = std::max(glm::length(dx * size), glm::length(dy * size));
             lod = rho > 0.0f ? std::log2(rho) : -INFINITY;
         }
-        if (info.normal_map) lod += kNormalMapLodBias;
         return tex->sample(uv, lod);
     }
 

@@ -364,11 +364,23 @@ struct Renderer::Impl {
         }
     }
 
+    // u_<map>_anisotropy, built once per map.
+    static const std::string& anisotropy_uniform(MaterialMap map) {
+        static const std::array<std::string, kMaterialMapCount> names = [] {
+            std::array<std::string, kMaterialMapCount> n;
+            for (int i = 0; i < kMaterialMapCount; ++i)
+                n[std::size_t(i)] = std::string("u_") + material_map_info(MaterialMap(i)).name + "_anisotropy";
+            return n;
+        }();
+        return names[std::size_t(map)];
+    }
+
     // Anisotropic filtering is a property of the map: it is what agrees with the Khronos
-    // Sample Viewer's texture filtering on the detail maps, and on llvmpipe each
-    // anisotropic lookup costs about as much as the rest of the shading, so the
-    // low-frequency maps (occlusion, emissive, the scalar extension maps) go without:
-    // measured over the Khronos reference views, that moves agreement by <= 0.16 dB.
+    // Sample Viewer's texture filtering on the detail maps, and each anisotropic lookup costs
+    // a software rasteriser more probes, so the low-frequency maps (occlusion, emissive, the
+    // scalar extension maps) go without: measured over the Khronos reference views, that
+    // moves agreement by <= 0.16 dB. The detail maps are filtered in the shader
+    // (sample_detail_map, shaders/material_inputs.glsl).
     static bool anisotropic_map(MaterialMap map) {
         switch (map) {
             case MaterialMap::BaseColor:
@@ -387,6 +399,7 @@ struct Renderer::Impl {
         gpu::Texture texture;
         bool mipmapped = false;
         float anisotropy = -1.0f;  // applied sampler anisotropy; -1 = sampler not set yet
+        bool linear_min = false;   // minification forced to linear (shader anisotropy)
     };
     std::map<TextureKey, GpuTexture> textures;
 
@@ -440,9 +453,18 @@ struct Renderer::Impl {
         }
     }
 
+    // How a slot's texture is filtered anisotropically: not at all, by the sampler (GL's
+    // TEXTURE_MAX_ANISOTROPY), or in the shader (sample_detail_map in material_inputs.glsl).
+    enum class Anisotropic { Off, Sampler, Shader };
+
     // The GL texture for a material's slot with its sampler state, or nullptr when it has
-    // no usable image. `anisotropy` applies to trilinear samplers of anisotropic slots.
-    const gpu::Texture* texture_for(const TextureSlot& ref, bool srgb, bool anisotropic, float anisotropy) {
+    // no usable image. `anisotropy` applies to trilinear samplers with a linear magnification
+    // filter; `shader_anisotropy` (if given) receives what the shader should apply (1: none).
+    // In the shader, the probes are bilinear within a level whatever the sampler's minification
+    // filter, as in SwiftShader (the Khronos references), so such samplers minify linearly.
+    const gpu::Texture* texture_for(const TextureSlot& ref, bool srgb, Anisotropic mode, float anisotropy,
+                                    float* shader_anisotropy = nullptr) {
+        if (shader_anisotropy) *shader_anisotropy = 1.0f;
         if (!usable(ref)) return nullptr;
         TextureKey key{ref.texture, srgb};
         auto it = textures.find(key);
@@ -450,10 +472,14 @@ struct Renderer::Impl {
         GpuTexture& g = it->second;
         const Sampler& sampler = scene->textures[std::size_t(ref.texture)].sampler;
         bool trilinear = sampler.mipmap == MipmapMode::Linear;
-        float want = anisotropic && trilinear && sampler.mag_filter != Filter::Nearest ? std::max(1.0f, anisotropy) : 1.0f;
-        if (g.anisotropy != want) {
+        float level = mode != Anisotropic::Off && trilinear && sampler.mag_filter != Filter::Nearest
+                          ? std::max(1.0f, anisotropy) : 1.0f;
+        float want = mode == Anisotropic::Sampler ? level : 1.0f;
+        bool linear_min = mode == Anisotropic::Shader && level > 1.0f;
+        if (shader_anisotropy && mode == Anisotropic::Shader) *shader_anisotropy = level;
+        if (g.anisotropy != want || g.linear_min != linear_min) {
             gpu::SamplerState ss;
-            ss.min_filter = sampler.min_filter;
+            ss.min_filter = linear_min ? Filter::Linear : sampler.min_filter;
             ss.mipmap = sampler.mipmap;
             ss.mag_filter = sampler.mag_filter;
             ss.wrap_s = sampler.wrap_s;
@@ -461,6 +487,7 @@ struct Renderer::Impl {
             ss.max_anisotropy = want;
             g.texture.set_sampler(ss);
             g.anisotropy = want;
+            g.linear_min = linear_min;
         }
         return &g.texture;
     }
@@ -559,7 +586,7 @@ struct Renderer::Impl {
         // filtering); Blinn-Phong reads map_Kd as the base colour, sRGB.
         const gpu::Texture* map = nullptr;
         const TextureSlot& slot = ph.diffuse_map.slot;
-        if (p.has_uv0 && slot.tex_coord == 0) map = texture_for(slot, blinn, blinn, settings.anisotropy);
+        if (p.has_uv0 && slot.tex_coord == 0) map = texture_for(slot, blinn, blinn ? Anisotropic::Sampler : Anisotropic::Off, settings.anisotropy);
         if (map) raw |= lf::DiffuseMap;
         const FeatureMask features = canonical_legacy_features(raw);
         const gpu::Program& prog = shaders.get("legacy.vert", "legacy.frag", legacy_feature_defines(features));
@@ -652,6 +679,8 @@ struct Renderer::Impl {
         // OpenGL ES 3.0 guarantees) unless it reads more than 10 maps with sheen under an environment.
         static_assert(kMaterialMapCount == feature::kMapCount);
         const gpu::Texture* bound[kMaterialMapCount] = {};
+        std::array<float, kMaterialMapCount> map_anisotropy;
+        map_anisotropy.fill(1.0f);
         const VertexInputs vertex{p.has_uv0, p.has_uv1, p.has_tangent};
         for (int i = 0; i < kMaterialMapCount; ++i) {
             const TextureSlot* slot = mu.maps[std::size_t(i)];
@@ -662,7 +691,9 @@ struct Renderer::Impl {
         for (int i = 0; i < kMaterialMapCount; ++i) {
             if (!(features & raw & feature::map_bit(i))) continue;
             const MaterialMapInfo& info = material_map_info(MaterialMap(i));
-            bound[i] = texture_for(*mu.maps[std::size_t(i)], info.srgb, anisotropic_map(MaterialMap(i)), settings.anisotropy);
+            bound[i] = texture_for(*mu.maps[std::size_t(i)], info.srgb,
+                                   anisotropic_map(MaterialMap(i)) ? Anisotropic::Shader : Anisotropic::Off,
+                                   settings.anisotropy, &map_anisotropy[std::size_t(i)]);
             if (!bound[i]) raw &= ~feature::map_bit(i);
         }
         features = canonical_features(raw);
@@ -732,6 +763,9 @@ struct Renderer::Impl {
             set_ibl_uniforms(prog, settings);
         }
         set_material_uniforms(prog, mu, map_units);
+        for (int i = 0; i < kMaterialMapCount; ++i)
+            if (map_units[std::size_t(i)] >= 0 && anisotropic_map(MaterialMap(i)))
+                prog.set(anisotropy_uniform(MaterialMap(i)), bound[i] == &white ? 1.0f : map_anisotropy[std::size_t(i)]);
         // Lights, packed once per frame (pack_lights).
         set_light_uniforms(prog);
 

@@ -47,10 +47,6 @@
 
 namespace fresnel {
 
-// Normal maps are sampled one mip level sharper (NORMAL_MAP_LOD_BIAS in
-// shaders/material_inputs.glsl explains why).
-inline constexpr float kNormalMapLodBias = -1.0f;
-
 // The texture maps a material can read, in the shader's order (texture units).
 enum class MaterialMap {
     BaseColor,           // baseColorTexture, or the diffuseTexture of specular-glossiness
@@ -80,7 +76,7 @@ struct MaterialMapInfo {
     const char* name;    // GLSL: u_<name>_map, u_<name>_uv, u_<name>_transform
     const char* define;  // GLSL: HAS_<NAME>_MAP
     bool srgb;           // colour data, decoded by the sampler
-    bool normal_map;     // needs a tangent frame; sampled with kNormalMapLodBias
+    bool normal_map;     // needs a tangent frame
 };
 const MaterialMapInfo& material_map_info(MaterialMap map);
 
