@@ -7,8 +7,10 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "huge_pages.h"
 
 int main(int argc, char** argv) {
+    fresnel::cli::restart_with_huge_pages_if_useful(argc, argv);
     CLI::App app{"fresnel: physically based rendering of glTF 2.0 models", "fresnel"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "fresnel " + std::string(fresnel::version()));
