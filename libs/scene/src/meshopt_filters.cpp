@@ -100,8 +100,9 @@ void meshopt_filter_exponential(std::uint8_t* data, std::size_t count, std::size
         const std::uint32_t bits = static_cast<std::uint32_t>(exponent + 127) << 23;
         float scale;
         std::memcpy(&scale, &bits, sizeof scale);
-        // float x 24-bit integer is exact in double; one rounding to float, as the Float32Array store
-        store<float>(e, static_cast<float>(double(scale) * double(mantissa)));
+        // A float product rounds the exact product once, as the reference's double product (exact:
+        // 24 x 24 bits) stored into a Float32Array; past the float range both give infinity.
+        store<float>(e, scale * static_cast<float>(mantissa));
     }
 }
 
