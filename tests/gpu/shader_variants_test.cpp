@@ -1,8 +1,9 @@
 // Every shader variant the renderer can ask for compiles as GLSL ES 3.00 (and every 8th
 // mesh variant and every other program as GLSL 3.30 core too), checked offline with glslang
-// (Debian's glslang-dev, in process, one thread per core): the mesh shaders for every feature set of all_feature_sets()
-// (shader_features.h, the same enumeration the renderer's rules come from) and the
-// other programs (fullscreen.vert, post.frag, sky.frag, brdf_probe.frag, legacy_probe.frag).
+// (Debian's glslang-dev, in process, one thread per core): the mesh shaders for every
+// feature set of all_feature_sets() (shader_features.h, the same enumeration the renderer's
+// rules come from) and the other programs (fullscreen.vert, post.frag, sky.frag,
+// brdf_probe.frag, legacy_probe.frag).
 //
 // A stage's source depends only on the feature #defines it mentions, so each stage
 // is compiled once per distinct set of the bits it reads (the bits it never names

@@ -124,6 +124,7 @@ void set_material_uniforms(const gpu::Program& prog, const MaterialUniforms& u,
         const TextureSlot* slot = u.maps[std::size_t(i)];
         prog.set(base + "_uv", slot ? slot->tex_coord : 0);
         prog.set(base + "_transform", slot ? slot->transform : glm::mat3(1.0f));
+        prog.set(base + "_anisotropy", slot ? u.anisotropy[std::size_t(i)] : 1.0f);  // detail maps only declare it
     }
 }
 

@@ -364,17 +364,6 @@ struct Renderer::Impl {
         }
     }
 
-    // u_<map>_anisotropy, built once per map.
-    static const std::string& anisotropy_uniform(MaterialMap map) {
-        static const std::array<std::string, kMaterialMapCount> names = [] {
-            std::array<std::string, kMaterialMapCount> n;
-            for (int i = 0; i < kMaterialMapCount; ++i)
-                n[std::size_t(i)] = std::string("u_") + material_map_info(MaterialMap(i)).name + "_anisotropy";
-            return n;
-        }();
-        return names[std::size_t(map)];
-    }
-
     // Anisotropic filtering is a property of the map: it is what agrees with the Khronos
     // Sample Viewer's texture filtering on the detail maps, and each anisotropic lookup costs
     // a software rasteriser more probes, so the low-frequency maps (occlusion, emissive, the
@@ -661,7 +650,7 @@ struct Renderer::Impl {
             return;
         }
         // The draw's raw features; canonical_features() turns them into the variant (shader_features.h).
-        const MaterialUniforms mu = material_uniforms(m);
+        MaterialUniforms mu = material_uniforms(m);
         FeatureMask raw = material_features(m);
         if (p.has_normal) raw |= feature::HasNormal;
         if (p.has_tangent) raw |= feature::HasTangent;
@@ -679,8 +668,6 @@ struct Renderer::Impl {
         // OpenGL ES 3.0 guarantees) unless it reads more than 10 maps with sheen under an environment.
         static_assert(kMaterialMapCount == feature::kMapCount);
         const gpu::Texture* bound[kMaterialMapCount] = {};
-        std::array<float, kMaterialMapCount> map_anisotropy;
-        map_anisotropy.fill(1.0f);
         const VertexInputs vertex{p.has_uv0, p.has_uv1, p.has_tangent};
         for (int i = 0; i < kMaterialMapCount; ++i) {
             const TextureSlot* slot = mu.maps[std::size_t(i)];
@@ -693,7 +680,7 @@ struct Renderer::Impl {
             const MaterialMapInfo& info = material_map_info(MaterialMap(i));
             bound[i] = texture_for(*mu.maps[std::size_t(i)], info.srgb,
                                    anisotropic_map(MaterialMap(i)) ? Anisotropic::Shader : Anisotropic::Off,
-                                   settings.anisotropy, &map_anisotropy[std::size_t(i)]);
+                                   settings.anisotropy, &mu.anisotropy[std::size_t(i)]);
             if (!bound[i]) raw &= ~feature::map_bit(i);
         }
         features = canonical_features(raw);
@@ -763,9 +750,6 @@ struct Renderer::Impl {
             set_ibl_uniforms(prog, settings);
         }
         set_material_uniforms(prog, mu, map_units);
-        for (int i = 0; i < kMaterialMapCount; ++i)
-            if (map_units[std::size_t(i)] >= 0 && anisotropic_map(MaterialMap(i)))
-                prog.set(anisotropy_uniform(MaterialMap(i)), bound[i] == &white ? 1.0f : map_anisotropy[std::size_t(i)]);
         // Lights, packed once per frame (pack_lights).
         set_light_uniforms(prog);
 

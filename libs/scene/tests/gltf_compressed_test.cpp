@@ -180,9 +180,9 @@ TEST(GltfMeshopt, OctahedralFilterNormals) {
 
 // ---- the filters, byte for byte as the extension's reference decoder -----------------
 // The expected hashes are FNV-1a 64 of what meshoptimizer 1.2's js/meshopt_decoder_reference.js
-// writes for the same inputs (the inputs come from the same xorshift32 stream; the script that
-// printed them is in the comment of each case). Debian's meshoptimizer 0.18 decodes 8-bit
-// octahedral normals within one step of these; ours must match them exactly.
+// writes for the same inputs (one xorshift32 stream); meshopt_reference_hashes.mjs beside this
+// file prints them. Debian's meshoptimizer 0.18 decodes 8-bit octahedral normals within one
+// step of these; ours must match them exactly.
 
 std::uint64_t fnv1a(const std::vector<std::uint8_t>& bytes) {
     std::uint64_t h = 0xcbf29ce484222325ull;

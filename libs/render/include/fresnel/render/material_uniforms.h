@@ -54,6 +54,14 @@ struct MaterialUniforms {
     glm::vec3 diffuse_transmission_color_factor{1.0f};
     // The slot each map reads (material_map), nullptr for none; index = MaterialMap.
     std::array<const TextureSlot*, kMaterialMapCount> maps{};
+    // The most probes of the shader's anisotropic filter per map (u_<map>_anisotropy, read by
+    // sample_detail_map in material_inputs.glsl for the detail maps): 1 here, one trilinear
+    // probe; the renderer raises it where the map's sampler and --anisotropy allow.
+    std::array<float, kMaterialMapCount> anisotropy = [] {
+        std::array<float, kMaterialMapCount> a{};
+        a.fill(1.0f);
+        return a;
+    }();
 };
 
 MaterialUniforms material_uniforms(const Material& m);
