@@ -72,8 +72,7 @@ void main() {
         frag_color = vec4(1.0, 0.0, 1.0, 1.0);
         return;
     }
-    color = tone_map(u_tonemap, color * u_exposure);
-    if (u_encoding >= 0) color = encode_display(u_encoding, color);
+    color = display_transform(color, u_exposure, u_tonemap, u_encoding);
     frag_color = vec4(color, alpha);
 #else
 #ifdef LEGACY_OGL1_VERTEX

@@ -193,7 +193,6 @@ void main() {
         frag_color = vec4(1.0, 0.0, 1.0, 1.0);  // NaN / Inf shows as magenta
         return;
     }
-    color = tone_map(u_tonemap, color * u_exposure);
-    if (u_encoding >= 0) color = encode_display(u_encoding, color);
+    color = display_transform(color, u_exposure, u_tonemap, u_encoding);
     frag_color = vec4(color, m.base_color.a);  // straight alpha; blending composites
 }

@@ -20,7 +20,6 @@ void main() {
     vec4 q = u_inverse_view_projection * vec4(v_texcoord * 2.0 - 1.0, -1.0, 1.0);
     vec3 dir = normalize(p.xyz / p.w - q.xyz / q.w);
     vec3 c = textureLod(u_specular_env, u_env_rotation * dir, u_lod).rgb * u_env_intensity;
-    c = tone_map(u_tonemap, c * u_exposure);
-    if (u_encoding >= 0) c = encode_display(u_encoding, c);
+    c = display_transform(c, u_exposure, u_tonemap, u_encoding);
     frag_color = vec4(c, 1.0);
 }

@@ -1,5 +1,6 @@
 // Tone mappers; the same functions as libs/core/src/color.cpp (tests/gpu keeps them equal).
 // Selected by TONEMAP: 0 neutral, 1 aces (Narkowicz), 2 aces-hill, 3 reinhard, 4 agx, 5 none.
+#include "color.glsl"
 
 vec3 tone_map_neutral(vec3 color) {
     const float start_compression = 0.8 - 0.04;
@@ -54,5 +55,20 @@ vec3 tone_map(int mapper, vec3 c) {
     if (mapper == 2) return tone_map_aces_hill(c);
     if (mapper == 3) return tone_map_reinhard(c);
     if (mapper == 4) return tone_map_agx(c);
+    return c;
+}
+
+// A frame's display transform: exposure, tone map, then encoding (-1: none, linear output).
+// Where OUTPUT_TONEMAP and OUTPUT_ENCODING are defined (the renderer's output variant,
+// fresnel::OutputVariant) they replace the run-time choice and the compiler keeps one path:
+// on a software rasteriser a switch on a uniform costs every branch (llvmpipe: ~10 % of
+// DamagedHelmet's frame). Without them (probes, tests) the arguments choose.
+vec3 display_transform(vec3 c, float exposure, int tonemap, int encoding) {
+#ifdef OUTPUT_TONEMAP
+    tonemap = OUTPUT_TONEMAP;
+    encoding = OUTPUT_ENCODING;
+#endif
+    c = tone_map(tonemap, c * exposure);
+    if (encoding >= 0) c = encode_display(encoding, c);
     return c;
 }

@@ -259,6 +259,7 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
         j["draw_calls"] = stats.draw_calls;
         j["triangles"] = stats.triangles;
         j["programs"] = renderer.program_count();
+        j["texture_bytes"] = renderer.texture_bytes();
         j["lights"] = resolved.lights.size();
         j["default_lights"] = resolved.default_lights;
         j["environment"] = environment ? environment->source : "none";

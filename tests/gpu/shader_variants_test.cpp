@@ -37,6 +37,7 @@
 #include <thread>
 #include <vector>
 
+#include "fresnel/core/color.h"
 #include "fresnel/material/brdf_model.h"
 #include "fresnel/render/shader_features.h"
 #include "fresnel/render/shader_library.h"
@@ -287,6 +288,32 @@ TEST(ShaderVariants, EveryVariantCompilesAsEs300AndGl330) {
             for (GlslTarget t : {GlslTarget::Es30, GlslTarget::Gl33}) {
                 jobs.push_back({"pbr.frag", 0, false, t, defines});
                 jobs.push_back({"brdf_probe.frag", 0, false, t, fresnel::brdf::brdf_model_defines(model)});
+            }
+        }
+    }
+    // The frame's display transform compiled in (output_defines: every tone mapper with each
+    // encoding, and the transmission pass's linear output) in the three shaders that write a
+    // frame, on the richest mesh feature set, a Blinn-Phong legacy set and the sky.
+    {
+        FeatureMask richest = *std::max_element(all.begin(), all.end(), [](FeatureMask a, FeatureMask b) {
+            return __builtin_popcountll(a) < __builtin_popcountll(b);
+        });
+        std::vector<fresnel::OutputVariant> outputs;
+        for (int t = 0; t <= int(fresnel::ToneMapper::None); ++t)
+            for (int e : {-1, 0, 1}) outputs.push_back({t, e});
+        const FeatureMask blinn = fresnel::legacy_feature::BlinnPhong | fresnel::legacy_feature::HasNormal |
+                                  fresnel::legacy_feature::HasUv0 | fresnel::legacy_feature::DiffuseMap |
+                                  fresnel::legacy_feature::UseIbl;
+        for (const auto& out : outputs) {
+            const std::vector<std::string> od = output_defines(out);
+            std::vector<std::string> mesh = feature_defines(richest), legacy = legacy_feature_defines(blinn);
+            mesh.insert(mesh.end(), od.begin(), od.end());
+            legacy.insert(legacy.end(), od.begin(), od.end());
+            per_target += 3;
+            for (GlslTarget t : {GlslTarget::Es30, GlslTarget::Gl33}) {
+                jobs.push_back({"pbr.frag", 0, false, t, mesh});
+                jobs.push_back({"legacy.frag", 0, false, t, legacy});
+                jobs.push_back({"sky.frag", 0, false, t, od});
             }
         }
     }

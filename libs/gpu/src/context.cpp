@@ -70,6 +70,7 @@ void Context::init_context(const ContextOptions& options) {
         c.seamless_cube_maps = true;
     }
     c.timer_queries = !es && (gl::version() >= 33 || gl::has_extension("GL_ARB_timer_query"));
+    c.texture_storage = es || gl::version() >= 42 || gl::has_extension("GL_ARB_texture_storage");
     c.max_anisotropy = 1.0f;
     if (gl::has_extension("GL_EXT_texture_filter_anisotropic") ||
         gl::has_extension("GL_ARB_texture_filter_anisotropic")) {

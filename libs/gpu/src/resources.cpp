@@ -110,7 +110,7 @@ void Texture::generate_mipmaps() {
     glBindTexture(GL_TEXTURE_2D, 0);
 }
 
-Texture Texture::create_2d_levels(TextureFormat format, std::span<const MipLevel> levels) {
+Texture Texture::create_2d_levels(TextureFormat format, std::span<const MipLevel> levels, bool immutable_storage) {
     Texture t;
     if (levels.empty()) return t;
     t.width_ = levels[0].width;
@@ -120,9 +120,18 @@ Texture Texture::create_2d_levels(TextureFormat format, std::span<const MipLevel
     glBindTexture(GL_TEXTURE_2D, t.id_);
     FormatInfo fi = info(format);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    // With immutable storage the driver allocates the whole chain once; level by level,
+    // Mesa keeps each level apart and copies them all into one tree at the first draw
+    // (DamagedHelmet: ~60 MB more memory and a copy of 112 MB).
+    if (immutable_storage)
+        glTexStorage2D(GL_TEXTURE_2D, GLsizei(levels.size()), fi.internal, levels[0].width, levels[0].height);
     for (std::size_t l = 0; l < levels.size(); ++l) {
-        glTexImage2D(GL_TEXTURE_2D, GLint(l), fi.internal, levels[l].width, levels[l].height, 0, fi.format, fi.type,
-                     levels[l].data);
+        if (immutable_storage)
+            glTexSubImage2D(GL_TEXTURE_2D, GLint(l), 0, 0, levels[l].width, levels[l].height, fi.format, fi.type,
+                            levels[l].data);
+        else
+            glTexImage2D(GL_TEXTURE_2D, GLint(l), fi.internal, levels[l].width, levels[l].height, 0, fi.format, fi.type,
+                         levels[l].data);
         t.bytes_ += texels(levels[l].width, levels[l].height, false) * texel_bytes(format);
     }
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, GLint(levels.size() - 1));
@@ -147,7 +156,7 @@ Texture Texture::create_2d_multisample(int width, int height, TextureFormat form
     return t;
 }
 
-Texture Texture::create_cube(int size, TextureFormat format, int levels) {
+Texture Texture::create_cube(int size, TextureFormat format, int levels, bool immutable_storage) {
     Texture t;
     t.width_ = t.height_ = size;
     t.kind_ = Kind::Cube;
@@ -155,8 +164,9 @@ Texture Texture::create_cube(int size, TextureFormat format, int levels) {
     glGenTextures(1, &t.id_);
     glBindTexture(GL_TEXTURE_CUBE_MAP, t.id_);
     FormatInfo fi = info(format);
+    if (immutable_storage) glTexStorage2D(GL_TEXTURE_CUBE_MAP, levels, fi.internal, size, size);
     for (int level = 0; level < levels; ++level) {
-        for (int face = 0; face < 6; ++face)
+        for (int face = 0; face < 6 && !immutable_storage; ++face)
             glTexImage2D(GLenum(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face), level, fi.internal, std::max(1, size >> level),
                          std::max(1, size >> level), 0, fi.format, fi.type, nullptr);
         t.bytes_ += 6 * texels(std::max(1, size >> level), std::max(1, size >> level), false) * texel_bytes(format);

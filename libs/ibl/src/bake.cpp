@@ -119,6 +119,7 @@ void save_baked(const BakedIbl& ibl, const fs::path& dir, const BakeOptions& o, 
     write_ktx2_cube(dir / "irradiance.ktx2", irr);
     write_ktx2_2d(dir / "brdf_lut.ktx2", ibl.lut);
     write_ktx2_cube(dir / "sheen.ktx2", ibl.sheen);
+    if (!ibl.charlie_lut.pixels.empty()) write_ktx2_2d(dir / "charlie_lut.ktx2", ibl.charlie_lut);
     json sh = json::array();
     for (const auto& c : ibl.irradiance.c) sh.push_back({c.x, c.y, c.z});
     {
@@ -128,6 +129,7 @@ void save_baked(const BakedIbl& ibl, const fs::path& dir, const BakeOptions& o, 
                  .dump(2);
     }
     json files = {"specular.ktx2", "irradiance.ktx2", "irradiance_sh.json", "brdf_lut.ktx2", "sheen.ktx2"};
+    if (!ibl.charlie_lut.pixels.empty()) files.push_back("charlie_lut.ktx2");
     if (previews) {
         fs::create_directories(dir / "preview", ec);
         for (std::size_t l = 0; l < ibl.specular.levels.size(); ++l) {
@@ -203,7 +205,14 @@ BakedIbl load_baked(const fs::path& dir) {
     } else {
         ibl.sheen = read_ktx2_cube(dir / "sheen.ktx2");
     }
-    ibl.charlie_lut = compute_charlie_lut();
+    // The Charlie table does not depend on the environment; folders written before it was
+    // stored (and any with another size) get it computed (~25 ms).
+    std::error_code ec;
+    if (fs::is_regular_file(dir / "charlie_lut.ktx2", ec)) {
+        ImageF lut = read_ktx2_2d(dir / "charlie_lut.ktx2");
+        if (lut.width == kCharlieLutSize && lut.height == kCharlieLutSize) ibl.charlie_lut = std::move(lut);
+    }
+    if (ibl.charlie_lut.pixels.empty()) ibl.charlie_lut = compute_charlie_lut();
     ibl.from_cache = true;
     ibl.content_hash = baked_content_hash(ibl);
     return ibl;

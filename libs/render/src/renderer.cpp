@@ -218,19 +218,20 @@ struct Renderer::Impl {
         if (s.environment)
             env_id = s.environment->content_hash ? s.environment->content_hash : ibl::baked_content_hash(*s.environment);
         if (s.environment && env_id != uploaded_env) {
+            const bool immutable = context.capabilities().texture_storage;
             const ibl::Cubemap& c = s.environment->specular;
-            env_specular = gpu::Texture::create_cube(c.size(), gpu::TextureFormat::RGBA16F, int(c.levels.size()));
+            env_specular = gpu::Texture::create_cube(c.size(), gpu::TextureFormat::RGBA16F, int(c.levels.size()), immutable);
             for (std::size_t l = 0; l < c.levels.size(); ++l)
                 for (int f = 0; f < 6; ++f)
                     env_specular.upload_cube_face(f, int(l), c.levels[l].size, c.levels[l].faces[std::size_t(f)].data());
             const ibl::Cubemap& irr = s.environment->irradiance_map;
-            env_irradiance = gpu::Texture::create_cube(irr.size(), gpu::TextureFormat::RGBA16F, 1);
+            env_irradiance = gpu::Texture::create_cube(irr.size(), gpu::TextureFormat::RGBA16F, 1, immutable);
             for (int f = 0; f < 6; ++f)
                 env_irradiance.upload_cube_face(f, 0, irr.size(), irr.levels[0].faces[std::size_t(f)].data());
             const ibl::Cubemap& sh = s.environment->sheen;
             env_sheen = {};
             if (sh.size() > 0) {
-                env_sheen = gpu::Texture::create_cube(sh.size(), gpu::TextureFormat::RGBA16F, int(sh.levels.size()));
+                env_sheen = gpu::Texture::create_cube(sh.size(), gpu::TextureFormat::RGBA16F, int(sh.levels.size()), immutable);
                 for (std::size_t l = 0; l < sh.levels.size(); ++l)
                     for (int f = 0; f < 6; ++f)
                         env_sheen.upload_cube_face(f, int(l), sh.levels[l].size, sh.levels[l].faces[std::size_t(f)].data());
@@ -267,6 +268,12 @@ struct Renderer::Impl {
         prog.set("u_env_rotation", env_rotation(s));
     }
 
+    // The display transform compiled into a frame's shaders; linear: none (the transmission pass).
+    static OutputVariant output_variant(const RenderSettings& s, bool linear) {
+        if (linear) return {int(ToneMapper::None), -1};
+        return {int(s.tone_mapper), s.encoding ? int(*s.encoding) : -1};
+    }
+
     // linear: radiance without exposure, tone mapping or encoding (the transmission pass).
     void draw_sky(const CameraSetup& cam, const RenderSettings& s, bool linear = false) {
         gpu::PipelineState st;
@@ -274,7 +281,7 @@ struct Renderer::Impl {
         st.depth_write = false;
         st.cull = gpu::Cull::None;
         device.apply(st);
-        const gpu::Program& prog = shaders.get("fullscreen.vert", "sky.frag", {});
+        const gpu::Program& prog = shaders.get("fullscreen.vert", "sky.frag", 0, output_variant(s, linear));
         prog.use();
         device.bind_texture(0, env_specular);
         prog.set("u_specular_env", 0);
@@ -415,7 +422,7 @@ struct Renderer::Impl {
         std::vector<gpu::MipLevel> levels{{img.width, img.height, img.pixels.data()}};
         if (g.mipmapped)
             for (const auto& l : *chain) levels.push_back({l.width, l.height, l.pixels.data()});
-        g.texture = gpu::Texture::create_2d_levels(format, levels);
+        g.texture = gpu::Texture::create_2d_levels(format, levels, context.capabilities().texture_storage);
         return g;
     }
 
@@ -578,7 +585,10 @@ struct Renderer::Impl {
         if (p.has_uv0 && slot.tex_coord == 0) map = texture_for(slot, blinn, blinn ? Anisotropic::Sampler : Anisotropic::Off, settings.anisotropy);
         if (map) raw |= lf::DiffuseMap;
         const FeatureMask features = canonical_legacy_features(raw);
-        const gpu::Program& prog = shaders.get("legacy.vert", "legacy.frag", legacy_feature_defines(features));
+        std::vector<std::string> defines = legacy_feature_defines(features);
+        if (blinn)  // the OpenGL 1 models write their colour as they compute it
+            for (auto& d : output_defines(output_variant(settings, false))) defines.push_back(std::move(d));
+        const gpu::Program& prog = shaders.get("legacy.vert", "legacy.frag", std::move(defines));
         prog.use();
         prog.set("u_model", d.model);
         prog.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(d.model)));
@@ -692,8 +702,10 @@ struct Renderer::Impl {
 
         // Alternative BRDF terms are defines on top of the feature set (rare: a string-keyed variant).
         const gpu::Program& prog = [&]() -> const gpu::Program& {
-            if (settings.brdf.is_default()) return shaders.get("pbr.vert", "pbr.frag", features);
+            const OutputVariant output = output_variant(settings, linear_pass);
+            if (settings.brdf.is_default()) return shaders.get("pbr.vert", "pbr.frag", features, output);
             std::vector<std::string> defines = feature_defines(features);
+            for (auto& d : output_defines(output)) defines.push_back(std::move(d));
             for (auto& d : brdf::brdf_model_defines(settings.brdf)) defines.push_back(std::move(d));
             return shaders.get("pbr.vert", "pbr.frag", std::move(defines));
         }();

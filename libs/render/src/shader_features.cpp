@@ -80,6 +80,10 @@ FeatureMask allowed_maps(FeatureMask m) {
 
 std::span<const FeatureInfo> feature_table() { return kFeatures; }
 
+std::vector<std::string> output_defines(OutputVariant output) {
+    return {"OUTPUT_TONEMAP " + std::to_string(output.tone_mapper), "OUTPUT_ENCODING " + std::to_string(output.encoding)};
+}
+
 std::vector<std::string> feature_defines(FeatureMask mask) {
     std::vector<std::string> out;
     for (const auto& f : kFeatures)

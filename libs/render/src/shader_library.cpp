@@ -109,10 +109,21 @@ std::string ShaderLibrary::reload() {
 
 namespace fresnel {
 const gpu::Program& ShaderLibrary::get(const std::string& vertex, const std::string& fragment, FeatureMask features) {
-    auto key = std::make_tuple(vertex, fragment, features);
+    auto key = std::make_tuple(vertex, fragment, features, -1);
     auto it = variants_.find(key);
     if (it != variants_.end()) return *it->second;
     const gpu::Program& p = get(vertex, fragment, feature_defines(features));
+    variants_.emplace(std::move(key), &p);
+    return p;
+}
+const gpu::Program& ShaderLibrary::get(const std::string& vertex, const std::string& fragment, FeatureMask features,
+                                       OutputVariant output) {
+    auto key = std::make_tuple(vertex, fragment, features, output.key());
+    auto it = variants_.find(key);
+    if (it != variants_.end()) return *it->second;
+    std::vector<std::string> defines = feature_defines(features);
+    for (auto& d : output_defines(output)) defines.push_back(std::move(d));
+    const gpu::Program& p = get(vertex, fragment, std::move(defines));
     variants_.emplace(std::move(key), &p);
     return p;
 }

@@ -47,6 +47,9 @@ struct Capabilities {
     // GPU timer queries (GL_TIME_ELAPSED, TimerQuery): core in OpenGL 3.3; not in ES 3.0
     // (EXT_disjoint_timer_query there is not used).
     bool timer_queries = false;
+    // Immutable texture storage (glTexStorage2D): core in ES 3.0 and GL 4.2, ARB_texture_storage
+    // before. Mip chains uploaded level by level are then allocated once, at their final size.
+    bool texture_storage = false;
 };
 
 class Context {

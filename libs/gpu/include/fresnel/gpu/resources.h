@@ -97,13 +97,16 @@ public:
     // Uploads a 2D image (rows top to bottom as stored; data may be null). `mipmaps` generates the chain.
     static Texture create_2d(int width, int height, TextureFormat format, const void* data, bool mipmaps);
     // Uploads a 2D image with its mip chain made on the CPU (levels[0] is the base);
-    // the driver generates nothing.
-    static Texture create_2d_levels(TextureFormat format, std::span<const MipLevel> levels);
+    // the driver generates nothing. `immutable_storage` (Capabilities::texture_storage)
+    // allocates the chain once with glTexStorage2D.
+    static Texture create_2d_levels(TextureFormat format, std::span<const MipLevel> levels,
+                                    bool immutable_storage = false);
     // A multisampled colour target a shader reads with texelFetch (OpenGL 3.2+; not in
     // OpenGL ES 3.0, where Capabilities::multisample_textures is false).
     static Texture create_2d_multisample(int width, int height, TextureFormat format, int samples);
     // A cube map with `levels` mip levels (data uploaded later with upload_cube_face).
-    static Texture create_cube(int size, TextureFormat format, int levels);
+    // `immutable_storage` (Capabilities::texture_storage): glTexStorage2D, allocated once.
+    static Texture create_cube(int size, TextureFormat format, int levels, bool immutable_storage = false);
     void upload_cube_face(int face, int level, int size, const float* rgba);
     void set_sampler(const SamplerState& s);
     // Regenerates levels 1.. of a 2D texture from level 0 (glGenerateMipmap), e.g. after

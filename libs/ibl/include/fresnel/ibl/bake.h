@@ -7,6 +7,7 @@
 //   irradiance.ktx2    irradiance / pi as a small cube map (see BakeOptions::irradiance_samples), RGBA16F
 //   irradiance_sh.json the 9 SH coefficients of irradiance / pi (RGB)
 //   sheen.ktx2         KHR_materials_sheen's Charlie-prefiltered cube map (prefilter_charlie), RGBA16F
+//   charlie_lut.ktx2   the sheen's Charlie table (compute_charlie_lut), RGBA16F; computed on load when absent
 //   brdf_lut.ktx2      split-sum table, RGBA16F: R = A, G = B, B = A + B (directional albedo), A = sheen albedo
 //   preview/           OpenEXR previews: specular_level<k>.exr and irradiance.exr (faces side by side), brdf_lut.exr
 #include <cstdint>
@@ -44,7 +45,7 @@ struct BakedIbl {
     SH9 irradiance;          // the same as SH: evaluate(n) = irradiance(n) / pi
     ImageF lut;      // lut_size^2: R = A, G = B, B = A + B, A = sheen albedo
     Cubemap sheen;       // Charlie-prefiltered (prefilter_charlie), same levels as specular
-    ImageF charlie_lut;  // compute_charlie_lut(): computed on bake and load, not stored
+    ImageF charlie_lut;  // compute_charlie_lut(): computed on bake, stored as charlie_lut.ktx2
     std::string source;
     std::string key;
     double bake_ms = 0;

@@ -98,7 +98,8 @@ Cubemap prefilter_charlie(const Cubemap& source_with_mips, int size = 32, int le
 // texel centres, 8 pi / N * sum over Charlie half vectors of V_Ashikhmin D n.l v.h (its
 // estimator as written, with D's exponent 1/r). The sheen's image-based light is the cube's
 // radiance * sheen colour * this.
-ImageF compute_charlie_lut(int size = 64, int samples = 256);
+inline constexpr int kCharlieLutSize = 64;
+ImageF compute_charlie_lut(int size = kCharlieLutSize, int samples = 256);
 
 // Writes the A channel (the sheen albedo) of a table made before it held one.
 void fill_sheen_albedo(ImageF& lut, unsigned threads = 0);

@@ -168,4 +168,19 @@ bool valid_legacy_features(FeatureMask mask);
 // Every valid legacy mask, ascending (a few dozen).
 std::vector<FeatureMask> all_legacy_feature_sets();
 
+// ---- Output variants --------------------------------------------------------------------
+// The display transform compiled into the fragment shaders that write a frame (pbr.frag,
+// legacy.frag, sky.frag; display_transform in tonemap.glsl): the frame's tone mapper and
+// encoding become OUTPUT_TONEMAP / OUTPUT_ENCODING. A switch on a uniform costs a software
+// rasteriser every branch; compiled in, a frame pays for its own (DamagedHelmet at 1024^2 on
+// llvmpipe: ~10 % of the frame). A frame has one, so this multiplies no variant counts.
+struct OutputVariant {
+    int tone_mapper = 0;  // int(fresnel::ToneMapper)
+    int encoding = 0;     // int(fresnel::Encoding); -1: none (linear radiance, the transmission pass)
+    // A small integer naming the pair (the shader caches' key).
+    int key() const { return tone_mapper * 4 + encoding + 1; }
+};
+// "OUTPUT_TONEMAP n", "OUTPUT_ENCODING n".
+std::vector<std::string> output_defines(OutputVariant output);
+
 }  // namespace fresnel

@@ -41,6 +41,9 @@ public:
     // The variant of a mesh shader pair for a feature set (see shader_features.h): its
     // defines are feature_defines(features). Looked up by (vertex, fragment, mask).
     const gpu::Program& get(const std::string& vertex, const std::string& fragment, FeatureMask features);
+    // The same with the frame's display transform compiled in (output_defines(output)).
+    const gpu::Program& get(const std::string& vertex, const std::string& fragment, FeatureMask features,
+                            OutputVariant output);
     std::size_t size() const { return programs_.size(); }
     GlslTarget target() const { return target_; }
 
@@ -63,7 +66,8 @@ private:
     };
     std::map<std::string, Sources> sources_;  // what each program was built from, for reload()
     std::map<std::string, std::unique_ptr<gpu::Program>> programs_;
-    std::map<std::tuple<std::string, std::string, FeatureMask>, const gpu::Program*> variants_;
+    // (vertex, fragment, features, output key; -1: no output variant).
+    std::map<std::tuple<std::string, std::string, FeatureMask, int>, const gpu::Program*> variants_;
 };
 
 }  // namespace fresnel
