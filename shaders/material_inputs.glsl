@@ -1,111 +1,71 @@
 // Material parameters and texture lookups: read_material is the GLSL twin of
 // fresnel::evaluate (libs/material/src/evaluate.cpp); same structure, same rules, and
 // tests/gpu/material_gpu_test.cpp keeps the two equal. The uniforms are the material's
-// raw factors, packed by libs/render/src/material_uniforms.cpp. Which maps exist is
+// raw factors in MaterialBlock (material_block.glsl), packed by
+// libs/render/src/material_uniforms.cpp. Which maps exist is
 // decided per material by defines (HAS_BASE_COLOR_MAP, ...), so absent maps cost nothing.
-uniform vec4 u_base_color_factor;   // baseColorFactor, or diffuseFactor (specular-glossiness)
-uniform float u_metallic_factor;
-uniform float u_roughness_factor;
-uniform float u_normal_scale;
-uniform float u_occlusion_strength;
-uniform vec3 u_emissive_factor;
-uniform float u_emissive_strength;  // KHR_materials_emissive_strength (1 without)
-uniform float u_alpha_cutoff;
-uniform float u_ior;                    // KHR_materials_ior (1.5 without)
-uniform float u_specular_factor;        // KHR_materials_specular (1 without)
-uniform vec3 u_specular_color_factor;   // KHR_materials_specular (1 without)
-#ifdef SPECULAR_GLOSSINESS
-uniform vec3 u_sg_specular_factor;      // KHR_materials_pbrSpecularGlossiness specularFactor
-uniform float u_glossiness_factor;
-#endif
-#ifdef MATERIAL_CLEARCOAT
-uniform float u_clearcoat_factor;
-uniform float u_clearcoat_roughness_factor;
-uniform float u_clearcoat_normal_scale;
-#endif
+#include "material_block.glsl"
 #ifdef MATERIAL_SHEEN
 #include "sheen.glsl"
-uniform vec3 u_sheen_color_factor;      // KHR_materials_sheen
-uniform float u_sheen_roughness_factor;
-#endif
-#ifdef MATERIAL_ANISOTROPY
-uniform float u_anisotropy_strength;    // KHR_materials_anisotropy
-uniform float u_anisotropy_rotation;    // radians
 #endif
 #ifdef MATERIAL_IRIDESCENCE
 #include "iridescence.glsl"
-uniform float u_iridescence_factor;     // KHR_materials_iridescence
-uniform float u_iridescence_ior;
-uniform float u_iridescence_thickness_minimum;  // nm
-uniform float u_iridescence_thickness_maximum;
-#endif
-#ifdef MATERIAL_DIFFUSE_TRANSMISSION
-uniform float u_diffuse_transmission_factor;       // KHR_materials_diffuse_transmission
-uniform vec3 u_diffuse_transmission_color_factor;
 #endif
 
-// Per map: sampler, UV set (0/1) and the KHR_texture_transform matrix. (Spelled out:
-// GLSL ES 3.00 has no token pasting.)
+// Per map: its sampler (the map's transform, UV set and probes are in MaterialBlock).
 #ifdef HAS_BASE_COLOR_MAP
-uniform sampler2D u_base_color_map; uniform int u_base_color_uv; uniform mat3 u_base_color_transform;
-uniform float u_base_color_anisotropy;  // sample_detail_map
+uniform sampler2D u_base_color_map;
 #endif
 #ifdef HAS_METALLIC_ROUGHNESS_MAP
-uniform sampler2D u_metallic_roughness_map; uniform int u_metallic_roughness_uv; uniform mat3 u_metallic_roughness_transform;
-uniform float u_metallic_roughness_anisotropy;  // sample_detail_map
+uniform sampler2D u_metallic_roughness_map;
 #endif
 #ifdef HAS_NORMAL_MAP
-uniform sampler2D u_normal_map; uniform int u_normal_uv; uniform mat3 u_normal_transform;
-uniform float u_normal_anisotropy;  // sample_detail_map
+uniform sampler2D u_normal_map;
 #endif
 #ifdef HAS_OCCLUSION_MAP
-uniform sampler2D u_occlusion_map; uniform int u_occlusion_uv; uniform mat3 u_occlusion_transform;
+uniform sampler2D u_occlusion_map;
 #endif
 #ifdef HAS_EMISSIVE_MAP
-uniform sampler2D u_emissive_map; uniform int u_emissive_uv; uniform mat3 u_emissive_transform;
+uniform sampler2D u_emissive_map;
 #endif
 #ifdef HAS_SPECULAR_MAP
-uniform sampler2D u_specular_map; uniform int u_specular_uv; uniform mat3 u_specular_transform;
+uniform sampler2D u_specular_map;
 #endif
 #ifdef HAS_SPECULAR_COLOR_MAP
-uniform sampler2D u_specular_color_map; uniform int u_specular_color_uv; uniform mat3 u_specular_color_transform;
-uniform float u_specular_color_anisotropy;  // sample_detail_map
+uniform sampler2D u_specular_color_map;
 #endif
 #ifdef HAS_SPECULAR_GLOSSINESS_MAP
-uniform sampler2D u_specular_glossiness_map; uniform int u_specular_glossiness_uv; uniform mat3 u_specular_glossiness_transform;
-uniform float u_specular_glossiness_anisotropy;  // sample_detail_map
+uniform sampler2D u_specular_glossiness_map;
 #endif
 #ifdef HAS_CLEARCOAT_MAP
-uniform sampler2D u_clearcoat_map; uniform int u_clearcoat_uv; uniform mat3 u_clearcoat_transform;
+uniform sampler2D u_clearcoat_map;
 #endif
 #ifdef HAS_CLEARCOAT_ROUGHNESS_MAP
-uniform sampler2D u_clearcoat_roughness_map; uniform int u_clearcoat_roughness_uv; uniform mat3 u_clearcoat_roughness_transform;
+uniform sampler2D u_clearcoat_roughness_map;
 #endif
 #ifdef HAS_CLEARCOAT_NORMAL_MAP
-uniform sampler2D u_clearcoat_normal_map; uniform int u_clearcoat_normal_uv; uniform mat3 u_clearcoat_normal_transform;
-uniform float u_clearcoat_normal_anisotropy;  // sample_detail_map
+uniform sampler2D u_clearcoat_normal_map;
 #endif
 #ifdef HAS_SHEEN_COLOR_MAP
-uniform sampler2D u_sheen_color_map; uniform int u_sheen_color_uv; uniform mat3 u_sheen_color_transform;
-uniform float u_sheen_color_anisotropy;  // sample_detail_map
+uniform sampler2D u_sheen_color_map;
 #endif
 #ifdef HAS_SHEEN_ROUGHNESS_MAP
-uniform sampler2D u_sheen_roughness_map; uniform int u_sheen_roughness_uv; uniform mat3 u_sheen_roughness_transform;
+uniform sampler2D u_sheen_roughness_map;
 #endif
 #ifdef HAS_ANISOTROPY_MAP
-uniform sampler2D u_anisotropy_map; uniform int u_anisotropy_uv; uniform mat3 u_anisotropy_transform;
+uniform sampler2D u_anisotropy_map;
 #endif
 #ifdef HAS_IRIDESCENCE_MAP
-uniform sampler2D u_iridescence_map; uniform int u_iridescence_uv; uniform mat3 u_iridescence_transform;
+uniform sampler2D u_iridescence_map;
 #endif
 #ifdef HAS_IRIDESCENCE_THICKNESS_MAP
-uniform sampler2D u_iridescence_thickness_map; uniform int u_iridescence_thickness_uv; uniform mat3 u_iridescence_thickness_transform;
+uniform sampler2D u_iridescence_thickness_map;
 #endif
 #ifdef HAS_DIFFUSE_TRANSMISSION_MAP
-uniform sampler2D u_diffuse_transmission_map; uniform int u_diffuse_transmission_uv; uniform mat3 u_diffuse_transmission_transform;
+uniform sampler2D u_diffuse_transmission_map;
 #endif
 #ifdef HAS_DIFFUSE_TRANSMISSION_COLOR_MAP
-uniform sampler2D u_diffuse_transmission_color_map; uniform int u_diffuse_transmission_color_uv; uniform mat3 u_diffuse_transmission_color_transform;
+uniform sampler2D u_diffuse_transmission_color_map;
 #endif
 
 vec2 map_uv(int set, mat3 transform) {

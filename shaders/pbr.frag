@@ -92,6 +92,7 @@ void main() {
     vec3 tr_ray = volume_ray(f.n, v, tr.thickness, tr.ior, model_scale());
     float tr_ray_length = length(tr_ray);
 #endif
+#ifndef FRAME_NO_LIGHTS  // a frame without punctual lights (shader_features.h, FrameVariant)
     for (int i = 0; i < MAX_LIGHTS; ++i) {
         if (i >= u_light_count) break;
         vec3 l;
@@ -103,6 +104,7 @@ void main() {
 #endif
         color += lit;
     }
+#endif
 #ifdef USE_IBL
     {
         // Split-sum image-based light, weighted as the glTF BRDF's dielectric/metal mix.

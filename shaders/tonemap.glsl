@@ -59,14 +59,14 @@ vec3 tone_map(int mapper, vec3 c) {
 }
 
 // A frame's display transform: exposure, tone map, then encoding (-1: none, linear output).
-// Where OUTPUT_TONEMAP and OUTPUT_ENCODING are defined (the renderer's output variant,
-// fresnel::OutputVariant) they replace the run-time choice and the compiler keeps one path:
+// Where FRAME_TONEMAP and FRAME_ENCODING are defined (the renderer's frame variant,
+// fresnel::FrameVariant) they replace the run-time choice and the compiler keeps one path:
 // on a software rasteriser a switch on a uniform costs every branch (llvmpipe: ~10 % of
 // DamagedHelmet's frame). Without them (probes, tests) the arguments choose.
 vec3 display_transform(vec3 c, float exposure, int tonemap, int encoding) {
-#ifdef OUTPUT_TONEMAP
-    tonemap = OUTPUT_TONEMAP;
-    encoding = OUTPUT_ENCODING;
+#ifdef FRAME_TONEMAP
+    tonemap = FRAME_TONEMAP;
+    encoding = FRAME_ENCODING;
 #endif
     c = tone_map(tonemap, c * exposure);
     if (encoding >= 0) c = encode_display(encoding, c);

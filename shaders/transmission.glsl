@@ -51,16 +51,12 @@ struct TransmissionInputs {
 };
 
 #ifdef MATERIAL_TRANSMISSION
-uniform float u_transmission_factor;
-uniform float u_thickness_factor;
-uniform vec3 u_attenuation_color;
-uniform float u_attenuation_distance;
-uniform float u_dispersion;
+#include "material_block.glsl"  // the factors and the maps' transforms
 #ifdef HAS_TRANSMISSION_MAP
-uniform sampler2D u_transmission_map; uniform int u_transmission_uv; uniform mat3 u_transmission_transform;
+uniform sampler2D u_transmission_map;
 #endif
 #ifdef HAS_THICKNESS_MAP
-uniform sampler2D u_thickness_map; uniform int u_thickness_uv; uniform mat3 u_thickness_transform;
+uniform sampler2D u_thickness_map;
 #endif
 
 // The transmission part of fresnel::evaluate (EvaluatedMaterial::transmission).

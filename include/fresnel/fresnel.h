@@ -58,6 +58,7 @@
 #include "fresnel/render/scene_file.h"
 #include "fresnel/render/shader_features.h"
 #include "fresnel/render/shader_library.h"
+#include "fresnel/render/uniform_blocks.h"
 
 #include "fresnel/trace/bsdf.h"
 #include "fresnel/trace/distribution.h"

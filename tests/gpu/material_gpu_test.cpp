@@ -37,6 +37,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -450,7 +451,8 @@ protected:
         device.bind_texture(lut_unit, lut);
         prog.set("u_brdf_lut", lut_unit);
         for (auto [unit, index] : units) device.bind_texture(unit, maps[std::size_t(index)]);
-        set_material_uniforms(prog, mu, bound);
+        gpu::UniformBuffer block;
+        set_material_uniforms(prog, mu, bound, block);
         prog.set("u_material_lod", c.lod);
         std::array<std::vector<glm::vec4>, kOutputs> out;
         for (int o = 0; o < kOutputs; ++o) {
@@ -653,6 +655,25 @@ std::unique_ptr<ShaderLibrary> MaterialProbe::library_;
 // What the measured response stands in for: the driver's texel values are byte / 255 and
 // the exact sRGB curve up to small errors (llvmpipe: sRGB colour at most 1.2e-3 absolute,
 // near byte 230; the bound is 2e-3; linear data and alpha 1e-4 relative, measured 8e-8).
+// The C++ mirrors of the std140 blocks (uniform_blocks.h) against the driver's layout: every
+// member's offset and each block's size, in a program that declares both.
+TEST_F(MaterialProbe, UniformBlocksMatchTheirCppMirrors) {
+    const gpu::Program& prog = library_->get("pbr.vert", "pbr.frag", feature::HasNormal | feature::HasUv0 | feature::BaseColorMap);
+    for (auto [block, size, members] :
+         {std::make_tuple("MaterialBlock", sizeof(MaterialBlock), material_block_members()),
+          std::make_tuple("LightBlock", sizeof(LightBlock), light_block_members())}) {
+        // The mirror covers the block (std140 may round the block's size up to 16 bytes).
+        EXPECT_LE(prog.uniform_block_size(block), int(size)) << block;
+        EXPECT_GT(prog.uniform_block_size(block), int(size) - 16) << block;
+        std::vector<std::string> names;
+        for (const auto& m : members) names.push_back(m.first);
+        const std::vector<int> offsets = prog.uniform_offsets(names);
+        for (std::size_t i = 0; i < members.size(); ++i)
+            EXPECT_EQ(offsets[i], int(members[i].second)) << block << "." << members[i].first;
+        EXPECT_GT(members.size(), 4u);
+    }
+}
+
 TEST_F(MaterialProbe, DriverTexelResponseIsCloseToExact) {
     const DriverDecode& d = decode();
     float worst_srgb = 0.0f, worst_rel = 0.0f;

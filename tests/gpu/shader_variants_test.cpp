@@ -291,21 +291,21 @@ TEST(ShaderVariants, EveryVariantCompilesAsEs300AndGl330) {
             }
         }
     }
-    // The frame's display transform compiled in (output_defines: every tone mapper with each
-    // encoding, and the transmission pass's linear output) in the three shaders that write a
+    // The frame variants (frame_defines: every tone mapper with each encoding, the transmission
+    // pass's linear output, with and without punctual lights) in the three shaders that write a
     // frame, on the richest mesh feature set, a Blinn-Phong legacy set and the sky.
     {
         FeatureMask richest = *std::max_element(all.begin(), all.end(), [](FeatureMask a, FeatureMask b) {
             return __builtin_popcountll(a) < __builtin_popcountll(b);
         });
-        std::vector<fresnel::OutputVariant> outputs;
+        std::vector<fresnel::FrameVariant> outputs;
         for (int t = 0; t <= int(fresnel::ToneMapper::None); ++t)
-            for (int e : {-1, 0, 1}) outputs.push_back({t, e});
+            for (int e : {-1, 0, 1}) outputs.push_back({t, e, t % 2 == 0});  // with and without lights
         const FeatureMask blinn = fresnel::legacy_feature::BlinnPhong | fresnel::legacy_feature::HasNormal |
                                   fresnel::legacy_feature::HasUv0 | fresnel::legacy_feature::DiffuseMap |
                                   fresnel::legacy_feature::UseIbl;
         for (const auto& out : outputs) {
-            const std::vector<std::string> od = output_defines(out);
+            const std::vector<std::string> od = frame_defines(out);
             std::vector<std::string> mesh = feature_defines(richest), legacy = legacy_feature_defines(blinn);
             mesh.insert(mesh.end(), od.begin(), od.end());
             legacy.insert(legacy.end(), od.begin(), od.end());

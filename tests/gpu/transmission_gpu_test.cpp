@@ -162,7 +162,8 @@ TEST(TransmissionProbe, GlslMatchesCpp) {
         prog.use();
         device.bind_texture(15, pts);
         prog.set("u_points", 15);
-        set_material_uniforms(prog, mu, bound);
+        gpu::UniformBuffer block;
+        set_material_uniforms(prog, mu, bound, block);
         prog.set("u_material_lod", 0.0f);
         std::vector<std::vector<float>> out(kOutputs);
         for (int o = 0; o < kOutputs; ++o) {

@@ -21,6 +21,22 @@ Buffer::~Buffer() {
     if (id_) glDeleteBuffers(1, &id_);
 }
 
+UniformBuffer::UniformBuffer(std::size_t bytes) : size_(bytes) {
+    glGenBuffers(1, &id_);
+    glBindBuffer(GL_UNIFORM_BUFFER, id_);
+    glBufferData(GL_UNIFORM_BUFFER, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_UNIFORM_BUFFER, 0);
+}
+UniformBuffer::~UniformBuffer() {
+    if (id_) glDeleteBuffers(1, &id_);
+}
+void UniformBuffer::update(const void* data, std::size_t bytes) {
+    glBindBuffer(GL_UNIFORM_BUFFER, id_);
+    glBufferSubData(GL_UNIFORM_BUFFER, 0, GLsizeiptr(std::min(bytes, size_)), data);
+    glBindBuffer(GL_UNIFORM_BUFFER, 0);
+}
+void UniformBuffer::bind(unsigned binding) const { glBindBufferBase(GL_UNIFORM_BUFFER, binding, id_); }
+
 VertexArray::VertexArray() { glGenVertexArrays(1, &id_); }
 VertexArray::~VertexArray() {
     if (id_) glDeleteVertexArrays(1, &id_);
@@ -354,39 +370,75 @@ Program::Program(const std::string& name, const std::string& vs, const std::stri
         glGetProgramInfoLog(id_, len, nullptr, log.data());
         throw Error(name, "program", "link failed:\n" + log);
     }
+    // Every active uniform's location, once (block members have none and are skipped).
+    GLint count = 0, longest = 0;
+    glGetProgramiv(id_, GL_ACTIVE_UNIFORMS, &count);
+    glGetProgramiv(id_, GL_ACTIVE_UNIFORM_MAX_LENGTH, &longest);
+    std::string buffer(std::size_t(std::max(longest, 1)), '\0');
+    for (GLint i = 0; i < count; ++i) {
+        GLsizei length = 0;
+        GLint size = 0;
+        GLenum type = 0;
+        glGetActiveUniform(id_, GLuint(i), GLsizei(buffer.size()), &length, &size, &type, buffer.data());
+        std::string uniform(buffer.data(), std::size_t(std::max(length, 0)));
+        if (uniform.size() > 3 && uniform.compare(uniform.size() - 3, 3, "[0]") == 0) uniform.resize(uniform.size() - 3);
+        int loc = glGetUniformLocation(id_, uniform.c_str());
+        if (loc >= 0) locations_.emplace(std::move(uniform), loc);
+    }
 }
 Program::~Program() {
     if (id_) glDeleteProgram(id_);
 }
 void Program::use() const { glUseProgram(id_); }
-int Program::location(const std::string& uniform) const {
+int Program::location(std::string_view uniform) const {
     auto it = locations_.find(uniform);
-    if (it != locations_.end()) return it->second;
-    int loc = glGetUniformLocation(id_, uniform.c_str());
-    locations_.emplace(uniform, loc);
-    return loc;
+    return it != locations_.end() ? it->second : -1;
 }
-void Program::set(const std::string& n, int v) const { glUniform1i(location(n), v); }
-void Program::set(const std::string& n, float v) const { glUniform1f(location(n), v); }
-void Program::set(const std::string& n, glm::vec2 v) const { glUniform2fv(location(n), 1, glm::value_ptr(v)); }
-void Program::set(const std::string& n, glm::vec3 v) const { glUniform3fv(location(n), 1, glm::value_ptr(v)); }
-void Program::set(const std::string& n, glm::vec4 v) const { glUniform4fv(location(n), 1, glm::value_ptr(v)); }
-void Program::set(const std::string& n, const glm::mat3& v) const {
+void Program::bind_uniform_block(const char* block, unsigned binding) const {
+    GLuint index = glGetUniformBlockIndex(id_, block);
+    if (index != GL_INVALID_INDEX) glUniformBlockBinding(id_, index, binding);
+}
+std::vector<int> Program::uniform_offsets(const std::vector<std::string>& names) const {
+    std::vector<int> out(names.size(), -1);
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        const char* n = names[i].c_str();
+        GLuint index = GL_INVALID_INDEX;
+        glGetUniformIndices(id_, 1, &n, &index);
+        if (index == GL_INVALID_INDEX) continue;
+        GLint offset = -1;
+        glGetActiveUniformsiv(id_, 1, &index, GL_UNIFORM_OFFSET, &offset);
+        out[i] = offset;
+    }
+    return out;
+}
+int Program::uniform_block_size(const char* block) const {
+    GLuint index = glGetUniformBlockIndex(id_, block);
+    if (index == GL_INVALID_INDEX) return 0;
+    GLint size = 0;
+    glGetActiveUniformBlockiv(id_, index, GL_UNIFORM_BLOCK_DATA_SIZE, &size);
+    return size;
+}
+void Program::set(std::string_view n, int v) const { glUniform1i(location(n), v); }
+void Program::set(std::string_view n, float v) const { glUniform1f(location(n), v); }
+void Program::set(std::string_view n, glm::vec2 v) const { glUniform2fv(location(n), 1, glm::value_ptr(v)); }
+void Program::set(std::string_view n, glm::vec3 v) const { glUniform3fv(location(n), 1, glm::value_ptr(v)); }
+void Program::set(std::string_view n, glm::vec4 v) const { glUniform4fv(location(n), 1, glm::value_ptr(v)); }
+void Program::set(std::string_view n, const glm::mat3& v) const {
     glUniformMatrix3fv(location(n), 1, GL_FALSE, glm::value_ptr(v));
 }
-void Program::set(const std::string& n, const glm::mat4& v) const {
+void Program::set(std::string_view n, const glm::mat4& v) const {
     glUniformMatrix4fv(location(n), 1, GL_FALSE, glm::value_ptr(v));
 }
-void Program::set(const std::string& n, std::span<const glm::vec4> v) const {
+void Program::set(std::string_view n, std::span<const glm::vec4> v) const {
     if (!v.empty()) glUniform4fv(location(n), GLsizei(v.size()), glm::value_ptr(v[0]));
 }
-void Program::set(const std::string& n, std::span<const glm::vec3> v) const {
+void Program::set(std::string_view n, std::span<const glm::vec3> v) const {
     if (!v.empty()) glUniform3fv(location(n), GLsizei(v.size()), glm::value_ptr(v[0]));
 }
-void Program::set(const std::string& n, std::span<const glm::mat4> v) const {
+void Program::set(std::string_view n, std::span<const glm::mat4> v) const {
     if (!v.empty()) glUniformMatrix4fv(location(n), GLsizei(v.size()), GL_FALSE, glm::value_ptr(v[0]));
 }
-void Program::set(const std::string& n, std::span<const float> v) const {
+void Program::set(std::string_view n, std::span<const float> v) const {
     if (!v.empty()) glUniform1fv(location(n), GLsizei(v.size()), v.data());
 }
 

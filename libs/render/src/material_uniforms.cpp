@@ -76,56 +76,131 @@ FeatureMask material_features(const Material& m) {
     return f;
 }
 
-void set_material_uniforms(const gpu::Program& prog, const MaterialUniforms& u,
-                           const std::array<bool, kMaterialMapCount>& bound) {
-    std::array<int, kMaterialMapCount> units{};
-    for (int i = 0; i < kMaterialMapCount; ++i) units[std::size_t(i)] = bound[std::size_t(i)] ? i : -1;
-    set_material_uniforms(prog, u, units);
+MaterialBlock material_block(const MaterialUniforms& u) {
+    MaterialBlock b;
+    b.base_color_factor = u.base_color_factor;
+    b.emissive_factor = u.emissive_factor;
+    b.emissive_strength = u.emissive_strength;
+    b.specular_color_factor = u.specular_color_factor;
+    b.specular_factor = u.specular_factor;
+    b.sg_specular_factor = u.sg_specular_factor;
+    b.glossiness_factor = u.glossiness_factor;
+    b.sheen_color_factor = u.sheen_color_factor;
+    b.sheen_roughness_factor = u.sheen_roughness_factor;
+    b.attenuation_color = u.attenuation_color;
+    b.attenuation_distance = u.attenuation_distance;
+    b.diffuse_transmission_color_factor = u.diffuse_transmission_color_factor;
+    b.diffuse_transmission_factor = u.diffuse_transmission_factor;
+    b.metallic_factor = u.metallic_factor;
+    b.roughness_factor = u.roughness_factor;
+    b.normal_scale = u.normal_scale;
+    b.occlusion_strength = u.occlusion_strength;
+    b.alpha_cutoff = u.alpha_cutoff;
+    b.ior = u.ior;
+    b.clearcoat_factor = u.clearcoat_factor;
+    b.clearcoat_roughness_factor = u.clearcoat_roughness_factor;
+    b.clearcoat_normal_scale = u.clearcoat_normal_scale;
+    b.transmission_factor = u.transmission_factor;
+    b.thickness_factor = u.thickness_factor;
+    b.dispersion = u.dispersion;
+    b.anisotropy_strength = u.anisotropy_strength;
+    b.anisotropy_rotation = u.anisotropy_rotation;
+    b.iridescence_factor = u.iridescence_factor;
+    b.iridescence_ior = u.iridescence_ior;
+    b.iridescence_thickness_minimum = u.iridescence_thickness_minimum;
+    b.iridescence_thickness_maximum = u.iridescence_thickness_maximum;
+    for (std::size_t i = 0; i < std::size_t(kMaterialMapCount); ++i) {
+        // A map the variant reads but the material lacks is the 1x1 white texture.
+        const TextureSlot* slot = u.maps[i];
+        MaterialBlock::Map& m = b.maps[i];
+        const glm::mat3 t = slot ? slot->transform : glm::mat3(1.0f);
+        for (int c = 0; c < 3; ++c) m.transform[std::size_t(c)] = glm::vec4(t[c], 0.0f);
+        m.uv = slot ? slot->tex_coord : 0;
+        m.anisotropy = slot ? u.anisotropy[i] : 1.0f;
+    }
+    return b;
+}
+
+namespace {
+// "u_<map>_map" for every map, made once (the draw path builds no strings).
+const std::array<std::string, kMaterialMapCount>& sampler_names() {
+    static const std::array<std::string, kMaterialMapCount> names = [] {
+        std::array<std::string, kMaterialMapCount> n;
+        for (int i = 0; i < kMaterialMapCount; ++i)
+            n[std::size_t(i)] = std::string("u_") + material_map_info(MaterialMap(i)).name + "_map";
+        return n;
+    }();
+    return names;
+}
+}  // namespace
+
+void set_material_samplers(const gpu::Program& prog, const std::array<int, kMaterialMapCount>& units) {
+    const auto& names = sampler_names();
+    for (std::size_t i = 0; i < std::size_t(kMaterialMapCount); ++i)
+        if (units[i] >= 0) prog.set(names[i], units[i]);
 }
 
 void set_material_uniforms(const gpu::Program& prog, const MaterialUniforms& u,
-                           const std::array<int, kMaterialMapCount>& units) {
-    prog.set("u_base_color_factor", u.base_color_factor);
-    prog.set("u_metallic_factor", u.metallic_factor);
-    prog.set("u_roughness_factor", u.roughness_factor);
-    prog.set("u_normal_scale", u.normal_scale);
-    prog.set("u_occlusion_strength", u.occlusion_strength);
-    prog.set("u_emissive_factor", u.emissive_factor);
-    prog.set("u_emissive_strength", u.emissive_strength);
-    prog.set("u_alpha_cutoff", u.alpha_cutoff);
-    prog.set("u_ior", u.ior);
-    prog.set("u_specular_factor", u.specular_factor);
-    prog.set("u_specular_color_factor", u.specular_color_factor);
-    prog.set("u_sg_specular_factor", u.sg_specular_factor);
-    prog.set("u_glossiness_factor", u.glossiness_factor);
-    prog.set("u_clearcoat_factor", u.clearcoat_factor);
-    prog.set("u_clearcoat_roughness_factor", u.clearcoat_roughness_factor);
-    prog.set("u_clearcoat_normal_scale", u.clearcoat_normal_scale);
-    prog.set("u_transmission_factor", u.transmission_factor);
-    prog.set("u_thickness_factor", u.thickness_factor);
-    prog.set("u_attenuation_color", u.attenuation_color);
-    prog.set("u_attenuation_distance", u.attenuation_distance);
-    prog.set("u_dispersion", u.dispersion);
-    prog.set("u_sheen_color_factor", u.sheen_color_factor);
-    prog.set("u_sheen_roughness_factor", u.sheen_roughness_factor);
-    prog.set("u_anisotropy_strength", u.anisotropy_strength);
-    prog.set("u_anisotropy_rotation", u.anisotropy_rotation);
-    prog.set("u_iridescence_factor", u.iridescence_factor);
-    prog.set("u_iridescence_ior", u.iridescence_ior);
-    prog.set("u_iridescence_thickness_minimum", u.iridescence_thickness_minimum);
-    prog.set("u_iridescence_thickness_maximum", u.iridescence_thickness_maximum);
-    prog.set("u_diffuse_transmission_factor", u.diffuse_transmission_factor);
-    prog.set("u_diffuse_transmission_color_factor", u.diffuse_transmission_color_factor);
+                           const std::array<bool, kMaterialMapCount>& bound, gpu::UniformBuffer& buffer) {
+    const MaterialBlock block = material_block(u);
+    if (!buffer) buffer = gpu::UniformBuffer(sizeof(MaterialBlock));
+    buffer.update(&block, sizeof block);
+    buffer.bind(kMaterialBlockBinding);
+    std::array<int, kMaterialMapCount> units{};
+    for (int i = 0; i < kMaterialMapCount; ++i) units[std::size_t(i)] = bound[std::size_t(i)] ? i : -1;
+    set_material_samplers(prog, units);
+}
+
+std::vector<std::pair<std::string, std::size_t>> material_block_members() {
+    std::vector<std::pair<std::string, std::size_t>> m = {
+        {"u_base_color_factor", offsetof(MaterialBlock, base_color_factor)},
+        {"u_emissive_factor", offsetof(MaterialBlock, emissive_factor)},
+        {"u_emissive_strength", offsetof(MaterialBlock, emissive_strength)},
+        {"u_specular_color_factor", offsetof(MaterialBlock, specular_color_factor)},
+        {"u_specular_factor", offsetof(MaterialBlock, specular_factor)},
+        {"u_sg_specular_factor", offsetof(MaterialBlock, sg_specular_factor)},
+        {"u_glossiness_factor", offsetof(MaterialBlock, glossiness_factor)},
+        {"u_sheen_color_factor", offsetof(MaterialBlock, sheen_color_factor)},
+        {"u_sheen_roughness_factor", offsetof(MaterialBlock, sheen_roughness_factor)},
+        {"u_attenuation_color", offsetof(MaterialBlock, attenuation_color)},
+        {"u_attenuation_distance", offsetof(MaterialBlock, attenuation_distance)},
+        {"u_diffuse_transmission_color_factor", offsetof(MaterialBlock, diffuse_transmission_color_factor)},
+        {"u_diffuse_transmission_factor", offsetof(MaterialBlock, diffuse_transmission_factor)},
+        {"u_metallic_factor", offsetof(MaterialBlock, metallic_factor)},
+        {"u_roughness_factor", offsetof(MaterialBlock, roughness_factor)},
+        {"u_normal_scale", offsetof(MaterialBlock, normal_scale)},
+        {"u_occlusion_strength", offsetof(MaterialBlock, occlusion_strength)},
+        {"u_alpha_cutoff", offsetof(MaterialBlock, alpha_cutoff)},
+        {"u_ior", offsetof(MaterialBlock, ior)},
+        {"u_clearcoat_factor", offsetof(MaterialBlock, clearcoat_factor)},
+        {"u_clearcoat_roughness_factor", offsetof(MaterialBlock, clearcoat_roughness_factor)},
+        {"u_clearcoat_normal_scale", offsetof(MaterialBlock, clearcoat_normal_scale)},
+        {"u_transmission_factor", offsetof(MaterialBlock, transmission_factor)},
+        {"u_thickness_factor", offsetof(MaterialBlock, thickness_factor)},
+        {"u_dispersion", offsetof(MaterialBlock, dispersion)},
+        {"u_anisotropy_strength", offsetof(MaterialBlock, anisotropy_strength)},
+        {"u_anisotropy_rotation", offsetof(MaterialBlock, anisotropy_rotation)},
+        {"u_iridescence_factor", offsetof(MaterialBlock, iridescence_factor)},
+        {"u_iridescence_ior", offsetof(MaterialBlock, iridescence_ior)},
+        {"u_iridescence_thickness_minimum", offsetof(MaterialBlock, iridescence_thickness_minimum)},
+        {"u_iridescence_thickness_maximum", offsetof(MaterialBlock, iridescence_thickness_maximum)},
+    };
     for (int i = 0; i < kMaterialMapCount; ++i) {
-        if (units[std::size_t(i)] < 0) continue;
-        std::string base = std::string("u_") + material_map_info(MaterialMap(i)).name;
-        prog.set(base + "_map", units[std::size_t(i)]);
-        // A map the variant reads but the material lacks is the 1x1 white texture.
-        const TextureSlot* slot = u.maps[std::size_t(i)];
-        prog.set(base + "_uv", slot ? slot->tex_coord : 0);
-        prog.set(base + "_transform", slot ? slot->transform : glm::mat3(1.0f));
-        prog.set(base + "_anisotropy", slot ? u.anisotropy[std::size_t(i)] : 1.0f);  // detail maps only declare it
+        const std::string base = std::string("u_") + material_map_info(MaterialMap(i)).name;
+        const std::size_t at = offsetof(MaterialBlock, maps) + std::size_t(i) * sizeof(MaterialBlock::Map);
+        m.emplace_back(base + "_transform", at + offsetof(MaterialBlock::Map, transform));
+        m.emplace_back(base + "_uv", at + offsetof(MaterialBlock::Map, uv));
+        m.emplace_back(base + "_anisotropy", at + offsetof(MaterialBlock::Map, anisotropy));
     }
+    return m;
+}
+
+std::vector<std::pair<std::string, std::size_t>> light_block_members() {
+    return {{"u_light_position_type[0]", offsetof(LightBlock, position_type)},
+            {"u_light_direction_range[0]", offsetof(LightBlock, direction_range)},
+            {"u_light_color[0]", offsetof(LightBlock, color)},
+            {"u_light_cone[0]", offsetof(LightBlock, cone)},
+            {"u_light_count", offsetof(LightBlock, count)}};
 }
 
 }  // namespace fresnel

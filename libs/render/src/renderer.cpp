@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <map>
 
@@ -87,6 +88,7 @@ struct Draw {
     const std::vector<glm::mat4>* joints = nullptr;  // skinned on the GPU by these joint matrices
     bool morph = false;                              // morphed on the GPU by these weight changes:
     std::array<float, kMaxShaderMorphTargets> morph_weights{};
+    std::uint32_t sequence = 0;  // scene order: ties in the depth sort keep it
 };
 
 gpu::Primitive to_gpu(Topology t) {
@@ -143,6 +145,22 @@ struct Renderer::Impl {
     gpu::Context& context;
     gpu::Device device;
     ShaderLibrary shaders;
+    // Programs looked up by defines the draw path would otherwise spell out per draw (legacy
+    // variants, alternative BRDF terms, the output pass): (kind, features, frame key, extra) ->
+    // program, so a frame builds no strings. Cleared when the shaders are reloaded.
+    enum class ProgramKind { Legacy, PbrBrdf, Output };
+    std::map<std::tuple<ProgramKind, FeatureMask, int, std::uint32_t>, const gpu::Program*> program_cache;
+    std::vector<Draw> opaque_draws, blended_draws, transmissive_draws;  // a frame's, storage kept
+    template <class Defines>
+    const gpu::Program& cached_program(ProgramKind kind, FeatureMask features, int frame, std::uint32_t extra,
+                                       const char* vertex, const char* fragment, Defines&& defines) {
+        auto key = std::make_tuple(kind, features, frame, extra);
+        auto it = program_cache.find(key);
+        if (it != program_cache.end()) return *it->second;
+        const gpu::Program& p = shaders.get(vertex, fragment, defines());
+        program_cache.emplace(key, &p);
+        return p;
+    }
     const Scene* scene = nullptr;
     int scene_index = -1;
     std::vector<NodeInstance> instances;
@@ -268,10 +286,11 @@ struct Renderer::Impl {
         prog.set("u_env_rotation", env_rotation(s));
     }
 
-    // The display transform compiled into a frame's shaders; linear: none (the transmission pass).
-    static OutputVariant output_variant(const RenderSettings& s, bool linear) {
-        if (linear) return {int(ToneMapper::None), -1};
-        return {int(s.tone_mapper), s.encoding ? int(*s.encoding) : -1};
+    // What the frame compiles into its shaders (shader_features.h): the display transform,
+    // none when linear (the transmission pass), and whether punctual lights are bound.
+    static FrameVariant frame_variant(const RenderSettings& s, bool linear, bool lights = true) {
+        if (linear) return {int(ToneMapper::None), -1, lights};
+        return {int(s.tone_mapper), s.encoding ? int(*s.encoding) : -1, lights};
     }
 
     // linear: radiance without exposure, tone mapping or encoding (the transmission pass).
@@ -281,7 +300,7 @@ struct Renderer::Impl {
         st.depth_write = false;
         st.cull = gpu::Cull::None;
         device.apply(st);
-        const gpu::Program& prog = shaders.get("fullscreen.vert", "sky.frag", 0, output_variant(s, linear));
+        const gpu::Program& prog = shaders.get("fullscreen.vert", "sky.frag", 0, frame_variant(s, linear));
         prog.use();
         device.bind_texture(0, env_specular);
         prog.set("u_specular_env", 0);
@@ -315,6 +334,8 @@ struct Renderer::Impl {
     void upload(const Scene& s) {
         meshes.clear();
         textures.clear();
+        material_buffers.clear();
+        material_buffers.resize(s.materials.size() + 1);
         for (const auto& mesh : s.meshes) {
             std::vector<GpuPrimitive> prims;
             for (const auto& p : mesh.primitives) {
@@ -532,14 +553,12 @@ struct Renderer::Impl {
         output_fb.check();
     }
 
-    // The lights as the shaders' arrays hold them (lights.glsl), packed once per frame into
-    // storage the renderer keeps: no allocation per draw.
-    struct PackedLights {
-        int count = 0;
-        std::array<glm::vec4, kMaxLights> position_type{}, direction_range{}, color{}, cone{};
-    } frame_lights;
+    // The frame's lights as LightBlock (lights.glsl, uniform_blocks.h): packed and uploaded once
+    // per frame, bound at kLightBlockBinding for every draw.
+    LightBlock frame_lights;
+    gpu::UniformBuffer light_buffer;
     void pack_lights(const std::vector<LightInstance>& lights) {
-        PackedLights& p = frame_lights;
+        LightBlock& p = frame_lights;
         p.count = std::min<int>(int(lights.size()), kMaxLights);
         for (int i = 0; i < p.count; ++i) {
             const LightInstance& l = lights[std::size_t(i)];
@@ -553,14 +572,31 @@ struct Renderer::Impl {
         for (int i = p.count; i < kMaxLights; ++i)
             p.position_type[std::size_t(i)] = p.direction_range[std::size_t(i)] = p.color[std::size_t(i)] =
                 p.cone[std::size_t(i)] = glm::vec4(0.0f);
+        if (!light_buffer) light_buffer = gpu::UniformBuffer(sizeof(LightBlock));
+        light_buffer.update(&p, sizeof p);
+        light_buffer.bind(kLightBlockBinding);
     }
 
-    void set_light_uniforms(const gpu::Program& prog) const {
-        prog.set("u_light_count", frame_lights.count);
-        prog.set("u_light_position_type", std::span<const glm::vec4>(frame_lights.position_type));
-        prog.set("u_light_direction_range", std::span<const glm::vec4>(frame_lights.direction_range));
-        prog.set("u_light_color", std::span<const glm::vec4>(frame_lights.color));
-        prog.set("u_light_cone", std::span<const glm::vec4>(frame_lights.cone));
+    // One uniform buffer per material (index + 1; 0: the glTF default material), refilled
+    // only when the material's block changes (an edit in the viewer, another --anisotropy).
+    struct MaterialBuffer {
+        gpu::UniformBuffer buffer;
+        MaterialBlock block;
+        bool filled = false;
+    };
+    std::vector<MaterialBuffer> material_buffers;
+    void bind_material_block(int material, const MaterialUniforms& mu) {
+        const std::size_t slot = material >= 0 ? std::size_t(material) + 1 : 0;
+        if (slot >= material_buffers.size()) material_buffers.resize(slot + 1);
+        MaterialBuffer& mb = material_buffers[slot];
+        const MaterialBlock block = material_block(mu);
+        if (!mb.buffer) mb.buffer = gpu::UniformBuffer(sizeof(MaterialBlock));
+        if (!mb.filled || std::memcmp(&mb.block, &block, sizeof block) != 0) {
+            mb.buffer.update(&block, sizeof block);
+            mb.block = block;
+            mb.filled = true;
+        }
+        mb.buffer.bind(kMaterialBlockBinding);
     }
 
     // One primitive in a legacy model (legacy.vert / legacy.frag, ShadingModel in renderer.h)
@@ -585,10 +621,15 @@ struct Renderer::Impl {
         if (p.has_uv0 && slot.tex_coord == 0) map = texture_for(slot, blinn, blinn ? Anisotropic::Sampler : Anisotropic::Off, settings.anisotropy);
         if (map) raw |= lf::DiffuseMap;
         const FeatureMask features = canonical_legacy_features(raw);
-        std::vector<std::string> defines = legacy_feature_defines(features);
-        if (blinn)  // the OpenGL 1 models write their colour as they compute it
-            for (auto& d : output_defines(output_variant(settings, false))) defines.push_back(std::move(d));
-        const gpu::Program& prog = shaders.get("legacy.vert", "legacy.frag", std::move(defines));
+        // The OpenGL 1 models write their colour as they compute it: no frame variant.
+        const int frame = blinn ? frame_variant(settings, false).key() : -1;
+        const gpu::Program& prog =
+            cached_program(ProgramKind::Legacy, features, frame, 0, "legacy.vert", "legacy.frag", [&] {
+                std::vector<std::string> defines = legacy_feature_defines(features);
+                if (blinn)
+                    for (auto& d : frame_defines(frame_variant(settings, false))) defines.push_back(std::move(d));
+                return defines;
+            });
         prog.use();
         prog.set("u_model", d.model);
         prog.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(d.model)));
@@ -603,7 +644,6 @@ struct Renderer::Impl {
         prog.set("u_shininess", legacy::ogl1_shininess(ph.shininess));
         prog.set("u_global_ambient", settings.ambient);
         prog.set("u_separate_specular", map ? 1 : 0);  // as rgl: separate specular for textured materials
-        set_light_uniforms(prog);
         if (map) {
             device.bind_texture(0, *map);
             prog.set("u_diffuse_map", 0);
@@ -702,12 +742,17 @@ struct Renderer::Impl {
 
         // Alternative BRDF terms are defines on top of the feature set (rare: a string-keyed variant).
         const gpu::Program& prog = [&]() -> const gpu::Program& {
-            const OutputVariant output = output_variant(settings, linear_pass);
+            const FrameVariant output = frame_variant(settings, linear_pass, !lights.empty());
             if (settings.brdf.is_default()) return shaders.get("pbr.vert", "pbr.frag", features, output);
-            std::vector<std::string> defines = feature_defines(features);
-            for (auto& d : output_defines(output)) defines.push_back(std::move(d));
-            for (auto& d : brdf::brdf_model_defines(settings.brdf)) defines.push_back(std::move(d));
-            return shaders.get("pbr.vert", "pbr.frag", std::move(defines));
+            const brdf::BrdfModel& b = settings.brdf;
+            const std::uint32_t terms = std::uint32_t(b.d) | std::uint32_t(b.g) << 6 | std::uint32_t(b.f) << 12 |
+                                        std::uint32_t(b.diffuse) << 18 | std::uint32_t(b.conductor) << 24;
+            return cached_program(ProgramKind::PbrBrdf, features, output.key(), terms, "pbr.vert", "pbr.frag", [&] {
+                std::vector<std::string> defines = feature_defines(features);
+                for (auto& d : frame_defines(output)) defines.push_back(std::move(d));
+                for (auto& d : brdf::brdf_model_defines(settings.brdf)) defines.push_back(std::move(d));
+                return defines;
+            });
         }();
         prog.use();
         prog.set("u_model", d.model);
@@ -761,9 +806,8 @@ struct Renderer::Impl {
             }
             set_ibl_uniforms(prog, settings);
         }
-        set_material_uniforms(prog, mu, map_units);
-        // Lights, packed once per frame (pack_lights).
-        set_light_uniforms(prog);
+        bind_material_block(p.material, mu);
+        set_material_samplers(prog, map_units);
 
         gpu::PipelineState state;
         state.cull = m.double_sided ? gpu::Cull::None : gpu::Cull::Back;
@@ -816,7 +860,11 @@ std::size_t Renderer::texture_bytes() const {
     return n;
 }
 void Renderer::set_shader_folder(const std::string& folder) { impl_->shaders.set_source_folder(folder); }
-std::string Renderer::reload_shaders() { return impl_->shaders.reload(); }
+std::string Renderer::reload_shaders() {
+    std::string error = impl_->shaders.reload();
+    if (error.empty()) impl_->program_cache.clear();  // they pointed into the old programs
+    return error;
+}
 
 ImageF Renderer::render(const CameraSetup& cam, const std::vector<LightInstance>& lights,
                         const RenderSettings& settings, FrameStats* stats_out) {
@@ -868,7 +916,13 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
     }
 
     if (r.scene) {
-        std::vector<Draw> opaque, blended, transmissive;
+        // The frame's draw lists: the renderer's own vectors, emptied (their storage stays).
+        std::vector<Draw>& opaque = r.opaque_draws;
+        std::vector<Draw>& blended = r.blended_draws;
+        std::vector<Draw>& transmissive = r.transmissive_draws;
+        opaque.clear();
+        blended.clear();
+        transmissive.clear();
         // GPU animation: joint matrices from the nodes' current world matrices.
         std::vector<std::vector<glm::mat4>> skin_matrices;
         if (settings.gpu_animation) {
@@ -888,7 +942,8 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
             for (const auto& p : r.meshes[std::size_t(node.mesh)]) {
                 glm::mat4 model = node.world_space_mesh ? glm::mat4(1.0f) : inst.world;
                 glm::vec4 c = cam.view * model * glm::vec4(p.center, 1.0f);
-                Draw d{&p, model, -c.z};
+                Draw d{&p, model, std::isnan(c.z) ? 0.0f : -c.z};  // a NaN would break the sort's ordering
+                d.sequence = std::uint32_t(opaque.size() + blended.size() + transmissive.size());
                 if (settings.gpu_animation && !node.world_space_mesh) {
                     if (p.has_skin && node.skin >= 0 && std::size_t(node.skin) < skin_matrices.size() &&
                         !skin_matrices[std::size_t(node.skin)].empty())
@@ -909,9 +964,12 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
         }
         // Blended primitives last, far to near; transmissive ones (KHR_materials_transmission)
         // between the opaque and the blended ones, far to near, as the Khronos Sample Viewer.
-        auto far_to_near = [](const Draw& a, const Draw& b) { return a.depth > b.depth; };
-        std::stable_sort(blended.begin(), blended.end(), far_to_near);
-        std::stable_sort(transmissive.begin(), transmissive.end(), far_to_near);
+        // (std::sort with the scene order as tie-break: stable_sort would allocate a buffer each frame.)
+        auto far_to_near = [](const Draw& a, const Draw& b) {
+            return a.depth != b.depth ? a.depth > b.depth : a.sequence < b.sequence;
+        };
+        std::sort(blended.begin(), blended.end(), far_to_near);
+        std::sort(transmissive.begin(), transmissive.end(), far_to_near);
         r.pack_lights(lights);
         r.transmission_ready = false;
         if (!transmissive.empty() && settings.debug == DebugChannel::None) {
@@ -951,8 +1009,10 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
     post.depth_write = false;
     post.cull = gpu::Cull::None;
     r.device.apply(post);
-    const gpu::Program& prog = r.shader_resolve ? r.shaders.get("fullscreen.vert", "post.frag", {"MSAA_RESOLVE"})
-                                                : r.shaders.get("fullscreen.vert", "post.frag", {});
+    const gpu::Program& prog =
+        r.cached_program(Impl::ProgramKind::Output, 0, -1, r.shader_resolve ? 1 : 0, "fullscreen.vert", "post.frag", [&] {
+            return r.shader_resolve ? std::vector<std::string>{"MSAA_RESOLVE"} : std::vector<std::string>{};
+        });
     prog.use();
     if (r.shader_resolve) {
         r.device.bind_texture(0, r.msaa_texture);

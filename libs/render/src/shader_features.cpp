@@ -80,8 +80,11 @@ FeatureMask allowed_maps(FeatureMask m) {
 
 std::span<const FeatureInfo> feature_table() { return kFeatures; }
 
-std::vector<std::string> output_defines(OutputVariant output) {
-    return {"OUTPUT_TONEMAP " + std::to_string(output.tone_mapper), "OUTPUT_ENCODING " + std::to_string(output.encoding)};
+std::vector<std::string> frame_defines(FrameVariant frame) {
+    std::vector<std::string> out{"FRAME_TONEMAP " + std::to_string(frame.tone_mapper),
+                                 "FRAME_ENCODING " + std::to_string(frame.encoding)};
+    if (!frame.lights) out.emplace_back("FRAME_NO_LIGHTS");
+    return out;
 }
 
 std::vector<std::string> feature_defines(FeatureMask mask) {

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "fresnel/core/error.h"
+#include "fresnel/render/uniform_blocks.h"
 #include "fresnel/shaders/shaders.h"
 
 namespace fresnel {
@@ -60,6 +61,11 @@ std::string assemble_shader(const std::string& file, const std::vector<std::stri
     return out;
 }
 
+void ShaderLibrary::bind_blocks(const gpu::Program& program) {
+    program.bind_uniform_block("LightBlock", kLightBlockBinding);
+    program.bind_uniform_block("MaterialBlock", kMaterialBlockBinding);
+}
+
 const gpu::Program& ShaderLibrary::get(const std::string& vertex, const std::string& fragment,
                                        std::vector<std::string> defines) {
     std::sort(defines.begin(), defines.end());
@@ -68,6 +74,7 @@ const gpu::Program& ShaderLibrary::get(const std::string& vertex, const std::str
     auto it = programs_.find(key);
     if (it != programs_.end()) return *it->second;
     auto program = std::make_unique<gpu::Program>(key, source(vertex, defines), source(fragment, defines));
+    bind_blocks(*program);
     sources_[key] = Sources{vertex, fragment, defines};
     return *programs_.emplace(key, std::move(program)).first->second;
 }
@@ -96,7 +103,9 @@ std::string ShaderLibrary::reload() {
     std::map<std::string, std::unique_ptr<gpu::Program>> fresh;
     try {
         for (const auto& [key, s] : sources_)
-            fresh.emplace(key, std::make_unique<gpu::Program>(key, source(s.vertex, s.defines), source(s.fragment, s.defines)));
+            bind_blocks(*fresh.emplace(key, std::make_unique<gpu::Program>(key, source(s.vertex, s.defines),
+                                                                            source(s.fragment, s.defines)))
+                             .first->second);
     } catch (const std::exception& e) {
         return e.what();  // `fresh` goes; the programs in use stay
     }
@@ -117,12 +126,12 @@ const gpu::Program& ShaderLibrary::get(const std::string& vertex, const std::str
     return p;
 }
 const gpu::Program& ShaderLibrary::get(const std::string& vertex, const std::string& fragment, FeatureMask features,
-                                       OutputVariant output) {
+                                       FrameVariant output) {
     auto key = std::make_tuple(vertex, fragment, features, output.key());
     auto it = variants_.find(key);
     if (it != variants_.end()) return *it->second;
     std::vector<std::string> defines = feature_defines(features);
-    for (auto& d : output_defines(output)) defines.push_back(std::move(d));
+    for (auto& d : frame_defines(output)) defines.push_back(std::move(d));
     const gpu::Program& p = get(vertex, fragment, std::move(defines));
     variants_.emplace(std::move(key), &p);
     return p;

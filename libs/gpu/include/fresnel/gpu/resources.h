@@ -6,6 +6,7 @@
 #include <map>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -48,6 +49,24 @@ public:
 
 private:
     BufferKind kind_ = BufferKind::Vertex;
+};
+
+// A uniform buffer: the storage of a std140 uniform block (OpenGL 3.1+, OpenGL ES 3.0).
+class UniformBuffer : public Handle {
+public:
+    UniformBuffer() = default;
+    explicit UniformBuffer(std::size_t bytes);  // contents undefined until update()
+    UniformBuffer(UniformBuffer&&) noexcept = default;
+    UniformBuffer& operator=(UniformBuffer&&) noexcept = default;
+    ~UniformBuffer();
+    std::size_t size() const { return size_; }
+    // Replaces the first `bytes` bytes (at most size()).
+    void update(const void* data, std::size_t bytes);
+    // Binds the buffer to uniform binding point `binding` (Program::bind_uniform_block).
+    void bind(unsigned binding) const;
+
+private:
+    std::size_t size_ = 0;
 };
 
 // A vertex array: float attributes from buffers, optional index buffer (uint32).
@@ -192,22 +211,32 @@ public:
     Program& operator=(Program&&) noexcept = default;
     ~Program();
     void use() const;
-    int location(const std::string& uniform) const;
+    // The location of an active uniform (arrays by their bare name), -1 for none. Every
+    // location is read once, when the program is linked; looking one up allocates nothing.
+    int location(std::string_view uniform) const;
     // Setters on the current program (call use() first); unknown names are ignored.
-    void set(const std::string& name, int v) const;
-    void set(const std::string& name, float v) const;
-    void set(const std::string& name, glm::vec2 v) const;
-    void set(const std::string& name, glm::vec3 v) const;
-    void set(const std::string& name, glm::vec4 v) const;
-    void set(const std::string& name, const glm::mat3& v) const;
-    void set(const std::string& name, const glm::mat4& v) const;
-    void set(const std::string& name, std::span<const glm::vec4> v) const;
-    void set(const std::string& name, std::span<const glm::vec3> v) const;
-    void set(const std::string& name, std::span<const glm::mat4> v) const;  // a mat4 array (joint matrices)
-    void set(const std::string& name, std::span<const float> v) const;      // a float array (morph weights)
+    void set(std::string_view name, int v) const;
+    void set(std::string_view name, float v) const;
+    void set(std::string_view name, glm::vec2 v) const;
+    void set(std::string_view name, glm::vec3 v) const;
+    void set(std::string_view name, glm::vec4 v) const;
+    void set(std::string_view name, const glm::mat3& v) const;
+    void set(std::string_view name, const glm::mat4& v) const;
+    void set(std::string_view name, std::span<const glm::vec4> v) const;
+    void set(std::string_view name, std::span<const glm::vec3> v) const;
+    void set(std::string_view name, std::span<const glm::mat4> v) const;  // a mat4 array (joint matrices)
+    void set(std::string_view name, std::span<const float> v) const;      // a float array (morph weights)
+    // Connects the uniform block `block` (if the program has it) to buffer binding point
+    // `binding` (UniformBuffer::bind). GLSL ES 3.00 has no layout(binding = N) for blocks.
+    void bind_uniform_block(const char* block, unsigned binding) const;
+    // Byte offsets of the named uniform block members, -1 for a name the program lacks
+    // (tests check a C++ mirror of a std140 block against them).
+    std::vector<int> uniform_offsets(const std::vector<std::string>& names) const;
+    // The size in bytes of uniform block `block` as laid out, 0 when the program lacks it.
+    int uniform_block_size(const char* block) const;
 
 private:
-    mutable std::map<std::string, int> locations_;
+    std::map<std::string, int, std::less<>> locations_;
 };
 
 }  // namespace fresnel::gpu

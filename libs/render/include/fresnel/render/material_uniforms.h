@@ -12,10 +12,12 @@
 #include "fresnel/material/evaluate.h"
 #include "fresnel/material/material.h"
 #include "fresnel/render/shader_features.h"
+#include "fresnel/render/uniform_blocks.h"
 
 namespace fresnel {
 namespace gpu {
 class Program;
+class UniformBuffer;
 }
 
 // The values one material uploads (uniform names in material_inputs.glsl: u_<field>).
@@ -70,13 +72,17 @@ MaterialUniforms material_uniforms(const Material& m);
 // specular-glossiness, clearcoat, sheen, transmission, anisotropy, iridescence, diffuse transmission, alpha mode (feature_defines() spells them as #defines).
 FeatureMask material_features(const Material& m);
 
-// Sets the values on `program` (in use); units[i]: the texture unit map i is bound to (-1: none).
+// The uniform block of the values (std140, shaders/material_block.glsl).
+MaterialBlock material_block(const MaterialUniforms& u);
+
+// The samplers of `program` (in use): units[i] is the texture unit map i is bound to (-1: none).
 // The renderer packs the maps a variant reads into consecutive units, so that with the
 // image-based light's textures they stay within the 16 units OpenGL ES 3.0 guarantees.
+void set_material_samplers(const gpu::Program& program, const std::array<int, kMaterialMapCount>& units);
+
+// Tests: the values into `buffer` (made when empty) bound at kMaterialBlockBinding, and map i
+// on unit i where bound[i].
 void set_material_uniforms(const gpu::Program& program, const MaterialUniforms& u,
-                           const std::array<int, kMaterialMapCount>& units);
-// The same with map i on unit i where bound[i] (tests).
-void set_material_uniforms(const gpu::Program& program, const MaterialUniforms& u,
-                           const std::array<bool, kMaterialMapCount>& bound);
+                           const std::array<bool, kMaterialMapCount>& bound, gpu::UniformBuffer& buffer);
 
 }  // namespace fresnel

@@ -168,19 +168,23 @@ bool valid_legacy_features(FeatureMask mask);
 // Every valid legacy mask, ascending (a few dozen).
 std::vector<FeatureMask> all_legacy_feature_sets();
 
-// ---- Output variants --------------------------------------------------------------------
-// The display transform compiled into the fragment shaders that write a frame (pbr.frag,
-// legacy.frag, sky.frag; display_transform in tonemap.glsl): the frame's tone mapper and
-// encoding become OUTPUT_TONEMAP / OUTPUT_ENCODING. A switch on a uniform costs a software
-// rasteriser every branch; compiled in, a frame pays for its own (DamagedHelmet at 1024^2 on
-// llvmpipe: ~10 % of the frame). A frame has one, so this multiplies no variant counts.
-struct OutputVariant {
+// ---- Frame variants ---------------------------------------------------------------------
+// What a frame decides for every draw, compiled into the shaders that write it (pbr.frag,
+// legacy.frag's Blinn-Phong, sky.frag): the tone mapper and encoding (FRAME_TONEMAP,
+// FRAME_ENCODING: display_transform in tonemap.glsl) and, for pbr.frag, whether any punctual
+// light shines (FRAME_NO_LIGHTS drops the light loop). A software rasteriser runs both sides
+// of a branch on a uniform and a loop's body once even when it breaks at once, so a uniform
+// switch or an empty light loop costs every pixel (DamagedHelmet at 1024^2 on llvmpipe with
+// image-based light alone: ~20 % of the frame). A frame has one variant, so this adds one
+// program per frame setting, not a factor on the feature sets.
+struct FrameVariant {
     int tone_mapper = 0;  // int(fresnel::ToneMapper)
     int encoding = 0;     // int(fresnel::Encoding); -1: none (linear radiance, the transmission pass)
-    // A small integer naming the pair (the shader caches' key).
-    int key() const { return tone_mapper * 4 + encoding + 1; }
+    bool lights = true;   // punctual lights are bound (false: FRAME_NO_LIGHTS)
+    // A small integer naming the variant (the shader caches' key).
+    int key() const { return (tone_mapper * 4 + encoding + 1) * 2 + (lights ? 1 : 0); }
 };
-// "OUTPUT_TONEMAP n", "OUTPUT_ENCODING n".
-std::vector<std::string> output_defines(OutputVariant output);
+// "FRAME_TONEMAP n", "FRAME_ENCODING n" and, without lights, "FRAME_NO_LIGHTS".
+std::vector<std::string> frame_defines(FrameVariant frame);
 
 }  // namespace fresnel

@@ -41,9 +41,9 @@ public:
     // The variant of a mesh shader pair for a feature set (see shader_features.h): its
     // defines are feature_defines(features). Looked up by (vertex, fragment, mask).
     const gpu::Program& get(const std::string& vertex, const std::string& fragment, FeatureMask features);
-    // The same with the frame's display transform compiled in (output_defines(output)).
+    // The same with the frame's display transform compiled in (frame_defines(output)).
     const gpu::Program& get(const std::string& vertex, const std::string& fragment, FeatureMask features,
-                            OutputVariant output);
+                            FrameVariant output);
     std::size_t size() const { return programs_.size(); }
     GlslTarget target() const { return target_; }
 
@@ -54,6 +54,10 @@ public:
     // when one fails to read, compile or link, every program stays as it was and the error
     // is returned; "" on success (programs got before are then invalid: get them again).
     std::string reload();
+
+    // Connects a program's uniform blocks (LightBlock, MaterialBlock) to their binding points
+    // (uniform_blocks.h); done for every program the library makes.
+    static void bind_blocks(const gpu::Program& program);
 
 private:
     std::string source(const std::string& file, const std::vector<std::string>& defines);

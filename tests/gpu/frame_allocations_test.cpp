@@ -1,0 +1,91 @@
+// A warm renderer draws a frame without allocating: the lights and each material live in
+// uniform buffers (uniform_blocks.h), uniform locations are read once per program, program
+// lookups build no strings, and the draw lists keep their storage. Counted here by
+// replacing the global operator new for this test program (the driver's own C allocations
+// are its business). Frames with GPU animation are outside this promise (joint matrices).
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "fresnel/core/error.h"
+#include "fresnel/gpu/context.h"
+#include "fresnel/ibl/bake.h"
+#include "fresnel/render/camera.h"
+#include "fresnel/render/lights.h"
+#include "fresnel/render/renderer.h"
+#include "fresnel/scene/procedural.h"
+
+namespace {
+std::atomic<long> g_allocations{0};
+std::atomic<bool> g_counting{false};
+}  // namespace
+
+void* operator new(std::size_t n) {
+    if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
+    if (void* p = std::malloc(n ? n : 1)) return p;
+    throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+using namespace fresnel;
+
+TEST(FrameAllocations, AWarmFrameAllocatesNothing) {
+    std::unique_ptr<gpu::Context> context;
+    try {
+        context = gpu::create_headless_context();
+    } catch (const Error& e) {
+        GTEST_SKIP() << "no headless OpenGL context: " << e.what();
+    }
+    Scene scene = make_demo_scene();
+    ASSERT_GE(scene.materials.size(), 3u);
+    scene.materials[1].alpha_mode = AlphaMode::Blend;  // the depth-sorted list too
+    scene.materials[1].base_color_factor.w = 0.5f;
+    scene.materials[2].alpha_mode = AlphaMode::Blend;
+    scene.materials[2].base_color_factor.w = 0.5f;
+    // A small uniform environment (baked in a moment).
+    ImageF sky(16, 8);
+    for (std::size_t i = 0; i < sky.pixels.size(); i += 4)
+        sky.pixels[i] = 0.6f, sky.pixels[i + 1] = 0.7f, sky.pixels[i + 2] = 0.8f, sky.pixels[i + 3] = 1.0f;
+    ibl::BakeOptions bo;
+    bo.size = 16;
+    bo.levels = 3;
+    bo.use_lut_cache = false;
+    bo.lut_size = 16;
+    bo.lut_samples = 64;
+    ibl::BakedIbl env = ibl::bake(sky, bo);
+
+    Renderer renderer(*context);
+    renderer.set_scene(scene);
+    RenderSettings rs;
+    rs.width = 96;
+    rs.height = 64;
+    rs.environment = &env;
+    rs.background_mode = RenderSettings::Background::Environment;
+    const CameraSetup cam = orbit_camera(scene_bounds(scene, flatten(scene)), {}, rs.width, rs.height);
+    const std::vector<LightInstance> lights = default_lights();
+    for (int i = 0; i < 2; ++i) {  // warm: programs, textures, targets, buffers
+        renderer.draw(cam, lights, rs);
+        renderer.finish();
+    }
+    FrameStats stats;
+    g_allocations = 0;
+    g_counting = true;
+    for (int i = 0; i < 3; ++i) {
+        renderer.draw(cam, lights, rs, &stats);
+        renderer.finish();
+    }
+    g_counting = false;
+    EXPECT_GT(stats.draw_calls, 40);
+    EXPECT_TRUE(stats.gl_errors.empty()) << stats.gl_errors;
+    EXPECT_EQ(g_allocations.load(), 0) << "allocations in three warm frames";
+    // The control: render() returns a new image, and the counter sees it.
+    g_allocations = 0;
+    g_counting = true;
+    ImageF image = renderer.render(cam, lights, rs);
+    g_counting = false;
+    EXPECT_GE(g_allocations.load(), 1);
+    EXPECT_EQ(image.width, rs.width);
+}
