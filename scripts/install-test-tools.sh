@@ -12,6 +12,9 @@ missing=()
 for p in "${want[@]}"; do
   [[ -d $dir/node_modules/${p%@*} ]] || missing+=("$p")
 done
+# Another tool's install (scripts/setup-gltf-transform.sh shares this folder) can leave ajv 6
+# at the top level, which has no JSON Schema 2020-12 (ajv/dist/2020): ask for ajv 8 again then.
+if [[ -d $dir/node_modules/ajv && ! -f $dir/node_modules/ajv/dist/2020.js ]]; then missing+=(ajv@8); fi
 [[ ${#missing[@]} -eq 0 ]] && exit 0
 if ! command -v npm >/dev/null 2>&1; then
   echo "install-test-tools: npm not found; the KTX2 reader and docs format tests will skip"

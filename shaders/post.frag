@@ -13,6 +13,19 @@ uniform int u_samples;
 uniform sampler2D u_frame;
 #endif
 uniform int u_transparent;  // 1: un-premultiply (a transparent frame going to PNG)
+// The renderer compiles both choices in (as it does the frame variants, shader_features.h): a
+// loop over a uniform count and a branch on a uniform cost a software rasteriser extra on every
+// pixel. MSAA_SAMPLES: the sample count; STRAIGHT_ALPHA 0/1: u_transparent.
+#ifdef MSAA_SAMPLES
+#define RESOLVE_SAMPLES MSAA_SAMPLES
+#else
+#define RESOLVE_SAMPLES u_samples
+#endif
+#ifdef STRAIGHT_ALPHA
+#define UNPREMULTIPLY (STRAIGHT_ALPHA == 1)
+#else
+#define UNPREMULTIPLY (u_transparent == 1)
+#endif
 
 bool bad(vec4 c) { return any(isnan(c)) || any(isinf(c)); }
 
@@ -20,8 +33,8 @@ void main() {
 #ifdef MSAA_RESOLVE
     ivec2 p = ivec2(v_texcoord * vec2(textureSize(u_frame_ms)));  // pixel of the frame, wherever the viewport is
     vec4 c = vec4(0.0);
-    for (int i = 0; i < u_samples; ++i) c += texelFetch(u_frame_ms, p, i);
-    c /= float(u_samples);
+    for (int i = 0; i < RESOLVE_SAMPLES; ++i) c += texelFetch(u_frame_ms, p, i);
+    c /= float(RESOLVE_SAMPLES);
 #else
     vec4 c = texture(u_frame, v_texcoord);
 #endif
@@ -29,7 +42,7 @@ void main() {
         frag_color = vec4(1.0, 0.0, 1.0, 1.0);
         return;
     }
-    if (u_transparent == 1) {
+    if (UNPREMULTIPLY) {
         float a = clamp(c.a, 0.0, 1.0);
         frag_color = vec4(a > 0.0 ? c.rgb / a : vec3(0.0), a);
     } else {

@@ -320,6 +320,12 @@ TEST(ShaderVariants, EveryVariantCompilesAsEs300AndGl330) {
     // The output pass that resolves the multisampled frame itself: desktop GL only (GLSL ES
     // 3.00 has no sampler2DMS; the renderer blits there).
     jobs.push_back({"post.frag", 0, false, GlslTarget::Gl33, {"MSAA_RESOLVE"}});
+    // The output pass as the renderer compiles it: the sample count and the alpha choice defined.
+    for (const char* alpha : {"STRAIGHT_ALPHA 0", "STRAIGHT_ALPHA 1"}) {
+        for (GlslTarget t : {GlslTarget::Es30, GlslTarget::Gl33}) jobs.push_back({"post.frag", 0, false, t, {alpha}});
+        for (const char* samples : {"MSAA_SAMPLES 2", "MSAA_SAMPLES 4", "MSAA_SAMPLES 8"})
+            jobs.push_back({"post.frag", 0, false, GlslTarget::Gl33, {"MSAA_RESOLVE", samples, alpha}});
+    }
 
     std::atomic<std::size_t> next{0}, compiled{0};
     std::mutex mutex;

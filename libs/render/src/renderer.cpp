@@ -1009,20 +1009,26 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
     post.depth_write = false;
     post.cull = gpu::Cull::None;
     r.device.apply(post);
-    const gpu::Program& prog =
-        r.cached_program(Impl::ProgramKind::Output, 0, -1, r.shader_resolve ? 1 : 0, "fullscreen.vert", "post.frag", [&] {
-            return r.shader_resolve ? std::vector<std::string>{"MSAA_RESOLVE"} : std::vector<std::string>{};
+    const bool unpremultiply = transparent && settings.straight_alpha;
+    const int resolve_samples = r.shader_resolve ? r.target_samples : 0;
+    const gpu::Program& prog = r.cached_program(
+        Impl::ProgramKind::Output, 0, -1, std::uint32_t(resolve_samples) << 1 | (unpremultiply ? 1u : 0u),
+        "fullscreen.vert", "post.frag", [&] {
+            std::vector<std::string> defines{std::string("STRAIGHT_ALPHA ") + (unpremultiply ? "1" : "0")};
+            if (r.shader_resolve) {
+                defines.emplace_back("MSAA_RESOLVE");
+                defines.push_back("MSAA_SAMPLES " + std::to_string(resolve_samples));
+            }
+            return defines;
         });
     prog.use();
     if (r.shader_resolve) {
         r.device.bind_texture(0, r.msaa_texture);
-        prog.set("u_frame_ms", 0);
-        prog.set("u_samples", r.target_samples);
+        prog.set("u_frame_ms", 0);  // the sample count and the alpha choice are compiled in
     } else {
         r.device.bind_texture(0, r.resolved);
         prog.set("u_frame", 0);
     }
-    prog.set("u_transparent", transparent && settings.straight_alpha ? 1 : 0);
     const bool scissored = to_default && target.scissor;
     if (scissored) r.device.scissor(target.scissor->x, target.scissor->y, target.scissor->width, target.scissor->height);
     r.device.draw_fullscreen();
