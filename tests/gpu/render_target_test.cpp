@@ -8,6 +8,9 @@
 #include "fresnel/core/metrics.h"
 #include "fresnel/gpu/context.h"
 #include "fresnel/gpu/device.h"
+#include "fresnel/core/color.h"
+#include "fresnel/render/camera.h"
+#include "fresnel/render/lights.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/scene/procedural.h"
 
@@ -122,4 +125,58 @@ TEST(RenderTarget, ScissorWritesOnlyItsRectangle) {
     EXPECT_GE(right_psnr, 50.0);
     // And the two settings differ, so the test can tell the halves apart.
     EXPECT_LT(compare_images(shaded, rough, false).psnr_db, 30.0);
+}
+
+// The display transform compiled into each frame's shaders (FrameVariant: FRAME_TONEMAP,
+// FRAME_ENCODING) against the C++ tone mappers and encodings applied to the same frame drawn
+// linear (no tone map, no encoding), for every tone mapper and encoding, with and without
+// punctual lights (FRAME_NO_LIGHTS). One sample per pixel, so no edge mixes display values.
+TEST(RenderTarget, CompiledDisplayTransformMatchesTheCppOne) {
+    std::unique_ptr<gpu::Context> context;
+    try {
+        context = gpu::create_headless_context();
+    } catch (const Error& e) {
+        GTEST_SKIP() << "no headless OpenGL context: " << e.what();
+    }
+    Scene scene = make_demo_scene();
+    Renderer renderer(*context);
+    renderer.set_scene(scene);
+    RenderSettings rs;
+    rs.width = 48;
+    rs.height = 36;
+    rs.msaa = 1;
+    rs.exposure_ev = 0.5f;
+    rs.ambient = glm::vec3(0.3f);  // lights the frame without punctual lights
+    const CameraSetup cam = orbit_camera(scene_bounds(scene, flatten(scene)), {}, rs.width, rs.height);
+    int compared = 0;
+    for (bool with_lights : {true, false}) {
+        const std::vector<LightInstance> lights = with_lights ? default_lights() : std::vector<LightInstance>{};
+        RenderSettings linear = rs;
+        linear.tone_mapper = ToneMapper::None;
+        linear.encoding = std::nullopt;
+        linear.exposure_ev = 0.0f;
+        const ImageF radiance = renderer.render(cam, lights, linear);
+        for (int t = 0; t <= int(ToneMapper::None); ++t)
+            for (std::optional<Encoding> e : {std::optional<Encoding>{}, std::optional<Encoding>(Encoding::Srgb),
+                                              std::optional<Encoding>(Encoding::Gamma22)}) {
+                RenderSettings display = rs;
+                display.tone_mapper = ToneMapper(t);
+                display.encoding = e;
+                const ImageF got = renderer.render(cam, lights, display);
+                float worst = 0.0f;
+                for (int y = 0; y < rs.height; ++y)
+                    for (int x = 0; x < rs.width; ++x) {
+                        const float* r = radiance.at(x, y);
+                        glm::vec3 c = tone_map(ToneMapper(t), glm::vec3(r[0], r[1], r[2]) * exposure_scale(rs.exposure_ev));
+                        if (e) c = encode_display(*e, c);
+                        const float* g = got.at(x, y);
+                        for (int k = 0; k < 3; ++k)
+                            worst = std::max(worst, std::abs(g[k] - c[k]) / std::max(1.0f, std::abs(c[k])));
+                    }
+                EXPECT_LT(worst, 2e-3f) << "tone mapper " << t << ", encoding " << (e ? int(*e) : -1)
+                                        << (with_lights ? ", lights" : ", no lights");
+                ++compared;
+            }
+    }
+    EXPECT_EQ(compared, 2 * 6 * 3);
 }

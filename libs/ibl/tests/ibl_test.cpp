@@ -413,6 +413,18 @@ TEST(Bake, ContentHashIdentifiesTheBakedData) {
     EXPECT_NE(loaded.content_hash, 0u);
     EXPECT_EQ(loaded.content_hash, baked_content_hash(loaded));
     EXPECT_EQ(loaded.content_hash, again.content_hash);
+    // The Charlie table comes back from charlie_lut.ktx2 (half floats); a folder without it
+    // (written before it was stored) gets it computed, the same table.
+    ASSERT_TRUE(std::filesystem::exists(dir / "charlie_lut.ktx2"));
+    ASSERT_EQ(loaded.charlie_lut.pixels.size(), a.charlie_lut.pixels.size());
+    float worst = 0.0f;
+    for (std::size_t i = 0; i < a.charlie_lut.pixels.size(); ++i)
+        worst = std::max(worst, std::abs(loaded.charlie_lut.pixels[i] - a.charlie_lut.pixels[i]) /
+                                    std::max(1e-3f, std::abs(a.charlie_lut.pixels[i])));
+    EXPECT_LT(worst, 2e-3f);  // half precision
+    std::filesystem::remove(dir / "charlie_lut.ktx2");
+    BakedIbl computed = load_baked(dir);
+    EXPECT_EQ(computed.charlie_lut.pixels, a.charlie_lut.pixels);
     std::filesystem::remove_all(dir);
 }
 
