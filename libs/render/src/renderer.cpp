@@ -1047,7 +1047,8 @@ Image8 to_image8(const ImageF& image, bool alpha) {
             std::uint8_t* d = out.at(x, y);
             for (int c = 0; c < out.channels; ++c) {
                 float v = std::isfinite(s[c]) ? std::clamp(s[c], 0.0f, 1.0f) : 0.0f;
-                d[c] = std::uint8_t(std::lround(v * 255.0f));
+                // lround(v * 255) for v >= 0, without a libm call per channel (exact in double).
+                d[c] = std::uint8_t(double(v * 255.0f) + 0.5);
             }
         }
     return out;
