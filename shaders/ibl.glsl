@@ -5,9 +5,7 @@ uniform sampler2D u_brdf_lut;  // R = A, G = B, B = A + B (directional albedo E)
 #ifdef USE_IBL
 uniform samplerCube u_specular_env;
 uniform samplerCube u_irradiance_env;  // irradiance / pi
-uniform float u_env_levels;
-uniform float u_env_intensity;
-uniform mat3 u_env_rotation;   // world -> environment
+#include "frame_block.glsl"  // u_env_levels, u_env_intensity, u_env_rotation
 #endif
 
 vec3 brdf_lut(float n_dot_v, float roughness) {

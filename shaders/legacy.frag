@@ -67,7 +67,7 @@ void main() {
                                         ibl_irradiance(n),
                                         ibl_radiance(reflect(-v, n), blinn_phong_ibl_roughness(u_bp_shininess)));
 #endif
-    color += u_global_ambient * base + u_ke;
+    color += u_ambient * base + u_ke;
     if (any(isnan(color)) || any(isinf(color))) {
         frag_color = vec4(1.0, 0.0, 1.0, 1.0);
         return;

@@ -7,8 +7,7 @@ in vec2 a_uv0;
 
 uniform mat4 u_model;
 uniform mat3 u_normal_matrix;
-uniform mat4 u_view;
-uniform mat4 u_view_projection;
+#include "frame_block.glsl"  // u_view, u_view_projection
 uniform float u_point_size;
 
 out vec3 v_position;

@@ -3,13 +3,11 @@
 // legacy_shading.glsl (C++ twin: fresnel/material/legacy_shading.h); the values are
 // legacy_phong() of the material (fresnel/material/phong.h), set by the renderer.
 // Needs common.glsl, lights.glsl and legacy_shading.glsl.
-uniform vec3 u_camera_position;
 uniform vec3 u_ka;             // GL_AMBIENT (MTL Ka)
 uniform vec4 u_kd;             // GL_DIFFUSE (Kd, alpha d)
 uniform vec3 u_ks;             // GL_SPECULAR (Ks)
 uniform vec3 u_ke;             // GL_EMISSION (Ke)
 uniform float u_shininess;     // GL_SHININESS, already clamped to 0..128
-uniform vec3 u_global_ambient; // GL_LIGHT_MODEL_AMBIENT
 uniform int u_separate_specular;  // GL_SEPARATE_SPECULAR_COLOR (textured materials, as rgl)
 
 // An OpenGL light of colour I for a light of intensity I: directional lights as they are;
@@ -33,7 +31,7 @@ vec3 ogl1_light_incident(int i, vec3 position, out vec3 l) {
 // unclamped, with the local viewer.
 void ogl1_lighting(vec3 position, vec3 n, out vec3 primary, out vec3 secondary) {
     vec3 v = normalize(u_camera_position - position);
-    primary = ogl1_base(u_ke, u_ka, u_global_ambient);
+    primary = ogl1_base(u_ke, u_ka, u_ambient);  // GL_LIGHT_MODEL_AMBIENT
     secondary = vec3(0.0);
     for (int i = 0; i < MAX_LIGHTS; ++i) {
         if (i >= u_light_count) break;

@@ -4,16 +4,7 @@
 #ifndef MAX_LIGHTS
 #define MAX_LIGHTS 16
 #endif
-// The frame's lights as one std140 uniform block, uploaded once per frame and bound for every
-// draw: the layout of the renderer's LightBlock (libs/render/src/renderer.cpp), checked member
-// by member against the driver's offsets (tests/gpu/material_gpu_test.cpp).
-layout(std140) uniform LightBlock {
-    vec4 u_light_position_type[MAX_LIGHTS];
-    vec4 u_light_direction_range[MAX_LIGHTS];
-    vec4 u_light_color[MAX_LIGHTS];
-    vec4 u_light_cone[MAX_LIGHTS];
-    int u_light_count;
-};
+#include "frame_block.glsl"  // u_light_count and the packed lights, uploaded once per frame
 
 // The extension's recommended range window: smooth fall to zero at `range`, on top of 1/d^2.
 float range_attenuation(float range, float distance) {

@@ -9,10 +9,7 @@ in vec4 v_color;
 
 out vec4 frag_color;
 
-uniform vec3 u_camera_position;
-uniform int u_debug;  // 0 = shading; other values select a debug channel (see debug.glsl)
-uniform vec3 u_ambient;  // uniform ambient radiance (0 unless requested)
-uniform int u_energy_compensation;  // 1: multiple-scattering compensation of punctual specular
+#include "frame_block.glsl"  // camera, environment placement, debug channel, ambient, lights
 uniform float u_exposure;  // linear multiplier, 2^EV
 uniform int u_tonemap;     // see tonemap.glsl
 uniform int u_encoding;    // -1 = none (linear output), 0 = sRGB, 1 = gamma 2.2

@@ -26,9 +26,9 @@ in vec3 a_morph_tangent1;
 uniform float u_morph_weights[2];
 #endif
 
+#include "frame_block.glsl"  // u_view_projection
 uniform mat4 u_model;
 uniform mat3 u_normal_matrix;   // inverse transpose of the model's upper 3x3
-uniform mat4 u_view_projection;
 uniform float u_handedness;     // sign of det(model): mirrors flip the bitangent
 uniform float u_point_size;
 

@@ -102,12 +102,12 @@ vec3 shade_light_transmission(MaterialInputs m, TransmissionInputs tr, vec3 v, v
 }
 
 #ifndef TRANSMISSION_PROBE
+#include "frame_block.glsl"  // u_view_projection and the lights
 // The opaque scene in linear radiance with its mip chain (Renderer: the transmission pass),
 // and the matrices that project the refracted ray's exit into it.
 uniform sampler2D u_transmission_framebuffer;
 uniform float u_transmission_framebuffer_size;  // width = height
 uniform mat4 u_model;
-uniform mat4 u_view_projection;
 
 vec3 model_scale() { return vec3(length(u_model[0].xyz), length(u_model[1].xyz), length(u_model[2].xyz)); }
 

@@ -1,4 +1,4 @@
-// A warm renderer draws a frame without allocating: the lights and each material live in
+// A warm renderer draws a frame without allocating: the frame's shared values and each material live in
 // uniform buffers (uniform_blocks.h), uniform locations are read once per program, program
 // lookups build no strings, and the draw lists keep their storage. Counted here by
 // replacing the global operator new for this test program (the driver's own C allocations

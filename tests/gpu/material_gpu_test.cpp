@@ -661,7 +661,7 @@ TEST_F(MaterialProbe, UniformBlocksMatchTheirCppMirrors) {
     const gpu::Program& prog = library_->get("pbr.vert", "pbr.frag", feature::HasNormal | feature::HasUv0 | feature::BaseColorMap);
     for (auto [block, size, members] :
          {std::make_tuple("MaterialBlock", sizeof(MaterialBlock), material_block_members()),
-          std::make_tuple("LightBlock", sizeof(LightBlock), light_block_members())}) {
+          std::make_tuple("FrameBlock", sizeof(FrameBlock), frame_block_members())}) {
         // The mirror covers the block (std140 may round the block's size up to 16 bytes).
         EXPECT_LE(prog.uniform_block_size(block), int(size)) << block;
         EXPECT_GT(prog.uniform_block_size(block), int(size) - 16) << block;

@@ -195,12 +195,21 @@ std::vector<std::pair<std::string, std::size_t>> material_block_members() {
     return m;
 }
 
-std::vector<std::pair<std::string, std::size_t>> light_block_members() {
-    return {{"u_light_position_type[0]", offsetof(LightBlock, position_type)},
-            {"u_light_direction_range[0]", offsetof(LightBlock, direction_range)},
-            {"u_light_color[0]", offsetof(LightBlock, color)},
-            {"u_light_cone[0]", offsetof(LightBlock, cone)},
-            {"u_light_count", offsetof(LightBlock, count)}};
+std::vector<std::pair<std::string, std::size_t>> frame_block_members() {
+    return {{"u_view_projection", offsetof(FrameBlock, view_projection)},
+            {"u_view", offsetof(FrameBlock, view)},
+            {"u_env_rotation", offsetof(FrameBlock, env_rotation)},
+            {"u_camera_position", offsetof(FrameBlock, camera_position)},
+            {"u_env_levels", offsetof(FrameBlock, env_levels)},
+            {"u_ambient", offsetof(FrameBlock, ambient)},
+            {"u_env_intensity", offsetof(FrameBlock, env_intensity)},
+            {"u_debug", offsetof(FrameBlock, debug)},
+            {"u_energy_compensation", offsetof(FrameBlock, energy_compensation)},
+            {"u_light_count", offsetof(FrameBlock, light_count)},
+            {"u_light_position_type[0]", offsetof(FrameBlock, light_position_type)},
+            {"u_light_direction_range[0]", offsetof(FrameBlock, light_direction_range)},
+            {"u_light_color[0]", offsetof(FrameBlock, light_color)},
+            {"u_light_cone[0]", offsetof(FrameBlock, light_cone)}};
 }
 
 }  // namespace fresnel

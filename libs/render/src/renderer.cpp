@@ -279,13 +279,6 @@ struct Renderer::Impl {
         return glm::mat3(c, 0, -si, 0, 1, 0, si, 0, c);
     }
 
-    void set_ibl_uniforms(const gpu::Program& prog, const RenderSettings& s) {
-        if (!s.environment) return;
-        prog.set("u_env_levels", float(s.environment->specular.levels.size()));
-        prog.set("u_env_intensity", s.env_intensity);
-        prog.set("u_env_rotation", env_rotation(s));
-    }
-
     // What the frame compiles into its shaders (shader_features.h): the display transform,
     // none when linear (the transmission pass), and whether punctual lights are bound.
     static FrameVariant frame_variant(const RenderSettings& s, bool linear, bool lights = true) {
@@ -553,28 +546,39 @@ struct Renderer::Impl {
         output_fb.check();
     }
 
-    // The frame's lights as LightBlock (lights.glsl, uniform_blocks.h): packed and uploaded once
-    // per frame, bound at kLightBlockBinding for every draw.
-    LightBlock frame_lights;
-    gpu::UniformBuffer light_buffer;
-    void pack_lights(const std::vector<LightInstance>& lights) {
-        LightBlock& p = frame_lights;
-        p.count = std::min<int>(int(lights.size()), kMaxLights);
-        for (int i = 0; i < p.count; ++i) {
+    // What every draw of the frame shares as FrameBlock (frame_block.glsl, uniform_blocks.h):
+    // camera, environment placement, debug channel, ambient, energy compensation and the
+    // packed lights; filled and uploaded once per frame, bound at kFrameBlockBinding.
+    FrameBlock frame_block;
+    gpu::UniformBuffer frame_buffer;
+    void pack_frame(const CameraSetup& cam, const std::vector<LightInstance>& lights, const RenderSettings& s) {
+        FrameBlock& p = frame_block;
+        p.view_projection = cam.projection * cam.view;
+        p.view = cam.view;
+        const glm::mat3 rotation = env_rotation(s);
+        for (int c = 0; c < 3; ++c) p.env_rotation[std::size_t(c)] = glm::vec4(rotation[c], 0.0f);
+        p.camera_position = cam.eye;
+        p.env_levels = s.environment ? float(s.environment->specular.levels.size()) : 1.0f;
+        p.ambient = s.ambient;
+        p.env_intensity = s.env_intensity;
+        p.debug = int(s.debug);
+        p.energy_compensation = s.energy_compensation && lut_texture && uploaded_lut != 0 ? 1 : 0;
+        p.light_count = std::min<int>(int(lights.size()), kMaxLights);
+        for (int i = 0; i < p.light_count; ++i) {
             const LightInstance& l = lights[std::size_t(i)];
             float type = l.type == Light::Type::Directional ? 0.0f : l.type == Light::Type::Point ? 1.0f : 2.0f;
-            p.position_type[std::size_t(i)] = glm::vec4(l.position, type);
-            p.direction_range[std::size_t(i)] = glm::vec4(l.direction, l.range);
-            p.color[std::size_t(i)] = glm::vec4(l.radiance, 0.0f);
+            p.light_position_type[std::size_t(i)] = glm::vec4(l.position, type);
+            p.light_direction_range[std::size_t(i)] = glm::vec4(l.direction, l.range);
+            p.light_color[std::size_t(i)] = glm::vec4(l.radiance, 0.0f);
             float scale = 1.0f / std::max(0.001f, std::cos(l.inner_cone) - std::cos(l.outer_cone));
-            p.cone[std::size_t(i)] = glm::vec4(scale, -std::cos(l.outer_cone) * scale, 0, 0);
+            p.light_cone[std::size_t(i)] = glm::vec4(scale, -std::cos(l.outer_cone) * scale, 0, 0);
         }
-        for (int i = p.count; i < kMaxLights; ++i)
-            p.position_type[std::size_t(i)] = p.direction_range[std::size_t(i)] = p.color[std::size_t(i)] =
-                p.cone[std::size_t(i)] = glm::vec4(0.0f);
-        if (!light_buffer) light_buffer = gpu::UniformBuffer(sizeof(LightBlock));
-        light_buffer.update(&p, sizeof p);
-        light_buffer.bind(kLightBlockBinding);
+        for (int i = p.light_count; i < kMaxLights; ++i)
+            p.light_position_type[std::size_t(i)] = p.light_direction_range[std::size_t(i)] =
+                p.light_color[std::size_t(i)] = p.light_cone[std::size_t(i)] = glm::vec4(0.0f);
+        if (!frame_buffer) frame_buffer = gpu::UniformBuffer(sizeof(FrameBlock));
+        frame_buffer.update(&p, sizeof p);
+        frame_buffer.bind(kFrameBlockBinding);
     }
 
     // One uniform buffer per material (index + 1; 0: the glTF default material), refilled
@@ -633,16 +637,12 @@ struct Renderer::Impl {
         prog.use();
         prog.set("u_model", d.model);
         prog.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(d.model)));
-        prog.set("u_view", cam.view);
-        prog.set("u_view_projection", cam.projection * cam.view);
-        prog.set("u_point_size", 1.0f);
-        prog.set("u_camera_position", cam.eye);
+        prog.set("u_point_size", 1.0f);  // the camera and the lights: FrameBlock (pack_frame)
         prog.set("u_ka", ph.ambient);
         prog.set("u_kd", glm::vec4(ph.diffuse, std::clamp(ph.dissolve, 0.0f, 1.0f)));
         prog.set("u_ks", ph.specular);
         prog.set("u_ke", ph.emission);
         prog.set("u_shininess", legacy::ogl1_shininess(ph.shininess));
-        prog.set("u_global_ambient", settings.ambient);
         prog.set("u_separate_specular", map ? 1 : 0);  // as rgl: separate specular for textured materials
         if (map) {
             device.bind_texture(0, *map);
@@ -671,7 +671,6 @@ struct Renderer::Impl {
                 prog.set("u_specular_env", int(TextureUnit::SpecularEnvironment));
                 device.bind_texture(int(TextureUnit::IrradianceEnvironment), env_irradiance);
                 prog.set("u_irradiance_env", int(TextureUnit::IrradianceEnvironment));
-                set_ibl_uniforms(prog, settings);
             }
         }
         gpu::PipelineState state;
@@ -758,15 +757,11 @@ struct Renderer::Impl {
         prog.set("u_model", d.model);
         glm::mat3 normal_matrix = glm::inverseTranspose(glm::mat3(d.model));
         prog.set("u_normal_matrix", normal_matrix);
-        prog.set("u_view_projection", cam.projection * cam.view);
         float det = glm::determinant(glm::mat3(d.model));
         prog.set("u_handedness", det < 0 ? -1.0f : 1.0f);
         prog.set("u_point_size", 1.0f);
         if (d.joints) prog.set("u_joints", std::span<const glm::mat4>(*d.joints));
         if (d.morph) prog.set("u_morph_weights", std::span<const float>(d.morph_weights));
-        prog.set("u_camera_position", cam.eye);
-        prog.set("u_debug", int(settings.debug));
-        prog.set("u_ambient", settings.ambient);
         // The transmission pass writes linear radiance (Khronos' LINEAR_OUTPUT: no exposure either).
         prog.set("u_exposure", linear_pass ? 1.0f : exposure_scale(settings.exposure_ev));
         prog.set("u_tonemap", linear_pass ? int(ToneMapper::None) : int(settings.tone_mapper));
@@ -790,7 +785,6 @@ struct Renderer::Impl {
         const int kLutUnit = next_unit++;
         if (have_lut) device.bind_texture(kLutUnit, lut_texture);
         prog.set("u_brdf_lut", kLutUnit);
-        prog.set("u_energy_compensation", settings.energy_compensation && have_lut ? 1 : 0);
         if (settings.environment) {
             const int kSpecularUnit = next_unit++, kIrradianceUnit = next_unit++;
             device.bind_texture(kSpecularUnit, env_specular);
@@ -804,7 +798,6 @@ struct Renderer::Impl {
                 device.bind_texture(kCharlieUnit, charlie_lut);
                 prog.set("u_charlie_lut", kCharlieUnit);
             }
-            set_ibl_uniforms(prog, settings);
         }
         bind_material_block(p.material, mu);
         set_material_samplers(prog, map_units);
@@ -970,7 +963,7 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
         };
         std::sort(blended.begin(), blended.end(), far_to_near);
         std::sort(transmissive.begin(), transmissive.end(), far_to_near);
-        r.pack_lights(lights);
+        r.pack_frame(cam, lights, settings);
         r.transmission_ready = false;
         if (!transmissive.empty() && settings.debug == DebugChannel::None) {
             // The transmission pass: what the transmissive primitives refract (everything else,

@@ -62,7 +62,7 @@ std::string assemble_shader(const std::string& file, const std::vector<std::stri
 }
 
 void ShaderLibrary::bind_blocks(const gpu::Program& program) {
-    program.bind_uniform_block("LightBlock", kLightBlockBinding);
+    program.bind_uniform_block("FrameBlock", kFrameBlockBinding);
     program.bind_uniform_block("MaterialBlock", kMaterialBlockBinding);
 }
 

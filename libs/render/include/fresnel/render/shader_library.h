@@ -55,7 +55,7 @@ public:
     // is returned; "" on success (programs got before are then invalid: get them again).
     std::string reload();
 
-    // Connects a program's uniform blocks (LightBlock, MaterialBlock) to their binding points
+    // Connects a program's uniform blocks (FrameBlock, MaterialBlock) to their binding points
     // (uniform_blocks.h); done for every program the library makes.
     static void bind_blocks(const gpu::Program& program);
 

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -20,7 +21,7 @@ namespace fresnel {
 
 // Uniform buffer binding points; ShaderLibrary connects every program's blocks to them
 // (GLSL ES 3.00 has no layout(binding = N) for blocks).
-inline constexpr unsigned kLightBlockBinding = 0;
+inline constexpr unsigned kFrameBlockBinding = 0;
 inline constexpr unsigned kMaterialBlockBinding = 1;
 
 // `uniform MaterialBlock` (shaders/material_block.glsl): a material's raw factors and, per
@@ -70,18 +71,28 @@ static_assert(sizeof(MaterialBlock::Map) == 64);
 static_assert(offsetof(MaterialBlock, maps) == 192);
 static_assert(sizeof(MaterialBlock) == 192 + 64 * kMaterialMapCount);
 
-// `uniform LightBlock` (shaders/lights.glsl): the frame's punctual lights, packed.
-struct LightBlock {
-    // position.xyz + type (0 directional, 1 point, 2 spot); direction the light travels +
-    // range (0 = infinite); colour * intensity; spot cone scale and offset.
-    std::array<glm::vec4, kMaxShaderLights> position_type{}, direction_range{}, color{}, cone{};
-    std::int32_t count = 0;
-    std::int32_t pad[3] = {0, 0, 0};
+// `uniform FrameBlock` (shaders/frame_block.glsl): what every draw of a frame shares.
+struct FrameBlock {
+    glm::mat4 view_projection{1.0f};
+    glm::mat4 view{1.0f};
+    std::array<glm::vec4, 3> env_rotation{glm::vec4(1, 0, 0, 0), glm::vec4(0, 1, 0, 0), glm::vec4(0, 0, 1, 0)};  // mat3 columns
+    glm::vec3 camera_position{0.0f};
+    float env_levels = 1.0f;
+    glm::vec3 ambient{0.0f};
+    float env_intensity = 1.0f;
+    std::int32_t debug = 0;
+    std::int32_t energy_compensation = 0;
+    std::int32_t light_count = 0;
+    std::int32_t pad = 0;
+    // Per light: position.xyz + type (0 directional, 1 point, 2 spot); direction the light
+    // travels + range (0 = infinite); colour * intensity; spot cone scale and offset.
+    std::array<glm::vec4, kMaxShaderLights> light_position_type{}, light_direction_range{}, light_color{}, light_cone{};
 };
-static_assert(sizeof(LightBlock) == 64 * kMaxShaderLights + 16);
+static_assert(offsetof(FrameBlock, light_position_type) == 224);
+static_assert(sizeof(FrameBlock) == 224 + 64 * kMaxShaderLights);
 
 // Each member's GLSL name and byte offset in the C++ mirror (the layout test's table).
 std::vector<std::pair<std::string, std::size_t>> material_block_members();
-std::vector<std::pair<std::string, std::size_t>> light_block_members();
+std::vector<std::pair<std::string, std::size_t>> frame_block_members();
 
 }  // namespace fresnel
