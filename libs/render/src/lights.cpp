@@ -27,7 +27,7 @@ glm::vec3 light_incident(const LightInstance& light, glm::vec3 position, glm::ve
     }
     glm::vec3 radiance = light.radiance * attenuation;
     if (light.type == Light::Type::Spot) {
-        // The renderer's packing (renderer.cpp, pack_lights): scale and offset of the cone.
+        // The renderer's packing (renderer.cpp, pack_frame): scale and offset of the cone.
         float scale = 1.0f / std::max(0.001f, std::cos(light.inner_cone) - std::cos(light.outer_cone));
         float offset = -std::cos(light.outer_cone) * scale;
         float a = std::clamp(glm::dot(light.direction, -l) * scale + offset, 0.0f, 1.0f);

@@ -20,7 +20,7 @@ class Program;
 class UniformBuffer;
 }
 
-// The values one material uploads (uniform names in material_inputs.glsl: u_<field>).
+// The values one material uploads (MaterialBlock members in material_block.glsl: u_<field>).
 struct MaterialUniforms {
     glm::vec4 base_color_factor{1.0f};  // baseColorFactor, or diffuseFactor with specular-glossiness
     float metallic_factor = 1.0f;
