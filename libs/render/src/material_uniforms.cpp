@@ -8,56 +8,64 @@ namespace fresnel {
 
 MaterialUniforms material_uniforms(const Material& m) {
     MaterialUniforms u;
-    u.base_color_factor = m.specular_glossiness ? m.specular_glossiness->diffuse_factor : m.base_color_factor;
-    u.metallic_factor = m.metallic_factor;
-    u.roughness_factor = m.roughness_factor;
-    u.normal_scale = m.normal_scale;
-    u.occlusion_strength = m.occlusion_strength;
-    u.emissive_factor = m.emissive_factor;
-    u.emissive_strength = m.emissive_strength_value();
-    u.alpha_cutoff = m.alpha_cutoff;
-    u.ior = m.ior_value();
+    MaterialBlock& b = u.block;
+    b.base_color_factor = m.specular_glossiness ? m.specular_glossiness->diffuse_factor : m.base_color_factor;
+    b.metallic_factor = m.metallic_factor;
+    b.roughness_factor = m.roughness_factor;
+    b.normal_scale = m.normal_scale;
+    b.occlusion_strength = m.occlusion_strength;
+    b.emissive_factor = m.emissive_factor;
+    b.emissive_strength = m.emissive_strength_value();
+    b.alpha_cutoff = m.alpha_cutoff;
+    b.ior = m.ior_value();
     if (m.specular) {
-        u.specular_factor = m.specular->specular_factor;
-        u.specular_color_factor = m.specular->specular_color_factor;
+        b.specular_factor = m.specular->specular_factor;
+        b.specular_color_factor = m.specular->specular_color_factor;
     }
     if (m.specular_glossiness) {
-        u.sg_specular_factor = m.specular_glossiness->specular_factor;
-        u.glossiness_factor = m.specular_glossiness->glossiness_factor;
+        b.sg_specular_factor = m.specular_glossiness->specular_factor;
+        b.glossiness_factor = m.specular_glossiness->glossiness_factor;
     }
     if (m.has_clearcoat()) {
-        u.clearcoat_factor = m.clearcoat->clearcoat_factor;
-        u.clearcoat_roughness_factor = m.clearcoat->clearcoat_roughness_factor;
-        u.clearcoat_normal_scale = m.clearcoat->clearcoat_normal_scale;
+        b.clearcoat_factor = m.clearcoat->clearcoat_factor;
+        b.clearcoat_roughness_factor = m.clearcoat->clearcoat_roughness_factor;
+        b.clearcoat_normal_scale = m.clearcoat->clearcoat_normal_scale;
     }
     if (is_transmissive(m)) {
-        u.transmission_factor = m.transmission->transmission_factor;
+        b.transmission_factor = m.transmission->transmission_factor;
         if (m.volume) {
-            u.thickness_factor = m.volume->thickness_factor;
-            u.attenuation_color = m.volume->attenuation_color;
-            u.attenuation_distance = std::isfinite(m.volume->attenuation_distance) ? m.volume->attenuation_distance : 0.0f;
+            b.thickness_factor = m.volume->thickness_factor;
+            b.attenuation_color = m.volume->attenuation_color;
+            b.attenuation_distance = std::isfinite(m.volume->attenuation_distance) ? m.volume->attenuation_distance : 0.0f;
         }
-        if (m.dispersion) u.dispersion = m.dispersion->dispersion;
+        if (m.dispersion) b.dispersion = m.dispersion->dispersion;
     }
     if (m.has_sheen()) {
-        u.sheen_color_factor = m.sheen->sheen_color_factor;
-        u.sheen_roughness_factor = m.sheen->sheen_roughness_factor;
+        b.sheen_color_factor = m.sheen->sheen_color_factor;
+        b.sheen_roughness_factor = m.sheen->sheen_roughness_factor;
     }
     if (m.has_anisotropy()) {
-        u.anisotropy_strength = m.anisotropy->anisotropy_strength;
-        u.anisotropy_rotation = m.anisotropy->anisotropy_rotation;
+        b.anisotropy_strength = m.anisotropy->anisotropy_strength;
+        b.anisotropy_rotation = m.anisotropy->anisotropy_rotation;
     }
     if (m.has_iridescence()) {
-        u.iridescence_factor = m.iridescence->iridescence_factor;
-        u.iridescence_ior = m.iridescence->iridescence_ior;
-        u.iridescence_thickness_minimum = m.iridescence->iridescence_thickness_minimum;
-        u.iridescence_thickness_maximum = m.iridescence->iridescence_thickness_maximum;
+        b.iridescence_factor = m.iridescence->iridescence_factor;
+        b.iridescence_ior = m.iridescence->iridescence_ior;
+        b.iridescence_thickness_minimum = m.iridescence->iridescence_thickness_minimum;
+        b.iridescence_thickness_maximum = m.iridescence->iridescence_thickness_maximum;
     }
     if (m.has_diffuse_transmission()) {
-        u.diffuse_transmission_factor = m.diffuse_transmission->diffuse_transmission_factor;
-        u.diffuse_transmission_color_factor = m.diffuse_transmission->diffuse_transmission_color_factor;
+        b.diffuse_transmission_factor = m.diffuse_transmission->diffuse_transmission_factor;
+        b.diffuse_transmission_color_factor = m.diffuse_transmission->diffuse_transmission_color_factor;
     }
-    for (int i = 0; i < kMaterialMapCount; ++i) u.maps[std::size_t(i)] = material_map(m, MaterialMap(i));
+    for (std::size_t i = 0; i < std::size_t(kMaterialMapCount); ++i) {
+        // A map the variant reads but the material lacks is the 1x1 white texture (identity
+        // transform, UV set 0: the block's defaults).
+        const TextureSlot* slot = u.maps[i] = material_map(m, MaterialMap(i));
+        if (!slot) continue;
+        for (int c = 0; c < 3; ++c) b.maps[i].transform[std::size_t(c)] = glm::vec4(slot->transform[c], 0.0f);
+        b.maps[i].uv = slot->tex_coord;
+    }
     return u;
 }
 
@@ -74,51 +82,6 @@ FeatureMask material_features(const Material& m) {
     if (m.alpha_mode == AlphaMode::Mask) f |= feature::AlphaMask;
     if (m.alpha_mode == AlphaMode::Blend) f |= feature::AlphaBlend;
     return f;
-}
-
-MaterialBlock material_block(const MaterialUniforms& u) {
-    MaterialBlock b;
-    b.base_color_factor = u.base_color_factor;
-    b.emissive_factor = u.emissive_factor;
-    b.emissive_strength = u.emissive_strength;
-    b.specular_color_factor = u.specular_color_factor;
-    b.specular_factor = u.specular_factor;
-    b.sg_specular_factor = u.sg_specular_factor;
-    b.glossiness_factor = u.glossiness_factor;
-    b.sheen_color_factor = u.sheen_color_factor;
-    b.sheen_roughness_factor = u.sheen_roughness_factor;
-    b.attenuation_color = u.attenuation_color;
-    b.attenuation_distance = u.attenuation_distance;
-    b.diffuse_transmission_color_factor = u.diffuse_transmission_color_factor;
-    b.diffuse_transmission_factor = u.diffuse_transmission_factor;
-    b.metallic_factor = u.metallic_factor;
-    b.roughness_factor = u.roughness_factor;
-    b.normal_scale = u.normal_scale;
-    b.occlusion_strength = u.occlusion_strength;
-    b.alpha_cutoff = u.alpha_cutoff;
-    b.ior = u.ior;
-    b.clearcoat_factor = u.clearcoat_factor;
-    b.clearcoat_roughness_factor = u.clearcoat_roughness_factor;
-    b.clearcoat_normal_scale = u.clearcoat_normal_scale;
-    b.transmission_factor = u.transmission_factor;
-    b.thickness_factor = u.thickness_factor;
-    b.dispersion = u.dispersion;
-    b.anisotropy_strength = u.anisotropy_strength;
-    b.anisotropy_rotation = u.anisotropy_rotation;
-    b.iridescence_factor = u.iridescence_factor;
-    b.iridescence_ior = u.iridescence_ior;
-    b.iridescence_thickness_minimum = u.iridescence_thickness_minimum;
-    b.iridescence_thickness_maximum = u.iridescence_thickness_maximum;
-    for (std::size_t i = 0; i < std::size_t(kMaterialMapCount); ++i) {
-        // A map the variant reads but the material lacks is the 1x1 white texture.
-        const TextureSlot* slot = u.maps[i];
-        MaterialBlock::Map& m = b.maps[i];
-        const glm::mat3 t = slot ? slot->transform : glm::mat3(1.0f);
-        for (int c = 0; c < 3; ++c) m.transform[std::size_t(c)] = glm::vec4(t[c], 0.0f);
-        m.uv = slot ? slot->tex_coord : 0;
-        m.anisotropy = slot ? u.anisotropy[i] : 1.0f;
-    }
-    return b;
 }
 
 namespace {
@@ -142,9 +105,8 @@ void set_material_samplers(const gpu::Program& prog, const std::array<int, kMate
 
 void set_material_uniforms(const gpu::Program& prog, const MaterialUniforms& u,
                            const std::array<bool, kMaterialMapCount>& bound, gpu::UniformBuffer& buffer) {
-    const MaterialBlock block = material_block(u);
     if (!buffer) buffer = gpu::UniformBuffer(sizeof(MaterialBlock));
-    buffer.update(&block, sizeof block);
+    buffer.update(&u.block, sizeof u.block);
     buffer.bind(kMaterialBlockBinding);
     std::array<int, kMaterialMapCount> units{};
     for (int i = 0; i < kMaterialMapCount; ++i) units[std::size_t(i)] = bound[std::size_t(i)] ? i : -1;

@@ -145,22 +145,10 @@ struct Renderer::Impl {
     gpu::Context& context;
     gpu::Device device;
     ShaderLibrary shaders;
-    // Programs looked up by defines the draw path would otherwise spell out per draw (legacy
-    // variants, alternative BRDF terms, the output pass): (kind, features, frame key, extra) ->
-    // program, so a frame builds no strings. Cleared when the shaders are reloaded.
-    enum class ProgramKind { Legacy, PbrBrdf, Output };
-    std::map<std::tuple<ProgramKind, FeatureMask, int, std::uint32_t>, const gpu::Program*> program_cache;
+    // The families of defines the renderer looks programs up by (ShaderLibrary::get_keyed),
+    // besides the mesh variants: no strings are built per draw.
+    enum ProgramFamily { kLegacyPrograms = 1, kBrdfPrograms, kOutputPrograms };
     std::vector<Draw> opaque_draws, blended_draws, transmissive_draws;  // a frame's, storage kept
-    template <class Defines>
-    const gpu::Program& cached_program(ProgramKind kind, FeatureMask features, int frame, std::uint32_t extra,
-                                       const char* vertex, const char* fragment, Defines&& defines) {
-        auto key = std::make_tuple(kind, features, frame, extra);
-        auto it = program_cache.find(key);
-        if (it != program_cache.end()) return *it->second;
-        const gpu::Program& p = shaders.get(vertex, fragment, defines());
-        program_cache.emplace(key, &p);
-        return p;
-    }
     const Scene* scene = nullptr;
     int scene_index = -1;
     std::vector<NodeInstance> instances;
@@ -303,8 +291,6 @@ struct Renderer::Impl {
         float levels = float(s.environment->specular.levels.size());
         prog.set("u_lod", s.background_mode == RenderSettings::Background::Blurred ? s.blur_roughness * (levels - 1.0f) : 0.0f);
         prog.set("u_exposure", linear ? 1.0f : exposure_scale(s.exposure_ev));
-        prog.set("u_tonemap", linear ? int(ToneMapper::None) : int(s.tone_mapper));
-        prog.set("u_encoding", linear || !s.encoding ? -1 : int(*s.encoding));
         device.draw_fullscreen();
     }
 
@@ -593,7 +579,7 @@ struct Renderer::Impl {
         const std::size_t slot = material >= 0 ? std::size_t(material) + 1 : 0;
         if (slot >= material_buffers.size()) material_buffers.resize(slot + 1);
         MaterialBuffer& mb = material_buffers[slot];
-        const MaterialBlock block = material_block(mu);
+        const MaterialBlock& block = mu.block;
         if (!mb.buffer) mb.buffer = gpu::UniformBuffer(sizeof(MaterialBlock));
         if (!mb.filled || std::memcmp(&mb.block, &block, sizeof block) != 0) {
             mb.buffer.update(&block, sizeof block);
@@ -628,7 +614,7 @@ struct Renderer::Impl {
         // The OpenGL 1 models write their colour as they compute it: no frame variant.
         const int frame = blinn ? frame_variant(settings, false).key() : -1;
         const gpu::Program& prog =
-            cached_program(ProgramKind::Legacy, features, frame, 0, "legacy.vert", "legacy.frag", [&] {
+            shaders.get_keyed("legacy.vert", "legacy.frag", {kLegacyPrograms, features, frame, 0}, [&] {
                 std::vector<std::string> defines = legacy_feature_defines(features);
                 if (blinn)
                     for (auto& d : frame_defines(frame_variant(settings, false))) defines.push_back(std::move(d));
@@ -663,8 +649,6 @@ struct Renderer::Impl {
             prog.set("u_bp_metalness", bp.metalness);
             prog.set("u_bp_reflectivity", bp.reflectivity);
             prog.set("u_exposure", exposure_scale(settings.exposure_ev));
-            prog.set("u_tonemap", int(settings.tone_mapper));
-            prog.set("u_encoding", settings.encoding ? int(*settings.encoding) : -1);
             prog.set("u_brdf_lut", int(TextureUnit::BrdfLut));
             if (settings.environment) {
                 device.bind_texture(int(TextureUnit::SpecularEnvironment), env_specular);
@@ -729,7 +713,7 @@ struct Renderer::Impl {
             const MaterialMapInfo& info = material_map_info(MaterialMap(i));
             bound[i] = texture_for(*mu.maps[std::size_t(i)], info.srgb,
                                    anisotropic_map(MaterialMap(i)) ? Anisotropic::Shader : Anisotropic::Off,
-                                   settings.anisotropy, &mu.anisotropy[std::size_t(i)]);
+                                   settings.anisotropy, &mu.block.maps[std::size_t(i)].anisotropy);
             if (!bound[i]) raw &= ~feature::map_bit(i);
         }
         features = canonical_features(raw);
@@ -746,7 +730,7 @@ struct Renderer::Impl {
             const brdf::BrdfModel& b = settings.brdf;
             const std::uint32_t terms = std::uint32_t(b.d) | std::uint32_t(b.g) << 6 | std::uint32_t(b.f) << 12 |
                                         std::uint32_t(b.diffuse) << 18 | std::uint32_t(b.conductor) << 24;
-            return cached_program(ProgramKind::PbrBrdf, features, output.key(), terms, "pbr.vert", "pbr.frag", [&] {
+            return shaders.get_keyed("pbr.vert", "pbr.frag", {kBrdfPrograms, features, output.key(), terms}, [&] {
                 std::vector<std::string> defines = feature_defines(features);
                 for (auto& d : frame_defines(output)) defines.push_back(std::move(d));
                 for (auto& d : brdf::brdf_model_defines(settings.brdf)) defines.push_back(std::move(d));
@@ -762,10 +746,9 @@ struct Renderer::Impl {
         prog.set("u_point_size", 1.0f);
         if (d.joints) prog.set("u_joints", std::span<const glm::mat4>(*d.joints));
         if (d.morph) prog.set("u_morph_weights", std::span<const float>(d.morph_weights));
-        // The transmission pass writes linear radiance (Khronos' LINEAR_OUTPUT: no exposure either).
+        // The transmission pass writes linear radiance (Khronos' LINEAR_OUTPUT: no exposure either;
+        // the tone mapper and encoding are the frame variant's).
         prog.set("u_exposure", linear_pass ? 1.0f : exposure_scale(settings.exposure_ev));
-        prog.set("u_tonemap", linear_pass ? int(ToneMapper::None) : int(settings.tone_mapper));
-        prog.set("u_encoding", linear_pass || !settings.encoding ? -1 : int(*settings.encoding));
         // Created (and so bound to the active unit) before any unit is filled, not in between.
         const gpu::Texture& white = white_texture();
         std::array<int, kMaterialMapCount> map_units{};
@@ -853,11 +836,7 @@ std::size_t Renderer::texture_bytes() const {
     return n;
 }
 void Renderer::set_shader_folder(const std::string& folder) { impl_->shaders.set_source_folder(folder); }
-std::string Renderer::reload_shaders() {
-    std::string error = impl_->shaders.reload();
-    if (error.empty()) impl_->program_cache.clear();  // they pointed into the old programs
-    return error;
-}
+std::string Renderer::reload_shaders() { return impl_->shaders.reload(); }
 
 ImageF Renderer::render(const CameraSetup& cam, const std::vector<LightInstance>& lights,
                         const RenderSettings& settings, FrameStats* stats_out) {
@@ -1004,9 +983,9 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
     r.device.apply(post);
     const bool unpremultiply = transparent && settings.straight_alpha;
     const int resolve_samples = r.shader_resolve ? r.target_samples : 0;
-    const gpu::Program& prog = r.cached_program(
-        Impl::ProgramKind::Output, 0, -1, std::uint32_t(resolve_samples) << 1 | (unpremultiply ? 1u : 0u),
-        "fullscreen.vert", "post.frag", [&] {
+    const gpu::Program& prog = r.shaders.get_keyed(
+        "fullscreen.vert", "post.frag",
+        {Impl::kOutputPrograms, 0, -1, std::uint32_t(resolve_samples) << 1 | (unpremultiply ? 1u : 0u)}, [&] {
             std::vector<std::string> defines{std::string("STRAIGHT_ALPHA ") + (unpremultiply ? "1" : "0")};
             if (r.shader_resolve) {
                 defines.emplace_back("MSAA_RESOLVE");

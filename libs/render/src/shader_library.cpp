@@ -118,22 +118,14 @@ std::string ShaderLibrary::reload() {
 
 namespace fresnel {
 const gpu::Program& ShaderLibrary::get(const std::string& vertex, const std::string& fragment, FeatureMask features) {
-    auto key = std::make_tuple(vertex, fragment, features, -1);
-    auto it = variants_.find(key);
-    if (it != variants_.end()) return *it->second;
-    const gpu::Program& p = get(vertex, fragment, feature_defines(features));
-    variants_.emplace(std::move(key), &p);
-    return p;
+    return get_keyed(vertex, fragment, {0, features, -1, 0}, [&] { return feature_defines(features); });
 }
 const gpu::Program& ShaderLibrary::get(const std::string& vertex, const std::string& fragment, FeatureMask features,
-                                       FrameVariant output) {
-    auto key = std::make_tuple(vertex, fragment, features, output.key());
-    auto it = variants_.find(key);
-    if (it != variants_.end()) return *it->second;
-    std::vector<std::string> defines = feature_defines(features);
-    for (auto& d : frame_defines(output)) defines.push_back(std::move(d));
-    const gpu::Program& p = get(vertex, fragment, std::move(defines));
-    variants_.emplace(std::move(key), &p);
-    return p;
+                                       FrameVariant frame) {
+    return get_keyed(vertex, fragment, {0, features, frame.key(), 0}, [&] {
+        std::vector<std::string> defines = feature_defines(features);
+        for (auto& d : frame_defines(frame)) defines.push_back(std::move(d));
+        return defines;
+    });
 }
 }  // namespace fresnel

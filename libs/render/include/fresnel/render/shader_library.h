@@ -2,6 +2,8 @@
 // Assembles shader sources from the embedded files in shaders/: resolves
 // #include "file", prepends the GLSL version line for the target API and the
 // feature #defines, and caches compiled programs by (files, defines).
+#include <compare>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -41,9 +43,32 @@ public:
     // The variant of a mesh shader pair for a feature set (see shader_features.h): its
     // defines are feature_defines(features). Looked up by (vertex, fragment, mask).
     const gpu::Program& get(const std::string& vertex, const std::string& fragment, FeatureMask features);
-    // The same with the frame's display transform compiled in (frame_defines(output)).
+    // The same with the frame variant compiled in (frame_defines(frame)).
     const gpu::Program& get(const std::string& vertex, const std::string& fragment, FeatureMask features,
-                            FrameVariant output);
+                            FrameVariant frame);
+
+    // A program looked up by a caller's key rather than by its defines spelled out, so that a
+    // draw builds no strings: `make_defines()` (returning the std::vector<std::string> of
+    // defines) runs only the first time a key is seen. `family` tells apart the callers'
+    // define schemes (0 is the mesh variants' own: the two get() above); `frame` is a
+    // FrameVariant::key() or -1, `extra` whatever else the family's defines depend on.
+    struct VariantKey {
+        int family = 0;
+        FeatureMask features = 0;
+        int frame = -1;
+        std::uint32_t extra = 0;
+        auto operator<=>(const VariantKey&) const = default;
+    };
+    template <class MakeDefines>
+    const gpu::Program& get_keyed(const std::string& vertex, const std::string& fragment, const VariantKey& key,
+                                  MakeDefines&& make_defines) {
+        auto k = std::make_tuple(vertex, fragment, key);
+        auto it = variants_.find(k);
+        if (it != variants_.end()) return *it->second;
+        const gpu::Program& p = get(vertex, fragment, make_defines());
+        variants_.emplace(std::move(k), &p);
+        return p;
+    }
     std::size_t size() const { return programs_.size(); }
     GlslTarget target() const { return target_; }
 
@@ -70,8 +95,7 @@ private:
     };
     std::map<std::string, Sources> sources_;  // what each program was built from, for reload()
     std::map<std::string, std::unique_ptr<gpu::Program>> programs_;
-    // (vertex, fragment, features, output key; -1: no output variant).
-    std::map<std::tuple<std::string, std::string, FeatureMask, int>, const gpu::Program*> variants_;
+    std::map<std::tuple<std::string, std::string, VariantKey>, const gpu::Program*> variants_;  // get_keyed
 };
 
 }  // namespace fresnel
