@@ -102,11 +102,17 @@ nlohmann::json khronos_frames(const fs::path& helmet, const fs::path& engine, co
 int main(int argc, char** argv) {
     bool quick = false, as_json = false, frames_only = false;
     float anisotropy = 16.0f;
+    int msaa = 4;
+    // The frames' storage: what `fresnel render -o x.png` uses (8-bit, as the Khronos renderer's
+    // WebGL canvas), or half float with --float-frame.
+    auto frame_format = RenderSettings::FrameFormat::Display8;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--quick")) quick = true;
         if (!std::strcmp(argv[i], "--json")) as_json = true;
         if (!std::strcmp(argv[i], "--frames-only")) frames_only = true;  // the 1024^2 IBL frames alone
         if (!std::strcmp(argv[i], "--anisotropy") && i + 1 < argc) anisotropy = float(std::atof(argv[++i]));
+        if (!std::strcmp(argv[i], "--msaa") && i + 1 < argc) msaa = std::atoi(argv[++i]);
+        if (!std::strcmp(argv[i], "--float-frame")) frame_format = RenderSettings::FrameFormat::Float;
     }
     fs::path shared = FRESNEL_SHARED_DIR;
     fs::path helmet = shared / "assets/models/DamagedHelmet/DamagedHelmet.glb";
@@ -134,6 +140,7 @@ int main(int argc, char** argv) {
         renderer.set_scene(scene);
         RenderSettings rs;
         rs.width = rs.height = 1024;
+        rs.frame_format = frame_format;
         auto inst = flatten(scene);
         CameraSetup cam = orbit_camera(scene_bounds(scene, inst), {}, 1024, 1024);
         auto lights = default_lights();
@@ -170,6 +177,8 @@ int main(int argc, char** argv) {
         rs.width = rs.height = 1024;
         rs.environment = &studio;
         rs.anisotropy = anisotropy;
+        rs.msaa = msaa;
+        rs.frame_format = frame_format;
         auto inst = flatten(scene);
         CameraSetup cam = orbit_camera(scene_bounds(scene, inst), {}, 1024, 1024);
         renderer.draw(cam, {}, rs);  // warm-up: shader compilation
@@ -189,8 +198,9 @@ int main(int argc, char** argv) {
     auto [engine_samples, engine_draws] = fs::exists(engine) ? ibl_frames(engine) : std::make_pair(std::vector<double>{}, 0);
     double helmet_ibl_ms = median(helmet_samples), engine_ibl_ms = engine_samples.empty() ? 0.0 : median(engine_samples);
     if (frames_only) {
-        std::printf("frame 1024^2, 4x MSAA, studio IBL, anisotropy %g: DamagedHelmet %.1f ms, 2CylinderEngine %.1f ms\n",
-                    double(anisotropy), helmet_ibl_ms, engine_ibl_ms);
+        std::printf("frame 1024^2, %dx MSAA, %s frame, studio IBL, anisotropy %g: DamagedHelmet %.1f ms, 2CylinderEngine %.1f ms\n",
+                    msaa, frame_format == RenderSettings::FrameFormat::Float ? "float" : "8-bit", double(anisotropy),
+                    helmet_ibl_ms, engine_ibl_ms);
         return 0;
     }
 
@@ -233,6 +243,7 @@ int main(int argc, char** argv) {
                      {"damaged_helmet_draw_calls", helmet_draws},
                      {"engine_ibl_1024_ms", engine_ibl_ms},
                      {"engine_draw_calls", engine_draws},
+                     {"frame_format", frame_format == RenderSettings::FrameFormat::Float ? "float" : "8-bit"},
                      {"process_512_ms", process_ms},
                      {"khronos", khronos}};
 
@@ -296,7 +307,8 @@ int main(int argc, char** argv) {
         std::snprintf(buf, sizeof buf, "  [Khronos Sample Renderer, same run, llvmpipe: %.1f ms; ratio %.2fx]", theirs, ours / theirs);
         return std::string(buf);
     };
-    std::printf("frame 1024^2, 4x MSAA, studio IBL, drawn and fenced:\n");
+    std::printf("frame 1024^2, 4x MSAA (%s frame), studio IBL, drawn and fenced:\n",
+                frame_format == RenderSettings::FrameFormat::Float ? "float" : "8-bit");
     std::printf("  DamagedHelmet    %.1f ms (%d draws)%s\n", fr["damaged_helmet_ibl_1024_ms"].get<double>(),
                 fr["damaged_helmet_draw_calls"].get<int>(), ratio("DamagedHelmet.glb", fr["damaged_helmet_ibl_1024_ms"].get<double>()).c_str());
     std::printf("  2CylinderEngine  %.1f ms (%d draws)%s\n", fr["engine_ibl_1024_ms"].get<double>(), fr["engine_draw_calls"].get<int>(),

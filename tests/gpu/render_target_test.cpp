@@ -180,3 +180,65 @@ TEST(RenderTarget, CompiledDisplayTransformMatchesTheCppOne) {
     }
     EXPECT_EQ(compared, 2 * 6 * 3);
 }
+
+// RenderSettings::FrameFormat::Display8: the multisampled frame is 8-bit (every resolved value
+// is a mean of 4 samples of k/255, so on the grid of 1/1020), each pixel within about 1/255
+// of the Float frame's (the samples are quantised before the resolve averages them); frames
+// without a display encoding, transparent frames and debug channels stay Float.
+TEST(RenderTarget, Display8FrameIsTheFloatFrameQuantised) {
+    std::unique_ptr<gpu::Context> context;
+    try {
+        context = gpu::create_headless_context();
+    } catch (const Error& e) {
+        GTEST_SKIP() << "no headless OpenGL context: " << e.what();
+    }
+    Scene scene = make_demo_scene();
+    Renderer renderer(*context);
+    renderer.set_scene(scene);
+    RenderSettings rs;
+    rs.width = 96;
+    rs.height = 72;
+    rs.msaa = 4;
+    rs.background = glm::vec4(0.1f, 0.2f, 0.3f, 1.0f);
+    const CameraSetup cam = orbit_camera(scene_bounds(scene, flatten(scene)), {}, rs.width, rs.height);
+    const std::vector<LightInstance> lights = default_lights();
+    // How many channel values lie off the 1/1020 grid, and the largest difference from `ref`.
+    auto grid_and_difference = [&](const ImageF& img, const ImageF& ref) {
+        std::pair<int, float> r{0, 0.0f};
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x)
+                for (int k = 0; k < 3; ++k) {
+                    float v = img.at(x, y)[k] * 1020.0f;
+                    if (std::abs(v - std::round(v)) > 0.02f) ++r.first;
+                    r.second = std::max(r.second, std::abs(img.at(x, y)[k] - ref.at(x, y)[k]));
+                }
+        return r;
+    };
+    RenderSettings as_float = rs;
+    as_float.frame_format = RenderSettings::FrameFormat::Float;
+    RenderSettings as_8bit = rs;
+    as_8bit.frame_format = RenderSettings::FrameFormat::Display8;
+    const ImageF f = renderer.render(cam, lights, as_float);
+    const ImageF d = renderer.render(cam, lights, as_8bit);
+    auto [off_grid_float, none] = grid_and_difference(f, f);
+    auto [off_grid_8bit, diff] = grid_and_difference(d, f);
+    std::printf("Display8 vs Float: %d / %d float values off the 1/1020 grid, 8-bit %d; largest difference %.5f\n",
+                off_grid_float, rs.width * rs.height * 3, off_grid_8bit, double(diff));
+    EXPECT_GT(off_grid_float, rs.width * rs.height);  // the float frame is not quantised
+    EXPECT_EQ(off_grid_8bit, 0);                        // the 8-bit one is
+    EXPECT_LE(diff, 1.0f / 255.0f + 1e-4f);
+    EXPECT_GT(diff, 0.0f);
+    // Without an encoding (linear output) the frame stays float: Display8 changes nothing.
+    for (RenderSettings* s : {&as_float, &as_8bit}) s->encoding = std::nullopt;
+    const ImageF lf = renderer.render(cam, lights, as_float);
+    const ImageF ld = renderer.render(cam, lights, as_8bit);
+    EXPECT_EQ(grid_and_difference(ld, lf).second, 0.0f);
+    // A transparent frame stays float (un-premultiplying 8-bit samples would lose precision).
+    for (RenderSettings* s : {&as_float, &as_8bit}) {
+        s->encoding = Encoding::Srgb;
+        s->background = glm::vec4(0.0f);
+    }
+    const ImageF tf = renderer.render(cam, lights, as_float);
+    const ImageF td = renderer.render(cam, lights, as_8bit);
+    EXPECT_EQ(grid_and_difference(td, tf).second, 0.0f);
+}

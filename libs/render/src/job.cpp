@@ -139,6 +139,8 @@ ResolvedJob resolve(const Job& job, const Scene& scene) {
         rs.straight_alpha = false;  // EXR convention: premultiplied alpha
     } else {
         rs.encoding = out.encoding;
+        // The frame ends as 8-bit display values (a PNG, a window): an 8-bit canvas is enough.
+        rs.frame_format = RenderSettings::FrameFormat::Display8;
     }
 
     // Background: the environment (blurred by default) when there is one, else a colour.

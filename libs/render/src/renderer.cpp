@@ -156,6 +156,7 @@ struct Renderer::Impl {
 
     // Render targets, rebuilt when size or sample count change.
     int target_w = 0, target_h = 0, target_samples = -1;
+    bool target_display8 = false;  // the multisampled frame is RGBA8 (RenderSettings::FrameFormat::Display8)
     gpu::Renderbuffer msaa_color, msaa_depth;
     gpu::Framebuffer msaa_fb;
     gpu::Texture resolved;
@@ -488,16 +489,18 @@ struct Renderer::Impl {
         return &g.texture;
     }
 
-    void ensure_targets(int w, int h, int samples) {
-        if (w == target_w && h == target_h && samples == target_samples) return;
+    void ensure_targets(int w, int h, int samples, bool display8) {
+        if (w == target_w && h == target_h && samples == target_samples && display8 == target_display8) return;
         target_w = w;
         target_h = h;
         target_samples = samples;
+        target_display8 = display8;
         // HDR targets: float where the context renders to float (always on GL 3.3; on ES 3.0
         // with EXT_color_buffer_float, half float alone with EXT_color_buffer_half_float,
-        // else 8-bit; the context logged the fallback when it was made).
+        // else 8-bit; the context logged the fallback when it was made). A Display8 frame
+        // is 8-bit by choice.
         const gpu::Capabilities& caps = context.capabilities();
-        const bool half = caps.half_float_color_targets;
+        const bool half = caps.half_float_color_targets && !display8;
         shader_resolve = caps.multisample_textures && samples > 1 && samples <= caps.max_color_texture_samples;
         msaa_depth = gpu::Renderbuffer(w, h, gpu::RenderbufferFormat::Depth24, samples);
         msaa_fb = gpu::Framebuffer();
@@ -873,19 +876,21 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
     int w = settings.width, h = settings.height;
     int samples = std::clamp(settings.msaa, 1, std::max(1, r.context.capabilities().max_samples_float));
     if (samples == 1) samples = 0;
-    r.ensure_targets(w, h, samples);
+    const bool sky = settings.environment && settings.background_mode != RenderSettings::Background::Color &&
+                     settings.debug == DebugChannel::None;
+    // A transparent frame is one whose background is transparent and not covered by the sky.
+    const bool transparent = settings.background.w == 0.0f && !sky;
+    const bool display8 = settings.frame_format == RenderSettings::FrameFormat::Display8 && settings.encoding &&
+                          settings.debug == DebugChannel::None && !transparent;
+    r.ensure_targets(w, h, samples, display8);
 
     r.device.bind_framebuffer(&r.msaa_fb);
     r.device.viewport(0, 0, w, h);
     // The background is display-referred and written as-is (like the Khronos Sample Viewer's clear colour).
-    bool transparent = settings.background.w == 0.0f;
-    r.device.clear(transparent ? glm::vec4(0.0f) : glm::vec4(glm::vec3(settings.background), 1.0f), true);
+    r.device.clear(settings.background.w == 0.0f ? glm::vec4(0.0f) : glm::vec4(glm::vec3(settings.background), 1.0f),
+                   true);
     r.ensure_environment(settings);
-    if (settings.environment && settings.background_mode != RenderSettings::Background::Color &&
-        settings.debug == DebugChannel::None) {
-        transparent = false;
-        r.draw_sky(cam, settings);
-    }
+    if (sky) r.draw_sky(cam, settings);
 
     if (r.scene) {
         // The frame's draw lists: the renderer's own vectors, emptied (their storage stays).

@@ -81,6 +81,15 @@ struct RenderSettings {
     std::optional<Encoding> encoding = Encoding::Srgb;
     glm::vec4 background{0.0f, 0.0f, 0.0f, 1.0f};  // display-referred RGB; a = 0: transparent
     bool straight_alpha = true;  // transparent frames: un-premultiply (PNG); false keeps premultiplied (EXR)
+    // Storage of the multisampled frame. Float (the default): half float, so render() reads
+    // back the display values (or, without an encoding, the radiance) unquantised. Display8:
+    // 8 bits a channel, as a display's canvas (the Khronos Sample Viewer's WebGL canvas), for
+    // frames that end as 8-bit display values (a PNG, a window): half the memory of Float and
+    // faster on a software rasteriser (fewer bytes written per sample). Each sample is then
+    // clamped to [0, 1] and quantised before the MSAA resolve averages them, so a resolved
+    // pixel is within 1/255 of the Float frame's. Used only where the frame has a display
+    // encoding, is opaque and shows no debug channel; otherwise the frame is Float.
+    enum class FrameFormat { Float, Display8 } frame_format = FrameFormat::Float;
     DebugChannel debug = DebugChannel::None;
     glm::vec3 ambient{0.0f};  // uniform ambient radiance added to diffuse (default none); Ogl1: GL_LIGHT_MODEL_AMBIENT
     ShadingModel shading = ShadingModel::Auto;
