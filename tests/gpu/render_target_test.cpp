@@ -242,3 +242,38 @@ TEST(RenderTarget, Display8FrameIsTheFloatFrameQuantised) {
     const ImageF td = renderer.render(cam, lights, as_8bit);
     EXPECT_EQ(grid_and_difference(td, tf).second, 0.0f);
 }
+
+// Frames that alternate between the two formats (the viewer's split view: the 8-bit frame on
+// the left, a debug channel, which is half float, on the right) keep a set of targets each.
+TEST(RenderTarget, AlternatingFrameFormatsKeepTheirTargets) {
+    std::unique_ptr<gpu::Context> context;
+    try {
+        context = gpu::create_headless_context();
+    } catch (const Error& e) {
+        GTEST_SKIP() << "no headless OpenGL context: " << e.what();
+    }
+    Scene scene = make_demo_scene();
+    Renderer renderer(*context);
+    renderer.set_scene(scene);
+    RenderSettings left;
+    left.width = 64;
+    left.height = 48;
+    left.frame_format = RenderSettings::FrameFormat::Display8;
+    RenderSettings right = left;
+    right.debug = DebugChannel::Normal;  // a debug channel: a half-float frame
+    const CameraSetup cam = orbit_camera(scene_bounds(scene, flatten(scene)), {}, left.width, left.height);
+    const std::vector<LightInstance> lights = default_lights();
+    for (int frame = 0; frame < 4; ++frame)
+        for (const RenderSettings* s : {&left, &right}) {
+            FrameStats stats;
+            renderer.draw(cam, lights, *s, &stats);
+            EXPECT_EQ(stats.gl_errors, "");
+            EXPECT_EQ(stats.targets_rebuilt, frame == 0) << "frame " << frame << (s == &left ? ", 8-bit" : ", debug");
+        }
+    // A new size rebuilds them.
+    left.width = 80;
+    FrameStats stats;
+    renderer.draw(cam, lights, left, &stats);
+    EXPECT_TRUE(stats.targets_rebuilt);
+    renderer.finish();
+}

@@ -154,19 +154,28 @@ struct Renderer::Impl {
     std::vector<NodeInstance> instances;
     std::vector<std::vector<GpuPrimitive>> meshes;
 
-    // Render targets, rebuilt when size or sample count change.
-    int target_w = 0, target_h = 0, target_samples = -1;
-    bool target_display8 = false;  // the multisampled frame is RGBA8 (RenderSettings::FrameFormat::Display8)
-    gpu::Renderbuffer msaa_color, msaa_depth;
-    gpu::Framebuffer msaa_fb;
-    gpu::Texture resolved;
-    gpu::Framebuffer resolved_fb;
-    // Desktop GL: the MSAA colour is a multisampled texture that the output pass resolves
-    // itself (texelFetch of every sample), with no blit and no resolved copy in between; on
-    // llvmpipe the blit's own shader was compiled again in every process (~100 ms of a
-    // first frame). ES 3.0 has no multisampled textures: a renderbuffer, blitted.
-    bool shader_resolve = false;
-    gpu::Texture msaa_texture;
+    // The multisampled frame's targets at one size, sample count and format, rebuilt when one
+    // of those changes (ensure_targets).
+    struct FrameTargets {
+        int w = 0, h = 0, samples = -1;
+        bool display8 = false;  // RGBA8 (RenderSettings::FrameFormat::Display8), else half float
+        gpu::Renderbuffer msaa_color, msaa_depth;
+        gpu::Framebuffer msaa_fb;
+        gpu::Texture resolved;
+        gpu::Framebuffer resolved_fb;
+        // Desktop GL: the MSAA colour is a multisampled texture that the output pass resolves
+        // itself (texelFetch of every sample), with no blit and no resolved copy in between; on
+        // llvmpipe the blit's own shader was compiled again in every process (~100 ms of a
+        // first frame). ES 3.0 has no multisampled textures: a renderbuffer, blitted.
+        bool shader_resolve = false;
+        gpu::Texture msaa_texture;
+    };
+    // One set per format, so frames that alternate between them (the viewer's split view with a
+    // debug channel on one side) keep theirs instead of rebuilding both every frame.
+    std::array<FrameTargets, 2> frame_targets;
+    FrameTargets* targets = &frame_targets[0];  // this frame's
+    // The output pass's image (what render() reads back), rebuilt when the size changes.
+    int output_w = 0, output_h = 0;
     gpu::Texture output;
     gpu::Framebuffer output_fb;
 
@@ -489,46 +498,58 @@ struct Renderer::Impl {
         return &g.texture;
     }
 
-    void ensure_targets(int w, int h, int samples, bool display8) {
-        if (w == target_w && h == target_h && samples == target_samples && display8 == target_display8) return;
-        target_w = w;
-        target_h = h;
-        target_samples = samples;
-        target_display8 = display8;
+    // Whether it (re)built the targets.
+    bool ensure_targets(int w, int h, int samples, bool display8) {
+        targets = &frame_targets[display8 ? 1 : 0];
+        ensure_output(w, h);
+        FrameTargets& t = *targets;
+        if (w == t.w && h == t.h && samples == t.samples) return false;
+        t.w = w;
+        t.h = h;
+        t.samples = samples;
+        t.display8 = display8;
         // HDR targets: float where the context renders to float (always on GL 3.3; on ES 3.0
         // with EXT_color_buffer_float, half float alone with EXT_color_buffer_half_float,
         // else 8-bit; the context logged the fallback when it was made). A Display8 frame
         // is 8-bit by choice.
         const gpu::Capabilities& caps = context.capabilities();
         const bool half = caps.half_float_color_targets && !display8;
-        shader_resolve = caps.multisample_textures && samples > 1 && samples <= caps.max_color_texture_samples;
-        msaa_depth = gpu::Renderbuffer(w, h, gpu::RenderbufferFormat::Depth24, samples);
-        msaa_fb = gpu::Framebuffer();
-        if (shader_resolve) {
-            msaa_texture = gpu::Texture::create_2d_multisample(
+        t.shader_resolve = caps.multisample_textures && samples > 1 && samples <= caps.max_color_texture_samples;
+        t.msaa_depth = gpu::Renderbuffer(w, h, gpu::RenderbufferFormat::Depth24, samples);
+        t.msaa_fb = gpu::Framebuffer();
+        if (t.shader_resolve) {
+            t.msaa_texture = gpu::Texture::create_2d_multisample(
                 w, h, half ? gpu::TextureFormat::RGBA16F : gpu::TextureFormat::RGBA8, samples);
-            msaa_fb.attach_color(msaa_texture);
-            msaa_color = gpu::Renderbuffer();
-            resolved_fb = gpu::Framebuffer();
-            resolved = gpu::Texture();
+            t.msaa_fb.attach_color(t.msaa_texture);
+            t.msaa_color = gpu::Renderbuffer();
+            t.resolved_fb = gpu::Framebuffer();
+            t.resolved = gpu::Texture();
         } else {
-            msaa_color = gpu::Renderbuffer(w, h, half ? gpu::RenderbufferFormat::RGBA16F : gpu::RenderbufferFormat::RGBA8,
-                                           samples);
-            msaa_fb.attach_color(msaa_color);
-            msaa_texture = gpu::Texture();
-            resolved = gpu::Texture::create_2d(w, h, half ? gpu::TextureFormat::RGBA16F : gpu::TextureFormat::RGBA8, nullptr,
-                                               false);
-            resolved.set_sampler(gpu::SamplerState::clamped(Filter::Nearest));
-            resolved_fb = gpu::Framebuffer();
-            resolved_fb.attach_color(resolved);
-            resolved_fb.check();
+            t.msaa_color = gpu::Renderbuffer(w, h, half ? gpu::RenderbufferFormat::RGBA16F : gpu::RenderbufferFormat::RGBA8,
+                                             samples);
+            t.msaa_fb.attach_color(t.msaa_color);
+            t.msaa_texture = gpu::Texture();
+            t.resolved = gpu::Texture::create_2d(w, h, half ? gpu::TextureFormat::RGBA16F : gpu::TextureFormat::RGBA8,
+                                                 nullptr, false);
+            t.resolved.set_sampler(gpu::SamplerState::clamped(Filter::Nearest));
+            t.resolved_fb = gpu::Framebuffer();
+            t.resolved_fb.attach_color(t.resolved);
+            t.resolved_fb.check();
         }
-        msaa_fb.attach_depth(msaa_depth);
-        msaa_fb.check();
+        t.msaa_fb.attach_depth(t.msaa_depth);
+        t.msaa_fb.check();
+        return true;
+    }
+
+    void ensure_output(int w, int h) {
+        if (w == output_w && h == output_h) return;
+        output_w = w;
+        output_h = h;
+        const gpu::Capabilities& caps = context.capabilities();
         output = gpu::Texture::create_2d(w, h,
-                                         caps.float_color_targets ? gpu::TextureFormat::RGBA32F
-                                         : half                   ? gpu::TextureFormat::RGBA16F
-                                                                  : gpu::TextureFormat::RGBA8,
+                                         caps.float_color_targets         ? gpu::TextureFormat::RGBA32F
+                                         : caps.half_float_color_targets ? gpu::TextureFormat::RGBA16F
+                                                                         : gpu::TextureFormat::RGBA8,
                                          nullptr, false);
         output_fb = gpu::Framebuffer();
         output_fb.attach_color(output);
@@ -832,8 +853,9 @@ std::size_t Renderer::texture_bytes() const {
     const Impl& m = *impl_;
     std::size_t n = 0;
     for (const auto& [key, t] : m.textures) n += t.texture.bytes();
-    for (const gpu::Texture* t : {&m.resolved, &m.msaa_texture, &m.output, &m.transmission_texture, &m.env_specular,
-                                  &m.env_irradiance, &m.env_sheen, &m.charlie_lut, &m.lut_texture})
+    for (const auto& t : m.frame_targets) n += t.resolved.bytes() + t.msaa_texture.bytes();
+    for (const gpu::Texture* t : {&m.output, &m.transmission_texture, &m.env_specular, &m.env_irradiance, &m.env_sheen,
+                                  &m.charlie_lut, &m.lut_texture})
         n += t->bytes();
     if (m.white_map) n += m.white_map->bytes();
     return n;
@@ -882,9 +904,9 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
     const bool transparent = settings.background.w == 0.0f && !sky;
     const bool display8 = settings.frame_format == RenderSettings::FrameFormat::Display8 && settings.encoding &&
                           settings.debug == DebugChannel::None && !transparent;
-    r.ensure_targets(w, h, samples, display8);
+    stats.targets_rebuilt = r.ensure_targets(w, h, samples, display8);
 
-    r.device.bind_framebuffer(&r.msaa_fb);
+    r.device.bind_framebuffer(&r.targets->msaa_fb);
     r.device.viewport(0, 0, w, h);
     // The background is display-referred and written as-is (like the Khronos Sample Viewer's clear colour).
     r.device.clear(settings.background.w == 0.0f ? glm::vec4(0.0f) : glm::vec4(glm::vec3(settings.background), 1.0f),
@@ -966,7 +988,7 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
             if (samples > 1) r.device.blit_color(r.transmission_msaa_fb, r.transmission_fb, size, size);
             r.transmission_texture.generate_mipmaps();
             r.transmission_ready = true;
-            r.device.bind_framebuffer(&r.msaa_fb);
+            r.device.bind_framebuffer(&r.targets->msaa_fb);
             r.device.viewport(0, 0, w, h);
         }
         for (const auto& d : opaque) r.draw_primitive(d, cam, lights, settings, stats);
@@ -974,7 +996,8 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
         for (const auto& d : blended) r.draw_primitive(d, cam, lights, settings, stats);
     }
 
-    if (!r.shader_resolve) r.device.blit_color(r.msaa_fb, r.resolved_fb, w, h);
+    const Impl::FrameTargets& ft = *r.targets;
+    if (!ft.shader_resolve) r.device.blit_color(ft.msaa_fb, ft.resolved_fb, w, h);
 
     // Output pass, into the offscreen image or the default framebuffer.
     const bool to_default = target.kind == RenderTarget::Kind::DefaultFramebuffer;
@@ -987,23 +1010,23 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
     post.cull = gpu::Cull::None;
     r.device.apply(post);
     const bool unpremultiply = transparent && settings.straight_alpha;
-    const int resolve_samples = r.shader_resolve ? r.target_samples : 0;
+    const int resolve_samples = ft.shader_resolve ? ft.samples : 0;
     const gpu::Program& prog = r.shaders.get_keyed(
         "fullscreen.vert", "post.frag",
         {Impl::kOutputPrograms, 0, -1, std::uint32_t(resolve_samples) << 1 | (unpremultiply ? 1u : 0u)}, [&] {
             std::vector<std::string> defines{std::string("STRAIGHT_ALPHA ") + (unpremultiply ? "1" : "0")};
-            if (r.shader_resolve) {
+            if (ft.shader_resolve) {
                 defines.emplace_back("MSAA_RESOLVE");
                 defines.push_back("MSAA_SAMPLES " + std::to_string(resolve_samples));
             }
             return defines;
         });
     prog.use();
-    if (r.shader_resolve) {
-        r.device.bind_texture(0, r.msaa_texture);
+    if (ft.shader_resolve) {
+        r.device.bind_texture(0, ft.msaa_texture);
         prog.set("u_frame_ms", 0);  // the sample count and the alpha choice are compiled in
     } else {
-        r.device.bind_texture(0, r.resolved);
+        r.device.bind_texture(0, ft.resolved);
         prog.set("u_frame", 0);
     }
     const bool scissored = to_default && target.scissor;

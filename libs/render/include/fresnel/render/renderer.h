@@ -145,6 +145,9 @@ struct FrameStats {
     int draw_calls = 0;
     std::size_t triangles = 0;
     std::string gl_errors;  // empty when none
+    // This frame (re)built its multisampled targets: a new size, sample count or frame format
+    // (each format keeps its own, so frames alternating between two formats rebuild nothing).
+    bool targets_rebuilt = false;
 };
 
 class Renderer {
