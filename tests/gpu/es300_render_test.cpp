@@ -40,7 +40,8 @@ struct Result {
     std::size_t programs = 0;
 };
 
-Result render_with(gpu::Api api, const Scene& scene, const ibl::BakedIbl& env, DebugChannel debug) {
+Result render_with(gpu::Api api, const Scene& scene, const ibl::BakedIbl& env, DebugChannel debug,
+                   RenderSettings::FrameFormat format = RenderSettings::FrameFormat::Float) {
     gpu::ContextOptions options;
     options.api = api;
     auto context = gpu::create_headless_context(options);
@@ -53,6 +54,7 @@ Result render_with(gpu::Api api, const Scene& scene, const ibl::BakedIbl& env, D
     s.environment = &env;
     s.background_mode = RenderSettings::Background::Blurred;
     s.debug = debug;
+    s.frame_format = format;
     auto instances = flatten(scene);
     CameraSetup cam = orbit_camera(scene_bounds(scene, instances), OrbitParams{30.0f, 15.0f, {}, 45.0f, {}}, s.width, s.height);
     FrameStats stats;
@@ -96,7 +98,7 @@ protected:
 void expect_agreement(const Result& desktop, const Result& es, const char* label, double min_db) {
     ASSERT_EQ(desktop.image.width, es.image.width);
     ImageMetrics m = compare_images(desktop.image, es.image, /*mask_background=*/false);
-    std::printf("%s: ES 3.0 vs GL 3.3: PSNR %.2f dB, MAD %.3f, max %.0f over %zu pixels (%zu / %zu programs)\n", label,
+    std::printf("%s: PSNR %.2f dB, MAD %.3f, max %.0f over %zu pixels (%zu / %zu programs)\n", label,
                 m.psnr_db, m.mad, m.max_abs, m.pixels, es.programs, desktop.programs);
     EXPECT_GE(m.psnr_db, min_db) << label;
     // Not black: the comparison compares pictures.
@@ -118,7 +120,20 @@ TEST_F(Es300Render, DamagedHelmetMatchesDesktop) {
     EXPECT_NE(es.version.find("OpenGL ES"), std::string::npos) << es.version;
     EXPECT_EQ(desktop.gl_errors, "");
     EXPECT_EQ(es.gl_errors, "");
-    expect_agreement(desktop, es, "DamagedHelmet", 40.0);
+    expect_agreement(desktop, es, "DamagedHelmet, ES 3.0 vs GL 3.3", 40.0);
+}
+
+TEST_F(Es300Render, Display8FrameMatchesDesktop) {
+    // The 8-bit frame (what PNG output uses): ES resolves it by a blit, desktop GL in the output
+    // pass; both agree with each other and with the half-float frame.
+    const auto d8 = RenderSettings::FrameFormat::Display8;
+    Result desktop = render_with(gpu::Api::OpenGL33, *scene_, *env_, DebugChannel::None, d8);
+    Result es = render_with(gpu::Api::OpenGLES30, *scene_, *env_, DebugChannel::None, d8);
+    Result desktop_float = render_with(gpu::Api::OpenGL33, *scene_, *env_, DebugChannel::None);
+    EXPECT_EQ(desktop.gl_errors, "");
+    EXPECT_EQ(es.gl_errors, "");
+    expect_agreement(desktop, es, "DamagedHelmet, 8-bit frame, ES 3.0 vs GL 3.3", 40.0);
+    expect_agreement(desktop_float, desktop, "DamagedHelmet, 8-bit vs half-float frame (GL 3.3)", 50.0);
 }
 
 TEST_F(Es300Render, DebugViewMatchesDesktop) {
@@ -126,7 +141,7 @@ TEST_F(Es300Render, DebugViewMatchesDesktop) {
     Result desktop = render_with(gpu::Api::OpenGL33, *scene_, *env_, DebugChannel::Normal);
     Result es = render_with(gpu::Api::OpenGLES30, *scene_, *env_, DebugChannel::Normal);
     EXPECT_EQ(es.gl_errors, "");
-    expect_agreement(desktop, es, "DamagedHelmet --debug normal", 40.0);
+    expect_agreement(desktop, es, "DamagedHelmet --debug normal, ES 3.0 vs GL 3.3", 40.0);
 }
 
 TEST_F(Es300Render, FallbackTargetsMatchDesktop) {
@@ -146,5 +161,5 @@ TEST_F(Es300Render, FallbackTargetsMatchDesktop) {
     // Tone mapping and encoding happen per sample before the resolve, so even an 8-bit
     // target holds the display values; it only quantises them before the MSAA average
     // (measured on llvmpipe: RGBA16F identical, RGBA8 60.0 dB).
-    expect_agreement(desktop, es, half ? "DamagedHelmet, RGBA16F targets" : "DamagedHelmet, RGBA8 targets", 40.0);
+    expect_agreement(desktop, es, half ? "DamagedHelmet, RGBA16F targets, ES 3.0 vs GL 3.3" : "DamagedHelmet, RGBA8 targets, ES 3.0 vs GL 3.3", 40.0);
 }
