@@ -21,7 +21,9 @@ vec3 energy_compensation(vec3 f0, float e) { return 1.0 + f0 * (1.0 / max(e, 1e-
 vec3 ibl_ggx_fresnel(float n_dot_v, float roughness, vec3 f0, float specular_weight) {
     vec2 ab = brdf_lut(n_dot_v, roughness).rg;
     vec3 fr = max(vec3(1.0 - roughness), f0) - f0;
-    vec3 k_s = f0 + fr * pow(1.0 - n_dot_v, 5.0);
+    float x = 1.0 - n_dot_v;  // (1 - n.v)^5 by multiplication, as f_schlick (a pow is exp2(log2) on llvmpipe)
+    float x2 = x * x;
+    vec3 k_s = f0 + fr * (x2 * x2 * x);
     vec3 fss_ess = specular_weight * (k_s * ab.x + ab.y);
     float ems = 1.0 - (ab.x + ab.y);
     vec3 f_avg = specular_weight * (f0 + (1.0 - f0) / 21.0);
@@ -47,7 +49,8 @@ vec3 ibl_radiance_anisotropic(vec3 n, vec3 v, float roughness, float strength, v
 }
 #endif
 
-// Specular occlusion from ambient occlusion (Lagarde & de Rousiers 2014).
+// Specular occlusion from ambient occlusion (Lagarde & de Rousiers 2014). With ao = 1 it is 1
+// (pow(n.v + 1, e) >= 1 for e > 0): variants without an occlusion map skip it (pbr.frag).
 float specular_occlusion(float n_dot_v, float ao, float roughness) {
     return clamp(pow(n_dot_v + ao, exp2(-16.0 * roughness - 1.0)) - 1.0 + ao, 0.0, 1.0);
 }

@@ -135,7 +135,11 @@ void main() {
             fresnel_metal = mix(fresnel_metal, film.metal, film.factor);
         }
 #endif
+#ifdef HAS_OCCLUSION_MAP
         float so = specular_occlusion(n_dot_v, m.occlusion, m.roughness);
+#else
+        const float so = 1.0;  // occlusion 1: specular_occlusion() is 1
+#endif
         vec3 dielectric = diffuse * diffuse_weight * m.occlusion + specular * fresnel_dielectric * so;
         vec3 metal = specular * fresnel_metal * so;
         vec3 ibl = mix(dielectric, metal, m.metallic);
@@ -146,8 +150,10 @@ void main() {
 #endif
 #ifdef MATERIAL_CLEARCOAT
         // The coat reflects the prefiltered environment at its roughness; its Fresnel is cc_mix.
-        vec3 coat = ibl_radiance(reflect(-v, f.nc), m.clearcoat_roughness) *
-                    specular_occlusion(cc_n_dot_v, m.occlusion, m.clearcoat_roughness);
+        vec3 coat = ibl_radiance(reflect(-v, f.nc), m.clearcoat_roughness);
+#ifdef HAS_OCCLUSION_MAP
+        coat *= specular_occlusion(cc_n_dot_v, m.occlusion, m.clearcoat_roughness);
+#endif
         ibl = mix(ibl, coat, cc_mix);
 #endif
         color += ibl;
