@@ -8,8 +8,11 @@ uniform samplerCube u_irradiance_env;  // irradiance / pi
 #include "frame_block.glsl"  // u_env_levels, u_env_intensity, u_env_rotation
 #endif
 
+// The tables and the irradiance cube have one level, filtered linearly whether magnified or
+// minified: textureLod(.., 0) reads what texture() would, without the derivatives, and two
+// reads of the same coordinates are one (a software rasteriser pays for every lookup).
 vec3 brdf_lut(float n_dot_v, float roughness) {
-    return texture(u_brdf_lut, clamp(vec2(n_dot_v, roughness), vec2(0.0), vec2(1.0))).rgb;
+    return textureLod(u_brdf_lut, clamp(vec2(n_dot_v, roughness), vec2(0.0), vec2(1.0)), 0.0).rgb;
 }
 
 // Multiple-scattering energy compensation for a lobe with reflectance f0
@@ -33,7 +36,7 @@ vec3 ibl_ggx_fresnel(float n_dot_v, float roughness, vec3 f0, float specular_wei
 
 #ifdef USE_IBL
 vec3 ibl_irradiance(vec3 n) {
-    return texture(u_irradiance_env, u_env_rotation * n).rgb * u_env_intensity;
+    return textureLod(u_irradiance_env, u_env_rotation * n, 0.0).rgb * u_env_intensity;
 }
 
 vec3 ibl_radiance(vec3 r, float roughness) {

@@ -40,7 +40,7 @@ vec3 sheen_specular(vec3 sheen_color, float sheen_roughness, float n_dot_l, floa
 
 // Directional albedo E of the white sheen lobe (brdf::SheenAlbedoTable).
 float sheen_albedo(float n_dot_v, float sheen_roughness) {
-    return texture(u_brdf_lut, clamp(vec2(n_dot_v, sheen_roughness), vec2(0.0), vec2(1.0))).a;
+    return textureLod(u_brdf_lut, clamp(vec2(n_dot_v, sheen_roughness), vec2(0.0), vec2(1.0)), 0.0).a;  // one level (ibl.glsl)
 }
 
 float max3(vec3 c) { return max(max(c.r, c.g), c.b); }
@@ -54,7 +54,7 @@ uniform sampler2D u_charlie_lut;  // R: the Khronos Sample Viewer's Charlie tabl
 vec3 ibl_sheen(vec3 n, vec3 v, vec3 sheen_color, float sheen_roughness) {
     vec3 r = normalize(reflect(-v, n));
     vec3 light = textureLod(u_sheen_env, u_env_rotation * r, sheen_roughness * (u_env_levels - 1.0)).rgb * u_env_intensity;
-    float brdf = texture(u_charlie_lut, clamp(vec2(clamped_dot(n, v), sheen_roughness), vec2(0.0), vec2(1.0))).r;
+    float brdf = textureLod(u_charlie_lut, clamp(vec2(clamped_dot(n, v), sheen_roughness), vec2(0.0), vec2(1.0)), 0.0).r;
     return light * sheen_color * brdf;
 }
 #endif
