@@ -16,6 +16,7 @@
 #include "fresnel/render/lights.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/scene/procedural.h"
+#include "headless_context.h"
 
 namespace {
 std::atomic<long> g_allocations{0};
@@ -33,12 +34,9 @@ void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 using namespace fresnel;
 
 TEST(FrameAllocations, AWarmFrameAllocatesNothing) {
-    std::unique_ptr<gpu::Context> context;
-    try {
-        context = gpu::create_headless_context();
-    } catch (const Error& e) {
-        GTEST_SKIP() << "no headless OpenGL context: " << e.what();
-    }
+    std::string why;
+    auto context = test_support::try_headless_context(why);
+    if (!context) GTEST_SKIP() << "no headless OpenGL context: " << why;
     Scene scene = make_demo_scene();
     ASSERT_GE(scene.materials.size(), 3u);
     scene.materials[1].alpha_mode = AlphaMode::Blend;  // the depth-sorted list too

@@ -13,10 +13,18 @@
 #include "fresnel/render/lights.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/scene/procedural.h"
+#include "headless_context.h"
 
 using namespace fresnel;
 
 namespace {
+// The demo scene, set on a renderer of `context`.
+struct DemoScene {
+    Scene scene = make_demo_scene();
+    Renderer renderer;
+    explicit DemoScene(gpu::Context& context) : renderer(context) { renderer.set_scene(scene); }
+};
+
 // The default framebuffer's pixels (GL rows bottom to top) of the viewport at (x, y) as an image.
 Image8 read_window(int x, int y, int w, int h) {
     gpu::Device device;
@@ -34,15 +42,12 @@ TEST(RenderTarget, DefaultFramebufferShowsTheOffscreenFrame) {
     gpu::ContextOptions co;
     co.surface_width = 200;
     co.surface_height = 150;
-    std::unique_ptr<gpu::Context> context;
-    try {
-        context = gpu::create_headless_context(co);
-    } catch (const Error& e) {
-        GTEST_SKIP() << "no EGL pbuffer: " << e.what();
-    }
-    Scene scene = make_demo_scene();
-    Renderer renderer(*context);
-    renderer.set_scene(scene);
+    std::string why;
+    auto context = test_support::try_headless_context(why, co);
+    if (!context) GTEST_SKIP() << "no EGL pbuffer: " << why;
+    DemoScene demo(*context);
+    Renderer& renderer = demo.renderer;
+    const Scene& scene = demo.scene;
     RenderSettings rs;
     rs.width = 160;
     rs.height = 120;
@@ -83,15 +88,12 @@ TEST(RenderTarget, ScissorWritesOnlyItsRectangle) {
     gpu::ContextOptions co;
     co.surface_width = 160;
     co.surface_height = 120;
-    std::unique_ptr<gpu::Context> context;
-    try {
-        context = gpu::create_headless_context(co);
-    } catch (const Error& e) {
-        GTEST_SKIP() << "no EGL pbuffer: " << e.what();
-    }
-    Scene scene = make_demo_scene();
-    Renderer renderer(*context);
-    renderer.set_scene(scene);
+    std::string why;
+    auto context = test_support::try_headless_context(why, co);
+    if (!context) GTEST_SKIP() << "no EGL pbuffer: " << why;
+    DemoScene demo(*context);
+    Renderer& renderer = demo.renderer;
+    const Scene& scene = demo.scene;
     RenderSettings a;
     a.width = 160;
     a.height = 120;
@@ -132,15 +134,12 @@ TEST(RenderTarget, ScissorWritesOnlyItsRectangle) {
 // linear (no tone map, no encoding), for every tone mapper and encoding, with and without
 // punctual lights (FRAME_NO_LIGHTS). One sample per pixel, so no edge mixes display values.
 TEST(RenderTarget, CompiledDisplayTransformMatchesTheCppOne) {
-    std::unique_ptr<gpu::Context> context;
-    try {
-        context = gpu::create_headless_context();
-    } catch (const Error& e) {
-        GTEST_SKIP() << "no headless OpenGL context: " << e.what();
-    }
-    Scene scene = make_demo_scene();
-    Renderer renderer(*context);
-    renderer.set_scene(scene);
+    std::string why;
+    auto context = test_support::try_headless_context(why);
+    if (!context) GTEST_SKIP() << "no headless OpenGL context: " << why;
+    DemoScene demo(*context);
+    Renderer& renderer = demo.renderer;
+    const Scene& scene = demo.scene;
     RenderSettings rs;
     rs.width = 48;
     rs.height = 36;
@@ -186,15 +185,12 @@ TEST(RenderTarget, CompiledDisplayTransformMatchesTheCppOne) {
 // of the Float frame's (the samples are quantised before the resolve averages them); frames
 // without a display encoding, transparent frames and debug channels stay Float.
 TEST(RenderTarget, Display8FrameIsTheFloatFrameQuantised) {
-    std::unique_ptr<gpu::Context> context;
-    try {
-        context = gpu::create_headless_context();
-    } catch (const Error& e) {
-        GTEST_SKIP() << "no headless OpenGL context: " << e.what();
-    }
-    Scene scene = make_demo_scene();
-    Renderer renderer(*context);
-    renderer.set_scene(scene);
+    std::string why;
+    auto context = test_support::try_headless_context(why);
+    if (!context) GTEST_SKIP() << "no headless OpenGL context: " << why;
+    DemoScene demo(*context);
+    Renderer& renderer = demo.renderer;
+    const Scene& scene = demo.scene;
     RenderSettings rs;
     rs.width = 96;
     rs.height = 72;
@@ -246,15 +242,12 @@ TEST(RenderTarget, Display8FrameIsTheFloatFrameQuantised) {
 // Frames that alternate between the two formats (the viewer's split view: the 8-bit frame on
 // the left, a debug channel, which is half float, on the right) keep a set of targets each.
 TEST(RenderTarget, AlternatingFrameFormatsKeepTheirTargets) {
-    std::unique_ptr<gpu::Context> context;
-    try {
-        context = gpu::create_headless_context();
-    } catch (const Error& e) {
-        GTEST_SKIP() << "no headless OpenGL context: " << e.what();
-    }
-    Scene scene = make_demo_scene();
-    Renderer renderer(*context);
-    renderer.set_scene(scene);
+    std::string why;
+    auto context = test_support::try_headless_context(why);
+    if (!context) GTEST_SKIP() << "no headless OpenGL context: " << why;
+    DemoScene demo(*context);
+    Renderer& renderer = demo.renderer;
+    const Scene& scene = demo.scene;
     RenderSettings left;
     left.width = 64;
     left.height = 48;

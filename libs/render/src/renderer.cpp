@@ -158,7 +158,6 @@ struct Renderer::Impl {
     // of those changes (ensure_targets).
     struct FrameTargets {
         int w = 0, h = 0, samples = -1;
-        bool display8 = false;  // RGBA8 (RenderSettings::FrameFormat::Display8), else half float
         gpu::Renderbuffer msaa_color, msaa_depth;
         gpu::Framebuffer msaa_fb;
         gpu::Texture resolved;
@@ -170,8 +169,9 @@ struct Renderer::Impl {
         bool shader_resolve = false;
         gpu::Texture msaa_texture;
     };
-    // One set per format, so frames that alternate between them (the viewer's split view with a
-    // debug channel on one side) keep theirs instead of rebuilding both every frame.
+    // One set per format (index 1: RGBA8, FrameFormat::Display8; 0: half float), so frames that
+    // alternate between them (the viewer's split view with a debug channel on one side) keep
+    // theirs instead of rebuilding both every frame.
     std::array<FrameTargets, 2> frame_targets;
     FrameTargets* targets = &frame_targets[0];  // this frame's
     // The output pass's image (what render() reads back), rebuilt when the size changes.
@@ -507,7 +507,6 @@ struct Renderer::Impl {
         t.w = w;
         t.h = h;
         t.samples = samples;
-        t.display8 = display8;
         // HDR targets: float where the context renders to float (always on GL 3.3; on ES 3.0
         // with EXT_color_buffer_float, half float alone with EXT_color_buffer_half_float,
         // else 8-bit; the context logged the fallback when it was made). A Display8 frame
