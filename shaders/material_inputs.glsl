@@ -72,7 +72,7 @@ vec2 map_uv(int set, mat3 transform) {
     vec2 uv = set == 1 ? v_uv1 : v_uv0;
     return (transform * vec3(uv, 1.0)).xy;
 }
-// The detail maps (base colour, metallic-roughness, normal, specular colour,
+// The detail maps (base colour, metallic-roughness, normal, occlusion, specular colour,
 // specular-glossiness, clearcoat normal, sheen colour) are filtered anisotropically here,
 // as SwiftShader's sampler does it, the renderer of the Khronos Sample Viewer's reference
 // images: per 2x2 quad (dFdx/dFdy), the anisotropy is the texel footprint's major axis over
@@ -278,8 +278,12 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     m.diffuse_transmission_color = max(m.diffuse_transmission_color, vec3(0.0));
 #endif
     m.occlusion = 1.0;
-#ifdef HAS_OCCLUSION_MAP
-    m.occlusion = 1.0 + u_occlusion_strength * (sample_map(u_occlusion_map, u_occlusion_uv, u_occlusion_transform).r - 1.0);
+#if defined(OCCLUSION_IN_METALLIC_ROUGHNESS)
+    // The R channel of the metallic-roughness texture (glTF's ORM packing, or the renderer's
+    // packing of the two images): the same texels through the same probes, one lookup fewer.
+    m.occlusion = 1.0 + u_occlusion_strength * (mr.r - 1.0);
+#elif defined(HAS_OCCLUSION_MAP)
+    m.occlusion = 1.0 + u_occlusion_strength * (sample_detail_map(u_occlusion_map, u_occlusion_uv, u_occlusion_transform, u_occlusion_anisotropy).r - 1.0);
 #endif
     m.emissive = u_emissive_factor * u_emissive_strength;
 #ifdef HAS_EMISSIVE_MAP

@@ -135,7 +135,7 @@ void main() {
             fresnel_metal = mix(fresnel_metal, film.metal, film.factor);
         }
 #endif
-#ifdef HAS_OCCLUSION_MAP
+#if defined(HAS_OCCLUSION_MAP) || defined(OCCLUSION_IN_METALLIC_ROUGHNESS)
         float so = specular_occlusion(n_dot_v, m.occlusion, m.roughness);
 #else
         const float so = 1.0;  // occlusion 1: specular_occlusion() is 1
@@ -151,7 +151,7 @@ void main() {
 #ifdef MATERIAL_CLEARCOAT
         // The coat reflects the prefiltered environment at its roughness; its Fresnel is cc_mix.
         vec3 coat = ibl_radiance(reflect(-v, f.nc), m.clearcoat_roughness);
-#ifdef HAS_OCCLUSION_MAP
+#if defined(HAS_OCCLUSION_MAP) || defined(OCCLUSION_IN_METALLIC_ROUGHNESS)
         coat *= specular_occlusion(cc_n_dot_v, m.occlusion, m.clearcoat_roughness);
 #endif
         ibl = mix(ibl, coat, cc_mix);

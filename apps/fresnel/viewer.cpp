@@ -1364,7 +1364,10 @@ private:
                 const float h = 64.0f, w = std::min(h * float(t->width) / float(t->height), 256.0f);
                 ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(t->id)), ImVec2(w, h));
                 if (ImGui::IsItemHovered())
-                    ImGui::SetTooltip("%dx%d%s", t->width, t->height, t->srgb ? " (sRGB: shown decoded, darker)" : "");
+                    ImGui::SetTooltip("%dx%d%s", t->width, t->height,
+                                      t->srgb     ? " (sRGB: shown decoded, darker)"
+                                      : t->packed ? " (stored together: occlusion in R, roughness in G, metallic in B)"
+                                                  : "");
             }
         }
         if (e) materials_edited_ = true;

@@ -270,3 +270,82 @@ TEST(RenderTarget, AlternatingFrameFormatsKeepTheirTargets) {
     EXPECT_TRUE(stats.targets_rebuilt);
     renderer.finish();
 }
+
+// The occlusion read from the metallic-roughness texture's R channel (the renderer's packing of
+// two images, or one ORM texture: feature::OcclusionInMetallicRoughness) is the occlusion read
+// from its own texture through the same anisotropic probes: a sphere whose occlusion is on
+// TEXCOORD_1 (a copy of TEXCOORD_0, so it cannot be packed) renders the same frame.
+TEST(RenderTarget, PackedOcclusionIsTheOcclusionMap) {
+    std::string why;
+    auto context = test_support::try_headless_context(why);
+    if (!context) GTEST_SKIP() << "no EGL pbuffer: " << why;
+    auto noise = [](std::uint32_t seed) {
+        Image8 img(64, 64, 4);
+        for (auto& v : img.pixels) {
+            seed = seed * 1664525u + 1013904223u;
+            v = std::uint8_t(seed >> 24);
+        }
+        return img;
+    };
+    const Image8 mr = noise(1), ao = noise(2);
+    Image8 orm = mr;
+    for (std::size_t i = 0; i < orm.pixels.size(); i += 4) orm.pixels[i] = ao.pixels[i];
+    enum Layout { Packed, Separate, Orm };
+    auto scene_with = [&](Layout layout) {
+        Scene s;
+        s.images = {{"metallic-roughness", mr}, {"occlusion", ao}, {"orm", orm}};
+        s.textures = {{0, {}}, {1, {}}, {2, {}}};
+        Material m;
+        m.base_color_factor = glm::vec4(0.8f, 0.7f, 0.6f, 1.0f);
+        m.metallic_roughness.texture = layout == Orm ? 2 : 0;
+        m.occlusion.texture = layout == Orm ? 2 : 1;
+        m.occlusion.tex_coord = layout == Separate ? 1 : 0;
+        m.occlusion_strength = 0.9f;
+        s.materials.push_back(m);
+        Mesh mesh;
+        Primitive p = make_uv_sphere(48, 24);
+        for (auto& uv : p.uv0) uv *= 6.0f;  // minified and, near the rim, anisotropic
+        p.uv1 = p.uv0;
+        p.material = 0;
+        mesh.primitives.push_back(std::move(p));
+        s.meshes.push_back(std::move(mesh));
+        Node node;
+        node.mesh = 0;
+        s.nodes.push_back(node);
+        s.scenes.push_back({0});
+        return s;
+    };
+    RenderSettings rs;
+    rs.width = rs.height = 96;
+    rs.ambient = glm::vec3(1.0f);  // the occlusion darkens indirect light only
+    for (DebugChannel channel : {DebugChannel::None, DebugChannel::Occlusion}) {
+        rs.debug = channel;
+        std::vector<ImageF> frames;
+        std::vector<std::size_t> bytes;
+        for (Layout layout : {Packed, Separate, Orm}) {
+            Scene scene = scene_with(layout);
+            Renderer renderer(*context);
+            renderer.set_scene(scene);
+            auto instances = flatten(scene);
+            CameraSetup cam = orbit_camera(scene_bounds(scene, instances), {}, rs.width, rs.height);
+            FrameStats stats;
+            frames.push_back(renderer.render(cam, default_lights(), rs, &stats));
+            EXPECT_EQ(stats.gl_errors, "");
+            bytes.push_back(renderer.texture_bytes());
+        }
+        // Packed, the two images are one texture, as the ORM image is; apart, one more 64^2 RGBA8
+        // texture with its mip chain (5461 texels).
+        EXPECT_EQ(bytes[0], bytes[2]);
+        EXPECT_EQ(bytes[1], bytes[0] + 5461u * 4u);
+        float max_diff = 0.0f, spread = 0.0f;
+        for (std::size_t i = 0; i < frames[0].pixels.size(); ++i) {
+            max_diff = std::max({max_diff, std::abs(frames[0].pixels[i] - frames[1].pixels[i]),
+                                 std::abs(frames[2].pixels[i] - frames[1].pixels[i])});
+            spread = std::max(spread, std::abs(frames[1].pixels[i] - frames[1].pixels[0]));
+        }
+        std::printf("%s: packed / ORM against the separate occlusion map: max difference %g (frame range %g)\n",
+                    channel == DebugChannel::None ? "shaded" : "occlusion channel", double(max_diff), double(spread));
+        EXPECT_LE(max_diff, 1e-6f);
+        EXPECT_GT(spread, 0.1f);  // the frames show the sphere, not only the background
+    }
+}

@@ -12,9 +12,11 @@
 // (The anisotropy group together with the sheen or transmission group is compiled on a few
 // base sets only; EveryVariantCompilesAsEs300AndGl330 says why.)
 //
-// Two groups are sampled instead of enumerated: the KHR_materials_iridescence bits (the film
-// and its two maps) and the KHR_materials_diffuse_transmission bits (the model and its two
-// maps), which together would multiply the fragment shader's ~20k sources by nine. Every
+// Three groups are sampled instead of enumerated: the KHR_materials_iridescence bits (the film
+// and its two maps), the KHR_materials_diffuse_transmission bits (the model and its two
+// maps), which together would multiply the fragment shader's ~20k sources by nine, and the
+// occlusion read from the metallic-roughness texture (one #if choosing where the occlusion's
+// value comes from). Every
 // source without them compiles; of those with them, every kFilmStride-th (64th, in mask order)
 // and, on top, enough that each choice of the two groups meets every other bit the stage reads
 // both set and clear (pairwise coverage, asserted). Their code is a few #ifdef blocks that add
@@ -101,7 +103,7 @@ std::string describe(const Job& job) {
 // pairwise cover.
 constexpr FeatureMask kSampledGroup = feature::Iridescence | feature::IridescenceMap | feature::IridescenceThicknessMap |
                                    feature::DiffuseTransmission | feature::DiffuseTransmissionMap |
-                                   feature::DiffuseTransmissionColorMap;
+                                   feature::DiffuseTransmissionColorMap | feature::OcclusionInMetallicRoughness;
 constexpr std::size_t kFilmStride = 64;
 // The share of the mesh stages' sources compiled as GLSL 330 core too (all compile as 300 es).
 constexpr std::size_t kDesktopStride = 8;
@@ -177,6 +179,19 @@ TEST(ShaderFeatures, RulesAreCanonicalAndEnumerated) {
     EXPECT_EQ(canonical_features(HasUv0 | HasNormal | DiffuseTransmission | DiffuseTransmissionColorMap),
               HasUv0 | HasNormal | DiffuseTransmission | DiffuseTransmissionMap | DiffuseTransmissionColorMap);
     EXPECT_EQ(canonical_features(HasUv0 | HasNormal | DiffuseTransmission | Unlit), HasUv0 | Unlit);
+    // The occlusion in the metallic-roughness texture replaces the occlusion map (also under the
+    // debug view) and needs that map and metallic-roughness.
+    EXPECT_EQ(canonical_features(HasUv0 | HasNormal | MetallicRoughnessMap | OcclusionMap | OcclusionInMetallicRoughness),
+              HasUv0 | HasNormal | MetallicRoughnessMap | OcclusionInMetallicRoughness);
+    EXPECT_EQ(canonical_features(HasUv0 | HasNormal | OcclusionMap | OcclusionInMetallicRoughness),
+              HasUv0 | HasNormal | OcclusionMap);
+    EXPECT_EQ(canonical_features(HasUv0 | HasNormal | SpecularGlossiness | MetallicRoughnessMap | OcclusionInMetallicRoughness),
+              HasUv0 | HasNormal | SpecularGlossiness);
+    EXPECT_EQ(canonical_features(HasUv0 | HasNormal | MetallicRoughnessMap | OcclusionInMetallicRoughness | DebugView) &
+                  (OcclusionMap | OcclusionInMetallicRoughness),
+              OcclusionInMetallicRoughness);
+    EXPECT_TRUE(valid_features(HasNormal | HasTangent | HasUv0 | UseIbl | BaseColorMap | MetallicRoughnessMap |
+                               NormalMap | OcclusionInMetallicRoughness | EmissiveMap));
     // DamagedHelmet's variant exists unchanged.
     const FeatureMask helmet = HasNormal | HasTangent | HasUv0 | UseIbl | BaseColorMap | MetallicRoughnessMap |
                                NormalMap | OcclusionMap | EmissiveMap;

@@ -6,6 +6,8 @@
 #include <cstring>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <map>
+#include <optional>
+#include <tuple>
 
 #include "fresnel/core/error.h"
 #include "fresnel/core/mipmap.h"
@@ -383,15 +385,17 @@ struct Renderer::Impl {
 
     // Anisotropic filtering is a property of the map: it is what agrees with the Khronos
     // Sample Viewer's texture filtering on the detail maps, and each anisotropic lookup costs
-    // a software rasteriser more probes, so the low-frequency maps (occlusion, emissive, the
-    // scalar extension maps) go without: measured over the Khronos reference views, that
-    // moves agreement by <= 0.16 dB. The detail maps are filtered in the shader
-    // (sample_detail_map, shaders/material_inputs.glsl).
+    // a software rasteriser more probes, so the low-frequency maps (emissive, the scalar
+    // extension maps) go without: measured over the Khronos reference views, that moves
+    // agreement by <= 0.16 dB. The occlusion is filtered as the metallic-roughness map is,
+    // since it is usually read from the same texels (occlusion_packs). The detail maps are
+    // filtered in the shader (sample_detail_map, shaders/material_inputs.glsl).
     static bool anisotropic_map(MaterialMap map) {
         switch (map) {
             case MaterialMap::BaseColor:
             case MaterialMap::MetallicRoughness:
             case MaterialMap::Normal:
+            case MaterialMap::Occlusion:
             case MaterialMap::SpecularColor:
             case MaterialMap::SpecularGlossiness:
             case MaterialMap::ClearcoatNormal:
@@ -400,7 +404,9 @@ struct Renderer::Impl {
         }
     }
 
-    using TextureKey = std::pair<int, bool>;  // (texture index, sRGB)
+    // (texture index, sRGB, the texture whose R channel replaces this one's or -1): the third
+    // is the occlusion packed into a metallic-roughness texture (occlusion_packs).
+    using TextureKey = std::tuple<int, bool, int>;
     struct GpuTexture {
         gpu::Texture texture;
         bool mipmapped = false;
@@ -417,16 +423,61 @@ struct Renderer::Impl {
     }
     static bool wants_mipmaps(const Sampler& s) { return s.uses_mipmaps(); }
 
+    // Whether material `m`'s occlusion can be read from the R channel of its metallic-roughness
+    // texture (feature::OcclusionInMetallicRoughness): both maps usable, on the same UV set
+    // through the same transform, textures with the same sampler and images of the same size.
+    // Then the probes that read metallic and roughness read the occlusion's texels too: for
+    // glTF's ORM packing (one texture) as they are, for two images once the occlusion's R
+    // channel is copied into the metallic-roughness image (its R is unused), whose mip chain
+    // (built per channel) then holds the occlusion's own levels. The occlusion texture to pack,
+    // or -1.
+    int occlusion_packs(const Material& m) const {
+        if (m.specular_glossiness) return -1;
+        const TextureSlot& mr = m.metallic_roughness;
+        const TextureSlot& ao = m.occlusion;
+        if (!usable(mr) || !usable(ao) || mr.tex_coord != ao.tex_coord || mr.transform != ao.transform) return -1;
+        if (mr.texture == ao.texture) return ao.texture;
+        const Texture& a = scene->textures[std::size_t(mr.texture)];
+        const Texture& b = scene->textures[std::size_t(ao.texture)];
+        const Image8& ia = scene->images[std::size_t(a.image)].pixels;
+        const Image8& ib = scene->images[std::size_t(b.image)].pixels;
+        const bool same_sampler = a.sampler.mag_filter == b.sampler.mag_filter && a.sampler.min_filter == b.sampler.min_filter &&
+                                  a.sampler.mipmap == b.sampler.mipmap && a.sampler.wrap_s == b.sampler.wrap_s &&
+                                  a.sampler.wrap_t == b.sampler.wrap_t;
+        const bool same_size = ia.width == ib.width && ia.height == ib.height && ia.channels == 4 && ib.channels == 4;
+        return same_sampler && same_size ? ao.texture : -1;
+    }
+    // The key of the metallic-roughness texture a material binds: with its occlusion packed in
+    // when occlusion_packs says so and the two are different textures.
+    static TextureKey metallic_roughness_key(const TextureSlot& mr, int packed) {
+        return {mr.texture, false, packed >= 0 && packed != mr.texture ? packed : -1};
+    }
+    // The level-0 image of `key`: the texture's image, or the copy with the packed R channel.
+    Image8 packed_image(const TextureKey& key) const {
+        const Image8& img = scene->images[std::size_t(scene->textures[std::size_t(std::get<0>(key))].image)].pixels;
+        Image8 out = img;
+        const Image8& ao = scene->images[std::size_t(scene->textures[std::size_t(std::get<2>(key))].image)].pixels;
+        for (std::size_t i = 0, n = std::size_t(out.width) * std::size_t(out.height); i < n; ++i)
+            out.pixels[i * 4] = ao.pixels[i * 4];
+        return out;
+    }
+
     // Creates the GL texture for `key` from the image and its CPU-built mip chain.
-    GpuTexture make_texture(const TextureKey& key, const std::vector<Image8>* chain) {
-        const Texture& tex = scene->textures[std::size_t(key.first)];
-        const Image8& img = scene->images[std::size_t(tex.image)].pixels;
-        auto format = key.second ? gpu::TextureFormat::SRGB8_ALPHA8 : gpu::TextureFormat::RGBA8;
+    // `packed`: the level-0 image when the key packs an occlusion (packed_image), else null.
+    GpuTexture make_texture(const TextureKey& key, const std::vector<Image8>* chain, const Image8* packed = nullptr) {
+        const Texture& tex = scene->textures[std::size_t(std::get<0>(key))];
+        Image8 local_packed;
+        if (std::get<2>(key) >= 0 && !packed) {
+            local_packed = packed_image(key);
+            packed = &local_packed;
+        }
+        const Image8& img = packed ? *packed : scene->images[std::size_t(tex.image)].pixels;
+        auto format = std::get<1>(key) ? gpu::TextureFormat::SRGB8_ALPHA8 : gpu::TextureFormat::RGBA8;
         GpuTexture g;
         g.mipmapped = wants_mipmaps(tex.sampler);
         std::vector<Image8> local;
         if (g.mipmapped && !chain) {
-            local = build_mip_chain(img, key.second);
+            local = build_mip_chain(img, std::get<1>(key));
             chain = &local;
         }
         std::vector<gpu::MipLevel> levels{{img.width, img.height, img.pixels.data()}};
@@ -440,22 +491,30 @@ struct Renderer::Impl {
     // parallel on the CPU first.
     void upload_textures() {
         std::vector<TextureKey> keys;
-        for (const auto& m : scene->materials)
+        for (const auto& m : scene->materials) {
+            const int packed = occlusion_packs(m);
             for (int i = 0; i < kMaterialMapCount; ++i) {
                 const TextureSlot* slot = material_map(m, MaterialMap(i));
-                if (slot && usable(*slot)) keys.emplace_back(slot->texture, material_map_info(MaterialMap(i)).srgb);
+                if (!slot || !usable(*slot) || (packed >= 0 && MaterialMap(i) == MaterialMap::Occlusion)) continue;
+                keys.push_back(MaterialMap(i) == MaterialMap::MetallicRoughness
+                                   ? metallic_roughness_key(*slot, packed)
+                                   : TextureKey{slot->texture, material_map_info(MaterialMap(i)).srgb, -1});
             }
+        }
         std::sort(keys.begin(), keys.end());
         keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
         std::vector<std::vector<Image8>> chains(keys.size());
+        std::vector<Image8> packed(keys.size());
         parallel_for(keys.size(), [&](std::size_t i) {
-            const Texture& tex = scene->textures[std::size_t(keys[i].first)];
-            if (wants_mipmaps(tex.sampler))
-                chains[i] = build_mip_chain(scene->images[std::size_t(tex.image)].pixels, keys[i].second);
+            const Texture& tex = scene->textures[std::size_t(std::get<0>(keys[i]))];
+            if (std::get<2>(keys[i]) >= 0) packed[i] = packed_image(keys[i]);
+            const Image8& img = std::get<2>(keys[i]) >= 0 ? packed[i] : scene->images[std::size_t(tex.image)].pixels;
+            if (wants_mipmaps(tex.sampler)) chains[i] = build_mip_chain(img, std::get<1>(keys[i]));
         });
         for (std::size_t i = 0; i < keys.size(); ++i) {
-            textures.emplace(keys[i], make_texture(keys[i], &chains[i]));
+            textures.emplace(keys[i], make_texture(keys[i], &chains[i], std::get<2>(keys[i]) >= 0 ? &packed[i] : nullptr));
             chains[i] = {};
+            packed[i] = {};
         }
     }
 
@@ -468,11 +527,12 @@ struct Renderer::Impl {
     // filter; `shader_anisotropy` (if given) receives what the shader should apply (1: none).
     // In the shader, the probes are bilinear within a level whatever the sampler's minification
     // filter, as in SwiftShader (the Khronos references), so such samplers minify linearly.
+    // `key`: the texture to bind when it is not (ref.texture, srgb) as stored (a packed one).
     const gpu::Texture* texture_for(const TextureSlot& ref, bool srgb, Anisotropic mode, float anisotropy,
-                                    float* shader_anisotropy = nullptr) {
+                                    float* shader_anisotropy = nullptr, std::optional<TextureKey> packed_key = {}) {
         if (shader_anisotropy) *shader_anisotropy = 1.0f;
         if (!usable(ref)) return nullptr;
-        TextureKey key{ref.texture, srgb};
+        TextureKey key = packed_key ? *packed_key : TextureKey{ref.texture, srgb, -1};
         auto it = textures.find(key);
         if (it == textures.end()) it = textures.emplace(key, make_texture(key, nullptr)).first;
         GpuTexture& g = it->second;
@@ -729,14 +789,22 @@ struct Renderer::Impl {
             const TextureSlot* slot = mu.maps[std::size_t(i)];
             if (slot && map_usable(*slot, MaterialMap(i), vertex)) raw |= feature::map_bit(i);
         }
+        // The occlusion read with the metallic-roughness probes from one texture where it can be.
+        const int packed = occlusion_packs(m);
+        constexpr FeatureMask kMr = feature::map_bit(int(MaterialMap::MetallicRoughness));
+        constexpr FeatureMask kAo = feature::map_bit(int(MaterialMap::Occlusion));
+        if (packed >= 0 && (raw & kMr) && (raw & kAo)) raw = (raw & ~kAo) | feature::OcclusionInMetallicRoughness;
         // Upload the maps the variant reads; one without a usable image counts as absent.
         FeatureMask features = canonical_features(raw);
         for (int i = 0; i < kMaterialMapCount; ++i) {
             if (!(features & raw & feature::map_bit(i))) continue;
             const MaterialMapInfo& info = material_map_info(MaterialMap(i));
+            std::optional<TextureKey> key;
+            if (MaterialMap(i) == MaterialMap::MetallicRoughness && (features & feature::OcclusionInMetallicRoughness))
+                key = metallic_roughness_key(*mu.maps[std::size_t(i)], packed);
             bound[i] = texture_for(*mu.maps[std::size_t(i)], info.srgb,
                                    anisotropic_map(MaterialMap(i)) ? Anisotropic::Shader : Anisotropic::Off,
-                                   settings.anisotropy, &mu.block.maps[std::size_t(i)].anisotropy);
+                                   settings.anisotropy, &mu.block.maps[std::size_t(i)].anisotropy, key);
             if (!bound[i]) raw &= ~feature::map_bit(i);
         }
         features = canonical_features(raw);
@@ -878,10 +946,14 @@ ImageF Renderer::render(const CameraSetup& cam, const std::vector<LightInstance>
 
 std::optional<Renderer::TexturePreview> Renderer::texture_preview(int texture) const {
     for (bool srgb : {false, true}) {
-        auto it = impl_->textures.find({texture, srgb});
+        auto it = impl_->textures.find({texture, srgb, -1});
         if (it != impl_->textures.end() && it->second.texture)
             return TexturePreview{it->second.texture.id(), it->second.texture.width(), it->second.texture.height(), srgb};
     }
+    // A metallic-roughness texture or an occlusion uploaded only packed together (occlusion_packs).
+    for (const auto& [key, g] : impl_->textures)
+        if (g.texture && std::get<2>(key) >= 0 && (std::get<0>(key) == texture || std::get<2>(key) == texture))
+            return TexturePreview{g.texture.id(), g.texture.width(), g.texture.height(), false, true};
     return std::nullopt;
 }
 

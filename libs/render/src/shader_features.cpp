@@ -46,6 +46,7 @@ constexpr FeatureInfo kFeatures[] = {
     {DiffuseTransmission, "MATERIAL_DIFFUSE_TRANSMISSION"},
     {DiffuseTransmissionMap, "HAS_DIFFUSE_TRANSMISSION_MAP"},
     {DiffuseTransmissionColorMap, "HAS_DIFFUSE_TRANSMISSION_COLOR_MAP"},
+    {OcclusionInMetallicRoughness, "OCCLUSION_IN_METALLIC_ROUGHNESS"},
 };
 constexpr bool table_is_kall_in_bit_order() {
     FeatureMask seen = 0;
@@ -113,7 +114,13 @@ FeatureMask canonical_features(FeatureMask m) {
     if (m & (IridescenceMap | IridescenceThicknessMap)) m |= IridescenceMap | IridescenceThicknessMap;
     if (m & (DiffuseTransmissionMap | DiffuseTransmissionColorMap))
         m |= DiffuseTransmissionMap | DiffuseTransmissionColorMap;
-    if (m & DebugView) m |= allowed & ~(NormalMap | ClearcoatNormalMap | AnisotropyMap);
+    if (m & OcclusionInMetallicRoughness) {
+        if ((m & MetallicRoughnessMap) && !(m & SpecularGlossiness)) m &= ~OcclusionMap;
+        else m &= ~OcclusionInMetallicRoughness;
+    }
+    if (m & DebugView)
+        m |= allowed & ~(NormalMap | ClearcoatNormalMap | AnisotropyMap |
+                         (m & OcclusionInMetallicRoughness ? OcclusionMap : FeatureMask(0)));
     return m;
 }
 
@@ -124,7 +131,7 @@ std::vector<FeatureMask> all_feature_sets() {
     // skinning, morphing) come in groups that no rule on bits 0..22 looks at, except that unlit,
     // specular-glossiness and missing tangents drop some and the debug view turns the maps on:
     // so every valid mask is a valid mask of bits 0..22 plus one choice per group, kept when
-    // canonical. 2^23 masks instead of 2^39.
+    // canonical. 2^23 masks (twice: bit 39, below) instead of 2^40.
     std::vector<FeatureMask> out;
     constexpr FeatureMask kLow = (FeatureMask(1) << 23) - 1;
     const FeatureMask animation[] = {0, Skinned, MorphTargets, Skinned | MorphTargets};
@@ -134,19 +141,26 @@ std::vector<FeatureMask> all_feature_sets() {
     const FeatureMask iridescence[] = {0, Iridescence, Iridescence | IridescenceMap | IridescenceThicknessMap};
     const FeatureMask diffuse_transmission[] = {0, DiffuseTransmission,
                                                 DiffuseTransmission | DiffuseTransmissionMap | DiffuseTransmissionColorMap};
-    for (FeatureMask m = 0; m <= kLow; ++m) {
-        if (canonical_features(m) != m) continue;
-        for (FeatureMask a : animation)
-            for (FeatureMask s : sheen)
-                for (FeatureMask t : transmission)
-                    for (FeatureMask an : anisotropy)
-                        for (FeatureMask i : iridescence)
-                            for (FeatureMask dt : diffuse_transmission) {
-                                const FeatureMask x = m | a | s | t | an | i | dt;
-                                if (canonical_features(x) == x) out.push_back(x);
-                            }
+    for (FeatureMask low = 0; low <= kLow; ++low) {
+        if (canonical_features(low) != low) continue;
+        // The occlusion in the metallic-roughness texture (bit 39) replaces the occlusion map:
+        // the low bits of a valid mask with it are canonical alone, or with the occlusion map
+        // added (the debug view adds it where allowed). Both ways can give one mask: deduplicated.
+        for (FeatureMask m : {low, (low & ~OcclusionMap) | OcclusionInMetallicRoughness}) {
+            if (m != low && canonical_features(m) != m) continue;
+            for (FeatureMask a : animation)
+                for (FeatureMask s : sheen)
+                    for (FeatureMask t : transmission)
+                        for (FeatureMask an : anisotropy)
+                            for (FeatureMask i : iridescence)
+                                for (FeatureMask dt : diffuse_transmission) {
+                                    const FeatureMask x = m | a | s | t | an | i | dt;
+                                    if (canonical_features(x) == x) out.push_back(x);
+                                }
+        }
     }
     std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
 }
 

@@ -187,10 +187,13 @@ public:
     // The uploaded texture of the scene's texture `texture` (for a GUI's thumbnails): the
     // GPU layer's texture name and size; nothing when the renderer has not uploaded it. The
     // linear upload is preferred; a texture only materials read as sRGB gives that one.
+    // A metallic-roughness texture and an occlusion stored together (`packed`: the occlusion's
+    // R channel in the metallic-roughness texture's R) preview as that one texture.
     struct TexturePreview {
         unsigned id = 0;
         int width = 0, height = 0;
         bool srgb = false;
+        bool packed = false;
     };
     std::optional<TexturePreview> texture_preview(int texture) const;
 

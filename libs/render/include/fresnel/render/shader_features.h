@@ -66,8 +66,13 @@ enum : FeatureMask {
     DiffuseTransmission = FeatureMask(1) << 36,          // MATERIAL_DIFFUSE_TRANSMISSION (Material::has_diffuse_transmission)
     DiffuseTransmissionMap = FeatureMask(1) << 37,       // diffuseTransmissionTexture
     DiffuseTransmissionColorMap = FeatureMask(1) << 38,  // diffuseTransmissionColorTexture
+    // The occlusion is the R channel of the metallic-roughness texture (glTF's ORM packing, or
+    // the renderer's copy of the occlusion's R into the metallic-roughness image where the two
+    // maps share UV set, transform, sampler and size: Renderer's occlusion_packs): read through
+    // the same probes, with no occlusion map bound. Replaces OcclusionMap.
+    OcclusionInMetallicRoughness = FeatureMask(1) << 39,
 };
-constexpr int kCount = 39;
+constexpr int kCount = 40;
 constexpr int kFirstMap = 12;
 constexpr int kMapCount = 20;
 // Bit positions below kCount that no feature uses (none now).
@@ -123,6 +128,8 @@ std::vector<std::string> feature_defines(FeatureMask mask);
 //    clearcoat-roughness maps, as do the two sheen maps (the missing one is the white texture);
 //  - the debug view samples every map but the normal maps and the anisotropy map (white where
 //    absent; a white anisotropy texel is not the default direction (1, 0));
+//  - the occlusion in the metallic-roughness texture needs that map (and metallic-roughness, not
+//    specular-glossiness); it replaces the occlusion map, also under the debug view;
 //  - alpha mask wins over blend (a material has one alpha mode);
 //  - transmission is not shaded for unlit (without the debug view) or specular-glossiness
 //    materials; with it, its two maps always come together (white stands in: factor * 1);
