@@ -370,7 +370,14 @@ struct Renderer::Impl {
                     g.morph_targets = int(p.targets.size());
                 }
                 if (!p.indices.empty()) {
-                    g.buffers.emplace_back(gpu::BufferKind::Index, p.indices.data(), p.indices.size() * 4);
+                    std::vector<std::uint32_t> sorted;
+                    const std::vector<std::uint32_t>* indices = &p.indices;
+                    if (sorts_by_uv(s, p)) {
+                        sorted = p.indices;
+                        sort_triangles_by_uv(sorted, p.uv0);
+                        indices = &sorted;
+                    }
+                    g.buffers.emplace_back(gpu::BufferKind::Index, indices->data(), indices->size() * 4);
                     g.vao.set_indices(g.buffers.back());
                     g.indexed = true;
                     g.count = int(p.indices.size());
@@ -381,6 +388,27 @@ struct Renderer::Impl {
             }
             meshes.push_back(std::move(prims));
         }
+    }
+
+    // Whether a primitive's triangles are drawn in UV order (sort_triangles_by_uv, mesh_ops.h):
+    // indexed triangles with TEXCOORD_0 whose materials (its own and every KHR_materials_variants
+    // one) read a texture and none blends, where the order is the picture's. The order is fixed
+    // at set_scene: a material edited to blend afterwards (the viewer) blends in UV order.
+    static bool sorts_by_uv(const Scene& s, const Primitive& p) {
+        if (p.topology != Topology::Triangles || p.uv0.empty() || p.indices.size() < 6) return false;
+        static const Material kDefaultMaterial{};
+        bool textured = false;
+        auto opaque = [&](int index) {
+            const Material& m = index >= 0 && std::size_t(index) < s.materials.size() ? s.materials[std::size_t(index)]
+                                                                                      : kDefaultMaterial;
+            for (int i = 0; i < kMaterialMapCount; ++i)
+                if (const TextureSlot* t = material_map(m, MaterialMap(i)); t && t->valid()) textured = true;
+            return m.alpha_mode != AlphaMode::Blend;
+        };
+        if (!opaque(p.material)) return false;
+        for (int v : p.variant_materials)
+            if (v >= 0 && !opaque(v)) return false;
+        return textured;
     }
 
     // Anisotropic filtering is a property of the map: it is what agrees with the Khronos

@@ -1,5 +1,6 @@
 #include "fresnel/scene/mesh_ops.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -260,6 +261,38 @@ void pose_skinned(Primitive& p, std::span<const glm::mat4> joint_matrices, const
         if (v < p.normals.size()) p.normals[v] = glm::normalize(glm::transpose(glm::inverse(m3)) * p.normals[v]);
         if (v < p.tangents.size()) p.tangents[v] = glm::vec4(glm::normalize(m3 * glm::vec3(p.tangents[v])), p.tangents[v].w);
     }
+}
+
+void sort_triangles_by_uv(std::vector<std::uint32_t>& triangles, std::span<const glm::vec2> uv) {
+    if (triangles.size() % 3 != 0 || triangles.size() < 6) return;
+    for (std::uint32_t v : triangles)
+        if (v >= uv.size()) return;
+    // 16 bits of x and y interleaved (x in the even bits).
+    auto spread = [](std::uint32_t v) {
+        v &= 0xFFFFu;
+        v = (v | (v << 8)) & 0x00FF00FFu;
+        v = (v | (v << 4)) & 0x0F0F0F0Fu;
+        v = (v | (v << 2)) & 0x33333333u;
+        v = (v | (v << 1)) & 0x55555555u;
+        return v;
+    };
+    auto quantise = [](float c) {
+        float f = c - std::floor(c);  // repeating UVs: the position within the tile
+        return std::isfinite(f) ? std::uint32_t(std::clamp(f, 0.0f, 1.0f) * 65535.0f) : 0u;
+    };
+    const std::size_t count = triangles.size() / 3;
+    std::vector<std::uint64_t> keys(count);  // Morton code << 32 | triangle: sorted, ties keep the order
+    for (std::size_t t = 0; t < count; ++t) {
+        glm::vec2 c = (uv[triangles[t * 3]] + uv[triangles[t * 3 + 1]] + uv[triangles[t * 3 + 2]]) / 3.0f;
+        keys[t] = std::uint64_t(spread(quantise(c.x)) | spread(quantise(c.y)) << 1) << 32 | std::uint64_t(t);
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<std::uint32_t> out(triangles.size());
+    for (std::size_t t = 0; t < count; ++t) {
+        const std::size_t from = std::size_t(keys[t] & 0xFFFFFFFFu) * 3;
+        std::copy_n(triangles.begin() + std::ptrdiff_t(from), 3, out.begin() + std::ptrdiff_t(t * 3));
+    }
+    triangles = std::move(out);
 }
 
 }  // namespace fresnel

@@ -2,8 +2,11 @@
 // meshes whose answers are known without running the code under test.
 #include "fresnel/scene/mesh_ops.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -443,4 +446,54 @@ TEST(Pick, HiddenNodesAndTheirChildrenAreNotSeen) {
     ASSERT_TRUE(hit);
     EXPECT_EQ(hit->node, 0);
     EXPECT_NEAR(hit->distance, 10.0f, 1e-5f);
+}
+
+// Triangles sorted by the Morton order of their UV centroids: the same triangles with the
+// same windings, grouped by UV region; a broken list is left alone.
+TEST(MeshOps, SortTrianglesByUv) {
+    // A 4x4 grid of UV cells, two triangles per cell, listed in a scrambled cell order.
+    std::vector<glm::vec2> uv;
+    std::vector<std::uint32_t> tris;
+    const int order[16] = {5, 12, 0, 15, 3, 9, 6, 1, 14, 10, 2, 8, 13, 7, 11, 4};
+    for (int cell : order) {
+        const float x = float(cell % 4) / 4.0f, y = float(cell / 4) / 4.0f, d = 0.25f;
+        const auto base = std::uint32_t(uv.size());
+        uv.insert(uv.end(), {{x, y}, {x + d, y}, {x + d, y + d}, {x, y + d}});
+        tris.insert(tris.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+    std::vector<std::uint32_t> sorted = tris;
+    sort_triangles_by_uv(sorted, uv);
+    ASSERT_EQ(sorted.size(), tris.size());
+    // The same triangles, each with its own indices in its own order (winding kept).
+    auto as_set = [](const std::vector<std::uint32_t>& t) {
+        std::multiset<std::array<std::uint32_t, 3>> s;
+        for (std::size_t i = 0; i < t.size(); i += 3) s.insert({t[i], t[i + 1], t[i + 2]});
+        return s;
+    };
+    EXPECT_EQ(as_set(sorted), as_set(tris));
+    // Cell by cell in Z order: (0,0) (1,0) (0,1) (1,1) (2,0) (3,0) ... i.e. cells 0 1 4 5 2 3 6 7 ...
+    const int z_order[16] = {0, 1, 4, 5, 2, 3, 6, 7, 8, 9, 12, 13, 10, 11, 14, 15};
+    for (int k = 0; k < 16; ++k) {
+        for (int half = 0; half < 2; ++half) {
+            const std::size_t t = std::size_t(k * 2 + half) * 3;
+            glm::vec2 c = (uv[sorted[t]] + uv[sorted[t + 1]] + uv[sorted[t + 2]]) / 3.0f;
+            EXPECT_EQ(int(c.x * 4.0f) + 4 * int(c.y * 4.0f), z_order[k]) << "triangle " << k * 2 + half;
+        }
+    }
+    // Repeating UVs sort by their position within the tile: shifting every UV by whole tiles changes nothing.
+    std::vector<glm::vec2> shifted = uv;
+    for (auto& c : shifted) c += glm::vec2(3.0f, -2.0f);
+    std::vector<std::uint32_t> sorted_shifted = tris;
+    sort_triangles_by_uv(sorted_shifted, shifted);
+    EXPECT_EQ(sorted_shifted, sorted);
+    // Not whole triangles, or an index out of range: unchanged.
+    std::vector<std::uint32_t> broken = tris;
+    broken.pop_back();
+    sort_triangles_by_uv(broken, uv);
+    EXPECT_TRUE(std::equal(broken.begin(), broken.end(), tris.begin()));
+    broken = tris;
+    broken[4] = std::uint32_t(uv.size());
+    std::vector<std::uint32_t> before = broken;
+    sort_triangles_by_uv(broken, uv);
+    EXPECT_EQ(broken, before);
 }

@@ -94,6 +94,17 @@ bool drop_identity_indices(Primitive& p);
 // Returns the remap (new vertex -> old vertex).
 std::vector<std::uint32_t> compact_vertices(Primitive& p);
 
+// Reorders the triangles of a triangle list (three indices each, every index < uv.size())
+// so that triangles whose UV centroids are near each other come one after another: Morton
+// (Z) order of the centroid's fractional part, 16 bits an axis, ties in the old order. Each
+// triangle keeps its indices and winding. A rasteriser that shades a screen tile's triangles
+// in submission order then reads the textures of one region at a time (llvmpipe:
+// DamagedHelmet's frame ~5-8 % faster; a random order made it 13-22 % slower). For opaque
+// geometry the picture is the same except where coplanar triangles overlap (depth ties);
+// the order of blended triangles is the blend's order, so callers keep theirs. Does nothing
+// when the list is not whole triangles or an index is out of range.
+void sort_triangles_by_uv(std::vector<std::uint32_t>& triangles, std::span<const glm::vec2> uv);
+
 // ---- Transforms and skinning ------------------------------------------------------------
 
 // World matrix of every node: the product of the local matrices from its root down
