@@ -292,27 +292,19 @@ TEST(RenderTarget, PackedOcclusionIsTheOcclusionMap) {
     for (std::size_t i = 0; i < orm.pixels.size(); i += 4) orm.pixels[i] = ao.pixels[i];
     enum Layout { Packed, Separate, Orm };
     auto scene_with = [&](Layout layout) {
-        Scene s;
-        s.images = {{"metallic-roughness", mr}, {"occlusion", ao}, {"orm", orm}};
-        s.textures = {{0, {}}, {1, {}}, {2, {}}};
         Material m;
         m.base_color_factor = glm::vec4(0.8f, 0.7f, 0.6f, 1.0f);
         m.metallic_roughness.texture = layout == Orm ? 2 : 0;
         m.occlusion.texture = layout == Orm ? 2 : 1;
         m.occlusion.tex_coord = layout == Separate ? 1 : 0;
         m.occlusion_strength = 0.9f;
-        s.materials.push_back(m);
-        Mesh mesh;
         Primitive p = make_uv_sphere(48, 24);
         for (auto& uv : p.uv0) uv *= 6.0f;  // minified and, near the rim, anisotropic
         p.uv1 = p.uv0;
         p.material = 0;
-        mesh.primitives.push_back(std::move(p));
-        s.meshes.push_back(std::move(mesh));
-        Node node;
-        node.mesh = 0;
-        s.nodes.push_back(node);
-        s.scenes.push_back({0});
+        Scene s = make_single_primitive_scene(std::move(p), {m});
+        s.images = {{"metallic-roughness", mr}, {"occlusion", ao}, {"orm", orm}};
+        s.textures = {{0, {}}, {1, {}}, {2, {}}};
         return s;
     };
     RenderSettings rs;

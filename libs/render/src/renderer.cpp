@@ -469,11 +469,8 @@ struct Renderer::Impl {
         const Texture& b = scene->textures[std::size_t(ao.texture)];
         const Image8& ia = scene->images[std::size_t(a.image)].pixels;
         const Image8& ib = scene->images[std::size_t(b.image)].pixels;
-        const bool same_sampler = a.sampler.mag_filter == b.sampler.mag_filter && a.sampler.min_filter == b.sampler.min_filter &&
-                                  a.sampler.mipmap == b.sampler.mipmap && a.sampler.wrap_s == b.sampler.wrap_s &&
-                                  a.sampler.wrap_t == b.sampler.wrap_t;
         const bool same_size = ia.width == ib.width && ia.height == ib.height && ia.channels == 4 && ib.channels == 4;
-        return same_sampler && same_size ? ao.texture : -1;
+        return a.sampler == b.sampler && same_size ? ao.texture : -1;
     }
     // The key of the metallic-roughness texture a material binds: with its occlusion packed in
     // when occlusion_packs says so and the two are different textures.

@@ -18,17 +18,10 @@ using Bg = RenderSettings::Background;
 
 // One unit sphere (no lights, no cameras).
 Scene sphere_scene() {
-    Scene s;
-    Mesh mesh;
-    mesh.primitives.push_back(make_uv_sphere(16, 8));
-    mesh.primitives.back().bounds_min = glm::vec3(-1.0f);
-    mesh.primitives.back().bounds_max = glm::vec3(1.0f);
-    s.meshes.push_back(std::move(mesh));
-    Node n;
-    n.mesh = 0;
-    s.nodes.push_back(n);
-    s.scenes.push_back({0});
-    return s;
+    Primitive p = make_uv_sphere(16, 8);
+    p.bounds_min = glm::vec3(-1.0f);
+    p.bounds_max = glm::vec3(1.0f);
+    return make_single_primitive_scene(std::move(p));
 }
 
 // The sphere plus a KHR_lights_punctual point light node.

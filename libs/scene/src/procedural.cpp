@@ -60,4 +60,17 @@ Scene make_demo_scene() {
     return s;
 }
 
+Scene make_single_primitive_scene(Primitive p, std::vector<Material> materials) {
+    Scene s;
+    s.materials = std::move(materials);
+    Mesh mesh;
+    mesh.primitives.push_back(std::move(p));
+    s.meshes.push_back(std::move(mesh));
+    Node node;
+    node.mesh = 0;
+    s.nodes.push_back(node);
+    s.scenes.push_back({0});
+    return s;
+}
+
 }  // namespace fresnel

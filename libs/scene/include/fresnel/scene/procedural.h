@@ -11,4 +11,8 @@ Primitive make_uv_sphere(int segments = 64, int rings = 32);
 // roughness rising by column (left 0 to right 1), base colour a warm copper-like tint.
 Scene make_demo_scene();
 
+// A scene of one node holding one mesh with the primitive `p`, and `materials` (which
+// p.material indexes, or -1 for the default material): the smallest scene tests draw.
+Scene make_single_primitive_scene(Primitive p, std::vector<Material> materials = {});
+
 }  // namespace fresnel

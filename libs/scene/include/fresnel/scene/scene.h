@@ -36,6 +36,7 @@ struct Sampler {
     Wrap wrap_s = Wrap::Repeat;
     Wrap wrap_t = Wrap::Repeat;
     bool uses_mipmaps() const { return mipmap != MipmapMode::None; }
+    bool operator==(const Sampler&) const = default;
 };
 
 struct Texture {
