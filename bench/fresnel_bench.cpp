@@ -116,6 +116,8 @@ int main(int argc, char** argv) {
     int msaa = 4;
     int frames = 0;                 // --frames N: frames timed per model (0: 15, 5 with --quick)
     bool helmet_frames_only = false;  // --helmet: DamagedHelmet's frames alone (with --frames-only)
+    bool engine_frames_only = false;  // --engine: 2CylinderEngine's frames alone (with --frames-only)
+    std::string model_override;  // --model PATH: timed in 2CylinderEngine's place (with --frames-only)
     // The frames' storage: what `fresnel render -o x.png` uses (8-bit, as the Khronos renderer's
     // WebGL canvas), or half float with --float-frame.
     auto frame_format = RenderSettings::FrameFormat::Display8;
@@ -128,6 +130,8 @@ int main(int argc, char** argv) {
         if (!std::strcmp(argv[i], "--float-frame")) frame_format = RenderSettings::FrameFormat::Float;
         if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) frames = std::max(1, std::atoi(argv[++i]));
         if (!std::strcmp(argv[i], "--helmet")) helmet_frames_only = true;
+        if (!std::strcmp(argv[i], "--engine")) engine_frames_only = true;
+        if (!std::strcmp(argv[i], "--model") && i + 1 < argc) model_override = argv[++i];
     }
     fs::path shared = FRESNEL_SHARED_DIR;
     fs::path helmet = shared / "assets/models/DamagedHelmet/DamagedHelmet.glb";
@@ -212,15 +216,17 @@ int main(int argc, char** argv) {
         cpu_ms_per_frame[model.filename().string()] = (process_cpu_ms() - cpu0) / count;
         return std::make_pair(ms, stats.draw_calls);
     };
-    fs::path engine = shared / "assets/models/2CylinderEngine/2CylinderEngine.glb";
-    auto [helmet_samples, helmet_draws] = ibl_frames(helmet);
+    fs::path engine = frames_only && !model_override.empty() ? fs::path(model_override)
+                                                             : shared / "assets/models/2CylinderEngine/2CylinderEngine.glb";
+    auto [helmet_samples, helmet_draws] =
+        frames_only && engine_frames_only ? std::make_pair(std::vector<double>{}, 0) : ibl_frames(helmet);
     auto [engine_samples, engine_draws] = fs::exists(engine) && !(frames_only && helmet_frames_only) ? ibl_frames(engine) : std::make_pair(std::vector<double>{}, 0);
     double helmet_ibl_ms = median(helmet_samples), engine_ibl_ms = engine_samples.empty() ? 0.0 : median(engine_samples);
     if (frames_only) {
-        std::printf("frame 1024^2, %dx MSAA, %s frame, studio IBL, anisotropy %g: DamagedHelmet %.1f ms, 2CylinderEngine %.1f ms"
+        std::printf("frame 1024^2, %dx MSAA, %s frame, studio IBL, anisotropy %g: DamagedHelmet %.1f ms, %s %.1f ms"
                     "  (CPU time per frame, all threads: %.1f ms, %.1f ms)\n",
                     msaa, frame_format == RenderSettings::FrameFormat::Float ? "float" : "8-bit", double(anisotropy),
-                    helmet_ibl_ms, engine_ibl_ms, cpu_ms_per_frame[helmet.filename().string()],
+                    helmet_ibl_ms, engine.stem().string().c_str(), engine_ibl_ms, cpu_ms_per_frame[helmet.filename().string()],
                     cpu_ms_per_frame[engine.filename().string()]);
         return 0;
     }
