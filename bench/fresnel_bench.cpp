@@ -121,7 +121,31 @@ int main(int argc, char** argv) {
     // The frames' storage: what `fresnel render -o x.png` uses (8-bit, as the Khronos renderer's
     // WebGL canvas), or half float with --float-frame.
     auto frame_format = RenderSettings::FrameFormat::Display8;
+    static const char* kUsage =
+        "usage: fresnel-bench [options]\n"
+        "  Times load, upload, frames, the whole `fresnel render` process and the IBL bake, with the\n"
+        "  Khronos Sample Renderer in the same run where FRESNEL_KHRONOS_REF names its harness.\n"
+        "  --quick            fewer runs\n"
+        "  --json             the figures as JSON\n"
+        "  --frames-only      only the 1024^2 image-based-light frames (with CPU time per frame)\n"
+        "  --frames N         frames timed per model\n"
+        "  --helmet           DamagedHelmet's frames alone (with --frames-only)\n"
+        "  --engine           2CylinderEngine's frames alone (with --frames-only)\n"
+        "  --model PATH       that model timed in 2CylinderEngine's place (with --frames-only)\n"
+        "  --anisotropy N     anisotropic filtering of the detail maps (default 16)\n"
+        "  --msaa N           samples per pixel (default 4)\n"
+        "  --float-frame      a half-float frame instead of the 8-bit one `fresnel render -o x.png` uses\n";
     for (int i = 1; i < argc; ++i) {
+        static const char* kKnown[] = {"--quick",      "--json", "--frames-only", "--anisotropy", "--msaa",
+                                       "--float-frame", "--frames", "--helmet",     "--engine",     "--model"};
+        if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
+            std::printf("%s", kUsage);
+            return 0;
+        }
+        if (std::none_of(std::begin(kKnown), std::end(kKnown), [&](const char* k) { return !std::strcmp(argv[i], k); })) {
+            std::fprintf(stderr, "fresnel-bench: unknown option '%s'\n%s", argv[i], kUsage);
+            return 2;
+        }
         if (!std::strcmp(argv[i], "--quick")) quick = true;
         if (!std::strcmp(argv[i], "--json")) as_json = true;
         if (!std::strcmp(argv[i], "--frames-only")) frames_only = true;  // the 1024^2 IBL frames alone
