@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -136,26 +137,27 @@ int main(int argc, char** argv) {
         "  --msaa N           samples per pixel (default 4)\n"
         "  --float-frame      a half-float frame instead of the 8-bit one `fresnel render -o x.png` uses\n";
     for (int i = 1; i < argc; ++i) {
-        static const char* kKnown[] = {"--quick",      "--json", "--frames-only", "--anisotropy", "--msaa",
-                                       "--float-frame", "--frames", "--helmet",     "--engine",     "--model"};
-        if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
+        const std::string_view arg = argv[i];
+        // The value after an option that takes one; a missing value is an error, as an unknown option is.
+        auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
+        const char* v = nullptr;
+        if (arg == "--help" || arg == "-h") {
             std::printf("%s", kUsage);
             return 0;
-        }
-        if (std::none_of(std::begin(kKnown), std::end(kKnown), [&](const char* k) { return !std::strcmp(argv[i], k); })) {
-            std::fprintf(stderr, "fresnel-bench: unknown option '%s'\n%s", argv[i], kUsage);
+        } else if (arg == "--quick") quick = true;
+        else if (arg == "--json") as_json = true;
+        else if (arg == "--frames-only") frames_only = true;
+        else if (arg == "--float-frame") frame_format = RenderSettings::FrameFormat::Float;
+        else if (arg == "--helmet") helmet_frames_only = true;
+        else if (arg == "--engine") engine_frames_only = true;
+        else if (arg == "--anisotropy" && (v = value())) anisotropy = float(std::atof(v));
+        else if (arg == "--msaa" && (v = value())) msaa = std::atoi(v);
+        else if (arg == "--frames" && (v = value())) frames = std::max(1, std::atoi(v));
+        else if (arg == "--model" && (v = value())) model_override = v;
+        else {
+            std::fprintf(stderr, "fresnel-bench: unknown option or missing value: '%s'\n%s", argv[i], kUsage);
             return 2;
         }
-        if (!std::strcmp(argv[i], "--quick")) quick = true;
-        if (!std::strcmp(argv[i], "--json")) as_json = true;
-        if (!std::strcmp(argv[i], "--frames-only")) frames_only = true;  // the 1024^2 IBL frames alone
-        if (!std::strcmp(argv[i], "--anisotropy") && i + 1 < argc) anisotropy = float(std::atof(argv[++i]));
-        if (!std::strcmp(argv[i], "--msaa") && i + 1 < argc) msaa = std::atoi(argv[++i]);
-        if (!std::strcmp(argv[i], "--float-frame")) frame_format = RenderSettings::FrameFormat::Float;
-        if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) frames = std::max(1, std::atoi(argv[++i]));
-        if (!std::strcmp(argv[i], "--helmet")) helmet_frames_only = true;
-        if (!std::strcmp(argv[i], "--engine")) engine_frames_only = true;
-        if (!std::strcmp(argv[i], "--model") && i + 1 < argc) model_override = argv[++i];
     }
     fs::path shared = FRESNEL_SHARED_DIR;
     fs::path helmet = shared / "assets/models/DamagedHelmet/DamagedHelmet.glb";

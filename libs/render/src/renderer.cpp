@@ -398,16 +398,17 @@ struct Renderer::Impl {
         if (p.topology != Topology::Triangles || p.uv0.empty() || p.indices.size() < 6) return false;
         static const Material kDefaultMaterial{};
         bool textured = false;
-        auto opaque = [&](int index) {
+        auto visit = [&](int index) {  // false: the material blends
             const Material& m = index >= 0 && std::size_t(index) < s.materials.size() ? s.materials[std::size_t(index)]
                                                                                       : kDefaultMaterial;
-            for (int i = 0; i < kMaterialMapCount; ++i)
-                if (const TextureSlot* t = material_map(m, MaterialMap(i)); t && t->valid()) textured = true;
-            return m.alpha_mode != AlphaMode::Blend;
+            if (m.alpha_mode == AlphaMode::Blend) return false;
+            for (int i = 0; i < kMaterialMapCount && !textured; ++i)
+                if (const TextureSlot* t = material_map(m, MaterialMap(i))) textured = t->valid();
+            return true;
         };
-        if (!opaque(p.material)) return false;
+        if (!visit(p.material)) return false;
         for (int v : p.variant_materials)
-            if (v >= 0 && !opaque(v)) return false;
+            if (v >= 0 && !visit(v)) return false;
         return textured;
     }
 
