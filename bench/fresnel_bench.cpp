@@ -113,7 +113,7 @@ nlohmann::json khronos_frames(const fs::path& helmet, const fs::path& engine, co
 
 int main(int argc, char** argv) {
     bool quick = false, as_json = false, frames_only = false;
-    float anisotropy = 16.0f;
+    float anisotropy = kDefaultAnisotropy;
     int msaa = 4;
     int frames = 0;                 // --frames N: frames timed per model (0: 15, 5 with --quick)
     bool helmet_frames_only = false;  // --helmet: DamagedHelmet's frames alone (with --frames-only)
@@ -133,7 +133,7 @@ int main(int argc, char** argv) {
         "  --helmet           DamagedHelmet's frames alone (with --frames-only)\n"
         "  --engine           2CylinderEngine's frames alone (with --frames-only)\n"
         "  --model PATH       that model timed in 2CylinderEngine's place (with --frames-only)\n"
-        "  --anisotropy N     anisotropic filtering of the detail maps (default 16)\n"
+        "  --anisotropy N     most probes of the detail maps' anisotropic filter (default 6)\n"
         "  --msaa N           samples per pixel (default 4)\n"
         "  --float-frame      a half-float frame instead of the 8-bit one `fresnel render -o x.png` uses\n";
     for (int i = 1; i < argc; ++i) {

@@ -35,7 +35,7 @@ struct RenderOptions {
     std::vector<std::string> lights;
     bool no_scene_lights = false;
     int msaa = 0;  // 0: not given (4, or 1 with --shading ogl1 / ogl1-pixel)
-    float anisotropy = 16;
+    float anisotropy = kDefaultAnisotropy;
     std::string debug = "none";
     bool json = false;
     bool allow_external = false;

@@ -711,6 +711,38 @@ TEST(KhronosReferences, ImageBasedLight) {
     if (compared == 0) GTEST_SKIP() << "no Khronos IBL references in " << refs;
 }
 
+// The default anisotropic filter (kDefaultAnisotropy probes at most) renders what the Khronos
+// Sample Viewer's 16 render, to well below what the agreement figures can see: DamagedHelmet
+// under image-based light, the reference views and one at a grazing 80 degrees. Measured on
+// llvmpipe (2026-12-03): 61.9-65.0 dB between the two (p99 <= 1), where the Khronos figures are
+// 34-37 dB.
+TEST(KhronosReferences, DefaultAnisotropyRendersAsSixteen) {
+    REQUIRE_SHARED_MODELS();
+    const fs::path file = model_path("DamagedHelmet");
+    const fs::path env_path = kSharedDir / "assets" / "env" / "studio_small_03_1k.hdr";
+    if (file.empty() || !fs::exists(env_path)) GTEST_SKIP() << "DamagedHelmet or the studio environment missing";
+    REQUIRE_CONTEXT();
+    ASSERT_LT(RenderSettings{}.anisotropy, 16.0f) << "the default is the Khronos viewer's 16: nothing to check";
+    ibl::EnvironmentSource source;
+    source.kind = ibl::EnvironmentSource::Kind::File;
+    source.path = env_path;
+    ibl::BakedIbl baked = ibl::load_or_bake(source, ibl::BakeOptions{}, {}, /*use_cache=*/false);
+    Scene scene = load_model(file);
+    for (View view : {View{0, 0}, View{45, 20}, View{0, 80}}) {
+        SCOPED_TRACE("yaw " + std::to_string(view.yaw) + " pitch " + std::to_string(view.pitch));
+        RenderSettings s = khronos_reference_settings();
+        s.environment = &baked;
+        Frame by_default = render(*context, scene, view, s, /*punctual_lights=*/false);
+        s.anisotropy = 16.0f;
+        Frame sixteen = render(*context, scene, view, s, /*punctual_lights=*/false);
+        ImageMetrics m = compare_images(to_image8(by_default.image, false), to_image8(sixteen.image, false));
+        std::printf("DamagedHelmet yaw %g pitch %g, %g probes against 16: PSNR %.2f dB, p99 %.0f\n", double(view.yaw),
+                    double(view.pitch), double(RenderSettings{}.anisotropy), m.psnr_db, m.p99);
+        EXPECT_GE(m.psnr_db, 55.0);
+        EXPECT_LE(m.p99, 1.0);
+    }
+}
+
 // ---------------------------------------------------------------------------
 // KHR_materials_transmission, _volume and _dispersion against the Khronos Sample Renderer: the
 // scenes of scripts/make-transmission-scenes.py (tests/data/transmission: two glass spheres in

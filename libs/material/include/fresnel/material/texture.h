@@ -8,7 +8,8 @@
 //   - the mip chain is fresnel::build_mip_chain's (core/mipmap.h), the one the renderer
 //     builds and uploads: each level from the one above as a linear blit filters it (in
 //     linear light for sRGB), rounded to 8 bits.
-// Not modelled: anisotropic filtering (the renderer asks for 16x on the detail maps).
+// Not modelled: anisotropic filtering (the renderer filters the detail maps with up to
+// RenderSettings::anisotropy probes, in the shader).
 #include <memory>
 #include <vector>
 

@@ -121,7 +121,7 @@ struct Job {
     struct Output {
         int width = 1024, height = 768;
         int msaa = 4;  // samples, 1 = off
-        float anisotropy = 16.0f;  // anisotropic filtering of the detail maps, 1 = off (RenderSettings::anisotropy)
+        float anisotropy = kDefaultAnisotropy;  // anisotropic filtering of the detail maps, 1 = off (RenderSettings::anisotropy)
         ToneMapper tone_mapper = ToneMapper::Neutral;
         float exposure_ev = 0.0f;
         Encoding encoding = Encoding::Srgb;  // display images only
