@@ -360,8 +360,8 @@ int main(int argc, char** argv) {
         std::snprintf(buf, sizeof buf, "  [Khronos Sample Renderer, same run, llvmpipe: %.1f ms; ratio %.2fx]", theirs, ours / theirs);
         return std::string(buf);
     };
-    std::printf("frame 1024^2, 4x MSAA (%s frame), studio IBL, drawn and fenced:\n",
-                frame_format == RenderSettings::FrameFormat::Float ? "float" : "8-bit");
+    std::printf("frame 1024^2, %dx MSAA (%s frame), studio IBL, at most %g anisotropic probes (Khronos: 16), drawn and fenced:\n",
+                msaa, frame_format == RenderSettings::FrameFormat::Float ? "float" : "8-bit", double(anisotropy));
     std::printf("  DamagedHelmet    %.1f ms (%d draws)%s\n", fr["damaged_helmet_ibl_1024_ms"].get<double>(),
                 fr["damaged_helmet_draw_calls"].get<int>(), ratio("DamagedHelmet.glb", fr["damaged_helmet_ibl_1024_ms"].get<double>()).c_str());
     std::printf("  2CylinderEngine  %.1f ms (%d draws)%s\n", fr["engine_ibl_1024_ms"].get<double>(), fr["engine_draw_calls"].get<int>(),
