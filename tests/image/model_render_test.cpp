@@ -631,6 +631,14 @@ RenderSettings khronos_reference_settings() {
     return s;
 }
 
+// An environment file baked at the default settings, without the user's cache (hermetic).
+ibl::BakedIbl bake_uncached(const fs::path& env_file) {
+    ibl::EnvironmentSource source;
+    source.kind = ibl::EnvironmentSource::Kind::File;
+    source.path = env_file;
+    return ibl::load_or_bake(source, ibl::BakeOptions{}, {}, /*use_cache=*/false);
+}
+
 // Metrics of a display-encoded render against a reference image, printed under `label`.
 ImageMetrics compare_to_reference(const ImageF& image, const Image8& ref, const std::string& label) {
     ImageMetrics m = compare_images(to_image8(image, false), ref);
@@ -678,10 +686,7 @@ TEST(KhronosReferences, ImageBasedLight) {
     for (auto [ref_folder, env_file] : envs) {
         fs::path env_path = kSharedDir / "assets" / "env" / env_file;
         if (!fs::is_directory(refs / ref_folder) || !fs::exists(env_path)) continue;
-        ibl::EnvironmentSource source;
-        source.kind = ibl::EnvironmentSource::Kind::File;
-        source.path = env_path;
-        ibl::BakedIbl baked = ibl::load_or_bake(source, ibl::BakeOptions{}, {}, /*use_cache=*/false);
+        ibl::BakedIbl baked = bake_uncached(env_path);
         std::vector<fs::path> files;
         for (const auto& e : fs::directory_iterator(refs / ref_folder))
             if (e.path().extension() == ".png") files.push_back(e.path());
@@ -723,10 +728,7 @@ TEST(KhronosReferences, DefaultAnisotropyRendersAsSixteen) {
     if (file.empty() || !fs::exists(env_path)) GTEST_SKIP() << "DamagedHelmet or the studio environment missing";
     REQUIRE_CONTEXT();
     ASSERT_LT(RenderSettings{}.anisotropy, 16.0f) << "the default is the Khronos viewer's 16: nothing to check";
-    ibl::EnvironmentSource source;
-    source.kind = ibl::EnvironmentSource::Kind::File;
-    source.path = env_path;
-    ibl::BakedIbl baked = ibl::load_or_bake(source, ibl::BakeOptions{}, {}, /*use_cache=*/false);
+    ibl::BakedIbl baked = bake_uncached(env_path);
     Scene scene = load_model(file);
     for (View view : {View{0, 0}, View{45, 20}, View{0, 80}}) {
         SCOPED_TRACE("yaw " + std::to_string(view.yaw) + " pitch " + std::to_string(view.pitch));
@@ -763,10 +765,7 @@ TEST(KhronosReferences, Transmission) {
     const fs::path env_path = kSharedDir / "assets" / "env" / "studio_small_03_1k.hdr";
     if (!fs::exists(env_path)) GTEST_SKIP() << env_path << " not found (the shared folder)";
     REQUIRE_CONTEXT();
-    ibl::EnvironmentSource source;
-    source.kind = ibl::EnvironmentSource::Kind::File;
-    source.path = env_path;
-    ibl::BakedIbl baked = ibl::load_or_bake(source, ibl::BakeOptions{}, {}, /*use_cache=*/false);
+    ibl::BakedIbl baked = bake_uncached(env_path);
     RenderSettings s = khronos_reference_settings();
     s.width = s.height = 320;
     s.environment = &baked;
