@@ -55,13 +55,13 @@ void main() {
     vec3 v = normalize(u_camera_position - v_position);
     vec3 base = u_bp_base_color * texel.rgb;
     vec3 color = vec3(0.0);
-    for (int i = 0; i < MAX_LIGHTS; ++i) {
-        if (i >= u_light_count) break;
+    int i = 0;  // a do-while on the count alone, as pbr.frag's light loop (unrolled otherwise)
+    if (u_light_count > 0) do {
         vec3 l;
         vec3 radiance = light_incident(i, v_position, l);
         color += blinn_phong_normalized(base, u_bp_shininess, u_bp_fresnel, u_bp_metalness, u_bp_reflectivity, n, v, l,
                                         radiance);
-    }
+    } while (++i < u_light_count);
 #ifdef USE_IBL
     color += blinn_phong_normalized_ibl(base, u_bp_fresnel, u_bp_metalness, u_bp_reflectivity, clamped_dot(n, v),
                                         ibl_irradiance(n),

@@ -33,12 +33,12 @@ void ogl1_lighting(vec3 position, vec3 n, out vec3 primary, out vec3 secondary) 
     vec3 v = normalize(u_camera_position - position);
     primary = ogl1_base(u_ke, u_ka, u_ambient);  // GL_LIGHT_MODEL_AMBIENT
     secondary = vec3(0.0);
-    for (int i = 0; i < MAX_LIGHTS; ++i) {
-        if (i >= u_light_count) break;
+    int i = 0;  // a do-while on the count alone, as pbr.frag's light loop (unrolled otherwise)
+    if (u_light_count > 0) do {
         vec3 l;
         vec3 color = ogl1_light_incident(i, position, l);
         Ogl1Light o = ogl1_light(n, v, l, color, u_kd.rgb, u_ks, u_shininess);
         primary += o.diffuse;
         secondary += o.specular;
-    }
+    } while (++i < u_light_count);
 }

@@ -90,8 +90,11 @@ void main() {
     float tr_ray_length = length(tr_ray);
 #endif
 #ifndef FRAME_NO_LIGHTS  // a frame without punctual lights (shader_features.h, FrameVariant)
-    for (int i = 0; i < MAX_LIGHTS; ++i) {
-        if (i >= u_light_count) break;
+    // A do-while on the count alone (the renderer keeps it <= MAX_LIGHTS): a loop bounded by a
+    // constant is unrolled by Mesa's compiler into MAX_LIGHTS masked copies, and a software
+    // rasteriser runs every copy (README, Performance).
+    int i = 0;
+    if (u_light_count > 0) do {
         vec3 l;
         vec3 radiance = light_incident(i, v_position, l);
         vec3 lit = shade_light(m, v, l, radiance, comp_dielectric, comp_metal);  // fresnel::shade_light
@@ -100,7 +103,7 @@ void main() {
         lit += shade_light_transmission(m, tr, v, l, lt, tr_ray_length, radiance);  // fresnel::shade_light_transmission
 #endif
         color += lit;
-    }
+    } while (++i < u_light_count);
 #endif
 #ifdef USE_IBL
     {
