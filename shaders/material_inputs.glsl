@@ -91,33 +91,46 @@ vec4 sample_detail_map(sampler2D map, int set, mat3 transform, float max_anisotr
 }
 #else
 vec4 sample_map(sampler2D map, int set, mat3 transform) { return texture(map, map_uv(set, transform)); }
-vec4 sample_detail_map(sampler2D map, int set, mat3 transform, float max_anisotropy) {
-    vec2 uv = map_uv(set, transform);
+// One map's footprint: where its probes go and at which level (what sample_footprint reads).
+struct DetailFootprint {
+    vec2 p;      // the first probe
+    vec2 delta;  // from one probe to the next
+    float lod;
+    int n;       // probes, >= 1
+};
+DetailFootprint detail_footprint(vec2 uv, vec2 size, float max_anisotropy) {
     vec2 dx = dFdx(uv), dy = dFdy(uv);
-    vec2 size = vec2(textureSize(map, 0));
     vec2 tx = dx * size, ty = dy * size;
     float lx = dot(tx, tx), ly = dot(ty, ty);
     float major2 = max(lx, ly);
     float area = abs(tx.x * ty.y - tx.y * ty.x);
     float anisotropy = clamp(major2 / max(area, 1e-30), 1.0, max(max_anisotropy, 1.0));
     vec2 axis = lx >= ly ? dx : dy;
-    float lod = 0.5 * log2(max(major2, 1e-30) / (anisotropy * anisotropy));
+    DetailFootprint f;
+    f.lod = 0.5 * log2(max(major2, 1e-30) / (anisotropy * anisotropy));
     // round(anisotropy) probes; a NaN footprint compares false and takes one (an integer clamp
     // here would be as safe, but costs llvmpipe its fast loop: 1.4x the frame).
     float probes = anisotropy + 0.5;
-    int n = int(probes < 17.0 ? probes : 1.0);
-    vec2 delta = axis / float(n);
-    vec2 p = uv - axis * (float(n - 1) / float(2 * n));
+    f.n = int(probes < 17.0 ? probes : 1.0);
+    f.delta = axis / float(f.n);
+    f.p = uv - axis * (float(f.n - 1) / float(2 * f.n));
+    return f;
+}
+vec4 sample_footprint(sampler2D map, DetailFootprint f) {
     // A do-while, as n >= 1: llvmpipe runs a loop's body once more than its trips (the exit
     // test at the top of the last pass is made on masked lanes that still run the body), so a
     // `for` here cost one extra probe per map (DamagedHelmet: README, Performance).
     vec4 sum = vec4(0.0);
+    vec2 p = f.p;
     int i = 0;
     do {
-        sum += textureLod(map, p, lod);
-        p += delta;
-    } while (++i < n);
-    return sum / float(n);
+        sum += textureLod(map, p, f.lod);
+        p += f.delta;
+    } while (++i < f.n);
+    return sum / float(f.n);
+}
+vec4 sample_detail_map(sampler2D map, int set, mat3 transform, float max_anisotropy) {
+    return sample_footprint(map, detail_footprint(map_uv(set, transform), vec2(textureSize(map, 0)), max_anisotropy));
 }
 #endif
 
@@ -155,11 +168,31 @@ struct MaterialInputs {
 };
 
 // t, b, ng: the geometric frame (unit, flipped for back faces), as evaluate's SurfacePoint.
+// The base colour, metallic-roughness, occlusion and normal maps through one footprint where the
+// renderer found them alike (DETAIL_SHARED_FOOTPRINT: same UV set, transform, size and probe
+// limit; feature::DetailSharedFootprint): the same probes as one footprint each, computed once.
+// The footprint is the first present map's.
+#if defined(DETAIL_SHARED_FOOTPRINT) && !defined(MATERIAL_EXPLICIT_LOD)
+#if defined(HAS_BASE_COLOR_MAP)
+#define SHARED_FOOTPRINT detail_footprint(map_uv(u_base_color_uv, u_base_color_transform), vec2(textureSize(u_base_color_map, 0)), u_base_color_anisotropy)
+#elif defined(HAS_METALLIC_ROUGHNESS_MAP)
+#define SHARED_FOOTPRINT detail_footprint(map_uv(u_metallic_roughness_uv, u_metallic_roughness_transform), vec2(textureSize(u_metallic_roughness_map, 0)), u_metallic_roughness_anisotropy)
+#else
+#define SHARED_FOOTPRINT detail_footprint(map_uv(u_occlusion_uv, u_occlusion_transform), vec2(textureSize(u_occlusion_map, 0)), u_occlusion_anisotropy)
+#endif
+#define SAMPLE_SHARED_DETAIL(map, set, transform, anisotropy) sample_footprint(map, shared_footprint)
+#else
+#define SAMPLE_SHARED_DETAIL(map, set, transform, anisotropy) sample_detail_map(map, set, transform, anisotropy)
+#endif
+
 MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     MaterialInputs m;
+#if defined(DETAIL_SHARED_FOOTPRINT) && !defined(MATERIAL_EXPLICIT_LOD)
+    DetailFootprint shared_footprint = SHARED_FOOTPRINT;
+#endif
     m.base_color = u_base_color_factor * v_color;
 #ifdef HAS_BASE_COLOR_MAP
-    m.base_color *= sample_detail_map(u_base_color_map, u_base_color_uv, u_base_color_transform, u_base_color_anisotropy);  // an SRGB8_ALPHA8 texture: decoded by the sampler
+    m.base_color *= SAMPLE_SHARED_DETAIL(u_base_color_map, u_base_color_uv, u_base_color_transform, u_base_color_anisotropy);  // an SRGB8_ALPHA8 texture: decoded by the sampler
 #endif
 #ifdef SPECULAR_GLOSSINESS
     // KHR_materials_pbrSpecularGlossiness: base colour is the diffuse colour, the specular
@@ -180,7 +213,7 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     m.metallic = u_metallic_factor;
     m.roughness = u_roughness_factor;
 #ifdef HAS_METALLIC_ROUGHNESS_MAP
-    vec4 mr = sample_detail_map(u_metallic_roughness_map, u_metallic_roughness_uv, u_metallic_roughness_transform, u_metallic_roughness_anisotropy);
+    vec4 mr = SAMPLE_SHARED_DETAIL(u_metallic_roughness_map, u_metallic_roughness_uv, u_metallic_roughness_transform, u_metallic_roughness_anisotropy);
     m.metallic *= mr.b;
     m.roughness *= mr.g;
 #endif
@@ -287,7 +320,7 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     // packing of the two images): the same texels through the same probes, one lookup fewer.
     m.occlusion = 1.0 + u_occlusion_strength * (mr.r - 1.0);
 #elif defined(HAS_OCCLUSION_MAP)
-    m.occlusion = 1.0 + u_occlusion_strength * (sample_detail_map(u_occlusion_map, u_occlusion_uv, u_occlusion_transform, u_occlusion_anisotropy).r - 1.0);
+    m.occlusion = 1.0 + u_occlusion_strength * (SAMPLE_SHARED_DETAIL(u_occlusion_map, u_occlusion_uv, u_occlusion_transform, u_occlusion_anisotropy).r - 1.0);
 #endif
     m.emissive = u_emissive_factor * u_emissive_strength;
 #ifdef HAS_EMISSIVE_MAP
@@ -303,7 +336,7 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
 #endif
     m.normal = ng;
 #ifdef HAS_NORMAL_MAP
-    vec3 tn = sample_detail_map(u_normal_map, u_normal_uv, u_normal_transform, u_normal_anisotropy).rgb * 2.0 - 1.0;
+    vec3 tn = SAMPLE_SHARED_DETAIL(u_normal_map, u_normal_uv, u_normal_transform, u_normal_anisotropy).rgb * 2.0 - 1.0;
     tn.xy *= u_normal_scale;
     m.normal = normalize(mat3(t, b, ng) * tn);
 #endif

@@ -16,7 +16,8 @@
 // and its two maps), the KHR_materials_diffuse_transmission bits (the model and its two
 // maps), which together would multiply the fragment shader's ~20k sources by nine, and the
 // occlusion read from the metallic-roughness texture (one #if choosing where the occlusion's
-// value comes from). Every
+// value comes from), and the shared detail footprint (one #if choosing where the footprint
+// comes from, and the same sample calls). Every
 // source without them compiles; of those with them, every kFilmStride-th (64th, in mask order)
 // and, on top, enough that each choice of the two groups meets every other bit the stage reads
 // both set and clear (pairwise coverage, asserted). Their code is a few #ifdef blocks that add
@@ -103,7 +104,8 @@ std::string describe(const Job& job) {
 // pairwise cover.
 constexpr FeatureMask kSampledGroup = feature::Iridescence | feature::IridescenceMap | feature::IridescenceThicknessMap |
                                    feature::DiffuseTransmission | feature::DiffuseTransmissionMap |
-                                   feature::DiffuseTransmissionColorMap | feature::OcclusionInMetallicRoughness;
+                                   feature::DiffuseTransmissionColorMap | feature::OcclusionInMetallicRoughness |
+                                   feature::DetailSharedFootprint;
 constexpr std::size_t kFilmStride = 64;
 // The share of the mesh stages' sources compiled as GLSL 330 core too (all compile as 300 es).
 constexpr std::size_t kDesktopStride = 8;
@@ -192,6 +194,16 @@ TEST(ShaderFeatures, RulesAreCanonicalAndEnumerated) {
               OcclusionInMetallicRoughness);
     EXPECT_TRUE(valid_features(HasNormal | HasTangent | HasUv0 | UseIbl | BaseColorMap | MetallicRoughnessMap |
                                NormalMap | OcclusionInMetallicRoughness | EmissiveMap));
+    // The shared detail footprint needs two of the base colour, metallic-roughness, occlusion and
+    // normal maps (the occlusion packed into metallic-roughness counts as that map).
+    EXPECT_EQ(canonical_features(HasUv0 | HasNormal | BaseColorMap | EmissiveMap | DetailSharedFootprint),
+              HasUv0 | HasNormal | BaseColorMap | EmissiveMap);
+    EXPECT_TRUE(valid_features(HasUv0 | HasNormal | BaseColorMap | OcclusionMap | DetailSharedFootprint));
+    EXPECT_TRUE(valid_features(HasNormal | HasTangent | HasUv0 | MetallicRoughnessMap | NormalMap | DetailSharedFootprint));
+    EXPECT_EQ(canonical_features(HasUv0 | HasNormal | Unlit | BaseColorMap | MetallicRoughnessMap | DetailSharedFootprint),
+              HasUv0 | Unlit | BaseColorMap);
+    EXPECT_TRUE(valid_features(HasNormal | HasTangent | HasUv0 | UseIbl | BaseColorMap | MetallicRoughnessMap | NormalMap |
+                               OcclusionInMetallicRoughness | EmissiveMap | DetailSharedFootprint));
     // DamagedHelmet's variant exists unchanged.
     const FeatureMask helmet = HasNormal | HasTangent | HasUv0 | UseIbl | BaseColorMap | MetallicRoughnessMap |
                                NormalMap | OcclusionMap | EmissiveMap;

@@ -745,6 +745,43 @@ TEST(KhronosReferences, DefaultAnisotropyRendersAsSixteen) {
     }
 }
 
+// DamagedHelmet's base colour, metallic-roughness (with the occlusion) and normal maps share UV
+// set, transform, size and probe limit, so the renderer reads them through one anisotropic
+// footprint (feature::DetailSharedFootprint): the image is the one a footprint per map gives, to
+// the last bit, at the reference views and at a grazing 80 degrees (where most probes are
+// taken). A normal map read through another transform keeps its own footprint.
+TEST(KhronosReferences, SharedFootprintRendersTheSameImage) {
+    REQUIRE_SHARED_MODELS();
+    const fs::path file = model_path("DamagedHelmet");
+    const fs::path env_path = kSharedDir / "assets" / "env" / "studio_small_03_1k.hdr";
+    if (file.empty() || !fs::exists(env_path)) GTEST_SKIP() << "DamagedHelmet or the studio environment missing";
+    REQUIRE_CONTEXT();
+    ibl::BakedIbl baked = bake_uncached(env_path);
+    Scene scene = load_model(file);
+    for (View view : {View{0, 0}, View{45, 20}, View{0, 80}}) {
+        SCOPED_TRACE("yaw " + std::to_string(view.yaw) + " pitch " + std::to_string(view.pitch));
+        RenderSettings s = khronos_reference_settings();
+        s.environment = &baked;
+        Frame shared = render(*context, scene, view, s, /*punctual_lights=*/false);
+        s.share_footprints = false;
+        Frame own = render(*context, scene, view, s, /*punctual_lights=*/false);
+        EXPECT_EQ(shared.stats.shared_footprint_draws, 1);
+        EXPECT_EQ(own.stats.shared_footprint_draws, 0);
+        ASSERT_EQ(shared.image.pixels.size(), own.image.pixels.size());
+        float worst = 0.0f;
+        for (std::size_t i = 0; i < shared.image.pixels.size(); ++i)
+            worst = std::max(worst, std::abs(shared.image.pixels[i] - own.image.pixels[i]));
+        EXPECT_EQ(worst, 0.0f);
+    }
+    ASSERT_FALSE(scene.materials.empty());
+    TextureTransform scaled;
+    scaled.scale = glm::vec2(2.0f);
+    for (Material& m : scene.materials) m.normal.set_transform(scaled);
+    RenderSettings s = khronos_reference_settings();
+    s.environment = &baked;
+    EXPECT_EQ(render(*context, scene, View{0, 0}, s, false).stats.shared_footprint_draws, 0);
+}
+
 // ---------------------------------------------------------------------------
 // KHR_materials_transmission, _volume and _dispersion against the Khronos Sample Renderer: the
 // scenes of scripts/make-transmission-scenes.py (tests/data/transmission: two glass spheres in

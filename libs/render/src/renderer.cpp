@@ -584,6 +584,29 @@ struct Renderer::Impl {
         return &g.texture;
     }
 
+    // Whether the base colour, metallic-roughness, occlusion and normal maps that `features`
+    // reads (at least two of them) are the material's own textures, of one level-0 size, read
+    // through one UV set and transform with one probe limit: then one footprint serves them
+    // all (feature::DetailSharedFootprint) and the probes are those of one footprint each.
+    bool shares_detail_footprint(FeatureMask features, const gpu::Texture* const* bound, const MaterialUniforms& mu) {
+        const MaterialBlock::Map* first = nullptr;
+        const gpu::Texture* first_texture = nullptr;
+        int count = 0;
+        for (MaterialMap map : {MaterialMap::BaseColor, MaterialMap::MetallicRoughness, MaterialMap::Occlusion,
+                                MaterialMap::Normal}) {
+            const int i = int(map);
+            if (!(features & feature::map_bit(i))) continue;
+            if (!bound[i] || bound[i] == &white_texture()) return false;  // a stand-in: not worth a variant
+            const MaterialBlock::Map& b = mu.block.maps[std::size_t(i)];
+            if (first && (b.uv != first->uv || b.transform != first->transform || b.anisotropy != first->anisotropy ||
+                          bound[i]->width() != first_texture->width() || bound[i]->height() != first_texture->height()))
+                return false;
+            if (!first) first = &b, first_texture = bound[i];
+            ++count;
+        }
+        return count >= 2;
+    }
+
     // Whether it (re)built the targets.
     bool ensure_targets(int w, int h, int samples, bool display8) {
         targets = &frame_targets[display8 ? 1 : 0];
@@ -839,6 +862,9 @@ struct Renderer::Impl {
             if (!(features & feature::map_bit(i))) bound[i] = nullptr;
             else if (!bound[i]) bound[i] = &white_texture();
         }
+        // One anisotropic footprint for the detail maps that agree (DetailSharedFootprint).
+        const bool shared_footprint = settings.share_footprints && shares_detail_footprint(features, bound, mu);
+        if (shared_footprint) features = canonical_features(features | feature::DetailSharedFootprint);
 
         // Alternative BRDF terms are defines on top of the feature set (rare: a string-keyed variant).
         const gpu::Program& prog = [&]() -> const gpu::Program& {
@@ -912,6 +938,7 @@ struct Renderer::Impl {
         device.apply(state);
         device.draw(p.vao, to_gpu(p.topology), p.count, p.indexed);
         ++stats.draw_calls;
+        if (shared_footprint) ++stats.shared_footprint_draws;
         stats.triangles += p.triangles;
     }
 };

@@ -47,6 +47,7 @@ constexpr FeatureInfo kFeatures[] = {
     {DiffuseTransmissionMap, "HAS_DIFFUSE_TRANSMISSION_MAP"},
     {DiffuseTransmissionColorMap, "HAS_DIFFUSE_TRANSMISSION_COLOR_MAP"},
     {OcclusionInMetallicRoughness, "OCCLUSION_IN_METALLIC_ROUGHNESS"},
+    {DetailSharedFootprint, "DETAIL_SHARED_FOOTPRINT"},
 };
 constexpr bool table_is_kall_in_bit_order() {
     FeatureMask seen = 0;
@@ -57,6 +58,9 @@ constexpr bool table_is_kall_in_bit_order() {
     return seen == kAll;
 }
 static_assert(table_is_kall_in_bit_order(), "kFeatures lists the bits of kAll, one each, in bit order");
+
+// The maps DetailSharedFootprint lets share one footprint.
+constexpr FeatureMask kSharedFootprintMaps = BaseColorMap | MetallicRoughnessMap | OcclusionMap | NormalMap;
 
 // The maps a draw with these attributes and this material model may bind.
 FeatureMask allowed_maps(FeatureMask m) {
@@ -121,6 +125,7 @@ FeatureMask canonical_features(FeatureMask m) {
     if (m & DebugView)
         m |= allowed & ~(NormalMap | ClearcoatNormalMap | AnisotropyMap |
                          (m & OcclusionInMetallicRoughness ? OcclusionMap : FeatureMask(0)));
+    if (__builtin_popcountll(m & kSharedFootprintMaps) < 2) m &= ~DetailSharedFootprint;
     return m;
 }
 
@@ -131,7 +136,7 @@ std::vector<FeatureMask> all_feature_sets() {
     // skinning, morphing) come in groups that no rule on bits 0..22 looks at, except that unlit,
     // specular-glossiness and missing tangents drop some and the debug view turns the maps on:
     // so every valid mask is a valid mask of bits 0..22 plus one choice per group, kept when
-    // canonical. 2^23 masks (twice: bit 39, below) instead of 2^40.
+    // canonical. 2^23 masks (four times: bits 39 and 40, below) instead of 2^41.
     std::vector<FeatureMask> out;
     constexpr FeatureMask kLow = (FeatureMask(1) << 23) - 1;
     const FeatureMask animation[] = {0, Skinned, MorphTargets, Skinned | MorphTargets};
@@ -146,7 +151,10 @@ std::vector<FeatureMask> all_feature_sets() {
         // The occlusion in the metallic-roughness texture (bit 39) replaces the occlusion map:
         // the low bits of a valid mask with it are canonical alone, or with the occlusion map
         // added (the debug view adds it where allowed). Both ways can give one mask: deduplicated.
-        for (FeatureMask m : {low, (low & ~OcclusionMap) | OcclusionInMetallicRoughness}) {
+        // The shared detail footprint (bit 40) needs two of four low map bits: the same masks
+        // with it, where canonical.
+        for (FeatureMask m : {low, (low & ~OcclusionMap) | OcclusionInMetallicRoughness, low | DetailSharedFootprint,
+                              (low & ~OcclusionMap) | OcclusionInMetallicRoughness | DetailSharedFootprint}) {
             if (m != low && canonical_features(m) != m) continue;
             for (FeatureMask a : animation)
                 for (FeatureMask s : sheen)

@@ -124,6 +124,10 @@ struct RenderSettings {
     // convention) or as posed on the CPU (fresnel/scene/pose.h). gpu_animatable() says
     // whether a scene fits the limits.
     bool gpu_animation = false;
+    // Detail maps that share UV set, transform, size and probe limit read their anisotropic
+    // probes through one footprint computed once (feature::DetailSharedFootprint): the same
+    // image, faster. false computes one per map (tests compare the two).
+    bool share_footprints = true;
 };
 
 // Whether every skin and morphed primitive of `scene` fits RenderSettings::gpu_animation's
@@ -155,6 +159,8 @@ struct FrameStats {
     // This frame (re)built its multisampled targets: a new size, sample count or frame format
     // (each format keeps its own, so frames alternating between two formats rebuild nothing).
     bool targets_rebuilt = false;
+    // Draws whose detail maps shared one anisotropic footprint (RenderSettings::share_footprints).
+    int shared_footprint_draws = 0;
 };
 
 class Renderer {

@@ -71,8 +71,14 @@ enum : FeatureMask {
     // maps share UV set, transform, sampler and size: Renderer's occlusion_packs): read through
     // the same probes, with no occlusion map bound. Replaces OcclusionMap.
     OcclusionInMetallicRoughness = FeatureMask(1) << 39,
+    // The base colour, metallic-roughness, occlusion and normal maps of the variant (at least
+    // two of them) have the same UV set, transform, level-0 size and probe limit, so one
+    // anisotropic footprint (derivatives, level of detail, probe count and positions) serves
+    // them all: the same probes as one footprint each, computed once (DETAIL_SHARED_FOOTPRINT,
+    // material_inputs.glsl; the renderer's shares_detail_footprint).
+    DetailSharedFootprint = FeatureMask(1) << 40,
 };
-constexpr int kCount = 40;
+constexpr int kCount = 41;
 constexpr int kFirstMap = 12;
 constexpr int kMapCount = 20;
 // Bit positions below kCount that no feature uses (none now).
@@ -137,6 +143,8 @@ std::vector<std::string> feature_defines(FeatureMask mask);
 //    mix(minimum, maximum, 1) = maximum, the thickness without a map); unlit drops the film;
 //  - the diffuse transmission maps need the diffuse transmission and come together (white stands
 //    in: factor * 1, colour * 1); unlit drops it.
+//  - the shared detail footprint needs two of the base colour, metallic-roughness, occlusion
+//    and normal maps (after the rules above).
 // Normal maps and the anisotropy map are never stood in for: a flat normal texel is not
 // exactly (0, 0, 1), a white anisotropy texel is direction (1, 1).
 FeatureMask canonical_features(FeatureMask mask);
