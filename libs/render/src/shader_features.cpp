@@ -1,6 +1,7 @@
 #include "fresnel/render/shader_features.h"
 
 #include <algorithm>
+#include <bit>
 
 namespace fresnel {
 
@@ -125,7 +126,7 @@ FeatureMask canonical_features(FeatureMask m) {
     if (m & DebugView)
         m |= allowed & ~(NormalMap | ClearcoatNormalMap | AnisotropyMap |
                          (m & OcclusionInMetallicRoughness ? OcclusionMap : FeatureMask(0)));
-    if (__builtin_popcountll(m & kSharedFootprintMaps) < 2) m &= ~DetailSharedFootprint;
+    if (std::popcount(m & kSharedFootprintMaps) < 2) m &= ~DetailSharedFootprint;
     return m;
 }
 
