@@ -716,6 +716,34 @@ TEST(KhronosReferences, ImageBasedLight) {
     if (compared == 0) GTEST_SKIP() << "no Khronos IBL references in " << refs;
 }
 
+// DamagedHelmet under the studio environment (baked without the cache), for the tests that
+// render it at kViews: the two reference views and a grazing 80 degrees, where the anisotropic
+// filter takes most probes. helmet_under_studio() is empty when the model or the environment is
+// missing from the shared folder.
+struct HelmetUnderStudio {
+    static constexpr View kViews[] = {View{0, 0}, View{45, 20}, View{0, 80}};
+    Scene scene;
+    ibl::BakedIbl baked;
+    // The Khronos reference settings, lit by the environment alone.
+    RenderSettings settings() const {
+        RenderSettings s = khronos_reference_settings();
+        s.environment = &baked;
+        return s;
+    }
+    Frame render_at(gpu::Context& context, View view, const RenderSettings& s) const {
+        return render(context, scene, view, s, /*punctual_lights=*/false);
+    }
+};
+
+std::optional<HelmetUnderStudio> helmet_under_studio() {
+    const fs::path file = model_path("DamagedHelmet");
+    const fs::path env_path = kSharedDir / "assets" / "env" / "studio_small_03_1k.hdr";
+    if (file.empty() || !fs::exists(env_path)) return std::nullopt;
+    return HelmetUnderStudio{load_model(file), bake_uncached(env_path)};
+}
+
+std::string view_trace(View view) { return "yaw " + std::to_string(view.yaw) + " pitch " + std::to_string(view.pitch); }
+
 // The default anisotropic filter (kDefaultAnisotropy probes at most) renders what the Khronos
 // Sample Viewer's 16 render, to well below what the agreement figures can see: DamagedHelmet
 // under image-based light, the reference views and one at a grazing 80 degrees. Measured on
@@ -723,20 +751,16 @@ TEST(KhronosReferences, ImageBasedLight) {
 // 34-37 dB.
 TEST(KhronosReferences, DefaultAnisotropyRendersAsSixteen) {
     REQUIRE_SHARED_MODELS();
-    const fs::path file = model_path("DamagedHelmet");
-    const fs::path env_path = kSharedDir / "assets" / "env" / "studio_small_03_1k.hdr";
-    if (file.empty() || !fs::exists(env_path)) GTEST_SKIP() << "DamagedHelmet or the studio environment missing";
     REQUIRE_CONTEXT();
     ASSERT_LT(RenderSettings{}.anisotropy, 16.0f) << "the default is the Khronos viewer's 16: nothing to check";
-    ibl::BakedIbl baked = bake_uncached(env_path);
-    Scene scene = load_model(file);
-    for (View view : {View{0, 0}, View{45, 20}, View{0, 80}}) {
-        SCOPED_TRACE("yaw " + std::to_string(view.yaw) + " pitch " + std::to_string(view.pitch));
-        RenderSettings s = khronos_reference_settings();
-        s.environment = &baked;
-        Frame by_default = render(*context, scene, view, s, /*punctual_lights=*/false);
+    const std::optional<HelmetUnderStudio> helmet = helmet_under_studio();
+    if (!helmet) GTEST_SKIP() << "DamagedHelmet or the studio environment missing";
+    for (View view : HelmetUnderStudio::kViews) {
+        SCOPED_TRACE(view_trace(view));
+        RenderSettings s = helmet->settings();
+        Frame by_default = helmet->render_at(*context, view, s);
         s.anisotropy = 16.0f;
-        Frame sixteen = render(*context, scene, view, s, /*punctual_lights=*/false);
+        Frame sixteen = helmet->render_at(*context, view, s);
         ImageMetrics m = compare_images(to_image8(by_default.image, false), to_image8(sixteen.image, false));
         std::printf("DamagedHelmet yaw %g pitch %g, %g probes against 16: PSNR %.2f dB, p99 %.0f\n", double(view.yaw),
                     double(view.pitch), double(RenderSettings{}.anisotropy), m.psnr_db, m.p99);
@@ -752,19 +776,15 @@ TEST(KhronosReferences, DefaultAnisotropyRendersAsSixteen) {
 // taken). A normal map read through another transform keeps its own footprint.
 TEST(KhronosReferences, SharedFootprintRendersTheSameImage) {
     REQUIRE_SHARED_MODELS();
-    const fs::path file = model_path("DamagedHelmet");
-    const fs::path env_path = kSharedDir / "assets" / "env" / "studio_small_03_1k.hdr";
-    if (file.empty() || !fs::exists(env_path)) GTEST_SKIP() << "DamagedHelmet or the studio environment missing";
     REQUIRE_CONTEXT();
-    ibl::BakedIbl baked = bake_uncached(env_path);
-    Scene scene = load_model(file);
-    for (View view : {View{0, 0}, View{45, 20}, View{0, 80}}) {
-        SCOPED_TRACE("yaw " + std::to_string(view.yaw) + " pitch " + std::to_string(view.pitch));
-        RenderSettings s = khronos_reference_settings();
-        s.environment = &baked;
-        Frame shared = render(*context, scene, view, s, /*punctual_lights=*/false);
+    std::optional<HelmetUnderStudio> helmet = helmet_under_studio();
+    if (!helmet) GTEST_SKIP() << "DamagedHelmet or the studio environment missing";
+    for (View view : HelmetUnderStudio::kViews) {
+        SCOPED_TRACE(view_trace(view));
+        RenderSettings s = helmet->settings();
+        Frame shared = helmet->render_at(*context, view, s);
         s.share_footprints = false;
-        Frame own = render(*context, scene, view, s, /*punctual_lights=*/false);
+        Frame own = helmet->render_at(*context, view, s);
         EXPECT_EQ(shared.stats.shared_footprint_draws, 1);
         EXPECT_EQ(own.stats.shared_footprint_draws, 0);
         ASSERT_EQ(shared.image.pixels.size(), own.image.pixels.size());
@@ -773,13 +793,11 @@ TEST(KhronosReferences, SharedFootprintRendersTheSameImage) {
             worst = std::max(worst, std::abs(shared.image.pixels[i] - own.image.pixels[i]));
         EXPECT_EQ(worst, 0.0f);
     }
-    ASSERT_FALSE(scene.materials.empty());
+    ASSERT_FALSE(helmet->scene.materials.empty());
     TextureTransform scaled;
     scaled.scale = glm::vec2(2.0f);
-    for (Material& m : scene.materials) m.normal.set_transform(scaled);
-    RenderSettings s = khronos_reference_settings();
-    s.environment = &baked;
-    EXPECT_EQ(render(*context, scene, View{0, 0}, s, false).stats.shared_footprint_draws, 0);
+    for (Material& m : helmet->scene.materials) m.normal.set_transform(scaled);
+    EXPECT_EQ(helmet->render_at(*context, View{0, 0}, helmet->settings()).stats.shared_footprint_draws, 0);
 }
 
 // ---------------------------------------------------------------------------
