@@ -129,8 +129,12 @@ vec4 sample_footprint(sampler2D map, DetailFootprint f) {
     } while (++i < f.n);
     return sum / float(f.n);
 }
+// A map's own footprint, from its UV set, transform, size and probe limit.
+DetailFootprint map_footprint(sampler2D map, int set, mat3 transform, float max_anisotropy) {
+    return detail_footprint(map_uv(set, transform), vec2(textureSize(map, 0)), max_anisotropy);
+}
 vec4 sample_detail_map(sampler2D map, int set, mat3 transform, float max_anisotropy) {
-    return sample_footprint(map, detail_footprint(map_uv(set, transform), vec2(textureSize(map, 0)), max_anisotropy));
+    return sample_footprint(map, map_footprint(map, set, transform, max_anisotropy));
 }
 #endif
 
@@ -167,27 +171,27 @@ struct MaterialInputs {
     vec3 diffuse_transmission_color;
 };
 
-// t, b, ng: the geometric frame (unit, flipped for back faces), as evaluate's SurfacePoint.
 // The base colour, metallic-roughness, occlusion and normal maps through one footprint where the
 // renderer found them alike (DETAIL_SHARED_FOOTPRINT: same UV set, transform, size and probe
-// limit; feature::DetailSharedFootprint): the same probes as one footprint each, computed once.
-// The footprint is the first present map's.
+// limit; feature::DetailSharedFootprint): the same probes as one footprint each, computed once,
+// from the first of them the variant reads (the renderer asks for two or more).
 #if defined(DETAIL_SHARED_FOOTPRINT) && !defined(MATERIAL_EXPLICIT_LOD)
 #if defined(HAS_BASE_COLOR_MAP)
-#define SHARED_FOOTPRINT detail_footprint(map_uv(u_base_color_uv, u_base_color_transform), vec2(textureSize(u_base_color_map, 0)), u_base_color_anisotropy)
+#define SHARED_FOOTPRINT map_footprint(u_base_color_map, u_base_color_uv, u_base_color_transform, u_base_color_anisotropy)
 #elif defined(HAS_METALLIC_ROUGHNESS_MAP)
-#define SHARED_FOOTPRINT detail_footprint(map_uv(u_metallic_roughness_uv, u_metallic_roughness_transform), vec2(textureSize(u_metallic_roughness_map, 0)), u_metallic_roughness_anisotropy)
+#define SHARED_FOOTPRINT map_footprint(u_metallic_roughness_map, u_metallic_roughness_uv, u_metallic_roughness_transform, u_metallic_roughness_anisotropy)
 #else
-#define SHARED_FOOTPRINT detail_footprint(map_uv(u_occlusion_uv, u_occlusion_transform), vec2(textureSize(u_occlusion_map, 0)), u_occlusion_anisotropy)
+#define SHARED_FOOTPRINT map_footprint(u_occlusion_map, u_occlusion_uv, u_occlusion_transform, u_occlusion_anisotropy)
 #endif
 #define SAMPLE_SHARED_DETAIL(map, set, transform, anisotropy) sample_footprint(map, shared_footprint)
 #else
 #define SAMPLE_SHARED_DETAIL(map, set, transform, anisotropy) sample_detail_map(map, set, transform, anisotropy)
 #endif
 
+// t, b, ng: the geometric frame (unit, flipped for back faces), as evaluate's SurfacePoint.
 MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     MaterialInputs m;
-#if defined(DETAIL_SHARED_FOOTPRINT) && !defined(MATERIAL_EXPLICIT_LOD)
+#ifdef SHARED_FOOTPRINT
     DetailFootprint shared_footprint = SHARED_FOOTPRINT;
 #endif
     m.base_color = u_base_color_factor * v_color;

@@ -601,7 +601,10 @@ struct Renderer::Impl {
             if (first && (b.uv != first->uv || b.transform != first->transform || b.anisotropy != first->anisotropy ||
                           bound[i]->width() != first_texture->width() || bound[i]->height() != first_texture->height()))
                 return false;
-            if (!first) first = &b, first_texture = bound[i];
+            if (!first) {
+                first = &b;
+                first_texture = bound[i];
+            }
             ++count;
         }
         return count >= 2;
