@@ -81,7 +81,7 @@ vec2 map_uv(int set, mat3 transform) {
 // u_<map>_anisotropy 1 is one trilinear probe at the footprint's level (the renderer sets 1
 // for samplers that are not trilinear). One code path: a uniform branch would cost both
 // sides on a software rasteriser. Against llvmpipe's own 16x filtering this is ~1.5x faster
-// and agrees better with every Khronos reference (tests/image; README, Performance).
+// and agrees better with every Khronos reference (tests/image; docs/performance.md).
 #ifdef MATERIAL_EXPLICIT_LOD
 // Tests: every map at one given level of detail (SurfacePoint::lod on the C++ side).
 uniform float u_material_lod;
@@ -119,7 +119,7 @@ DetailFootprint detail_footprint(vec2 uv, vec2 size, float max_anisotropy) {
 vec4 sample_footprint(sampler2D map, DetailFootprint f) {
     // A do-while, as n >= 1: llvmpipe runs a loop's body once more than its trips (the exit
     // test at the top of the last pass is made on masked lanes that still run the body), so a
-    // `for` here cost one extra probe per map (DamagedHelmet: README, Performance).
+    // `for` here cost one extra probe per map (DamagedHelmet: docs/performance.md).
     vec4 sum = vec4(0.0);
     vec2 p = f.p;
     int i = 0;

@@ -92,7 +92,7 @@ void main() {
 #ifndef FRAME_NO_LIGHTS  // a frame without punctual lights (shader_features.h, FrameVariant)
     // A do-while on the count alone (the renderer keeps it <= MAX_LIGHTS): a loop bounded by a
     // constant is unrolled by Mesa's compiler into MAX_LIGHTS masked copies, and a software
-    // rasteriser runs every copy (README, Performance).
+    // rasteriser runs every copy (docs/performance.md).
     int i = 0;
     if (u_light_count > 0) do {
         vec3 l;

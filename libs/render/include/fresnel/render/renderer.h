@@ -72,7 +72,7 @@ struct Fog {
 // The Khronos Sample Viewer asks for 16, but on a software rasteriser every probe is paid for
 // by a whole pixel vector, and past 6 the probes changed no Khronos reference view by more
 // than 0.01 dB (34 views, 4 to 16 probes) while costing DamagedHelmet's 1024^2 frame 7-16 %
-// (README, Performance).
+// (docs/performance.md).
 inline constexpr float kDefaultAnisotropy = 6.0f;
 
 struct RenderSettings {
