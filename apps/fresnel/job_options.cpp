@@ -323,6 +323,24 @@ void write_image_atomically(const std::string& path, const ImageF& image, bool t
     }
 }
 
+void add_model_and_output(CLI::App* cmd, RenderOptions& o) {
+    cmd->add_option("model", o.models,
+                    "glTF 2.0 file (.gltf/.glb), several (one scene, each at its own place), or a scene file "
+                    "(.fresnel.json, docs/scene-file.md; the flags given override it); omitted: the built-in demo "
+                    "(7x7 spheres)");
+    cmd->add_option("-o,--output", o.output,
+                    "Output image: .png (8-bit, display-encoded), .exr/.hdr (linear float after exposure and tone "
+                    "map). Required unless the scene file names an output");
+}
+
+nlohmann::json camera_json(const CameraSetup& camera) {
+    return {{"eye", {camera.eye.x, camera.eye.y, camera.eye.z}},
+            {"target", {camera.target.x, camera.target.y, camera.target.z}},
+            {"znear", camera.znear},
+            {"zfar", camera.zfar},
+            {"yfov_deg", camera.yfov_deg}};
+}
+
 void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
     RenderOptions* o = &opts;
     const bool raster = set == JobFlagSet::Raster;

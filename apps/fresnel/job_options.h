@@ -3,6 +3,7 @@
 // first frame) and `batch` (every job's defaults), and how they become a fresnel::Job. They
 // are declared and documented once, in job_options.cpp (add_job_flags).
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -81,6 +82,13 @@ enum class JobFlagSet { Raster, Trace };
 // Registers the job flags (all of render's but the model, -o, --turntable, --video, --fps and
 // --json) on `cmd`.
 void add_job_flags(CLI::App* cmd, RenderOptions& o, JobFlagSet set = JobFlagSet::Raster);
+
+// Registers the positional model(s) and -o/--output of a command that renders one job
+// (render, trace), with one wording for both.
+void add_model_and_output(CLI::App* cmd, RenderOptions& o);
+
+// A resolved camera as the --json reports of render and trace give it.
+nlohmann::json camera_json(const CameraSetup& camera);
 
 // `job` with the given flags applied (the output's float/encoded choice is the caller's).
 // Usage errors are printed and give nullopt (exit 2), before any file is touched; a

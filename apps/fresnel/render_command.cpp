@@ -265,9 +265,7 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
         j["environment"] = environment ? environment->source : "none";
         j["environment_ms"] = lighting.environment_ms;
         j["environment_cached"] = environment ? environment->from_cache : false;
-        j["camera"] = {{"eye", {camera.eye.x, camera.eye.y, camera.eye.z}},
-                       {"target", {camera.target.x, camera.target.y, camera.target.z}},
-                       {"znear", camera.znear}, {"zfar", camera.zfar}, {"yfov_deg", camera.yfov_deg}};
+        j["camera"] = camera_json(camera);
         j["warnings"] = diag.lines();
         std::printf("%s\n", j.dump().c_str());
     }
@@ -279,13 +277,7 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
 Runner add_render_command(CLI::App& app) {
     auto o = std::make_shared<RenderOptions>();
     CLI::App* cmd = app.add_subcommand("render", "Render a glTF model (or the built-in demo) to an image, headless");
-    cmd->add_option("model", o->models,
-                    "glTF 2.0 file (.gltf/.glb), several (one scene, each at its own place), or a scene file "
-                    "(.fresnel.json, docs/scene-file.md; the flags given override it); omitted: the built-in demo "
-                    "(7x7 spheres)");
-    cmd->add_option("-o,--output", o->output,
-                    "Output image: .png (8-bit, display-encoded), .exr/.hdr (linear float after exposure and tone "
-                    "map). Required unless the scene file names an output");
+    add_model_and_output(cmd, *o);
     cmd->add_option("--turntable", o->turntable,
                     "Render N frames around the model (yaw advances 360/N degrees), numbered OUT-000.png ... (or a "
                     "printf pattern in -o, e.g. frame_%04d.png)")

@@ -123,9 +123,7 @@ int run_trace(const TraceOptions& o, const CLI::App* cmd) {
         j["lights"] = resolved.lights.size();
         j["default_lights"] = resolved.default_lights;
         j["environment"] = resolved.environment ? resolved.environment->describe() : "none";
-        j["camera"] = {{"eye", {camera.eye.x, camera.eye.y, camera.eye.z}},
-                       {"target", {camera.target.x, camera.target.y, camera.target.z}},
-                       {"znear", camera.znear}, {"zfar", camera.zfar}, {"yfov_deg", camera.yfov_deg}};
+        j["camera"] = camera_json(camera);
         j["warnings"] = diag.lines();
         std::printf("%s\n", j.dump().c_str());
     }
@@ -138,13 +136,7 @@ Runner add_trace_command(CLI::App& app) {
     auto o = std::make_shared<TraceOptions>();
     CLI::App* cmd = app.add_subcommand(
         "trace", "Path-trace a glTF model (or the built-in demo) on the CPU: the ground truth for render");
-    cmd->add_option("model", o->models,
-                    "glTF 2.0 file (.gltf/.glb), several (one scene, each at its own place), or a scene file "
-                    "(.fresnel.json, docs/scene-file.md; the flags given override it); omitted: the built-in demo "
-                    "(7x7 spheres)");
-    cmd->add_option("-o,--output", o->output,
-                    "Output image: .png (8-bit, display-encoded), .exr/.hdr (linear float after exposure and tone "
-                    "map). Required unless the scene file names an output");
+    add_model_and_output(cmd, *o);
     cmd->add_option("--spp", o->spp, "Samples (camera paths) per pixel")->capture_default_str()->check(CLI::Range(1, 1 << 20));
     cmd->add_option("--max-bounces,--bounces", o->max_bounces,
                     "Scattering events per path; 1 = direct light only (punctual lights and one bounce of the "
