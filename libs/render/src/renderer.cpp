@@ -724,6 +724,23 @@ struct Renderer::Impl {
         mb.buffer.bind(kMaterialBlockBinding);
     }
 
+    // Draws a primitive whose program and material are bound: culling by the material's sides
+    // and the winding that the model matrix's determinant `det` keeps or mirrors, blending for
+    // BLEND materials (no depth writes), and the frame's counts.
+    void submit(const GpuPrimitive& p, const Material& m, float det, FrameStats& stats) {
+        gpu::PipelineState state;
+        state.cull = m.double_sided ? gpu::Cull::None : gpu::Cull::Back;
+        state.front_ccw = det >= 0;
+        if (m.alpha_mode == AlphaMode::Blend) {
+            state.blend = gpu::Blend::AlphaOver;
+            state.depth_write = false;
+        }
+        device.apply(state);
+        device.draw(p.vao, to_gpu(p.topology), p.count, p.indexed);
+        ++stats.draw_calls;
+        stats.triangles += p.triangles;
+    }
+
     // One primitive in a legacy model (legacy.vert / legacy.frag, ShadingModel in renderer.h)
     // with the material's Phong values (legacy_phong, blinn_phong_material in phong.h).
     void draw_legacy(const Draw& d, const CameraSetup& cam, const RenderSettings& settings, const Material& m,
@@ -792,18 +809,7 @@ struct Renderer::Impl {
                 prog.set("u_irradiance_env", int(TextureUnit::IrradianceEnvironment));
             }
         }
-        gpu::PipelineState state;
-        const float det = glm::determinant(glm::mat3(d.model));
-        state.cull = m.double_sided ? gpu::Cull::None : gpu::Cull::Back;
-        state.front_ccw = det >= 0;
-        if (m.alpha_mode == AlphaMode::Blend) {
-            state.blend = gpu::Blend::AlphaOver;
-            state.depth_write = false;
-        }
-        device.apply(state);
-        device.draw(p.vao, to_gpu(p.topology), p.count, p.indexed);
-        ++stats.draw_calls;
-        stats.triangles += p.triangles;
+        submit(p, m, glm::determinant(glm::mat3(d.model)), stats);
     }
 
     void draw_primitive(const Draw& d, const CameraSetup& cam, const std::vector<LightInstance>& lights,
@@ -931,18 +937,8 @@ struct Renderer::Impl {
         bind_material_block(p.material, mu);
         set_material_samplers(prog, map_units);
 
-        gpu::PipelineState state;
-        state.cull = m.double_sided ? gpu::Cull::None : gpu::Cull::Back;
-        state.front_ccw = det >= 0;
-        if (m.alpha_mode == AlphaMode::Blend) {
-            state.blend = gpu::Blend::AlphaOver;
-            state.depth_write = false;
-        }
-        device.apply(state);
-        device.draw(p.vao, to_gpu(p.topology), p.count, p.indexed);
-        ++stats.draw_calls;
+        submit(p, m, det, stats);
         if (shared_footprint) ++stats.shared_footprint_draws;
-        stats.triangles += p.triangles;
     }
 };
 
