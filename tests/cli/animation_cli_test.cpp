@@ -30,11 +30,14 @@ namespace {
 
 const fs::path kModels = fs::path(FRESNEL_SHARED_DIR) / "assets" / "models";
 
+using fresnel::test::command_line;
+using fresnel::test::fresh_test_dir;
 using fresnel::test::quote;
+using fresnel::test::run_captured;
+using fresnel::test::show;
 using fresnel::test::Result;
 using fresnel::test::slurp;
 
-std::string show(const Result& r) { return "exit " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out + "\nstderr:\n" + r.err; }
 
 // Coverage (mean alpha) and the check that every value is finite.
 struct Stats {
@@ -61,34 +64,13 @@ double mean_abs_difference(const fresnel::ImageF& a, const fresnel::ImageF& b) {
 class AnimationCli : public ::testing::Test {
 protected:
     void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::path(::testing::TempDir()) / (std::string("fresnel_anim_") + info->name() + "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        dir_ = fresh_test_dir("fresnel_anim");
     }
     void TearDown() override {
         std::error_code ec;
         fs::remove_all(dir_, ec);
     }
-    Result run(const std::vector<std::string>& args) {
-        std::string cmd = quote(FRESNEL_EXE);
-        for (const auto& a : args) {
-            cmd.append(" ");
-            cmd.append(quote(a));
-        }
-        fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-        cmd.append(" >");
-        cmd.append(quote(out.string()));
-        cmd.append(" 2>");
-        cmd.append(quote(err.string()));
-        cmd.append(" </dev/null");
-        int status = std::system(cmd.c_str());
-        Result r;
-        r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-        r.out = slurp(out);
-        r.err = slurp(err);
-        return r;
-    }
+    Result run(const std::vector<std::string>& args) { return run_captured(command_line(quote(FRESNEL_EXE), args), dir_); }
     // Renders `model` (128x128, transparent background, linear EXR) with extra flags.
     fresnel::ImageF render(const fs::path& model, const std::string& name, std::vector<std::string> extra) {
         fs::path out = dir_ / (name + ".exr");

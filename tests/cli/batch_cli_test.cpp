@@ -37,11 +37,14 @@ namespace {
 
 const fs::path kShared = FRESNEL_SHARED_DIR;
 
+using fresnel::test::command_line;
+using fresnel::test::fresh_test_dir;
 using fresnel::test::quote;
+using fresnel::test::run_captured;
+using fresnel::test::show;
 using fresnel::test::Result;
 using fresnel::test::slurp;
 
-std::string show(const Result& r) { return "exit " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out + "\nstderr:\n" + r.err; }
 
 std::string base64(const std::string& bytes) {
     static const char* tbl = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -123,9 +126,7 @@ void write_sky(const fs::path& path) {
 class BatchCli : public ::testing::Test {
 protected:
     void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::path(::testing::TempDir()) / (std::string("fresnel_batch_") + info->name() + "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
+        dir_ = fresh_test_dir("fresnel_batch");
         fs::create_directories(dir_ / "models" / "sub");
         write_sphere(dir_ / "models" / "red.gltf", -1.2f, 0, 0, 0.9f, 0.2f, 0.1f);
         write_sphere(dir_ / "models" / "sub" / "blue.gltf", 1.2f, 0.3f, 0, 0.1f, 0.3f, 0.9f, 0.8f);
@@ -137,20 +138,11 @@ protected:
     }
     // Runs the program in dir_ with `args` (and `env`, "NAME=value" words, before it).
     Result run(const std::vector<std::string>& args, const std::vector<std::string>& env = {}) {
-        // (Appended piece by piece: GCC 12's -Wrestrict misfires on `" " + std::string` here.)
-        std::string cmd = "cd ";
-        cmd.append(quote(dir_.string())).append(" && ");
-        for (const auto& e : env) cmd.append(e).append(" ");
-        cmd.append(quote(FRESNEL_EXE));
-        for (const auto& a : args) cmd.append(" ").append(quote(a));
-        fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-        cmd.append(" >").append(quote(out.string())).append(" 2>").append(quote(err.string())).append(" </dev/null");
-        int status = std::system(cmd.c_str());
-        Result r;
-        r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-        r.out = slurp(out);
-        r.err = slurp(err);
-        return r;
+        std::string program = "cd ";
+        program.append(quote(dir_.string())).append(" && ");
+        for (const auto& e : env) program.append(e).append(" ");
+        program.append(quote(FRESNEL_EXE));
+        return run_captured(command_line(program, args), dir_);
     }
     void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
     // The JSON lines of a batch's stdout.

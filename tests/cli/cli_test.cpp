@@ -27,18 +27,18 @@ namespace {
 
 const fs::path kShared = FRESNEL_SHARED_DIR;
 
+using fresnel::test::command_line;
+using fresnel::test::fresh_test_dir;
 using fresnel::test::quote;
+using fresnel::test::run_captured;
+using fresnel::test::show;
 using fresnel::test::Result;
 using fresnel::test::slurp;
 
 class Cli : public ::testing::Test {
 protected:
     void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::path(::testing::TempDir()) / (std::string("fresnel_cli_") + info->name() + "_" +
-                                                 std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        dir_ = fresh_test_dir("fresnel_cli");
     }
     void TearDown() override {
         std::error_code ec;
@@ -48,30 +48,14 @@ protected:
     // Runs the program with `args`, capturing stdout, stderr and the exit status;
     // `cache`, when given, becomes its XDG_CACHE_HOME.
     Result run(const std::vector<std::string>& args, const fs::path& cache = {}) {
-        std::string cmd = cache.empty() ? std::string() : "XDG_CACHE_HOME=" + quote(cache.string()) + " ";
-        cmd += quote(FRESNEL_EXE);
-        for (const auto& a : args) {
-            cmd.append(" ");
-            cmd.append(quote(a));
-        }
-        fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-        cmd.append(" >");
-        cmd.append(quote(out.string()));
-        cmd.append(" 2>");
-        cmd.append(quote(err.string()));
-        cmd.append(" </dev/null");
-        int status = std::system(cmd.c_str());
-        Result r;
-        r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-        r.out = slurp(out);
-        r.err = slurp(err);
-        return r;
+        std::string program = cache.empty() ? std::string() : "XDG_CACHE_HOME=" + quote(cache.string()) + " ";
+        program.append(quote(FRESNEL_EXE));
+        return run_captured(command_line(program, args), dir_);
     }
 
     fs::path dir_;
 };
 
-std::string show(const Result& r) { return "exit " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out + "\nstderr:\n" + r.err; }
 
 TEST_F(Cli, HelpExitsZero) {
     Result r = run({"--help"});

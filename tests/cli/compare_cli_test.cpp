@@ -27,19 +27,19 @@ namespace {
 
 const fs::path kShared = FRESNEL_SHARED_DIR;
 
+using fresnel::test::command_line;
+using fresnel::test::fresh_test_dir;
 using fresnel::test::quote;
+using fresnel::test::run_captured;
+using fresnel::test::show;
 using fresnel::test::Result;
 using fresnel::test::slurp;
 
-std::string show(const Result& r) { return "exit " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out + "\nstderr:\n" + r.err; }
 
 class Compare : public ::testing::Test {
 protected:
     void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::path(::testing::TempDir()) / (std::string("fresnel_compare_") + info->name() + "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        dir_ = fresh_test_dir("fresnel_compare");
     }
     void TearDown() override {
         std::error_code ec;
@@ -48,24 +48,7 @@ protected:
 
     // Runs `program args...` (the program unquoted when it is a plain command line).
     Result exec(const std::string& program, const std::vector<std::string>& args) {
-        // (append, not operator+ chains: GCC 12 warns falsely about those, -Wrestrict)
-        std::string cmd = program;
-        for (const auto& a : args) {
-            cmd.append(" ");
-            cmd.append(quote(a));
-        }
-        fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-        cmd.append(" >");
-        cmd.append(quote(out.string()));
-        cmd.append(" 2>");
-        cmd.append(quote(err.string()));
-        cmd.append(" </dev/null");
-        int status = std::system(cmd.c_str());
-        Result r;
-        r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-        r.out = slurp(out);
-        r.err = slurp(err);
-        return r;
+        return run_captured(command_line(program, args), dir_);
     }
     Result fresnel(const std::vector<std::string>& args) { return exec(quote(FRESNEL_EXE), args); }
 

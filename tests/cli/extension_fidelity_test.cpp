@@ -25,7 +25,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using fresnel::test::command_line;
+using fresnel::test::fresh_test_dir;
 using fresnel::test::quote;
+using fresnel::test::run_captured;
+using fresnel::test::show;
 using fresnel::test::Result;
 using fresnel::test::slurp;
 
@@ -65,7 +69,6 @@ const Case kCases[] = {
     {"diffuse_transmission_backlit", {42.3, 42.9}, true},  // 43.33, 43.89
 };
 
-std::string show(const Result& r) { return "exit " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out + "\nstderr:\n" + r.err; }
 
 class ExtensionFidelity : public ::testing::Test {
 protected:
@@ -73,22 +76,11 @@ protected:
     static std::string skip_reason_;
 
     static Result exec(const std::string& program, const std::vector<std::string>& args) {
-        std::string cmd = program;
-        for (const auto& a : args) cmd += " " + quote(a);
-        fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-        cmd += " >" + quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
-        int status = std::system(cmd.c_str());
-        Result r;
-        r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-        r.out = slurp(out);
-        r.err = slurp(err);
-        return r;
+        return run_captured(command_line(program, args), dir_);
     }
 
     static void SetUpTestSuite() {
-        dir_ = fs::path(::testing::TempDir()) / ("fresnel_extension_fidelity_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        dir_ = fresh_test_dir("fresnel_extension_fidelity");
         if (!fs::exists(kEnv)) {
             skip_reason_ = "shared environment not found: " + kEnv.string();
             return;

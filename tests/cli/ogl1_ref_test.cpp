@@ -30,11 +30,14 @@ namespace {
 
 const fs::path kTool = fs::path(FRESNEL_SHARED_DIR) / "tools" / "ogl1-ref";
 
+using fresnel::test::command_line;
+using fresnel::test::fresh_test_dir;
 using fresnel::test::quote;
+using fresnel::test::run_captured;
+using fresnel::test::show;
 using fresnel::test::Result;
 using fresnel::test::slurp;
 
-std::string show(const Result& r) { return "exit " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out + "\nstderr:\n" + r.err; }
 
 std::vector<std::string> split(const std::string& s) {
     std::vector<std::string> out;
@@ -75,29 +78,11 @@ protected:
     static std::string skip_reason_;
 
     static Result exec(const std::string& program, const std::vector<std::string>& args) {
-        std::string cmd = program;
-        for (const auto& a : args) {
-            cmd.append(" ");
-            cmd.append(quote(a));
-        }
-        fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-        cmd.append(" >");
-        cmd.append(quote(out.string()));
-        cmd.append(" 2>");
-        cmd.append(quote(err.string()));
-        cmd.append(" </dev/null");
-        int status = std::system(cmd.c_str());
-        Result r;
-        r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-        r.out = slurp(out);
-        r.err = slurp(err);
-        return r;
+        return run_captured(command_line(program, args), dir_);
     }
 
     static void SetUpTestSuite() {
-        dir_ = fs::path(::testing::TempDir()) / ("fresnel_ogl1_ref_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        dir_ = fresh_test_dir("fresnel_ogl1_ref");
         if (!fs::exists(kTool / "render") || !fs::exists(kTool / "make-scenes")) {
             skip_reason_ = "no " + kTool.string();
             return;
