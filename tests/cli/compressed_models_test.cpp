@@ -33,6 +33,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_harness.h"
 #include "fresnel/core/image.h"
 
 namespace fs = std::filesystem;
@@ -42,34 +43,16 @@ namespace {
 const fs::path kShared = FRESNEL_SHARED_DIR;
 const fs::path kBuild = FRESNEL_BINARY_DIR;
 
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
+using fresnel::test::command_line;
+using fresnel::test::quote;
+using fresnel::test::Result;
+using fresnel::test::slurp;
 
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-struct Result {
-    int exit_code = -1;
-    std::string out;
-};
-
+// Runs `program args...` with stdout and stderr together in `log` (Result::out).
 Result exec(const std::string& program, const std::vector<std::string>& args, const fs::path& log) {
-    std::string cmd = program;
-    for (const auto& a : args) {
-        cmd.append(" ");
-        cmd.append(quote(a));
-    }
-    cmd.append(" >");
-    cmd.append(quote(log.string()));
-    cmd.append(" 2>&1 </dev/null");
-    int status = std::system(cmd.c_str());
+    std::string cmd = command_line(program, args);
+    cmd.append(" >").append(quote(log.string())).append(" 2>&1 </dev/null");
+    const int status = std::system(cmd.c_str());
     Result r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
     r.out = slurp(log);

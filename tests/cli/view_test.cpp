@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_harness.h"
 #include "fresnel/core/image.h"
 #include "fresnel/core/metrics.h"
 
@@ -26,23 +27,10 @@ namespace {
 
 const fs::path kShared = FRESNEL_SHARED_DIR;
 
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-struct Result {
-    int exit_code = -1;
-    std::string err, out;
-};
+using fresnel::test::command_line;
+using fresnel::test::quote;
+using fresnel::test::Result;
+using fresnel::test::slurp;
 
 class View : public ::testing::Test {
 protected:
@@ -100,11 +88,7 @@ exit $rc
     // Runs the program; `windowed`: on the display (a fresh Xvfb, or $DISPLAY). The exit
     // status is the program's own, written to a file.
     Result run(const std::vector<std::string>& args, bool windowed) {
-        std::string inner = quote(FRESNEL_EXE);
-        for (const auto& a : args) {
-            inner.append(" ");
-            inner.append(quote(a));
-        }
+        std::string inner = command_line(quote(FRESNEL_EXE), args);
         fs::path err = dir_ / "stderr.txt", rc = dir_ / "rc.txt", out = dir_ / "stdout.txt";
         fs::remove(rc);
         inner.append(" >");  // appended piece by piece: GCC 12 warns (-Wrestrict) on a + chain here
