@@ -1098,15 +1098,7 @@ private:
 Scene load_gltf_from_memory(std::span<const std::uint8_t> bytes, const std::string& name, const fs::path& base_dir,
                             Diagnostics& diagnostics, const GltfLoadOptions& options) {
     Loader loader(name, base_dir, diagnostics, options);
-    try {
-        return loader.load(bytes);
-    } catch (const Error&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        throw Error(name, "", "out of memory while loading");
-    } catch (const std::exception& e) {
-        throw Error(name, "", e.what());
-    }
+    return as_file_error(name, [&] { return loader.load(bytes); });
 }
 
 Scene load_gltf(const fs::path& path, Diagnostics& diagnostics, const GltfLoadOptions& options) {

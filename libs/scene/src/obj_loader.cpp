@@ -944,18 +944,12 @@ private:
 Scene load_obj_from_memory(std::span<const std::uint8_t> bytes, const std::string& name, const fs::path& base_dir,
                            Diagnostics& diagnostics, const ObjLoadOptions& options) {
     ObjLoader loader(name, base_dir, diagnostics, options);
-    try {
-        if (bytes.size() > options.max_file_bytes)
-            throw Error(name, "", "file of " + std::to_string(bytes.size()) + " bytes is over the limit of " +
-                                      std::to_string(options.max_file_bytes));
+    if (bytes.size() > options.max_file_bytes)
+        throw Error(name, "", "file of " + std::to_string(bytes.size()) + " bytes is over the limit of " +
+                                  std::to_string(options.max_file_bytes));
+    return as_file_error(name, [&] {
         return loader.load(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-    } catch (const Error&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        throw Error(name, "", "out of memory while loading");
-    } catch (const std::exception& e) {
-        throw Error(name, "", e.what());
-    }
+    });
 }
 
 Scene load_obj(const fs::path& path, Diagnostics& diagnostics, const ObjLoadOptions& options) {

@@ -109,18 +109,7 @@ Bounds primitive_world_bounds(const Scene& scene, const NodeInstance& instance, 
     if (primitive < 0 || std::size_t(primitive) >= prims.size()) return b;
     const Primitive& p = prims[std::size_t(primitive)];
     const glm::mat4 world = draw_matrix(scene, instance);
-    for (int c = 0; c < 8; ++c) {
-        glm::vec3 corner((c & 1) ? p.bounds_max.x : p.bounds_min.x, (c & 2) ? p.bounds_max.y : p.bounds_min.y,
-                         (c & 4) ? p.bounds_max.z : p.bounds_min.z);
-        glm::vec3 w = glm::vec3(world * glm::vec4(corner, 1.0f));
-        if (b.empty) {
-            b.min = b.max = w;
-            b.empty = false;
-        } else {
-            b.min = glm::min(b.min, w);
-            b.max = glm::max(b.max, w);
-        }
-    }
+    b.extend(world, p.bounds_min, p.bounds_max);
     return b;
 }
 

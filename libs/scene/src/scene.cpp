@@ -33,26 +33,28 @@ std::vector<NodeInstance> flatten(const Scene& scene, int index) {
 
 float Bounds::radius() const { return glm::length(max - min) * 0.5f; }
 
+void Bounds::extend(const glm::mat4& transform, const glm::vec3& box_min, const glm::vec3& box_max) {
+    for (int c = 0; c < 8; ++c) {
+        const glm::vec3 corner((c & 1) ? box_max.x : box_min.x, (c & 2) ? box_max.y : box_min.y,
+                               (c & 4) ? box_max.z : box_min.z);
+        const glm::vec3 w = glm::vec3(transform * glm::vec4(corner, 1.0f));
+        if (empty) {
+            min = max = w;
+            empty = false;
+        } else {
+            min = glm::min(min, w);
+            max = glm::max(max, w);
+        }
+    }
+}
+
 Bounds scene_bounds(const Scene& scene, const std::vector<NodeInstance>& instances) {
     Bounds b;
     for (const auto& inst : instances) {
         const Node& node = scene.nodes[std::size_t(inst.node)];
         if (node.mesh < 0) continue;
-        for (const auto& prim : scene.meshes[std::size_t(node.mesh)].primitives) {
-            for (int c = 0; c < 8; ++c) {
-                glm::vec3 corner((c & 1) ? prim.bounds_max.x : prim.bounds_min.x,
-                                 (c & 2) ? prim.bounds_max.y : prim.bounds_min.y,
-                                 (c & 4) ? prim.bounds_max.z : prim.bounds_min.z);
-                glm::vec3 w = glm::vec3(inst.world * glm::vec4(corner, 1.0f));
-                if (b.empty) {
-                    b.min = b.max = w;
-                    b.empty = false;
-                } else {
-                    b.min = glm::min(b.min, w);
-                    b.max = glm::max(b.max, w);
-                }
-            }
-        }
+        for (const auto& prim : scene.meshes[std::size_t(node.mesh)].primitives)
+            b.extend(inst.world, prim.bounds_min, prim.bounds_max);
     }
     return b;
 }

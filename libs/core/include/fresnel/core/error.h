@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <functional>
 #include <map>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -20,6 +21,22 @@ public:
 private:
     std::string file_, where_, reason_;
 };
+
+// Runs `load` and returns what it returns. What it throws leaves as a fresnel::Error naming
+// `file`: an Error as it is, std::bad_alloc as "out of memory while loading", any other
+// exception with its message; so a loader's callers catch one type.
+template <class Load>
+auto as_file_error(const std::string& file, Load&& load) -> decltype(load()) {
+    try {
+        return load();
+    } catch (const Error&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw Error(file, "", "out of memory while loading");
+    } catch (const std::exception& e) {
+        throw Error(file, "", e.what());
+    }
+}
 
 struct Warning {
     std::string file, where, message;

@@ -192,6 +192,8 @@ struct Bounds {
     bool empty = true;
     glm::vec3 center() const { return (min + max) * 0.5f; }
     float radius() const;  // half the diagonal
+    // Grows to hold the box [box_min, box_max] after `transform` (its eight corners).
+    void extend(const glm::mat4& transform, const glm::vec3& box_min, const glm::vec3& box_max);
 };
 Bounds scene_bounds(const Scene& scene, const std::vector<NodeInstance>& instances);
 
