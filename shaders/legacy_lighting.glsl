@@ -12,20 +12,7 @@ uniform int u_separate_specular;  // GL_SEPARATE_SPECULAR_COLOR (textured materi
 
 // An OpenGL light of colour I for a light of intensity I: directional lights as they are;
 // point and spot lights with OpenGL's default attenuation (none) and the glTF cone window.
-vec3 ogl1_light_incident(int i, vec3 position, out vec3 l) {
-    vec4 pt = u_light_position_type[i];
-    vec4 dr = u_light_direction_range[i];
-    vec3 color = u_light_color[i].rgb;
-    if (pt.w < 0.5) {
-        l = -dr.xyz;
-        return color;
-    }
-    vec3 to_light = pt.xyz - position;
-    float dist = length(to_light);
-    l = dist > 0.0 ? to_light / dist : vec3(0.0, 0.0, 1.0);
-    if (pt.w > 1.5) color *= spot_attenuation(-l, dr.xyz, u_light_cone[i].xy);
-    return color;
-}
+vec3 ogl1_light_incident(int i, vec3 position, out vec3 l) { return light_arriving(i, position, false, l); }
 
 // The primary (emission + ambient + diffuse) and secondary (specular) sums at a point,
 // unclamped, with the local viewer.

@@ -20,8 +20,10 @@ float spot_attenuation(vec3 light_to_point_dir, vec3 spot_dir, vec2 cone) {
     return a * a;
 }
 
-// Returns the irradiance-scaled light colour at `position` and the unit direction to the light.
-vec3 light_incident(int i, vec3 position, out vec3 l) {
+// Light i's colour at `position` and the unit direction to the light, with the spot cone's
+// window; `falloff`: with the distance attenuation of point and spot lights (range_attenuation;
+// OpenGL 1's default attenuation has none). Callers pass a constant, which the compiler folds.
+vec3 light_arriving(int i, vec3 position, bool falloff, out vec3 l) {
     vec4 pt = u_light_position_type[i];
     vec4 dr = u_light_direction_range[i];
     vec3 radiance = u_light_color[i].rgb;
@@ -32,7 +34,10 @@ vec3 light_incident(int i, vec3 position, out vec3 l) {
     vec3 to_light = pt.xyz - position;
     float dist = length(to_light);
     l = dist > 0.0 ? to_light / dist : vec3(0.0, 0.0, 1.0);
-    radiance *= range_attenuation(dr.w, dist);
+    if (falloff) radiance *= range_attenuation(dr.w, dist);
     if (pt.w > 1.5) radiance *= spot_attenuation(-l, dr.xyz, u_light_cone[i].xy);
     return radiance;
 }
+
+// Returns the irradiance-scaled light colour at `position` and the unit direction to the light.
+vec3 light_incident(int i, vec3 position, out vec3 l) { return light_arriving(i, position, true, l); }
