@@ -19,7 +19,7 @@ namespace {
 class MtlParser {
 public:
     MtlParser(std::string name, Diagnostics& diag, std::size_t max_materials)
-        : name_(std::move(name)), diag_(diag), max_materials_(max_materials) {}
+        : name_(std::move(name)), warnings_(name_, diag, "lines"), max_materials_(max_materials) {}
 
     std::vector<MtlMaterialSource> parse(std::string_view text) {
         LineReader lines(text);
@@ -44,40 +44,21 @@ public:
             }
             statement(key, line, tok);
         }
-        for (const auto& [kind, w] : once_)
-            diag_.warn(name_, "line " + std::to_string(w.first_line),
-                       w.message + (w.count > 1 ? " (" + std::to_string(w.count) + " lines)" : ""));
+        warnings_.flush();
         return std::move(out_);
     }
 
 private:
     std::string name_;
-    Diagnostics& diag_;
+    LineWarnings warnings_;
     std::size_t max_materials_;
     int line_ = 0;
     std::vector<MtlMaterialSource> out_;
-    struct Once {
-        int first_line = 0;
-        std::size_t count = 0;
-        std::string message;
-    };
-    std::map<std::string, Once> once_;
-
     std::string where() const { return "line " + std::to_string(line_); }
-    // At most 64 warnings of their own per file; the rest are counted in one.
-    void warn(const std::string& message) {
-        if (warned_++ < 64) diag_.warn(name_, where(), message);
-        else warn_once("more", "more warnings of this file not shown");
-    }
-    std::size_t warned_ = 0;
-    // Warnings that may repeat on every line collapse into one, at the first line.
-    void warn_once(const std::string& kind, const std::string& message) {
-        Once& o = once_[kind];
-        if (o.count++ == 0) {
-            o.first_line = line_;
-            o.message = message;
-        }
-    }
+    // At most 64 warnings of their own per file; those of a kind that may repeat on every line
+    // collapse into one, at the first line (LineWarnings).
+    void warn(const std::string& message) { warnings_.warn(line_, message); }
+    void warn_once(const std::string& kind, const std::string& message) { warnings_.once(line_, kind, message); }
 
     std::optional<float> number(std::string_view s, const std::string& what) {
         bool partial = false;

@@ -235,33 +235,14 @@ private:
     std::size_t unknown_statements_ = 0, missing_textures_ = 0;
     std::size_t texture_bytes_ = 0;
 
-    struct Once {
-        int first_line = 0;
-        std::size_t count = 0;
-        std::string message;
-    };
-    std::map<std::string, Once> once_;
+    LineWarnings warnings_{file_, diag_, "times"};
 
     [[noreturn]] void fail(const std::string& what) const { throw Error(file_, "line " + std::to_string(line_), what); }
-    // At most 64 warnings of their own per file; the rest are counted in one.
-    void warn(const std::string& what) {
-        if (warned_++ < 64) diag_.warn(file_, line_ > 0 ? "line " + std::to_string(line_) : "", what);
-        else warn_once("more", "more warnings of this file not shown");
-    }
-    std::size_t warned_ = 0;
-    void warn_once(const std::string& kind, const std::string& message) {
-        Once& o = once_[kind];
-        if (o.count++ == 0) {
-            o.first_line = line_;
-            o.message = message;
-        }
-    }
-    void flush_warnings() {
-        for (const auto& [kind, w] : once_)
-            diag_.warn(file_, "line " + std::to_string(w.first_line),
-                       w.message + (w.count > 1 ? " (" + std::to_string(w.count) + " times)" : ""));
-        once_.clear();
-    }
+    // At most 64 warnings of their own per file; those of a kind that may repeat on every line
+    // collapse into one, at the first line (LineWarnings), passed on by flush_warnings().
+    void warn(const std::string& what) { warnings_.warn(line_, what); }
+    void warn_once(const std::string& kind, const std::string& message) { warnings_.once(line_, kind, message); }
+    void flush_warnings() { warnings_.flush(); }
 
     void count_element(std::size_t n = 1) {
         elements_ += n;

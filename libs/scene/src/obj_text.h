@@ -6,12 +6,15 @@
 #include <cctype>
 #include <cerrno>
 #include <charconv>
+#include <map>
 #include <cstdlib>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "fresnel/core/error.h"
 
 namespace fresnel::obj {
 
@@ -170,5 +173,44 @@ inline std::string lower(std::string_view s) {
         if (c >= 'A' && c <= 'Z') c = char(c - 'A' + 'a');
     return out;
 }
+
+// A text file's warnings, as the OBJ and MTL parsers give them: at most 64 of their own (the
+// rest counted in one), and kinds that may repeat on every line collapsed into one at their
+// first line with a count ("(N <unit>)"), passed on by flush().
+class LineWarnings {
+public:
+    LineWarnings(std::string file, Diagnostics& diag, std::string unit)
+        : file_(std::move(file)), diag_(diag), unit_(std::move(unit)) {}
+    // `line` 0: the file as a whole (no place).
+    void warn(int line, const std::string& message) {
+        if (warned_++ < 64) diag_.warn(file_, line > 0 ? "line " + std::to_string(line) : "", message);
+        else once(line, "more", "more warnings of this file not shown");
+    }
+    void once(int line, const std::string& kind, const std::string& message) {
+        Once& o = once_[kind];
+        if (o.count++ == 0) {
+            o.first_line = line;
+            o.message = message;
+        }
+    }
+    void flush() {
+        for (const auto& [kind, w] : once_)
+            diag_.warn(file_, "line " + std::to_string(w.first_line),
+                       w.message + (w.count > 1 ? " (" + std::to_string(w.count) + " " + unit_ + ")" : ""));
+        once_.clear();
+    }
+
+private:
+    struct Once {
+        int first_line = 0;
+        std::size_t count = 0;
+        std::string message;
+    };
+    std::string file_;
+    Diagnostics& diag_;
+    std::string unit_;
+    std::map<std::string, Once> once_;
+    std::size_t warned_ = 0;
+};
 
 }  // namespace fresnel::obj
