@@ -355,6 +355,38 @@ TEST(ObjLoader, RepairsWhatCanBeRepaired) {
     for (const auto& w : diag.warnings()) EXPECT_EQ(w.where.rfind("line ", 0), 0u) << w.text();
 }
 
+// A repeating kind of warning is one line, at its first line, with a count; a file gives at most
+// 64 warnings of its own, the rest counted in one (LineWarnings, obj_text.h): OBJ and MTL alike.
+TEST(ObjLoader, RepeatedWarningsCollapseAndAreCapped) {
+    Diagnostics diag;
+    std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    for (int i = 0; i < 5; ++i) obj += "vp 1 2\n";  // lines 5-9: one kind
+    for (int i = 0; i < 70; ++i) obj += "mtllib\n";  // lines 10-79: a warning each
+    load_text(obj, diag);
+    std::size_t own = 0, vp = 0, more = 0;
+    for (const auto& w : diag.warnings()) {
+        if (w.message.find("mtllib without a file name") != std::string::npos) ++own;
+        if (w.message.find("'vp'") != std::string::npos) {
+            ++vp;
+            EXPECT_EQ(w.where, "line 5");
+            EXPECT_NE(w.message.find("(5 times)"), std::string::npos) << w.message;
+        }
+        if (w.message.find("more warnings of this file not shown (6 times)") != std::string::npos) {
+            ++more;
+            EXPECT_EQ(w.where, "line 74");  // the 65th mtllib line
+        }
+    }
+    EXPECT_EQ(own, 64u);
+    EXPECT_EQ(vp, 1u);
+    EXPECT_EQ(more, 1u);
+
+    Diagnostics mtl_diag;
+    parse_mtl("newmtl a\nwhatever 1\nwhatever 2\nwhatever 3\n", "w.mtl", mtl_diag);
+    ASSERT_EQ(mtl_diag.warnings().size(), 1u);
+    EXPECT_EQ(mtl_diag.warnings()[0].where, "line 2");
+    EXPECT_NE(mtl_diag.warnings()[0].message.find("(3 lines)"), std::string::npos) << mtl_diag.warnings()[0].message;
+}
+
 TEST(ObjLoader, HostileSizesAreCapped) {
     ObjLoadOptions o;
     o.max_elements = 100;
