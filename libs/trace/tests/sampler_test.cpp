@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "chi2.h"
 #include "fresnel/material/sampling.h"
 #include "fresnel/trace/bsdf.h"
 #include "fresnel/trace/distribution.h"
@@ -33,78 +34,9 @@ namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
 
-// The upper tail of the chi-squared distribution, Q(dof/2, chi2/2) (Numerical Recipes 6.2).
-double gamma_q(double a, double x) {
-    if (x <= 0.0) return 1.0;
-    const double log_prefix = a * std::log(x) - x - std::lgamma(a);
-    if (x < a + 1.0) {
-        double term = 1.0 / a, sum = term;
-        for (int n = 1; n < 100000; ++n) {
-            term *= x / (a + n);
-            sum += term;
-            if (term < sum * 1e-15) break;
-        }
-        return std::max(0.0, 1.0 - sum * std::exp(log_prefix));
-    }
-    const double tiny = 1e-300;
-    double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, h = d;
-    for (int i = 1; i < 100000; ++i) {
-        double an = -i * (i - a);
-        b += 2.0;
-        d = an * d + b;
-        if (std::fabs(d) < tiny) d = tiny;
-        c = b + an / c;
-        if (std::fabs(c) < tiny) c = tiny;
-        d = 1.0 / d;
-        double delta = d * c;
-        h *= delta;
-        if (std::fabs(delta - 1.0) < 1e-15) break;
-    }
-    return std::exp(log_prefix) * h;
-}
-
-struct Chi2Result {
-    double chi2 = 0, p_value = 0;
-    int dof = 0;
-    std::string message;
-};
-
-// observed / expected per cell -> the statistic, pooling cells that expect fewer than 5.
-Chi2Result chi2_from_counts(const std::vector<double>& observed, const std::vector<double>& expected, double samples) {
-    Chi2Result r;
-    std::vector<std::size_t> order(expected.size());
-    std::iota(order.begin(), order.end(), std::size_t(0));
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return expected[a] < expected[b]; });
-    double pooled_obs = 0, pooled_exp = 0;
-    for (std::size_t idx : order) {
-        if (expected[idx] <= 0.0) {
-            pooled_obs += observed[idx];
-            if (observed[idx] > 1e-5 * samples) {
-                r.message = std::to_string(int(observed[idx])) + " samples in a cell where the pdf is 0";
-                return r;
-            }
-        } else if (expected[idx] < 5.0 || (pooled_exp > 0 && pooled_exp < 5.0)) {
-            pooled_obs += observed[idx];
-            pooled_exp += expected[idx];
-        } else {
-            double diff = observed[idx] - expected[idx];
-            r.chi2 += diff * diff / expected[idx];
-            ++r.dof;
-        }
-    }
-    if (pooled_exp > 0 || pooled_obs > 0) {
-        double diff = pooled_obs - pooled_exp;
-        r.chi2 += diff * diff / std::max(pooled_exp, 1e-300);
-        ++r.dof;
-    }
-    r.dof -= 1;
-    if (r.dof < 1) {
-        r.message = "fewer than two cells";
-        return r;
-    }
-    r.p_value = gamma_q(0.5 * r.dof, 0.5 * r.chi2);
-    return r;
-}
+// The chi-squared test's statistic and tail: tests/support/chi2.h.
+using fresnel::test::chi2_from_counts;
+using fresnel::test::Chi2Result;
 
 // A distribution over directions: pdf over solid angle, and a sampler from [0,1)^3 that may
 // return false (a lost sample: below the surface, absorbed).
