@@ -8,6 +8,7 @@
 //   - render --turntable N writes N numbered frames.
 // Images are tiny (32-64 px) and the environment is baked small so the whole file takes seconds.
 #include "cli_harness.h"
+#include "gltf_builders.h"
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -46,64 +47,12 @@ using fresnel::test::Result;
 using fresnel::test::slurp;
 
 
-std::string base64(const std::string& bytes) {
-    static const char* tbl = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    std::size_t i = 0;
-    for (; i + 2 < bytes.size(); i += 3) {
-        unsigned v = (unsigned(std::uint8_t(bytes[i])) << 16) | (unsigned(std::uint8_t(bytes[i + 1])) << 8) |
-                     std::uint8_t(bytes[i + 2]);
-        for (int k = 3; k >= 0; --k) out += tbl[(v >> (6 * k)) & 63];
-    }
-    if (i < bytes.size()) {
-        unsigned v = unsigned(std::uint8_t(bytes[i])) << 16;
-        if (i + 1 < bytes.size()) v |= unsigned(std::uint8_t(bytes[i + 1])) << 8;
-        out += tbl[(v >> 18) & 63];
-        out += tbl[(v >> 12) & 63];
-        out += i + 1 < bytes.size() ? tbl[(v >> 6) & 63] : '=';
-        out += '=';
-    }
-    return out;
-}
-
 // A UV sphere of radius 1 whose node sits at (x, y, z), one material of colour (r, g, b).
 void write_sphere(const fs::path& path, float x, float y, float z, float r, float g, float b, float roughness = 0.4f) {
-    const int seg = 32, rings = 16;
-    std::vector<float> pos;
-    std::vector<std::uint32_t> idx;
-    for (int i = 0; i <= rings; ++i)
-        for (int j = 0; j <= seg; ++j) {
-            double th = M_PI * i / rings, ph = 2 * M_PI * j / seg;
-            pos.insert(pos.end(), {float(std::sin(th) * std::sin(ph)), float(std::cos(th)), float(std::sin(th) * std::cos(ph))});
-        }
-    for (int i = 0; i < rings; ++i)
-        for (int j = 0; j < seg; ++j) {
-            std::uint32_t a = std::uint32_t(i * (seg + 1) + j), c = a + seg + 1;
-            idx.insert(idx.end(), {a, c, a + 1, a + 1, c, c + 1});
-        }
-    std::string buf(reinterpret_cast<const char*>(pos.data()), pos.size() * 4);
-    const std::size_t pos_bytes = buf.size();
-    buf.append(reinterpret_cast<const char*>(pos.data()), pos.size() * 4);  // normals = positions
-    buf.append(reinterpret_cast<const char*>(idx.data()), idx.size() * 4);
-    const std::size_t count = pos.size() / 3;
-    json j = {
-        {"asset", {{"version", "2.0"}}},
-        {"scene", 0},
-        {"scenes", {{{"nodes", {0}}}}},
-        {"nodes", {{{"mesh", 0}, {"translation", {x, y, z}}}}},
-        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}}}, {"indices", 2}, {"material", 0}}}}}}},
-        {"materials", {{{"name", "paint"},
-                        {"pbrMetallicRoughness", {{"baseColorFactor", {r, g, b, 1.0}}, {"metallicFactor", 0.0},
-                                                  {"roughnessFactor", roughness}}}}}},
-        {"buffers", {{{"byteLength", buf.size()}, {"uri", "data:application/octet-stream;base64," + base64(buf)}}}},
-        {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", pos_bytes}},
-                         {{"buffer", 0}, {"byteOffset", pos_bytes}, {"byteLength", pos_bytes}},
-                         {{"buffer", 0}, {"byteOffset", 2 * pos_bytes}, {"byteLength", idx.size() * 4}}}},
-        {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", count}, {"type", "VEC3"}, {"min", {-1, -1, -1}}, {"max", {1, 1, 1}}},
-                       {{"bufferView", 1}, {"componentType", 5126}, {"count", count}, {"type", "VEC3"}},
-                       {{"bufferView", 2}, {"componentType", 5125}, {"count", idx.size()}, {"type", "SCALAR"}}}},
-    };
-    std::ofstream(path) << j.dump();
+    const json material = {{"name", "paint"},
+                           {"pbrMetallicRoughness", {{"baseColorFactor", {r, g, b, 1.0}}, {"metallicFactor", 0.0},
+                                                     {"roughnessFactor", roughness}}}};
+    std::ofstream(path) << fresnel::test::uv_sphere_gltf(32, 16, material, {x, y, z}).dump();
 }
 
 // A small equirectangular sky: blue above, warm below, a bright spot at the +Z centre.

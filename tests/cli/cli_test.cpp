@@ -2,6 +2,7 @@
 // error message format, `info --json` counts and `render` output files.
 // FRESNEL_EXE is the built program ($<TARGET_FILE:fresnel>).
 #include "cli_harness.h"
+#include "gltf_builders.h"
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -215,61 +216,12 @@ TEST_F(Cli, NoCacheTouchesNoCache) {
 
 namespace {
 
-std::string base64(const std::string& bytes) {
-    static const char* tbl = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    std::size_t i = 0;
-    for (; i + 2 < bytes.size(); i += 3) {
-        unsigned v = (unsigned(std::uint8_t(bytes[i])) << 16) | (unsigned(std::uint8_t(bytes[i + 1])) << 8) | std::uint8_t(bytes[i + 2]);
-        for (int k = 3; k >= 0; --k) out += tbl[(v >> (6 * k)) & 63];
-    }
-    if (i < bytes.size()) {
-        unsigned v = unsigned(std::uint8_t(bytes[i])) << 16;
-        if (i + 1 < bytes.size()) v |= unsigned(std::uint8_t(bytes[i + 1])) << 8;
-        out += tbl[(v >> 18) & 63];
-        out += tbl[(v >> 12) & 63];
-        out += i + 1 < bytes.size() ? tbl[(v >> 6) & 63] : '=';
-        out += '=';
-    }
-    return out;
-}
-
 // A unit UV sphere with one metallic-roughness material, buffer embedded as a data URI.
 void write_sphere(const fs::path& path, float base, float metallic, float roughness) {
-    const int seg = 96, rings = 48;
-    std::vector<float> pos;
-    std::vector<std::uint32_t> idx;
-    for (int i = 0; i <= rings; ++i)
-        for (int j = 0; j <= seg; ++j) {
-            double th = M_PI * i / rings, ph = 2 * M_PI * j / seg;
-            pos.insert(pos.end(), {float(std::sin(th) * std::sin(ph)), float(std::cos(th)), float(std::sin(th) * std::cos(ph))});
-        }
-    for (int i = 0; i < rings; ++i)
-        for (int j = 0; j < seg; ++j) {
-            std::uint32_t a = std::uint32_t(i * (seg + 1) + j), b = a + seg + 1;
-            idx.insert(idx.end(), {a, b, a + 1, a + 1, b, b + 1});
-        }
-    std::string buf(reinterpret_cast<const char*>(pos.data()), pos.size() * 4);
-    const std::size_t pos_bytes = buf.size();
-    buf.append(reinterpret_cast<const char*>(pos.data()), pos.size() * 4);  // normals = positions
-    buf.append(reinterpret_cast<const char*>(idx.data()), idx.size() * 4);
-    const std::size_t count = pos.size() / 3;
-    nlohmann::json j = {
-        {"asset", {{"version", "2.0"}}},
-        {"scene", 0},
-        {"scenes", {{{"nodes", {0}}}}},
-        {"nodes", {{{"mesh", 0}}}},
-        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}}}, {"indices", 2}, {"material", 0}}}}}}},
-        {"materials", {{{"pbrMetallicRoughness", {{"baseColorFactor", {base, base, base, 1.0}}, {"metallicFactor", metallic}, {"roughnessFactor", roughness}}}}}},
-        {"buffers", {{{"byteLength", buf.size()}, {"uri", "data:application/octet-stream;base64," + base64(buf)}}}},
-        {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", pos_bytes}},
-                         {{"buffer", 0}, {"byteOffset", pos_bytes}, {"byteLength", pos_bytes}},
-                         {{"buffer", 0}, {"byteOffset", 2 * pos_bytes}, {"byteLength", idx.size() * 4}}}},
-        {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", count}, {"type", "VEC3"}, {"min", {-1, -1, -1}}, {"max", {1, 1, 1}}},
-                       {{"bufferView", 1}, {"componentType", 5126}, {"count", count}, {"type", "VEC3"}},
-                       {{"bufferView", 2}, {"componentType", 5125}, {"count", idx.size()}, {"type", "SCALAR"}}}},
-    };
-    std::ofstream(path) << j.dump();
+    const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorFactor", {base, base, base, 1.0}},
+                                                               {"metallicFactor", metallic},
+                                                               {"roughnessFactor", roughness}}}};
+    std::ofstream(path) << fresnel::test::uv_sphere_gltf(96, 48, material).dump();
 }
 
 // Mean of the sphere's pixels within 60 % of its radius from its centre (where the

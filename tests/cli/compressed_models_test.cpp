@@ -34,6 +34,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_harness.h"
+#include "gltf_builders.h"
 #include "fresnel/core/image.h"
 
 namespace fs = std::filesystem;
@@ -185,20 +186,8 @@ INSTANTIATE_TEST_SUITE_P(Variants, CompressedModels, ::testing::ValuesIn(kCases)
 
 // ---- KHR_materials_variants and the extension listing through the CLI ------------------
 
-std::string base64(const std::vector<std::uint8_t>& data) {
-    static const char* tbl = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (std::size_t i = 0; i < data.size(); i += 3) {
-        std::uint32_t v = std::uint32_t(data[i]) << 16;
-        if (i + 1 < data.size()) v |= std::uint32_t(data[i + 1]) << 8;
-        if (i + 2 < data.size()) v |= data[i + 2];
-        out += tbl[(v >> 18) & 63];
-        out += tbl[(v >> 12) & 63];
-        out += i + 1 < data.size() ? tbl[(v >> 6) & 63] : '=';
-        out += i + 2 < data.size() ? tbl[v & 63] : '=';
-    }
-    return out;
-}
+using fresnel::test::base64;
+
 
 // A quad facing +Z whose material is grey, or red / blue in the variants "Red" and "Blue".
 fs::path write_variants_quad(const fs::path& dir) {

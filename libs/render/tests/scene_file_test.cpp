@@ -14,6 +14,7 @@
 #include "fresnel/core/error.h"
 #include "fresnel/render/job.h"
 #include "fresnel/render/scene_file.h"
+#include "gltf_builders.h"
 
 using namespace fresnel;
 namespace fs = std::filesystem;
@@ -21,25 +22,8 @@ using json = nlohmann::json;
 
 namespace {
 
-std::string base64(const std::string& bytes) {
-    static const char* tbl = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    std::size_t i = 0;
-    for (; i + 2 < bytes.size(); i += 3) {
-        unsigned v = (unsigned(std::uint8_t(bytes[i])) << 16) | (unsigned(std::uint8_t(bytes[i + 1])) << 8) |
-                     std::uint8_t(bytes[i + 2]);
-        for (int k = 3; k >= 0; --k) out += tbl[(v >> (6 * k)) & 63];
-    }
-    if (i < bytes.size()) {
-        unsigned v = unsigned(std::uint8_t(bytes[i])) << 16;
-        if (i + 1 < bytes.size()) v |= unsigned(std::uint8_t(bytes[i + 1])) << 8;
-        out += tbl[(v >> 18) & 63];
-        out += tbl[(v >> 12) & 63];
-        out += i + 1 < bytes.size() ? tbl[(v >> 6) & 63] : '=';
-        out += '=';
-    }
-    return out;
-}
+using fresnel::test::base64;
+
 
 // A unit quad in z = 0 from (0,0) to (1,1) with one named material and one camera node.
 void write_quad(const fs::path& path, const std::string& material) {

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fresnel/core/image.h"
+#include "gltf_builders.h"
 
 namespace fresnel::gltf_test {
 
@@ -68,31 +69,8 @@ inline std::vector<std::uint8_t> pack(int ctype, int comps, const std::vector<do
     return out;
 }
 
-inline std::string base64(const std::vector<std::uint8_t>& data) {
-    static const char* tbl = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    std::size_t i = 0;
-    for (; i + 2 < data.size(); i += 3) {
-        std::uint32_t v = (std::uint32_t(data[i]) << 16) | (std::uint32_t(data[i + 1]) << 8) | data[i + 2];
-        out += tbl[(v >> 18) & 63];
-        out += tbl[(v >> 12) & 63];
-        out += tbl[(v >> 6) & 63];
-        out += tbl[v & 63];
-    }
-    if (i + 1 == data.size()) {
-        std::uint32_t v = std::uint32_t(data[i]) << 16;
-        out += tbl[(v >> 18) & 63];
-        out += tbl[(v >> 12) & 63];
-        out += "==";
-    } else if (i + 2 == data.size()) {
-        std::uint32_t v = (std::uint32_t(data[i]) << 16) | (std::uint32_t(data[i + 1]) << 8);
-        out += tbl[(v >> 18) & 63];
-        out += tbl[(v >> 12) & 63];
-        out += tbl[(v >> 6) & 63];
-        out += '=';
-    }
-    return out;
-}
+using fresnel::test::base64;
+
 
 inline void put_u32(std::vector<std::uint8_t>& out, std::uint32_t v) {
     for (int k = 0; k < 4; ++k) out.push_back(std::uint8_t(v >> (8 * k)));
