@@ -61,15 +61,9 @@ double mean_abs_difference(const fresnel::ImageF& a, const fresnel::ImageF& b) {
     return d / double(a.pixels.size());
 }
 
-class AnimationCli : public ::testing::Test {
+class AnimationCli : public fresnel::test::TempDirTest {
 protected:
-    void SetUp() override {
-        dir_ = fresh_test_dir("fresnel_anim");
-    }
-    void TearDown() override {
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-    }
+    AnimationCli() : TempDirTest("fresnel_anim") {}
     Result run(const std::vector<std::string>& args) { return run_captured(command_line(quote(FRESNEL_EXE), args), dir_); }
     // Renders `model` (128x128, transparent background, linear EXR) with extra flags.
     fresnel::ImageF render(const fs::path& model, const std::string& name, std::vector<std::string> extra) {
@@ -82,7 +76,6 @@ protected:
         if (r.exit_code != 0) return {};
         return fresnel::read_image_float(out);
     }
-    fs::path dir_;
 };
 
 struct AnimatedModel {

@@ -72,18 +72,15 @@ void write_sky(const fs::path& path) {
     fresnel::write_hdr(path, img);
 }
 
-class BatchCli : public ::testing::Test {
+class BatchCli : public fresnel::test::TempDirTest {
 protected:
+    BatchCli() : TempDirTest("fresnel_batch") {}
     void SetUp() override {
-        dir_ = fresh_test_dir("fresnel_batch");
+        TempDirTest::SetUp();
         fs::create_directories(dir_ / "models" / "sub");
         write_sphere(dir_ / "models" / "red.gltf", -1.2f, 0, 0, 0.9f, 0.2f, 0.1f);
         write_sphere(dir_ / "models" / "sub" / "blue.gltf", 1.2f, 0.3f, 0, 0.1f, 0.3f, 0.9f, 0.8f);
         write_sky(dir_ / "sky.hdr");
-    }
-    void TearDown() override {
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
     }
     // Runs the program in dir_ with `args` (and `env`, "NAME=value" words, before it).
     Result run(const std::vector<std::string>& args, const std::vector<std::string>& env = {}) {
@@ -103,7 +100,6 @@ protected:
             if (!l.empty()) out.push_back(json::parse(l));
         return out;
     }
-    fs::path dir_;
 };
 
 double psnr(const fs::path& a, const fs::path& b) {

@@ -74,4 +74,19 @@ inline std::filesystem::path fresh_test_dir(const std::string& prefix) {
     return dir;
 }
 
+// A test with a fresh, empty folder of its own (dir_: fresh_test_dir(prefix)), removed after it.
+class TempDirTest : public ::testing::Test {
+protected:
+    explicit TempDirTest(std::string prefix) : prefix_(std::move(prefix)) {}
+    void SetUp() override { dir_ = fresh_test_dir(prefix_); }
+    void TearDown() override {
+        std::error_code ec;
+        std::filesystem::remove_all(dir_, ec);
+    }
+    std::filesystem::path dir_;
+
+private:
+    std::string prefix_;
+};
+
 }  // namespace fresnel::test

@@ -36,15 +36,9 @@ using fresnel::test::show;
 using fresnel::test::Result;
 using fresnel::test::slurp;
 
-class Cli : public ::testing::Test {
+class Cli : public fresnel::test::TempDirTest {
 protected:
-    void SetUp() override {
-        dir_ = fresh_test_dir("fresnel_cli");
-    }
-    void TearDown() override {
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-    }
+    Cli() : TempDirTest("fresnel_cli") {}
 
     // Runs the program with `args`, capturing stdout, stderr and the exit status;
     // `cache`, when given, becomes its XDG_CACHE_HOME.
@@ -53,8 +47,6 @@ protected:
         program.append(quote(FRESNEL_EXE));
         return run_captured(command_line(program, args), dir_);
     }
-
-    fs::path dir_;
 };
 
 

@@ -35,16 +35,9 @@ using fresnel::test::show;
 using fresnel::test::Result;
 using fresnel::test::slurp;
 
-
-class Compare : public ::testing::Test {
+class Compare : public fresnel::test::TempDirTest {
 protected:
-    void SetUp() override {
-        dir_ = fresh_test_dir("fresnel_compare");
-    }
-    void TearDown() override {
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-    }
+    Compare() : TempDirTest("fresnel_compare") {}
 
     // Runs `program args...` (the program unquoted when it is a plain command line).
     Result exec(const std::string& program, const std::vector<std::string>& args) {
@@ -70,8 +63,6 @@ protected:
         }
         return "";
     }
-
-    fs::path dir_;
 };
 
 fresnel::Image8 gradient(int w, int h, int shift) {
