@@ -29,6 +29,7 @@
 #include "fresnel/material/brdf.h"
 #include "fresnel/material/brdf_model.h"
 #include "fresnel/render/shader_library.h"
+#include "probe_harness.h"
 
 namespace {
 
@@ -45,84 +46,32 @@ constexpr float kColorAbsTol = 1e-4f;      // tone mappers and encodings: absolu
 
 using Case = std::array<glm::vec4, 3>;  // texels a, b, c of one case
 
-class BrdfProbe : public ::testing::Test {
+class BrdfProbe : public fresnel::test::ProbeSuite {
 protected:
-    static void SetUpTestSuite() {
-        try {
-            context_ = fresnel::gpu::create_headless_context();
-        } catch (const std::exception& e) {
-            context_error_ = e.what();
-        }
-    }
-    static void TearDownTestSuite() {
-        library_.reset();  // programs before the context that owns them
-        context_.reset();
-    }
-    void SetUp() override {
-        ASSERT_TRUE(context_) << "no headless OpenGL context (EGL/llvmpipe): " << context_error_;
-        context_->make_current();
-        if (!library_) library_ = std::make_unique<fresnel::ShaderLibrary>();
-    }
-
     // Renders brdf_probe.frag in `mode` over `cases` (row-major, kGrid per row) and
     // returns one RGBA result per case. Fails the test on GL errors or unwritten pixels.
     std::vector<glm::vec4> probe(ProbeMode mode, const std::vector<Case>& cases,
                                  const std::vector<std::string>& defines = {}) {
+        namespace gpu = fresnel::gpu;
         const int w = kGrid;
         const int h = int((cases.size() + kGrid - 1) / kGrid);
-        std::vector<float> texels(std::size_t(3 * w) * std::size_t(h) * 4, 0.0f);
-        for (std::size_t i = 0; i < cases.size(); ++i) {
-            std::size_t x = i % std::size_t(w), y = i / std::size_t(w);
-            for (std::size_t k = 0; k < 3; ++k) {
-                float* t = &texels[((y * std::size_t(3 * w)) + 3 * x + k) * 4];
-                for (int c = 0; c < 4; ++c) t[c] = cases[i][k][c];
-            }
-        }
-        namespace gpu = fresnel::gpu;
+        const std::vector<float> texels =
+            fresnel::test::pack_case_texels(cases.size(), 3, w, [&](std::size_t i, int k) { return cases[i][std::size_t(k)]; });
         gpu::Device device;
         gpu::Texture inputs = gpu::Texture::create_2d(3 * w, h, gpu::TextureFormat::RGBA32F, texels.data(), false);
-        gpu::Texture target = gpu::Texture::create_2d(w, h, gpu::TextureFormat::RGBA32F, nullptr, false);
-        gpu::Framebuffer fb;
-        fb.attach_color(target);
-        fb.check();
-        device.bind_framebuffer(&fb);
-        device.viewport(0, 0, w, h);
-        device.clear(glm::vec4(-7.0f), false);  // sentinel: a pixel the draw missed keeps alpha -7
-        gpu::PipelineState state;
-        state.depth_test = false;
-        state.depth_write = false;
-        state.cull = gpu::Cull::None;
-        device.apply(state);
-        const gpu::Program& program = library_->get("fullscreen.vert", "brdf_probe.frag", defines);
+        fresnel::test::ProbeTarget target(w, h);
+        target.bind(device);
+        const gpu::Program& program = library().get("fullscreen.vert", "brdf_probe.frag", defines);
         program.use();
         program.set("u_inputs", 0);
         program.set("u_mode", int(mode));
         device.bind_texture(0, inputs);
-        device.draw_fullscreen();
-        std::vector<float> px = device.read_rgba32f(fb, w, h);  // rows bottom to top = texel rows
-        device.bind_framebuffer(nullptr);
-        std::string errors = device.take_errors();
-        EXPECT_EQ(errors, "") << "GL errors in probe mode " << mode;
-
-        std::vector<glm::vec4> out(cases.size());
-        int unwritten = 0;
-        for (std::size_t i = 0; i < cases.size(); ++i) {
-            const float* p = &px[i * 4];  // pixel (i % w, i / w): row-major from the bottom row
-            out[i] = glm::vec4(p[0], p[1], p[2], p[3]);
-            if (p[3] != 1.0f) ++unwritten;
-        }
-        EXPECT_EQ(unwritten, 0) << "pixels not written by the probe draw (mode " << mode << ")";
+        std::vector<glm::vec4> out = target.draw(device, cases.size());
+        EXPECT_EQ(device.take_errors(), "") << "GL errors in probe mode " << mode;
+        EXPECT_EQ(fresnel::test::ProbeTarget::unwritten(out), 0) << "pixels not written by the probe draw (mode " << mode << ")";
         return out;
     }
-
-    static std::unique_ptr<fresnel::gpu::Context> context_;
-    static std::string context_error_;
-    static std::unique_ptr<fresnel::ShaderLibrary> library_;
 };
-
-std::unique_ptr<fresnel::gpu::Context> BrdfProbe::context_;
-std::string BrdfProbe::context_error_;
-std::unique_ptr<fresnel::ShaderLibrary> BrdfProbe::library_;
 
 // ---------------------------------------------------------------------------
 // Case generation.

@@ -49,6 +49,7 @@
 #include "fresnel/material/evaluate.h"
 #include "fresnel/render/material_uniforms.h"
 #include "fresnel/render/shader_library.h"
+#include "probe_harness.h"
 
 namespace {
 using namespace fresnel;
@@ -353,50 +354,30 @@ float anisotropy_direction_length(const Case& c, const TextureSource& tex, const
     return glm::length(glm::vec2(texel.x, texel.y) * 2.0f - 1.0f);
 }
 
-class MaterialProbe : public ::testing::Test {
+class MaterialProbe : public test::ProbeSuite {
 protected:
-    static void SetUpTestSuite() {
-        try {
-            context_ = gpu::create_headless_context();
-        } catch (const std::exception& e) {
-            context_error_ = e.what();
-        }
-    }
     static void TearDownTestSuite() {
-        sheen_lut_.reset();
-        library_.reset();
-        context_.reset();
-    }
-    void SetUp() override {
-        ASSERT_TRUE(context_) << "no headless OpenGL context (EGL/llvmpipe): " << context_error_;
-        context_->make_current();
-        if (!library_) library_ = std::make_unique<ShaderLibrary>();
+        sheen_lut_.reset();  // a texture of the context
+        ProbeSuite::TearDownTestSuite();
     }
 
     // Runs the probe over one case: per output, one RGBA per point.
     std::array<std::vector<glm::vec4>, kOutputs> probe(const Case& c, bool count_coverage = true) {
         const gpu::Texture& lut = sheen_lut();  // made first: creating a texture binds it to the active unit
-        std::vector<float> texels(std::size_t(kSide * kTexels * kSide * 4), 0.0f);
-        for (int i = 0; i < kSide * kSide; ++i) {
-            const Point& pt = c.points[std::size_t(i)];
-            const glm::vec4 in[kTexels] = {glm::vec4(pt.p.uv0, pt.p.uv1), pt.p.color,
-                                           glm::vec4(pt.p.tangent, 0), glm::vec4(pt.p.bitangent, 0),
-                                           glm::vec4(pt.p.normal, 0), glm::vec4(pt.v, 0), glm::vec4(pt.l, 0),
-                                           glm::vec4(pt.comp_d, 0), glm::vec4(pt.comp_m, 0)};
-            int x = i % kSide, y = i / kSide;
-            for (int k = 0; k < kTexels; ++k)
-                for (int ch = 0; ch < 4; ++ch)
-                    texels[(std::size_t(y) * kSide * kTexels + std::size_t(x * kTexels + k)) * 4 + std::size_t(ch)] =
-                        in[k][ch];
-        }
+        const std::vector<float> texels =
+            test::pack_case_texels(std::size_t(kSide * kSide), kTexels, kSide, [&](std::size_t i, int k) {
+                const Point& pt = c.points[i];
+                const glm::vec4 in[kTexels] = {glm::vec4(pt.p.uv0, pt.p.uv1), pt.p.color,
+                                               glm::vec4(pt.p.tangent, 0), glm::vec4(pt.p.bitangent, 0),
+                                               glm::vec4(pt.p.normal, 0), glm::vec4(pt.v, 0), glm::vec4(pt.l, 0),
+                                               glm::vec4(pt.comp_d, 0), glm::vec4(pt.comp_m, 0)};
+                return in[k];
+            });
         gpu::Device device;
         gpu::Texture points = gpu::Texture::create_2d(kSide * kTexels, kSide, gpu::TextureFormat::RGBA32F,
                                                       texels.data(), false);
         points.set_sampler(gpu::SamplerState::clamped(Filter::Nearest));
-        gpu::Texture target = gpu::Texture::create_2d(kSide, kSide, gpu::TextureFormat::RGBA32F, nullptr, false);
-        gpu::Framebuffer fb;
-        fb.attach_color(target);
-        fb.check();
+        test::ProbeTarget target(kSide, kSide);
 
         // Textures and defines as the renderer makes them (draw_primitive / texture_for).
         MaterialUniforms mu = material_uniforms(c.material);
@@ -435,14 +416,8 @@ protected:
             if (count_coverage) ++maps_bound_[std::size_t(i)];
             defines.push_back(info.define);
         }
-        const gpu::Program& prog = library_->get("fullscreen.vert", "material_probe.frag", defines);
-        device.bind_framebuffer(&fb);
-        device.viewport(0, 0, kSide, kSide);
-        gpu::PipelineState state;
-        state.depth_test = false;
-        state.depth_write = false;
-        state.cull = gpu::Cull::None;
-        device.apply(state);
+        const gpu::Program& prog = library().get("fullscreen.vert", "material_probe.frag", defines);
+        target.bind(device);
         prog.use();
         // Above the maps' units (map i on unit i): llvmpipe has 32 units.
         const int points_unit = kMaterialMapCount + 1, lut_unit = kMaterialMapCount;
@@ -456,16 +431,9 @@ protected:
         prog.set("u_material_lod", c.lod);
         std::array<std::vector<glm::vec4>, kOutputs> out;
         for (int o = 0; o < kOutputs; ++o) {
-            device.bind_framebuffer(&fb);  // read_rgba32f leaves the default framebuffer bound
-            device.clear(glm::vec4(-7.0f), false);
             prog.set("u_output", o);
-            device.draw_fullscreen();
-            std::vector<float> px = device.read_rgba32f(fb, kSide, kSide);
-            for (int i = 0; i < kSide * kSide; ++i)
-                out[std::size_t(o)].push_back(glm::vec4(px[std::size_t(i) * 4], px[std::size_t(i) * 4 + 1],
-                                                        px[std::size_t(i) * 4 + 2], px[std::size_t(i) * 4 + 3]));
+            out[std::size_t(o)] = target.draw(device, std::size_t(kSide * kSide));
         }
-        device.bind_framebuffer(nullptr);
         EXPECT_EQ(device.take_errors(), "");
         return out;
     }
@@ -638,9 +606,6 @@ protected:
         }
     }
 
-    static std::unique_ptr<gpu::Context> context_;
-    static std::string context_error_;
-    static std::unique_ptr<ShaderLibrary> library_;
     static std::unique_ptr<DriverDecode> decode_;
     static std::unique_ptr<gpu::Texture> sheen_lut_;
     std::array<int, kMaterialMapCount> maps_bound_{};  // coverage: draws that read each map
@@ -648,17 +613,13 @@ protected:
 std::unique_ptr<DriverDecode> MaterialProbe::decode_;
 std::unique_ptr<gpu::Texture> MaterialProbe::sheen_lut_;
 
-std::unique_ptr<gpu::Context> MaterialProbe::context_;
-std::string MaterialProbe::context_error_;
-std::unique_ptr<ShaderLibrary> MaterialProbe::library_;
-
 // What the measured response stands in for: the driver's texel values are byte / 255 and
 // the exact sRGB curve up to small errors (llvmpipe: sRGB colour at most 1.2e-3 absolute,
 // near byte 230; the bound is 2e-3; linear data and alpha 1e-4 relative, measured 8e-8).
 // The C++ mirrors of the std140 blocks (uniform_blocks.h) against the driver's layout: every
 // member's offset and each block's size, in a program that declares both.
 TEST_F(MaterialProbe, UniformBlocksMatchTheirCppMirrors) {
-    const gpu::Program& prog = library_->get("pbr.vert", "pbr.frag", feature::HasNormal | feature::HasUv0 | feature::BaseColorMap);
+    const gpu::Program& prog = library().get("pbr.vert", "pbr.frag", feature::HasNormal | feature::HasUv0 | feature::BaseColorMap);
     for (auto [block, size, members] :
          {std::make_tuple("MaterialBlock", sizeof(MaterialBlock), material_block_members()),
           std::make_tuple("FrameBlock", sizeof(FrameBlock), frame_block_members())}) {

@@ -27,6 +27,7 @@
 #include "fresnel/material/transmission.h"
 #include "fresnel/render/material_uniforms.h"
 #include "fresnel/render/shader_library.h"
+#include "probe_harness.h"
 
 namespace {
 using namespace fresnel;
@@ -57,15 +58,10 @@ float rel_error(float gpu, float cpu, float rel) {
     return e / bound;  // <= 1 passes
 }
 
-TEST(TransmissionProbe, GlslMatchesCpp) {
-    std::unique_ptr<gpu::Context> context;
-    try {
-        context = gpu::create_headless_context();
-    } catch (const std::exception& e) {
-        FAIL() << "no headless OpenGL context (EGL/llvmpipe): " << e.what();
-    }
-    context->make_current();
-    ShaderLibrary library;
+class TransmissionProbe : public test::ProbeSuite {};
+
+TEST_F(TransmissionProbe, GlslMatchesCpp) {
+    ShaderLibrary& library = this->library();
     std::mt19937 rng(1234);
     std::uniform_real_distribution<float> u01(0.0f, 1.0f);
     auto u = [&] { return u01(rng); };
@@ -105,7 +101,6 @@ TEST(TransmissionProbe, GlslMatchesCpp) {
         ASSERT_TRUE(is_transmissive(mat));
 
         std::vector<Point> points(std::size_t(kSide * kSide));
-        std::vector<float> texels(std::size_t(kSide * kTexels * kSide * 4));
         for (int i = 0; i < kSide * kSide; ++i) {
             Point& p = points[std::size_t(i)];
             glm::vec3 n = unit();
@@ -126,21 +121,16 @@ TEST(TransmissionProbe, GlslMatchesCpp) {
             // uv at a texel centre of the 4x4 texture.
             glm::vec2 uv((float(int(u() * 4)) + 0.5f) / 4.0f, (float(int(u() * 4)) + 0.5f) / 4.0f);
             p.t[10] = glm::vec4(u() < 0.5f ? 0.0f : u(), range(0, 0.1f), uv);
-            int x = i % kSide, y = i / kSide;
-            for (int k = 0; k < kTexels; ++k)
-                for (int c = 0; c < 4; ++c)
-                    texels[(std::size_t(y) * kSide * kTexels + std::size_t(x * kTexels + k)) * 4 + std::size_t(c)] = p.t[k][c];
         }
+        const std::vector<float> texels = test::pack_case_texels(
+            points.size(), kTexels, kSide, [&](std::size_t i, int k) { return points[i].t[k]; });
 
         gpu::Device device;
         gpu::Texture pts = gpu::Texture::create_2d(kSide * kTexels, kSide, gpu::TextureFormat::RGBA32F, texels.data(), false);
         pts.set_sampler(gpu::SamplerState::clamped(Filter::Nearest));
         gpu::Texture map = gpu::Texture::create_2d(4, 4, gpu::TextureFormat::RGBA8, image.pixels.data(), false);
         map.set_sampler(gpu::SamplerState::clamped(Filter::Nearest));
-        gpu::Texture target = gpu::Texture::create_2d(kSide, kSide, gpu::TextureFormat::RGBA32F, nullptr, false);
-        gpu::Framebuffer fb;
-        fb.attach_color(target);
-        fb.check();
+        test::ProbeTarget target(kSide, kSide);
 
         MaterialUniforms mu = material_uniforms(mat);
         std::vector<std::string> defines = {"MATERIAL_TRANSMISSION", "MATERIAL_CLEARCOAT", "MATERIAL_EXPLICIT_LOD"};
@@ -152,28 +142,18 @@ TEST(TransmissionProbe, GlslMatchesCpp) {
             device.bind_texture(int(mm), map);
         }
         const gpu::Program& prog = library.get("fullscreen.vert", "transmission_probe.frag", defines);
-        device.bind_framebuffer(&fb);
-        device.viewport(0, 0, kSide, kSide);
-        gpu::PipelineState state;
-        state.depth_test = false;
-        state.depth_write = false;
-        state.cull = gpu::Cull::None;
-        device.apply(state);
+        target.bind(device);
         prog.use();
         device.bind_texture(15, pts);
         prog.set("u_points", 15);
         gpu::UniformBuffer block;
         set_material_uniforms(prog, mu, bound, block);
         prog.set("u_material_lod", 0.0f);
-        std::vector<std::vector<float>> out(kOutputs);
+        std::vector<std::vector<glm::vec4>> out(kOutputs);
         for (int o = 0; o < kOutputs; ++o) {
-            device.bind_framebuffer(&fb);
-            device.clear(glm::vec4(-7.0f), false);
             prog.set("u_output", o);
-            device.draw_fullscreen();
-            out[std::size_t(o)] = device.read_rgba32f(fb, kSide, kSide);
+            out[std::size_t(o)] = target.draw(device, std::size_t(kSide * kSide));
         }
-        device.bind_framebuffer(nullptr);
         EXPECT_EQ(device.take_errors(), "");
 
         for (int i = 0; i < kSide * kSide; ++i) {
@@ -217,7 +197,7 @@ TEST(TransmissionProbe, GlslMatchesCpp) {
             cpu[7] = glm::vec4(tr.attenuation_color, tr.ior);
             for (int o = 0; o < kOutputs; ++o)
                 for (int c = 0; c < 4; ++c) {
-                    float g = out[std::size_t(o)][std::size_t(i) * 4 + std::size_t(c)];
+                    float g = out[std::size_t(o)][std::size_t(i)][c];
                     float want = cpu[o][c];
                     const bool lobe = o == 2 || o == 5;
                     // GGX lobes of very smooth transmission peak far above 1: skip values the
@@ -239,7 +219,7 @@ TEST(TransmissionProbe, GlslMatchesCpp) {
 }
 
 // evaluate's transmission rules on the CPU: factors, the infinite default distance, no transmission with specular-glossiness.
-TEST(TransmissionProbe, EvaluateRules) {
+TEST(TransmissionEvaluate, Rules) {
     Material mat;
     mat.transmission = TransmissionExt{0.5f, {}};
     mat.volume = VolumeExt{};

@@ -1,0 +1,110 @@
+#pragma once
+// What the shader-probe suites share (brdf, legacy shading, material, transmission): a probe
+// fragment shader evaluates one case per pixel of a float target, reading the case's inputs
+// from RGBA32F texels laid side by side, and the test compares each result with the C++ twin.
+#include <gtest/gtest.h>
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "fresnel/gpu/context.h"
+#include "fresnel/gpu/device.h"
+#include "fresnel/gpu/resources.h"
+#include "fresnel/render/shader_library.h"
+
+namespace fresnel::test {
+
+// The input texels of `count` cases, `per_case` texels each side by side, `per_row` cases a row
+// (rows of per_row * per_case texels): texel(i, k) is case i's k-th texel.
+template <class Texel>
+std::vector<float> pack_case_texels(std::size_t count, int per_case, int per_row, Texel&& texel) {
+    const std::size_t row_texels = std::size_t(per_row) * std::size_t(per_case);
+    const std::size_t rows = (count + std::size_t(per_row) - 1) / std::size_t(per_row);
+    std::vector<float> texels(row_texels * rows * 4, 0.0f);
+    for (std::size_t i = 0; i < count; ++i) {
+        const std::size_t x = i % std::size_t(per_row), y = i / std::size_t(per_row);
+        for (int k = 0; k < per_case; ++k) {
+            const glm::vec4 t = texel(i, k);
+            float* out = &texels[(y * row_texels + x * std::size_t(per_case) + std::size_t(k)) * 4];
+            for (int c = 0; c < 4; ++c) out[c] = t[c];
+        }
+    }
+    return texels;
+}
+
+// The w x h RGBA32F target a probe draws into, one result a pixel (row-major from the bottom
+// row, as the cases are packed).
+class ProbeTarget {
+public:
+    ProbeTarget(int w, int h)
+        : w_(w), h_(h), color_(gpu::Texture::create_2d(w, h, gpu::TextureFormat::RGBA32F, nullptr, false)) {
+        fb_.attach_color(color_);
+        fb_.check();
+    }
+    // Binds the target with its viewport, no depth test and no culling (the full-screen draw).
+    void bind(gpu::Device& device) {
+        device.bind_framebuffer(&fb_);
+        device.viewport(0, 0, w_, h_);
+        gpu::PipelineState state;
+        state.depth_test = false;
+        state.depth_write = false;
+        state.cull = gpu::Cull::None;
+        device.apply(state);
+    }
+    // Clears to a sentinel (alpha -7: a pixel the draw misses keeps it), draws the bound program
+    // over the target and reads back the first `count` results. Leaves the default framebuffer
+    // bound (read_rgba32f does).
+    std::vector<glm::vec4> draw(gpu::Device& device, std::size_t count) {
+        device.bind_framebuffer(&fb_);
+        device.clear(glm::vec4(-7.0f), false);
+        device.draw_fullscreen();
+        const std::vector<float> px = device.read_rgba32f(fb_, w_, h_);
+        std::vector<glm::vec4> out(count);
+        for (std::size_t i = 0; i < count; ++i) out[i] = glm::vec4(px[i * 4], px[i * 4 + 1], px[i * 4 + 2], px[i * 4 + 3]);
+        return out;
+    }
+    // How many results have an alpha other than 1 (the probes write 1 where they ran).
+    static int unwritten(const std::vector<glm::vec4>& results) {
+        int n = 0;
+        for (const glm::vec4& r : results) n += r.w != 1.0f;
+        return n;
+    }
+
+private:
+    int w_, h_;
+    gpu::Texture color_;
+    gpu::Framebuffer fb_;
+};
+
+// A suite with one headless OpenGL context (EGL, llvmpipe in CI) and one shader library for all
+// its tests; a test fails at its start when no context could be made.
+class ProbeSuite : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        try {
+            context_ = gpu::create_headless_context();
+        } catch (const std::exception& e) {
+            context_error_ = e.what();
+        }
+    }
+    static void TearDownTestSuite() {
+        library_.reset();  // programs before the context that owns them
+        context_.reset();
+    }
+    void SetUp() override {
+        ASSERT_TRUE(context_) << "no headless OpenGL context (EGL/llvmpipe): " << context_error_;
+        context_->make_current();
+        if (!library_) library_ = std::make_unique<ShaderLibrary>();
+    }
+    static ShaderLibrary& library() { return *library_; }
+
+    static inline std::unique_ptr<gpu::Context> context_;
+    static inline std::string context_error_;
+    static inline std::unique_ptr<ShaderLibrary> library_;
+};
+
+}  // namespace fresnel::test
