@@ -52,24 +52,7 @@ protected:
     // returns one RGBA result per case. Fails the test on GL errors or unwritten pixels.
     std::vector<glm::vec4> probe(ProbeMode mode, const std::vector<Case>& cases,
                                  const std::vector<std::string>& defines = {}) {
-        namespace gpu = fresnel::gpu;
-        const int w = kGrid;
-        const int h = int((cases.size() + kGrid - 1) / kGrid);
-        const std::vector<float> texels =
-            fresnel::test::pack_case_texels(cases.size(), 3, w, [&](std::size_t i, int k) { return cases[i][std::size_t(k)]; });
-        gpu::Device device;
-        gpu::Texture inputs = gpu::Texture::create_2d(3 * w, h, gpu::TextureFormat::RGBA32F, texels.data(), false);
-        fresnel::test::ProbeTarget target(w, h);
-        target.bind(device);
-        const gpu::Program& program = library().get("fullscreen.vert", "brdf_probe.frag", defines);
-        program.use();
-        program.set("u_inputs", 0);
-        program.set("u_mode", int(mode));
-        device.bind_texture(0, inputs);
-        std::vector<glm::vec4> out = target.draw(device, cases.size());
-        EXPECT_EQ(device.take_errors(), "") << "GL errors in probe mode " << mode;
-        EXPECT_EQ(fresnel::test::ProbeTarget::unwritten(out), 0) << "pixels not written by the probe draw (mode " << mode << ")";
-        return out;
+        return fresnel::test::run_mode_probe(library(), "brdf_probe.frag", int(mode), cases, kGrid, defines);
     }
 };
 

@@ -4,6 +4,7 @@
 // from RGBA32F texels laid side by side, and the test compares each result with the C++ twin.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -79,6 +80,31 @@ private:
     gpu::Texture color_;
     gpu::Framebuffer fb_;
 };
+
+// Draws `fragment` (with fullscreen.vert and `defines`) over `cases` of N texels each, `grid`
+// cases a row, with the texels on unit 0 as u_inputs and u_mode = `mode`: one result a case.
+// Fails the test on GL errors or pixels the draw did not write.
+template <std::size_t N>
+std::vector<glm::vec4> run_mode_probe(ShaderLibrary& library, const std::string& fragment, int mode,
+                                      const std::vector<std::array<glm::vec4, N>>& cases, int grid,
+                                      const std::vector<std::string>& defines = {}) {
+    const int h = int((cases.size() + std::size_t(grid) - 1) / std::size_t(grid));
+    const std::vector<float> texels =
+        pack_case_texels(cases.size(), int(N), grid, [&](std::size_t i, int k) { return cases[i][std::size_t(k)]; });
+    gpu::Device device;
+    gpu::Texture inputs = gpu::Texture::create_2d(int(N) * grid, h, gpu::TextureFormat::RGBA32F, texels.data(), false);
+    ProbeTarget target(grid, h);
+    target.bind(device);
+    const gpu::Program& program = library.get("fullscreen.vert", fragment, defines);
+    program.use();
+    program.set("u_inputs", 0);
+    program.set("u_mode", mode);
+    device.bind_texture(0, inputs);
+    std::vector<glm::vec4> out = target.draw(device, cases.size());
+    EXPECT_EQ(device.take_errors(), "") << "GL errors in " << fragment << " mode " << mode;
+    EXPECT_EQ(ProbeTarget::unwritten(out), 0) << "pixels not written by " << fragment << " (mode " << mode << ")";
+    return out;
+}
 
 // A suite with one headless OpenGL context (EGL, llvmpipe in CI) and one shader library for all
 // its tests; a test fails at its start when no context could be made.
