@@ -341,3 +341,30 @@ TEST(RenderTarget, PackedOcclusionIsTheOcclusionMap) {
         EXPECT_GT(spread, 0.1f);  // the frames show the sphere, not only the background
     }
 }
+
+// Contexts share the process's EGL display: one going (its destructor) must leave the others
+// working, in any order (`fresnel batch --jobs N` ends its workers' contexts on their threads
+// as each finishes; the first used to terminate the display under the rest).
+TEST(HeadlessContexts, OneGoingLeavesTheOthersWorking) {
+    gpu::ContextOptions co;
+    co.surface_width = 4;
+    co.surface_height = 4;
+    std::string why;
+    auto first = test_support::try_headless_context(why, co);
+    if (!first) GTEST_SKIP() << "no EGL pbuffer: " << why;
+    std::unique_ptr<gpu::Context> second = gpu::create_headless_context(co);
+    first.reset();  // also unbinds this thread's current context (the second's)
+    ASSERT_NO_THROW(second->make_current());
+    gpu::Device device;
+    device.bind_framebuffer(nullptr);
+    device.viewport(0, 0, 4, 4);
+    device.clear(glm::vec4(0.25f, 0.5f, 0.75f, 1.0f), false);
+    std::vector<std::uint8_t> px = device.read_default_rgba8(1, 1, 1, 1);
+    ASSERT_EQ(px.size(), 4u);
+    EXPECT_NEAR(px[0], 64, 1);
+    EXPECT_NEAR(px[1], 128, 1);
+    EXPECT_NEAR(px[2], 191, 1);
+    EXPECT_EQ(device.take_errors(), "");
+    // And a third made after the first went, with the second still there.
+    EXPECT_NO_THROW(gpu::create_headless_context(co));
+}

@@ -2,6 +2,8 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <map>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -11,6 +13,46 @@
 namespace fresnel::gpu {
 namespace {
 
+// eglInitialize and eglTerminate do not count (EGL 1.5): every context of the process that asks
+// for the default display gets the same handle, so one context terminating it pulled it from
+// under the others (`fresnel batch --jobs 2`: a worker still deleting its GL objects found no
+// current context, and libepoxy aborted). Each context holds a reference to its display instead,
+// and the last one to go terminates it. The count is the process's, as the display is.
+class DisplayReferences {
+public:
+    // eglInitialize on the first reference; false (no reference taken) when it fails.
+    static bool acquire(EGLDisplay display) {
+        std::lock_guard lock(mutex());
+        int& n = counts()[display];
+        if (n == 0) {
+            EGLint major = 0, minor = 0;
+            if (!eglInitialize(display, &major, &minor)) return false;
+        }
+        ++n;
+        return true;
+    }
+    // eglTerminate with the last reference.
+    static void release(EGLDisplay display) {
+        std::lock_guard lock(mutex());
+        auto it = counts().find(display);
+        if (it == counts().end() || it->second <= 0) return;
+        if (--it->second == 0) {
+            eglTerminate(display);
+            counts().erase(it);
+        }
+    }
+
+private:
+    static std::mutex& mutex() {
+        static std::mutex m;
+        return m;
+    }
+    static std::map<EGLDisplay, int>& counts() {
+        static std::map<EGLDisplay, int> c;
+        return c;
+    }
+};
+
 class EglContext final : public Context {
 public:
     EglContext(EGLDisplay display, EGLContext context, EGLSurface surface)
@@ -19,7 +61,8 @@ public:
         eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (surface_ != EGL_NO_SURFACE) eglDestroySurface(display_, surface_);
         eglDestroyContext(display_, context_);
-        eglTerminate(display_);
+        eglReleaseThread();  // this thread's EGL state
+        DisplayReferences::release(display_);
     }
     void make_current() override {
         if (!eglMakeCurrent(display_, surface_, surface_, context_)) throw Error("EGL", "", "eglMakeCurrent failed");
@@ -62,9 +105,8 @@ struct Created {
     EGLSurface surface = EGL_NO_SURFACE;
 };
 
+// A context and its surface on `display`, made current; the caller holds a display reference.
 Created try_create(EGLDisplay display, const ContextOptions& options) {
-    EGLint major = 0, minor = 0;
-    if (!eglInitialize(display, &major, &minor)) return {};
     const bool es = options.api == Api::OpenGLES30;
     if (!eglBindAPI(es ? EGL_OPENGL_ES_API : EGL_OPENGL_API)) return {};
     const bool surface = options.surface_width > 0 && options.surface_height > 0;
@@ -111,13 +153,14 @@ Created try_create(EGLDisplay display, const ContextOptions& options) {
 
 std::unique_ptr<Context> create_headless_context(const ContextOptions& options) {
     for (EGLDisplay display : candidate_displays()) {
+        if (!DisplayReferences::acquire(display)) continue;
         Created made = try_create(display, options);
         if (made.context != EGL_NO_CONTEXT) {
-            auto c = std::make_unique<EglContext>(display, made.context, made.surface);
+            auto c = std::make_unique<EglContext>(display, made.context, made.surface);  // holds the reference
             c->init(options);
             return c;
         }
-        eglTerminate(display);
+        DisplayReferences::release(display);
     }
     throw Error("EGL", "", std::string("no headless ") + api_name(options.api) +
                                " context could be created (is Mesa's libegl-mesa0 installed?)");
