@@ -9,12 +9,23 @@
 
 namespace fresnel::gpu {
 namespace {
+// GLFW is initialised once for the process and glfwTerminate destroys every window, so each
+// window holds a reference and the last one to go terminates GLFW (as EGL displays are counted
+// in egl_context.cpp). GLFW is called from the main thread only; the count needs no lock.
+int& glfw_references() {
+    static int n = 0;
+    return n;
+}
+void release_glfw() {
+    if (--glfw_references() == 0) glfwTerminate();
+}
+
 class GlfwContext final : public Context {
 public:
     explicit GlfwContext(GLFWwindow* w) : window_(w) {}
     ~GlfwContext() override {
         glfwDestroyWindow(window_);
-        glfwTerminate();
+        release_glfw();
     }
     void make_current() override { glfwMakeContextCurrent(window_); }
     void swap_buffers() override { glfwSwapBuffers(window_); }
@@ -36,7 +47,9 @@ std::string glfw_reason() {
 
 std::unique_ptr<Context> create_window_context(int width, int height, const std::string& title,
                                                const ContextOptions& options) {
-    if (!glfwInit()) throw Error("GLFW", "", "cannot initialise GLFW (no display?)" + glfw_reason());
+    if (glfw_references() == 0 && !glfwInit())
+        throw Error("GLFW", "", "cannot initialise GLFW (no display?)" + glfw_reason());
+    ++glfw_references();
     const bool es = options.api == Api::OpenGLES30;
     glfwWindowHint(GLFW_CLIENT_API, es ? GLFW_OPENGL_ES_API : GLFW_OPENGL_API);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
@@ -51,7 +64,7 @@ std::unique_ptr<Context> create_window_context(int width, int height, const std:
     GLFWwindow* w = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (!w) {
         const std::string reason = glfw_reason();
-        glfwTerminate();
+        release_glfw();
         throw Error("GLFW", "", std::string("cannot create an ") + api_name(options.api) + " window" + reason);
     }
     glfwMakeContextCurrent(w);
