@@ -58,10 +58,13 @@ public:
     EglContext(EGLDisplay display, EGLContext context, EGLSurface surface)
         : display_(display), context_(context), surface_(surface) {}
     ~EglContext() override {
-        eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        // Unbound only where it is current: another context current on this thread stays so.
+        if (eglGetCurrentContext() == context_) {
+            eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            eglReleaseThread();  // this thread's EGL state
+        }
         if (surface_ != EGL_NO_SURFACE) eglDestroySurface(display_, surface_);
         eglDestroyContext(display_, context_);
-        eglReleaseThread();  // this thread's EGL state
         DisplayReferences::release(display_);
     }
     void make_current() override {
