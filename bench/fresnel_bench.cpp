@@ -359,7 +359,8 @@ int main(int argc, char** argv) {
     const auto& fr = out["frames"];
     const auto& k = fr["khronos"];
     // Without the Khronos renderer in this run: its figures from the last run that had it (a
-    // `make bench` in a fresh clone, 2026-12-04, 2 threads, llvmpipe, Chromium 156), labelled so.
+    // `make bench` in a fresh clone, 2026-12-04 afternoon, 2 threads, llvmpipe, Chromium 156),
+    // labelled so.
     // The machine's speed drifts between runs, so only a same-run ratio is a measurement.
     auto ratio = [&](const char* model, double ours) {
         char buf[320];
@@ -368,8 +369,8 @@ int main(int argc, char** argv) {
             std::snprintf(buf, sizeof buf,
                           "  [Khronos not measured in this run: %s. Last measured in another run, 2026-12-04: "
                           "Khronos %.1f ms, ours %.1f ms, %.2fx]",
-                          k.value("why", "").c_str(), helmet_model ? 189.6 : 104.1, helmet_model ? 96.0 : 90.4,
-                          helmet_model ? 96.0 / 189.6 : 90.4 / 104.1);
+                          k.value("why", "").c_str(), helmet_model ? 239.6 : 122.1, helmet_model ? 118.4 : 105.3,
+                          helmet_model ? 118.4 / 239.6 : 105.3 / 122.1);
             return std::string(buf);
         }
         double theirs = k[model]["frame_ms_median"].get<double>();
