@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <memory>
+#include <string>
 
 #include "fresnel/core/error.h"
 #include "fresnel/core/metrics.h"
@@ -23,6 +25,29 @@ struct DemoScene {
     Scene scene = make_demo_scene();
     Renderer renderer;
     explicit DemoScene(gpu::Context& context) : renderer(context) { renderer.set_scene(scene); }
+    // The orbit camera on the whole scene for a w x h frame.
+    CameraSetup camera(int w, int h) const { return orbit_camera(scene_bounds(scene, flatten(scene)), {}, w, h); }
+};
+
+// The suite's tests: a headless context (with a w x h pbuffer as its default framebuffer when
+// asked) and the demo scene on a renderer; a test without a context skips, saying why.
+class RenderTargets : public ::testing::Test {
+protected:
+    bool start(int surface_width = 0, int surface_height = 0) {
+        gpu::ContextOptions co;
+        co.surface_width = surface_width;
+        co.surface_height = surface_height;
+        context_ = test_support::try_headless_context(why_, co);
+        if (!context_) {
+            why_ = std::string(surface_width > 0 ? "no EGL pbuffer: " : "no headless OpenGL context: ") + why_;
+            return false;
+        }
+        demo_ = std::make_unique<DemoScene>(*context_);
+        return true;
+    }
+    std::string why_;
+    std::unique_ptr<gpu::Context> context_;
+    std::unique_ptr<DemoScene> demo_;
 };
 
 // The default framebuffer's pixels (GL rows bottom to top) of the viewport at (x, y) as an image.
@@ -38,22 +63,14 @@ Image8 read_window(int x, int y, int w, int h) {
 }
 }  // namespace
 
-TEST(RenderTarget, DefaultFramebufferShowsTheOffscreenFrame) {
-    gpu::ContextOptions co;
-    co.surface_width = 200;
-    co.surface_height = 150;
-    std::string why;
-    auto context = test_support::try_headless_context(why, co);
-    if (!context) GTEST_SKIP() << "no EGL pbuffer: " << why;
-    DemoScene demo(*context);
-    Renderer& renderer = demo.renderer;
-    const Scene& scene = demo.scene;
+TEST_F(RenderTargets, DefaultFramebufferShowsTheOffscreenFrame) {
+    if (!start(200, 150)) GTEST_SKIP() << why_;
+    Renderer& renderer = demo_->renderer;
     RenderSettings rs;
     rs.width = 160;
     rs.height = 120;
     rs.background = glm::vec4(0.1f, 0.2f, 0.3f, 1.0f);
-    auto instances = flatten(scene);
-    CameraSetup cam = orbit_camera(scene_bounds(scene, instances), {}, rs.width, rs.height);
+    CameraSetup cam = demo_->camera(rs.width, rs.height);
     auto lights = default_lights();
 
     Image8 offscreen = to_image8(renderer.render(cam, lights, rs), false);
@@ -84,23 +101,15 @@ TEST(RenderTarget, DefaultFramebufferShowsTheOffscreenFrame) {
 
 // A scissor rectangle: a second frame with other settings replaces only its pixels (the
 // viewer's split view); the rest keeps the first frame.
-TEST(RenderTarget, ScissorWritesOnlyItsRectangle) {
-    gpu::ContextOptions co;
-    co.surface_width = 160;
-    co.surface_height = 120;
-    std::string why;
-    auto context = test_support::try_headless_context(why, co);
-    if (!context) GTEST_SKIP() << "no EGL pbuffer: " << why;
-    DemoScene demo(*context);
-    Renderer& renderer = demo.renderer;
-    const Scene& scene = demo.scene;
+TEST_F(RenderTargets, ScissorWritesOnlyItsRectangle) {
+    if (!start(160, 120)) GTEST_SKIP() << why_;
+    Renderer& renderer = demo_->renderer;
     RenderSettings a;
     a.width = 160;
     a.height = 120;
     RenderSettings b = a;
     b.debug = DebugChannel::Roughness;
-    auto instances = flatten(scene);
-    CameraSetup cam = orbit_camera(scene_bounds(scene, instances), {}, a.width, a.height);
+    CameraSetup cam = demo_->camera(a.width, a.height);
     auto lights = default_lights();
     Image8 shaded = to_image8(renderer.render(cam, lights, a), false);
     Image8 rough = to_image8(renderer.render(cam, lights, b), false);
@@ -133,20 +142,16 @@ TEST(RenderTarget, ScissorWritesOnlyItsRectangle) {
 // FRAME_ENCODING) against the C++ tone mappers and encodings applied to the same frame drawn
 // linear (no tone map, no encoding), for every tone mapper and encoding, with and without
 // punctual lights (FRAME_NO_LIGHTS). One sample per pixel, so no edge mixes display values.
-TEST(RenderTarget, CompiledDisplayTransformMatchesTheCppOne) {
-    std::string why;
-    auto context = test_support::try_headless_context(why);
-    if (!context) GTEST_SKIP() << "no headless OpenGL context: " << why;
-    DemoScene demo(*context);
-    Renderer& renderer = demo.renderer;
-    const Scene& scene = demo.scene;
+TEST_F(RenderTargets, CompiledDisplayTransformMatchesTheCppOne) {
+    if (!start()) GTEST_SKIP() << why_;
+    Renderer& renderer = demo_->renderer;
     RenderSettings rs;
     rs.width = 48;
     rs.height = 36;
     rs.msaa = 1;
     rs.exposure_ev = 0.5f;
     rs.ambient = glm::vec3(0.3f);  // lights the frame without punctual lights
-    const CameraSetup cam = orbit_camera(scene_bounds(scene, flatten(scene)), {}, rs.width, rs.height);
+    const CameraSetup cam = demo_->camera(rs.width, rs.height);
     int compared = 0;
     for (bool with_lights : {true, false}) {
         const std::vector<LightInstance> lights = with_lights ? default_lights() : std::vector<LightInstance>{};
@@ -184,19 +189,15 @@ TEST(RenderTarget, CompiledDisplayTransformMatchesTheCppOne) {
 // is a mean of 4 samples of k/255, so on the grid of 1/1020), each pixel within about 1/255
 // of the Float frame's (the samples are quantised before the resolve averages them); frames
 // without a display encoding, transparent frames and debug channels stay Float.
-TEST(RenderTarget, Display8FrameIsTheFloatFrameQuantised) {
-    std::string why;
-    auto context = test_support::try_headless_context(why);
-    if (!context) GTEST_SKIP() << "no headless OpenGL context: " << why;
-    DemoScene demo(*context);
-    Renderer& renderer = demo.renderer;
-    const Scene& scene = demo.scene;
+TEST_F(RenderTargets, Display8FrameIsTheFloatFrameQuantised) {
+    if (!start()) GTEST_SKIP() << why_;
+    Renderer& renderer = demo_->renderer;
     RenderSettings rs;
     rs.width = 96;
     rs.height = 72;
     rs.msaa = 4;
     rs.background = glm::vec4(0.1f, 0.2f, 0.3f, 1.0f);
-    const CameraSetup cam = orbit_camera(scene_bounds(scene, flatten(scene)), {}, rs.width, rs.height);
+    const CameraSetup cam = demo_->camera(rs.width, rs.height);
     const std::vector<LightInstance> lights = default_lights();
     // How many channel values lie off the 1/1020 grid, and the largest difference from `ref`.
     auto grid_and_difference = [&](const ImageF& img, const ImageF& ref) {
@@ -241,20 +242,16 @@ TEST(RenderTarget, Display8FrameIsTheFloatFrameQuantised) {
 
 // Frames that alternate between the two formats (the viewer's split view: the 8-bit frame on
 // the left, a debug channel, which is half float, on the right) keep a set of targets each.
-TEST(RenderTarget, AlternatingFrameFormatsKeepTheirTargets) {
-    std::string why;
-    auto context = test_support::try_headless_context(why);
-    if (!context) GTEST_SKIP() << "no headless OpenGL context: " << why;
-    DemoScene demo(*context);
-    Renderer& renderer = demo.renderer;
-    const Scene& scene = demo.scene;
+TEST_F(RenderTargets, AlternatingFrameFormatsKeepTheirTargets) {
+    if (!start()) GTEST_SKIP() << why_;
+    Renderer& renderer = demo_->renderer;
     RenderSettings left;
     left.width = 64;
     left.height = 48;
     left.frame_format = RenderSettings::FrameFormat::Display8;
     RenderSettings right = left;
     right.debug = DebugChannel::Normal;  // a debug channel: a half-float frame
-    const CameraSetup cam = orbit_camera(scene_bounds(scene, flatten(scene)), {}, left.width, left.height);
+    const CameraSetup cam = demo_->camera(left.width, left.height);
     const std::vector<LightInstance> lights = default_lights();
     for (int frame = 0; frame < 4; ++frame)
         for (const RenderSettings* s : {&left, &right}) {
@@ -275,10 +272,8 @@ TEST(RenderTarget, AlternatingFrameFormatsKeepTheirTargets) {
 // two images, or one ORM texture: feature::OcclusionInMetallicRoughness) is the occlusion read
 // from its own texture through the same anisotropic probes: a sphere whose occlusion is on
 // TEXCOORD_1 (a copy of TEXCOORD_0, so it cannot be packed) renders the same frame.
-TEST(RenderTarget, PackedOcclusionIsTheOcclusionMap) {
-    std::string why;
-    auto context = test_support::try_headless_context(why);
-    if (!context) GTEST_SKIP() << "no EGL pbuffer: " << why;
+TEST_F(RenderTargets, PackedOcclusionIsTheOcclusionMap) {
+    if (!start()) GTEST_SKIP() << why_;
     auto noise = [](std::uint32_t seed) {
         Image8 img(64, 64, 4);
         for (auto& v : img.pixels) {
@@ -316,10 +311,9 @@ TEST(RenderTarget, PackedOcclusionIsTheOcclusionMap) {
         std::vector<std::size_t> bytes;
         for (Layout layout : {Packed, Separate, Orm}) {
             Scene scene = scene_with(layout);
-            Renderer renderer(*context);
+            Renderer renderer(*context_);
             renderer.set_scene(scene);
-            auto instances = flatten(scene);
-            CameraSetup cam = orbit_camera(scene_bounds(scene, instances), {}, rs.width, rs.height);
+            CameraSetup cam = orbit_camera(scene_bounds(scene, flatten(scene)), {}, rs.width, rs.height);
             FrameStats stats;
             frames.push_back(renderer.render(cam, default_lights(), rs, &stats));
             EXPECT_EQ(stats.gl_errors, "");
