@@ -16,32 +16,14 @@
 #include "fresnel/core/error.h"
 #include "fresnel/core/image.h"
 #include "fresnel/core/metrics.h"
+#include "temp_dir.h"
 
 using namespace fresnel;
 namespace fs = std::filesystem;
 
 namespace {
 
-// A per-test scratch folder under the system temp directory, removed afterwards.
-class TempDir {
-public:
-    TempDir() {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        std::random_device rd;
-        path_ = fs::temp_directory_path() /
-                ("fresnel_image_test_" + std::string(info ? info->name() : "x") + "_" + std::to_string(rd()));
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    const fs::path& path() const { return path_; }
-    fs::path operator/(const std::string& name) const { return path_ / name; }
-
-private:
-    fs::path path_;
-};
+using fresnel::test::TempDir;  // tests/support/temp_dir.h
 
 void write_bytes(const fs::path& p, const std::vector<std::uint8_t>& bytes) {
     std::ofstream out(p, std::ios::binary);

@@ -19,6 +19,7 @@
 
 #include "fresnel/core/image.h"
 #include "gltf_builders.h"
+#include "temp_dir.h"
 
 namespace fresnel::gltf_test {
 
@@ -229,25 +230,7 @@ inline void expect_mat_near(const glm::mat4& a, const glm::mat4& b, float tol = 
         for (int r = 0; r < 4; ++r) EXPECT_NEAR(a[c][r], b[c][r], tol) << what << " column " << c << " row " << r;
 }
 
-// A per-test scratch folder under the system temp directory, removed afterwards.
-class TempDir {
-public:
-    TempDir() {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        std::random_device rd;
-        path_ = fs::temp_directory_path() /
-                ("fresnel_gltf_test_" + std::string(info ? info->name() : "x") + "_" + std::to_string(rd()));
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    const fs::path& path() const { return path_; }
-
-private:
-    fs::path path_;
-};
+using fresnel::test::TempDir;  // tests/support/temp_dir.h
 
 inline void write_file(const fs::path& p, const std::vector<std::uint8_t>& bytes) {
     std::ofstream out(p, std::ios::binary);

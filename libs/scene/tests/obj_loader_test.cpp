@@ -17,6 +17,7 @@
 
 #include "fresnel/material/phong.h"
 #include "fresnel/scene/mesh_ops.h"
+#include "temp_dir.h"
 
 using namespace fresnel;
 namespace fs = std::filesystem;
@@ -58,29 +59,7 @@ bool has_warning(const Diagnostics& d, const std::string& part) {
     return false;
 }
 
-class TempDir {
-public:
-    TempDir() {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path_ = fs::path(::testing::TempDir()) / ("fresnel_obj_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    const fs::path& path() const { return path_; }
-    fs::path write(const std::string& name, const std::string& text) const {
-        fs::path p = path_ / name;
-        fs::create_directories(p.parent_path());
-        std::ofstream(p, std::ios::binary) << text;
-        return p;
-    }
-
-private:
-    fs::path path_;
-};
+using fresnel::test::TempDir;  // tests/support/temp_dir.h
 
 void write_png_rgba(const fs::path& p, int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b, std::uint8_t a) {
     fs::create_directories(p.parent_path());
