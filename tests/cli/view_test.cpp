@@ -32,6 +32,20 @@ using fresnel::test::quote;
 using fresnel::test::Result;
 using fresnel::test::slurp;
 
+// The sh function the xdotool sessions wait with: `wait_for 'CONDITION'` polls every 0.1 s up to
+// `tenths` times; it gives up at once when the viewer ($pid) has gone, noting why in err.txt.
+std::string wait_for_function(int tenths) {
+    return "wait_for() {\n"
+           "  for i in $(seq " + std::to_string(tenths) + "); do\n"
+           "    eval \"$1\" && return 0\n"
+           "    kill -0 $pid 2>/dev/null || { echo \"the viewer exited early (waiting for: $1)\" >>err.txt; exit 0; }\n"
+           "    sleep 0.1\n"
+           "  done\n"
+           "  echo \"timed out: $1\" >>err.txt\n"
+           "  kill $pid; wait $pid; exit 0\n"
+           "}";
+}
+
 class View : public ::testing::Test {
 protected:
     void SetUp() override {
@@ -228,16 +242,7 @@ TEST_F(View, DragCopyCommandLineAndScreenshotAgreeWithRender) {
 cd "$1"
 "$2" view --size 640x360 --msaa 1 --anisotropy 1 >out.txt 2>err.txt &
 pid=$!
-# Waits up to 60 s for a condition; gives up at once when the viewer has gone.
-wait_for() {
-  for i in $(seq 600); do
-    eval "$1" && return 0
-    kill -0 $pid 2>/dev/null || { echo "the viewer exited early (waiting for: $1)" >>err.txt; exit 0; }
-    sleep 0.1
-  done
-  echo "timed out: $1" >>err.txt
-  kill $pid; wait $pid; exit 0
-}
+)SH" << wait_for_function(600) << R"SH(
 wait_for 'xdotool search --name "fresnel view" >/dev/null 2>&1'
 # Ready when it answers: the first Ctrl+C prints the opening view.
 xdotool mousemove 520 180; sleep 0.5
@@ -292,15 +297,7 @@ TEST_F(View, DroppedFilesOpenAndBrokenOnesLeaveTheViewerRunning) {
 cd "$1"
 "$2" view --size 320x240 --msaa 1 --anisotropy 1 >out.txt 2>err.txt &
 pid=$!
-wait_for() {
-  for i in $(seq 900); do
-    eval "$1" && return 0
-    kill -0 $pid 2>/dev/null || { echo "the viewer exited early (waiting for: $1)" >>err.txt; exit 0; }
-    sleep 0.1
-  done
-  echo "timed out: $1" >>err.txt
-  kill $pid; wait $pid; exit 0
-}
+)SH" << wait_for_function(900) << R"SH(
 wait_for 'xdotool search --name "fresnel view" >/dev/null 2>&1'
 win=$(xdotool search --name "fresnel view" | head -1)
 xdotool mousemove 160 120; sleep 0.5
