@@ -43,13 +43,15 @@ public:
     }
 
 private:
+    // Never destroyed: a context that outlives static destruction (one held in a static) can
+    // still release its reference.
     static std::mutex& mutex() {
-        static std::mutex m;
-        return m;
+        static auto* m = new std::mutex;
+        return *m;
     }
     static std::map<EGLDisplay, int>& counts() {
-        static std::map<EGLDisplay, int> c;
-        return c;
+        static auto* c = new std::map<EGLDisplay, int>;
+        return *c;
     }
 };
 
