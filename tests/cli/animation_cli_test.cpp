@@ -31,7 +31,6 @@ namespace {
 const fs::path kModels = fs::path(FRESNEL_SHARED_DIR) / "assets" / "models";
 
 using fresnel::test::command_line;
-using fresnel::test::fresh_test_dir;
 using fresnel::test::quote;
 using fresnel::test::run_captured;
 using fresnel::test::show;

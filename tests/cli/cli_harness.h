@@ -3,14 +3,16 @@
 // running one with its output captured, a fresh folder per test, and reading a file whole.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "temp_dir.h"
 
 namespace fresnel::test {
 
@@ -61,32 +63,21 @@ inline Result run_captured(const std::string& cmd, const std::filesystem::path& 
     return r;
 }
 
-// A fresh, empty folder under GoogleTest's temporary folder: PREFIX_TEST_PID for the running
-// test (PREFIX_PID outside one, as in a suite's set-up).
-inline std::filesystem::path fresh_test_dir(const std::string& prefix) {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = prefix + "_";
-    if (info) name.append(info->name()).append("_");
-    name.append(std::to_string(::getpid()));
-    const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / name;
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    return dir;
-}
-
-// A test with a fresh, empty folder of its own (dir_: fresh_test_dir(prefix)), removed after it.
+// A test with a fresh, empty folder of its own (dir_, a TempDir: tests/support/temp_dir.h),
+// removed after it.
 class TempDirTest : public ::testing::Test {
 protected:
     explicit TempDirTest(std::string prefix) : prefix_(std::move(prefix)) {}
-    void SetUp() override { dir_ = fresh_test_dir(prefix_); }
-    void TearDown() override {
-        std::error_code ec;
-        std::filesystem::remove_all(dir_, ec);
+    void SetUp() override {
+        scratch_ = std::make_unique<TempDir>(prefix_);
+        dir_ = scratch_->path();
     }
+    void TearDown() override { scratch_.reset(); }
     std::filesystem::path dir_;
 
 private:
     std::string prefix_;
+    std::unique_ptr<TempDir> scratch_;
 };
 
 }  // namespace fresnel::test

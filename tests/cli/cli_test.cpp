@@ -29,7 +29,6 @@ namespace {
 const fs::path kShared = FRESNEL_SHARED_DIR;
 
 using fresnel::test::command_line;
-using fresnel::test::fresh_test_dir;
 using fresnel::test::quote;
 using fresnel::test::run_captured;
 using fresnel::test::show;

@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 namespace {
 
 using fresnel::test::command_line;
-using fresnel::test::fresh_test_dir;
+using fresnel::test::TempDir;
 using fresnel::test::quote;
 using fresnel::test::run_captured;
 using fresnel::test::show;
@@ -73,6 +73,7 @@ const Case kCases[] = {
 class ExtensionFidelity : public ::testing::Test {
 protected:
     static fs::path dir_;
+    static inline std::unique_ptr<TempDir> scratch_;  // dir_, removed with it
     static std::string skip_reason_;
 
     static Result exec(const std::string& program, const std::vector<std::string>& args) {
@@ -80,7 +81,8 @@ protected:
     }
 
     static void SetUpTestSuite() {
-        dir_ = fresh_test_dir("fresnel_extension_fidelity");
+        scratch_ = std::make_unique<TempDir>("fresnel_extension_fidelity");
+        dir_ = scratch_->path();
         if (!fs::exists(kEnv)) {
             skip_reason_ = "shared environment not found: " + kEnv.string();
             return;
@@ -93,10 +95,7 @@ protected:
                                              (dir_ / "scenes").string()});
         if (r.exit_code != 0) skip_reason_ = "make-extension-spheres.py failed: " + show(r);
     }
-    static void TearDownTestSuite() {
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-    }
+    static void TearDownTestSuite() { scratch_.reset(); }
     void SetUp() override {
         if (!skip_reason_.empty()) GTEST_SKIP() << skip_reason_;
     }

@@ -31,7 +31,7 @@ namespace {
 const fs::path kTool = fs::path(FRESNEL_SHARED_DIR) / "tools" / "ogl1-ref";
 
 using fresnel::test::command_line;
-using fresnel::test::fresh_test_dir;
+using fresnel::test::TempDir;
 using fresnel::test::quote;
 using fresnel::test::run_captured;
 using fresnel::test::show;
@@ -74,6 +74,7 @@ const Case kCases[] = {
 class Ogl1Ref : public ::testing::Test {
 protected:
     static fs::path dir_;
+    static inline std::unique_ptr<TempDir> scratch_;  // dir_, removed with it
     static bool usable_;
     static std::string skip_reason_;
 
@@ -82,7 +83,8 @@ protected:
     }
 
     static void SetUpTestSuite() {
-        dir_ = fresh_test_dir("fresnel_ogl1_ref");
+        scratch_ = std::make_unique<TempDir>("fresnel_ogl1_ref");
+        dir_ = scratch_->path();
         if (!fs::exists(kTool / "render") || !fs::exists(kTool / "make-scenes")) {
             skip_reason_ = "no " + kTool.string();
             return;
@@ -94,10 +96,7 @@ protected:
         }
         usable_ = true;
     }
-    static void TearDownTestSuite() {
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-    }
+    static void TearDownTestSuite() { scratch_.reset(); }
     void SetUp() override {
         if (!usable_) GTEST_SKIP() << skip_reason_;
     }

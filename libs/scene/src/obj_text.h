@@ -6,9 +6,9 @@
 #include <cctype>
 #include <cerrno>
 #include <charconv>
-#include <map>
-#include <cstdlib>
 #include <cstdint>
+#include <cstdlib>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
