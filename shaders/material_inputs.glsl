@@ -16,7 +16,7 @@
 #ifdef HAS_BASE_COLOR_MAP
 uniform sampler2D u_base_color_map;
 #endif
-#ifdef HAS_METALLIC_ROUGHNESS_MAP
+#if defined(HAS_METALLIC_ROUGHNESS_MAP) && !defined(METALLIC_ROUGHNESS_IN_ALPHA)
 uniform sampler2D u_metallic_roughness_map;
 #endif
 #ifdef HAS_NORMAL_MAP
@@ -178,7 +178,7 @@ struct MaterialInputs {
 #if defined(DETAIL_SHARED_FOOTPRINT) && !defined(MATERIAL_EXPLICIT_LOD)
 #if defined(HAS_BASE_COLOR_MAP)
 #define SHARED_FOOTPRINT map_footprint(u_base_color_map, u_base_color_uv, u_base_color_transform, u_base_color_anisotropy)
-#elif defined(HAS_METALLIC_ROUGHNESS_MAP)
+#elif defined(HAS_METALLIC_ROUGHNESS_MAP) && !defined(METALLIC_ROUGHNESS_IN_ALPHA)
 #define SHARED_FOOTPRINT map_footprint(u_metallic_roughness_map, u_metallic_roughness_uv, u_metallic_roughness_transform, u_metallic_roughness_anisotropy)
 #else
 #define SHARED_FOOTPRINT map_footprint(u_occlusion_map, u_occlusion_uv, u_occlusion_transform, u_occlusion_anisotropy)
@@ -196,7 +196,24 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
 #endif
     m.base_color = u_base_color_factor * v_color;
 #ifdef HAS_BASE_COLOR_MAP
-    m.base_color *= SAMPLE_SHARED_DETAIL(u_base_color_map, u_base_color_uv, u_base_color_transform, u_base_color_anisotropy);  // an SRGB8_ALPHA8 texture: decoded by the sampler
+    // An SRGB8_ALPHA8 texture: decoded by the sampler (the alpha is linear).
+    vec4 base_texel = SAMPLE_SHARED_DETAIL(u_base_color_map, u_base_color_uv, u_base_color_transform, u_base_color_anisotropy);
+    m.base_color *= base_texel;
+#endif
+#ifdef METALLIC_ROUGHNESS_IN_ALPHA
+    // The metallic-roughness texture's channels in the alphas of the base colour (B, metallic),
+    // normal (G, roughness) and, with the occlusion, emissive (R) textures, which an opaque
+    // material does not read (feature::MetallicRoughnessInAlpha): metallic and roughness are
+    // the same texels through the same probes, one texture fewer to probe. The occlusion is
+    // then filtered as the emissive is, without anisotropy (the renderer's rule for the
+    // low-frequency maps). The base colour's alpha is set to 1 below (opaque).
+    vec4 normal_texel = SAMPLE_SHARED_DETAIL(u_normal_map, u_normal_uv, u_normal_transform, u_normal_anisotropy);
+#ifdef OCCLUSION_IN_METALLIC_ROUGHNESS
+    vec4 emissive_texel = sample_map(u_emissive_map, u_emissive_uv, u_emissive_transform);
+    vec4 mr = vec4(emissive_texel.a, normal_texel.a, base_texel.a, 1.0);
+#else
+    vec4 mr = vec4(1.0, normal_texel.a, base_texel.a, 1.0);
+#endif
 #endif
 #ifdef SPECULAR_GLOSSINESS
     // KHR_materials_pbrSpecularGlossiness: base colour is the diffuse colour, the specular
@@ -217,7 +234,9 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     m.metallic = u_metallic_factor;
     m.roughness = u_roughness_factor;
 #ifdef HAS_METALLIC_ROUGHNESS_MAP
+#ifndef METALLIC_ROUGHNESS_IN_ALPHA
     vec4 mr = SAMPLE_SHARED_DETAIL(u_metallic_roughness_map, u_metallic_roughness_uv, u_metallic_roughness_transform, u_metallic_roughness_anisotropy);
+#endif
     m.metallic *= mr.b;
     m.roughness *= mr.g;
 #endif
@@ -321,13 +340,16 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
     m.occlusion = 1.0;
 #if defined(OCCLUSION_IN_METALLIC_ROUGHNESS)
     // The R channel of the metallic-roughness texture (glTF's ORM packing, or the renderer's
-    // packing of the two images): the same texels through the same probes, one lookup fewer.
+    // packing of the two images): the same texels through the same probes, one lookup fewer
+    // (with METALLIC_ROUGHNESS_IN_ALPHA, the emissive texture's alpha: mr above).
     m.occlusion = 1.0 + u_occlusion_strength * (mr.r - 1.0);
 #elif defined(HAS_OCCLUSION_MAP)
     m.occlusion = 1.0 + u_occlusion_strength * (SAMPLE_SHARED_DETAIL(u_occlusion_map, u_occlusion_uv, u_occlusion_transform, u_occlusion_anisotropy).r - 1.0);
 #endif
     m.emissive = u_emissive_factor * u_emissive_strength;
-#ifdef HAS_EMISSIVE_MAP
+#if defined(METALLIC_ROUGHNESS_IN_ALPHA) && defined(OCCLUSION_IN_METALLIC_ROUGHNESS)
+    m.emissive *= emissive_texel.rgb;  // read with the occlusion
+#elif defined(HAS_EMISSIVE_MAP)
     m.emissive *= sample_map(u_emissive_map, u_emissive_uv, u_emissive_transform).rgb;
 #endif
     m.discard_fragment = false;
@@ -340,7 +362,10 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
 #endif
     m.normal = ng;
 #ifdef HAS_NORMAL_MAP
-    vec3 tn = SAMPLE_SHARED_DETAIL(u_normal_map, u_normal_uv, u_normal_transform, u_normal_anisotropy).rgb * 2.0 - 1.0;
+#ifndef METALLIC_ROUGHNESS_IN_ALPHA
+    vec4 normal_texel = SAMPLE_SHARED_DETAIL(u_normal_map, u_normal_uv, u_normal_transform, u_normal_anisotropy);
+#endif
+    vec3 tn = normal_texel.rgb * 2.0 - 1.0;
     tn.xy *= u_normal_scale;
     m.normal = normalize(mat3(t, b, ng) * tn);
 #endif

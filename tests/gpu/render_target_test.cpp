@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -14,6 +15,7 @@
 #include "fresnel/render/camera.h"
 #include "fresnel/render/lights.h"
 #include "fresnel/render/renderer.h"
+#include "fresnel/scene/mesh_ops.h"
 #include "fresnel/scene/procedural.h"
 #include "headless_context.h"
 
@@ -334,6 +336,101 @@ TEST_F(RenderTargets, PackedOcclusionIsTheOcclusionMap) {
         EXPECT_LE(max_diff, 1e-6f);
         EXPECT_GT(spread, 0.1f);  // the frames show the sphere, not only the background
     }
+}
+
+// The metallic-roughness texture read from the alphas of the base colour and normal textures
+// (and its occlusion from the emissive's: feature::MetallicRoughnessInAlpha) is the texture
+// read as stored: frames with RenderSettings::pack_channels on and off are the same, with one
+// texture fewer. A sphere with noise in every map, minified and anisotropic near the rim; the
+// occlusion, which in the emissive's alpha is filtered without anisotropy, is one value, so
+// no filter can tell the two apart. Materials that cannot pack (blended, or a map on another UV
+// set) draw as stored. With nearest sampling the frames are equal to the bit; filtered, they
+// differ by the sampler's precision (llvmpipe filters 8-bit unorm texels in fixed point and
+// sRGB ones, whose alpha now holds the metallic, in float: measured 0.002 at most).
+TEST_F(RenderTargets, MetallicRoughnessInAlphaIsTheSameImage) {
+    if (!start()) GTEST_SKIP() << why_;
+    auto noise = [](std::uint32_t seed) {
+        Image8 img(64, 64, 4);
+        for (auto& v : img.pixels) {
+            seed = seed * 1664525u + 1013904223u;
+            v = std::uint8_t(seed >> 24);
+        }
+        return img;
+    };
+    Image8 flat_occlusion(64, 64, 4);
+    for (std::size_t i = 0; i < flat_occlusion.pixels.size(); ++i) flat_occlusion.pixels[i] = i % 4 == 0 ? 90 : 255;
+    Image8 normals = noise(3);
+    for (std::size_t i = 2; i < normals.pixels.size(); i += 4) normals.pixels[i] = 255;  // z up, xy noise
+    enum Case { Plain, WithOcclusion, Blended, OtherUvSet };
+    auto scene_with = [&](Case c) {
+        Material m;
+        m.base_color_factor = glm::vec4(0.9f, 0.8f, 0.7f, 1.0f);
+        m.emissive_factor = glm::vec3(0.5f);
+        m.base_color.texture = 0;
+        m.metallic_roughness.texture = 1;
+        m.normal.texture = 2;
+        m.emissive.texture = 3;
+        if (c == WithOcclusion) {
+            m.occlusion.texture = 4;
+            m.occlusion_strength = 0.8f;
+        }
+        if (c == Blended) m.alpha_mode = AlphaMode::Blend;
+        if (c == OtherUvSet) m.normal.tex_coord = 1;
+        Primitive p = make_uv_sphere(48, 24);
+        for (auto& uv : p.uv0) uv *= 6.0f;
+        p.uv1 = p.uv0;
+        EXPECT_TRUE(generate_tangents(p, 0));
+        p.material = 0;
+        Scene s = make_single_primitive_scene(std::move(p), {m});
+        s.images = {{"base colour", noise(1)}, {"metallic-roughness", noise(2)}, {"normal", normals},
+                    {"emissive", noise(4)}, {"occlusion", flat_occlusion}};
+        s.textures = {{0, {}}, {1, {}}, {2, {}}, {3, {}}, {4, {}}};
+        return s;
+    };
+    RenderSettings rs;
+    rs.width = rs.height = 96;
+    rs.ambient = glm::vec3(1.0f);
+    std::map<Case, std::size_t> packed_bytes;
+    for (Case c : {Plain, WithOcclusion, Blended, OtherUvSet}) {
+        for (bool filtered : {false, true}) {
+            SCOPED_TRACE(std::to_string(int(c)) + (filtered ? " trilinear" : " nearest"));
+            Scene scene = scene_with(c);
+            if (!filtered)
+                for (auto& t : scene.textures) t.sampler = Sampler{Filter::Nearest, Filter::Nearest, MipmapMode::Nearest};
+            std::vector<ImageF> frames;
+            std::vector<std::size_t> bytes;
+            std::vector<int> packed_draws;
+            for (bool pack : {true, false}) {
+                rs.pack_channels = pack;
+                Renderer renderer(*context_);
+                renderer.set_scene(scene);
+                CameraSetup cam = orbit_camera(scene_bounds(scene, flatten(scene)), {}, rs.width, rs.height);
+                FrameStats stats;
+                frames.push_back(renderer.render(cam, default_lights(), rs, &stats));
+                EXPECT_EQ(stats.gl_errors, "");
+                bytes.push_back(renderer.texture_bytes());
+                packed_draws.push_back(stats.alpha_packed_draws);
+            }
+            const bool packs = c == Plain || c == WithOcclusion;
+            EXPECT_EQ(packed_draws[0], packs ? 1 : 0);
+            EXPECT_EQ(packed_draws[1], 0);
+            if (filtered) packed_bytes[c] = bytes[0];
+            float max_diff = 0.0f, spread = 0.0f;
+            for (std::size_t i = 0; i < frames[0].pixels.size(); ++i) {
+                max_diff = std::max(max_diff, std::abs(frames[0].pixels[i] - frames[1].pixels[i]));
+                spread = std::max(spread, std::abs(frames[1].pixels[i] - frames[1].pixels[0]));
+            }
+            std::printf("case %d, %s: packed against as stored: max difference %g (frame range %g)\n", int(c),
+                        filtered ? "trilinear" : "nearest", double(max_diff), double(spread));
+            EXPECT_LE(max_diff, filtered ? 4e-3f : 0.0f);
+            EXPECT_GT(spread, 0.1f);
+        }
+    }
+    // Packed, the metallic-roughness texture (64^2 RGBA8 and its mip chain: 5461 texels) is not
+    // uploaded, and the occlusion costs no texture either (as stored, it would be packed with
+    // the metallic-roughness texture); a material that cannot pack uploads its four.
+    EXPECT_EQ(packed_bytes[WithOcclusion], packed_bytes[Plain]);
+    EXPECT_EQ(packed_bytes[OtherUvSet], packed_bytes[Plain] + 5461u * 4u);
 }
 
 // Contexts share the process's EGL display: one going (its destructor) must leave the others

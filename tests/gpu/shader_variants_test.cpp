@@ -16,8 +16,9 @@
 // and its two maps), the KHR_materials_diffuse_transmission bits (the model and its two
 // maps), which together would multiply the fragment shader's ~20k sources by nine, and the
 // occlusion read from the metallic-roughness texture (one #if choosing where the occlusion's
-// value comes from), and the shared detail footprint (one #if choosing where the footprint
-// comes from, and the same sample calls). Every
+// value comes from), the shared detail footprint (one #if choosing where the footprint
+// comes from, and the same sample calls) and the metallic-roughness in alpha channels (#ifs
+// choosing which texel's channel is metallic, roughness and occlusion). Every
 // source without them compiles; of those with them, every kFilmStride-th (64th, in mask order)
 // and, on top, enough that each choice of the two groups meets every other bit the stage reads
 // both set and clear (pairwise coverage, asserted). Their code is a few #ifdef blocks that add
@@ -105,7 +106,7 @@ std::string describe(const Job& job) {
 constexpr FeatureMask kSampledGroup = feature::Iridescence | feature::IridescenceMap | feature::IridescenceThicknessMap |
                                    feature::DiffuseTransmission | feature::DiffuseTransmissionMap |
                                    feature::DiffuseTransmissionColorMap | feature::OcclusionInMetallicRoughness |
-                                   feature::DetailSharedFootprint;
+                                   feature::DetailSharedFootprint | feature::MetallicRoughnessInAlpha;
 constexpr std::size_t kFilmStride = 64;
 // The share of the mesh stages' sources compiled as GLSL 330 core too (all compile as 300 es).
 constexpr std::size_t kDesktopStride = 8;
@@ -204,6 +205,23 @@ TEST(ShaderFeatures, RulesAreCanonicalAndEnumerated) {
               HasUv0 | Unlit | BaseColorMap);
     EXPECT_TRUE(valid_features(HasNormal | HasTangent | HasUv0 | UseIbl | BaseColorMap | MetallicRoughnessMap | NormalMap |
                                OcclusionInMetallicRoughness | EmissiveMap | DetailSharedFootprint));
+    // The metallic-roughness in alpha channels needs the metallic-roughness, base colour and normal
+    // maps, the emissive map with the occlusion in the metallic-roughness texture, an opaque
+    // metallic-roughness material and no debug view.
+    const FeatureMask in_alpha = HasNormal | HasTangent | HasUv0 | UseIbl | BaseColorMap | MetallicRoughnessMap |
+                                 NormalMap | MetallicRoughnessInAlpha;
+    EXPECT_TRUE(valid_features(in_alpha));
+    EXPECT_TRUE(valid_features(in_alpha | OcclusionInMetallicRoughness | EmissiveMap | DetailSharedFootprint));
+    EXPECT_TRUE(valid_features(in_alpha | OcclusionMap | DetailSharedFootprint));  // an occlusion of its own
+    EXPECT_EQ(canonical_features(in_alpha | OcclusionInMetallicRoughness), (in_alpha | OcclusionInMetallicRoughness) &
+                                                                                ~MetallicRoughnessInAlpha);
+    for (FeatureMask map : {BaseColorMap, MetallicRoughnessMap, NormalMap})
+        EXPECT_EQ(canonical_features(in_alpha & ~map) & MetallicRoughnessInAlpha, 0u) << std::hex << map;
+    for (FeatureMask other : {FeatureMask(AlphaMask), FeatureMask(AlphaBlend), FeatureMask(DebugView),
+                              FeatureMask(SpecularGlossiness), FeatureMask(0)})
+        EXPECT_EQ(canonical_features(in_alpha | other) & MetallicRoughnessInAlpha,
+                  other ? 0u : MetallicRoughnessInAlpha) << std::hex << other;
+    EXPECT_EQ(canonical_features(in_alpha & ~HasTangent) & MetallicRoughnessInAlpha, 0u);  // no normal map
     // DamagedHelmet's variant exists unchanged.
     const FeatureMask helmet = HasNormal | HasTangent | HasUv0 | UseIbl | BaseColorMap | MetallicRoughnessMap |
                                NormalMap | OcclusionMap | EmissiveMap;

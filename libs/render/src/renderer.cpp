@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <map>
 #include <optional>
+#include <cassert>
 #include <tuple>
 
 #include "fresnel/core/error.h"
@@ -417,7 +418,8 @@ struct Renderer::Impl {
     // a software rasteriser more probes, so the low-frequency maps (emissive, the scalar
     // extension maps) go without: measured over the Khronos reference views, that moves
     // agreement by <= 0.16 dB. The occlusion is filtered as the metallic-roughness map is,
-    // since it is usually read from the same texels (occlusion_packs). The detail maps are
+    // since it is usually read from the same texels (occlusion_packs), unless it is read from
+    // the emissive's (alpha_packs). The detail maps are
     // filtered in the shader (sample_detail_map, shaders/material_inputs.glsl).
     static bool anisotropic_map(MaterialMap map) {
         switch (map) {
@@ -433,9 +435,18 @@ struct Renderer::Impl {
         }
     }
 
-    // (texture index, sRGB, the texture whose R channel replaces this one's or -1): the third
-    // is the occlusion packed into a metallic-roughness texture (occlusion_packs).
-    using TextureKey = std::tuple<int, bool, int>;
+    // A GL texture: a scene texture's image as stored (source -1), or with its channel `to`
+    // replaced by channel `from` of texture `source`'s image of the same size: the occlusion's R
+    // in a metallic-roughness texture's R (occlusion_packs), the metallic-roughness channels in
+    // alphas (alpha_packs).
+    struct TextureKey {
+        int texture = -1;
+        bool srgb = false;
+        int source = -1;
+        int from = 0, to = 0;
+        auto operator<=>(const TextureKey&) const = default;
+        bool packed() const { return source >= 0; }
+    };
     struct GpuTexture {
         gpu::Texture texture;
         bool mipmapped = false;
@@ -478,32 +489,74 @@ struct Renderer::Impl {
     static TextureKey metallic_roughness_key(const TextureSlot& mr, int packed) {
         return {mr.texture, false, packed >= 0 && packed != mr.texture ? packed : -1};
     }
-    // The level-0 image of `key`: the texture's image, or the copy with the packed R channel.
+    const Image8& image_of(int texture) const {
+        return scene->images[std::size_t(scene->textures[std::size_t(texture)].image)].pixels;
+    }
+    // The level-0 image of a packed key: the texture's image with the source's channel copied in.
     Image8 packed_image(const TextureKey& key) const {
-        const Image8& img = scene->images[std::size_t(scene->textures[std::size_t(std::get<0>(key))].image)].pixels;
-        Image8 out = img;
-        const Image8& ao = scene->images[std::size_t(scene->textures[std::size_t(std::get<2>(key))].image)].pixels;
+        Image8 out = image_of(key.texture);
+        const Image8& src = image_of(key.source);
         for (std::size_t i = 0, n = std::size_t(out.width) * std::size_t(out.height); i < n; ++i)
-            out.pixels[i * 4] = ao.pixels[i * 4];
+            out.pixels[i * 4 + std::size_t(key.to)] = src.pixels[i * 4 + std::size_t(key.from)];
         return out;
+    }
+
+    // Where an opaque metallic-roughness material's metallic-roughness texture can live in
+    // alpha channels the material does not read (feature::MetallicRoughnessInAlpha): its B
+    // (metallic) in the base colour texture's alpha, its G (roughness) in the normal texture's,
+    // and, when the occlusion is packed with it (`occlusion`: occlusion_packs' texture, whose
+    // R is the occlusion; -1 when it is not), the occlusion in the emissive texture's alpha.
+    // All of those maps usable, on one UV set through one transform, textures with one
+    // sampler and RGBA images of one size. The mip chains are built per channel and the alpha
+    // linearly in sRGB textures too (build_mip_chain), so every level holds the metallic-
+    // roughness texture's own texels: the probes of the base colour and normal maps read what
+    // the metallic-roughness probes read, one texture fewer. The occlusion in the emissive is
+    // filtered as the emissive (anisotropic_map: without anisotropy, as a low-frequency map).
+    // The keys of the textures then bound, or nothing.
+    struct AlphaPacking {
+        TextureKey base_color, normal, emissive;  // emissive: with the occlusion only
+    };
+    std::optional<AlphaPacking> alpha_packs(const Material& m, int occlusion) const {
+        if (m.specular_glossiness || m.alpha_mode != AlphaMode::Opaque) return std::nullopt;
+        const TextureSlot& mr = m.metallic_roughness;
+        std::vector<const TextureSlot*> slots{&mr, &m.base_color, &m.normal};
+        if (occlusion >= 0) slots.push_back(&m.emissive);
+        const Image8* size = nullptr;
+        for (const TextureSlot* t : slots) {
+            if (!usable(*t) || t->tex_coord != mr.tex_coord || t->transform != mr.transform ||
+                !(scene->textures[std::size_t(t->texture)].sampler == scene->textures[std::size_t(mr.texture)].sampler))
+                return std::nullopt;
+            const Image8& img = image_of(t->texture);
+            if (img.channels != 4 || (size && (img.width != size->width || img.height != size->height))) return std::nullopt;
+            size = &img;
+        }
+        if (occlusion >= 0) {
+            const Image8& ao = image_of(occlusion);
+            if (ao.channels != 4 || ao.width != size->width || ao.height != size->height) return std::nullopt;
+        }
+        AlphaPacking p;
+        p.base_color = {m.base_color.texture, true, mr.texture, 2, 3};
+        p.normal = {m.normal.texture, false, mr.texture, 1, 3};
+        if (occlusion >= 0) p.emissive = {m.emissive.texture, true, occlusion, 0, 3};
+        return p;
     }
 
     // Creates the GL texture for `key` from the image and its CPU-built mip chain.
     // `packed`: the level-0 image when the key packs an occlusion (packed_image), else null.
     GpuTexture make_texture(const TextureKey& key, const std::vector<Image8>* chain, const Image8* packed = nullptr) {
-        const Texture& tex = scene->textures[std::size_t(std::get<0>(key))];
+        const Texture& tex = scene->textures[std::size_t(key.texture)];
         Image8 local_packed;
-        if (std::get<2>(key) >= 0 && !packed) {
+        if (key.packed() && !packed) {
             local_packed = packed_image(key);
             packed = &local_packed;
         }
         const Image8& img = packed ? *packed : scene->images[std::size_t(tex.image)].pixels;
-        auto format = std::get<1>(key) ? gpu::TextureFormat::SRGB8_ALPHA8 : gpu::TextureFormat::RGBA8;
+        auto format = key.srgb ? gpu::TextureFormat::SRGB8_ALPHA8 : gpu::TextureFormat::RGBA8;
         GpuTexture g;
         g.mipmapped = wants_mipmaps(tex.sampler);
         std::vector<Image8> local;
         if (g.mipmapped && !chain) {
-            local = build_mip_chain(img, std::get<1>(key));
+            local = build_mip_chain(img, key.srgb);
             chain = &local;
         }
         std::vector<gpu::MipLevel> levels{{img.width, img.height, img.pixels.data()}};
@@ -519,12 +572,19 @@ struct Renderer::Impl {
         std::vector<TextureKey> keys;
         for (const auto& m : scene->materials) {
             const int packed = occlusion_packs(m);
+            // As draw_primitive packs (the debug view, or a mesh without tangents for the normal
+            // map, reads the textures as stored: those are uploaded when first drawn).
+            const std::optional<AlphaPacking> alpha = alpha_packs(m, packed);
             for (int i = 0; i < kMaterialMapCount; ++i) {
-                const TextureSlot* slot = material_map(m, MaterialMap(i));
-                if (!slot || !usable(*slot) || (packed >= 0 && MaterialMap(i) == MaterialMap::Occlusion)) continue;
-                keys.push_back(MaterialMap(i) == MaterialMap::MetallicRoughness
-                                   ? metallic_roughness_key(*slot, packed)
-                                   : TextureKey{slot->texture, material_map_info(MaterialMap(i)).srgb, -1});
+                const MaterialMap map = MaterialMap(i);
+                const TextureSlot* slot = material_map(m, map);
+                if (!slot || !usable(*slot) || (packed >= 0 && map == MaterialMap::Occlusion)) continue;
+                if (alpha && map == MaterialMap::MetallicRoughness) continue;
+                if (alpha && map == MaterialMap::BaseColor) keys.push_back(alpha->base_color);
+                else if (alpha && map == MaterialMap::Normal) keys.push_back(alpha->normal);
+                else if (alpha && packed >= 0 && map == MaterialMap::Emissive) keys.push_back(alpha->emissive);
+                else if (map == MaterialMap::MetallicRoughness) keys.push_back(metallic_roughness_key(*slot, packed));
+                else keys.push_back(TextureKey{slot->texture, material_map_info(map).srgb});
             }
         }
         std::sort(keys.begin(), keys.end());
@@ -532,13 +592,13 @@ struct Renderer::Impl {
         std::vector<std::vector<Image8>> chains(keys.size());
         std::vector<Image8> packed(keys.size());
         parallel_for(keys.size(), [&](std::size_t i) {
-            const Texture& tex = scene->textures[std::size_t(std::get<0>(keys[i]))];
-            if (std::get<2>(keys[i]) >= 0) packed[i] = packed_image(keys[i]);
-            const Image8& img = std::get<2>(keys[i]) >= 0 ? packed[i] : scene->images[std::size_t(tex.image)].pixels;
-            if (wants_mipmaps(tex.sampler)) chains[i] = build_mip_chain(img, std::get<1>(keys[i]));
+            const Texture& tex = scene->textures[std::size_t(keys[i].texture)];
+            if (keys[i].packed()) packed[i] = packed_image(keys[i]);
+            const Image8& img = keys[i].packed() ? packed[i] : scene->images[std::size_t(tex.image)].pixels;
+            if (wants_mipmaps(tex.sampler)) chains[i] = build_mip_chain(img, keys[i].srgb);
         });
         for (std::size_t i = 0; i < keys.size(); ++i) {
-            textures.emplace(keys[i], make_texture(keys[i], &chains[i], std::get<2>(keys[i]) >= 0 ? &packed[i] : nullptr));
+            textures.emplace(keys[i], make_texture(keys[i], &chains[i], keys[i].packed() ? &packed[i] : nullptr));
             chains[i] = {};
             packed[i] = {};
         }
@@ -558,7 +618,7 @@ struct Renderer::Impl {
                                     float* shader_anisotropy = nullptr, std::optional<TextureKey> packed_key = {}) {
         if (shader_anisotropy) *shader_anisotropy = 1.0f;
         if (!usable(ref)) return nullptr;
-        TextureKey key = packed_key ? *packed_key : TextureKey{ref.texture, srgb, -1};
+        TextureKey key = packed_key ? *packed_key : TextureKey{ref.texture, srgb};
         auto it = textures.find(key);
         if (it == textures.end()) it = textures.emplace(key, make_texture(key, nullptr)).first;
         GpuTexture& g = it->second;
@@ -588,14 +648,18 @@ struct Renderer::Impl {
     // reads (at least two of them) are the material's own textures, of one level-0 size, read
     // through one UV set and transform with one probe limit: then one footprint serves them
     // all (feature::DetailSharedFootprint) and the probes are those of one footprint each.
+    // With the metallic-roughness in alpha channels (feature::MetallicRoughnessInAlpha) it has
+    // no texture of its own.
     bool shares_detail_footprint(FeatureMask features, const gpu::Texture* const* bound, const MaterialUniforms& mu) {
         const MaterialBlock::Map* first = nullptr;
         const gpu::Texture* first_texture = nullptr;
         int count = 0;
+        const bool in_alpha = features & feature::MetallicRoughnessInAlpha;
         for (MaterialMap map : {MaterialMap::BaseColor, MaterialMap::MetallicRoughness, MaterialMap::Occlusion,
                                 MaterialMap::Normal}) {
             const int i = int(map);
             if (!(features & feature::map_bit(i))) continue;
+            if (in_alpha && map == MaterialMap::MetallicRoughness) continue;
             if (!bound[i] || bound[i] == &white_texture()) return false;  // a stand-in: not worth a variant
             const MaterialBlock::Map& b = mu.block.maps[std::size_t(i)];
             if (first && (b.uv != first->uv || b.transform != first->transform || b.anisotropy != first->anisotropy ||
@@ -852,23 +916,39 @@ struct Renderer::Impl {
         constexpr FeatureMask kMr = feature::map_bit(int(MaterialMap::MetallicRoughness));
         constexpr FeatureMask kAo = feature::map_bit(int(MaterialMap::Occlusion));
         if (packed >= 0 && (raw & kMr) && (raw & kAo)) raw = (raw & ~kAo) | feature::OcclusionInMetallicRoughness;
+        // And the metallic-roughness texture in the other maps' alphas where it can be (the
+        // canonical rules drop the bit where the variant cannot read it so).
+        const std::optional<AlphaPacking> alpha =
+            settings.pack_channels ? alpha_packs(m, (raw & feature::OcclusionInMetallicRoughness) ? packed : -1)
+                                   : std::nullopt;
+        if (alpha) raw |= feature::MetallicRoughnessInAlpha;
         // Upload the maps the variant reads; one without a usable image counts as absent.
         FeatureMask features = canonical_features(raw);
+        const bool in_alpha = features & feature::MetallicRoughnessInAlpha;
+        const bool occlusion_in_emissive = in_alpha && (features & feature::OcclusionInMetallicRoughness);
         for (int i = 0; i < kMaterialMapCount; ++i) {
             if (!(features & raw & feature::map_bit(i))) continue;
-            const MaterialMapInfo& info = material_map_info(MaterialMap(i));
+            const MaterialMap map = MaterialMap(i);
+            const MaterialMapInfo& info = material_map_info(map);
             std::optional<TextureKey> key;
-            if (MaterialMap(i) == MaterialMap::MetallicRoughness && (features & feature::OcclusionInMetallicRoughness))
+            if (map == MaterialMap::MetallicRoughness && in_alpha) continue;  // no texture of its own
+            if (map == MaterialMap::MetallicRoughness && (features & feature::OcclusionInMetallicRoughness))
                 key = metallic_roughness_key(*mu.maps[std::size_t(i)], packed);
+            if (in_alpha && map == MaterialMap::BaseColor) key = alpha->base_color;
+            if (in_alpha && map == MaterialMap::Normal) key = alpha->normal;
+            if (occlusion_in_emissive && map == MaterialMap::Emissive) key = alpha->emissive;
             bound[i] = texture_for(*mu.maps[std::size_t(i)], info.srgb,
-                                   anisotropic_map(MaterialMap(i)) ? Anisotropic::Shader : Anisotropic::Off,
+                                   anisotropic_map(map) ? Anisotropic::Shader : Anisotropic::Off,
                                    settings.anisotropy, &mu.block.maps[std::size_t(i)].anisotropy, key);
             if (!bound[i]) raw &= ~feature::map_bit(i);
         }
         features = canonical_features(raw);
+        // alpha_packs found every texture it names usable, so none went missing above.
+        assert(in_alpha == bool(features & feature::MetallicRoughnessInAlpha));
         for (int i = 0; i < kMaterialMapCount; ++i) {
             // A map the variant samples but the material lacks reads the white texture: x * 1.0 = x.
-            if (!(features & feature::map_bit(i))) bound[i] = nullptr;
+            if (!(features & feature::map_bit(i)) || (in_alpha && MaterialMap(i) == MaterialMap::MetallicRoughness))
+                bound[i] = nullptr;
             else if (!bound[i]) bound[i] = &white_texture();
         }
         // One anisotropic footprint for the detail maps that agree (DetailSharedFootprint).
@@ -939,6 +1019,7 @@ struct Renderer::Impl {
 
         submit(p, m, det, stats);
         if (shared_footprint) ++stats.shared_footprint_draws;
+        if (in_alpha) ++stats.alpha_packed_draws;
     }
 };
 
@@ -998,14 +1079,16 @@ ImageF Renderer::render(const CameraSetup& cam, const std::vector<LightInstance>
 
 std::optional<Renderer::TexturePreview> Renderer::texture_preview(int texture) const {
     for (bool srgb : {false, true}) {
-        auto it = impl_->textures.find({texture, srgb, -1});
+        auto it = impl_->textures.find({texture, srgb});
         if (it != impl_->textures.end() && it->second.texture)
             return TexturePreview{it->second.texture.id(), it->second.texture.width(), it->second.texture.height(), srgb};
     }
-    // A metallic-roughness texture or an occlusion uploaded only packed together (occlusion_packs).
+    // A texture uploaded only with another's channel in it, or a metallic-roughness texture and
+    // an occlusion packed together (occlusion_packs: the one texture shows both). A
+    // metallic-roughness texture spread over alpha channels (alpha_packs) has no texture of its own.
     for (const auto& [key, g] : impl_->textures)
-        if (g.texture && std::get<2>(key) >= 0 && (std::get<0>(key) == texture || std::get<2>(key) == texture))
-            return TexturePreview{g.texture.id(), g.texture.width(), g.texture.height(), false, true};
+        if (g.texture && key.packed() && (key.texture == texture || (key.source == texture && key.to == 0)))
+            return TexturePreview{g.texture.id(), g.texture.width(), g.texture.height(), key.srgb, true};
     return std::nullopt;
 }
 

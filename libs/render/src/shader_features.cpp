@@ -49,6 +49,7 @@ constexpr FeatureInfo kFeatures[] = {
     {DiffuseTransmissionColorMap, "HAS_DIFFUSE_TRANSMISSION_COLOR_MAP"},
     {OcclusionInMetallicRoughness, "OCCLUSION_IN_METALLIC_ROUGHNESS"},
     {DetailSharedFootprint, "DETAIL_SHARED_FOOTPRINT"},
+    {MetallicRoughnessInAlpha, "METALLIC_ROUGHNESS_IN_ALPHA"},
 };
 constexpr bool table_is_kall_in_bit_order() {
     FeatureMask seen = 0;
@@ -127,6 +128,12 @@ FeatureMask canonical_features(FeatureMask m) {
         m |= allowed & ~(NormalMap | ClearcoatNormalMap | AnisotropyMap |
                          (m & OcclusionInMetallicRoughness ? OcclusionMap : FeatureMask(0)));
     if (std::popcount(m & kSharedFootprintMaps) < 2) m &= ~DetailSharedFootprint;
+    if (m & MetallicRoughnessInAlpha) {
+        const FeatureMask needs = MetallicRoughnessMap | BaseColorMap | NormalMap |
+                                  (m & OcclusionInMetallicRoughness ? EmissiveMap : FeatureMask(0));
+        if ((m & needs) != needs || (m & (SpecularGlossiness | AlphaMask | AlphaBlend | DebugView)))
+            m &= ~MetallicRoughnessInAlpha;
+    }
     return m;
 }
 
@@ -137,7 +144,7 @@ std::vector<FeatureMask> all_feature_sets() {
     // skinning, morphing) come in groups that no rule on bits 0..22 looks at, except that unlit,
     // specular-glossiness and missing tangents drop some and the debug view turns the maps on:
     // so every valid mask is a valid mask of bits 0..22 plus one choice per group, kept when
-    // canonical. 2^23 masks (four times: bits 39 and 40, below) instead of 2^41.
+    // canonical. 2^23 masks (eight times: bits 39, 40 and 41, below) instead of 2^42.
     std::vector<FeatureMask> out;
     constexpr FeatureMask kLow = (FeatureMask(1) << 23) - 1;
     const FeatureMask animation[] = {0, Skinned, MorphTargets, Skinned | MorphTargets};
@@ -153,9 +160,12 @@ std::vector<FeatureMask> all_feature_sets() {
         // the low bits of a valid mask with it are canonical alone, or with the occlusion map
         // added (the debug view adds it where allowed). Both ways can give one mask: deduplicated.
         // The shared detail footprint (bit 40) needs two of four low map bits: the same masks
-        // with it, where canonical.
-        for (FeatureMask m : {low, (low & ~OcclusionMap) | OcclusionInMetallicRoughness, low | DetailSharedFootprint,
-                              (low & ~OcclusionMap) | OcclusionInMetallicRoughness | DetailSharedFootprint}) {
+        // with it, where canonical; so is the metallic-roughness in alpha channels (bit 41).
+        const FeatureMask occlusion_in_mr = (low & ~OcclusionMap) | OcclusionInMetallicRoughness;
+        for (FeatureMask m : {low, occlusion_in_mr, low | DetailSharedFootprint, occlusion_in_mr | DetailSharedFootprint,
+                              low | MetallicRoughnessInAlpha, occlusion_in_mr | MetallicRoughnessInAlpha,
+                              low | DetailSharedFootprint | MetallicRoughnessInAlpha,
+                              occlusion_in_mr | DetailSharedFootprint | MetallicRoughnessInAlpha}) {
             if (m != low && canonical_features(m) != m) continue;
             for (FeatureMask a : animation)
                 for (FeatureMask s : sheen)

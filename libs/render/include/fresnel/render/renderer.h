@@ -128,6 +128,16 @@ struct RenderSettings {
     // probes through one footprint computed once (feature::DetailSharedFootprint): the same
     // image, faster. false computes one per map (tests compare the two).
     bool share_footprints = true;
+    // An opaque material's metallic-roughness texture read from alpha channels it does not
+    // read, where its maps share UV set, transform, sampler and size
+    // (feature::MetallicRoughnessInAlpha): metallic in the base colour texture's alpha,
+    // roughness in the normal texture's, and an occlusion packed with them in the emissive
+    // texture's. One texture fewer for every fragment to probe (DamagedHelmet: ~15 % of the
+    // frame). The same image, except that an occlusion in the emissive's alpha is filtered as
+    // the emissive is, without anisotropy (the rule for low-frequency maps; DamagedHelmet
+    // agrees with the Khronos references as well on average, docs/performance.md). false
+    // reads the textures as stored (tests compare the two).
+    bool pack_channels = true;
 };
 
 // Whether every skin and morphed primitive of `scene` fits RenderSettings::gpu_animation's
@@ -161,6 +171,8 @@ struct FrameStats {
     bool targets_rebuilt = false;
     // Draws whose detail maps shared one anisotropic footprint (RenderSettings::share_footprints).
     int shared_footprint_draws = 0;
+    // Draws that read their metallic-roughness texture from alpha channels (RenderSettings::pack_channels).
+    int alpha_packed_draws = 0;
 };
 
 class Renderer {
@@ -201,7 +213,9 @@ public:
     // GPU layer's texture name and size; nothing when the renderer has not uploaded it. The
     // linear upload is preferred; a texture only materials read as sRGB gives that one.
     // A metallic-roughness texture and an occlusion stored together (`packed`: the occlusion's
-    // R channel in the metallic-roughness texture's R) preview as that one texture.
+    // R channel in the metallic-roughness texture's R) preview as that one texture; a texture
+    // uploaded only with another's channel in its alpha (RenderSettings::pack_channels) previews
+    // so, `packed` too, and a metallic-roughness texture spread over alphas has no preview.
     struct TexturePreview {
         unsigned id = 0;
         int width = 0, height = 0;

@@ -77,8 +77,19 @@ enum : FeatureMask {
     // them all: the same probes as one footprint each, computed once (DETAIL_SHARED_FOOTPRINT,
     // material_inputs.glsl; the renderer's shares_detail_footprint).
     DetailSharedFootprint = FeatureMask(1) << 40,
+    // The metallic-roughness texture's B (metallic) and G (roughness) are the alpha channels of
+    // the base colour and normal textures, and with OcclusionInMetallicRoughness its R (the
+    // occlusion) is the emissive texture's alpha, filtered as the emissive is (without
+    // anisotropy, as the other low-frequency maps): the renderer's copies of those channels
+    // into alphas that an opaque material does not read (Renderer's alpha_packs), where the
+    // maps share UV set, transform, sampler and size. One texture fewer to probe per
+    // fragment; no metallic-roughness map bound.
+    // Needs the metallic-roughness, base colour and normal maps, an opaque metallic-roughness
+    // material (no alpha mode, not specular-glossiness), no debug view, and with the occlusion
+    // the emissive map (METALLIC_ROUGHNESS_IN_ALPHA, material_inputs.glsl).
+    MetallicRoughnessInAlpha = FeatureMask(1) << 41,
 };
-constexpr int kCount = 41;
+constexpr int kCount = 42;
 constexpr int kFirstMap = 12;
 constexpr int kMapCount = 20;
 // Bit positions below kCount that no feature uses (none now).
@@ -145,6 +156,9 @@ std::vector<std::string> feature_defines(FeatureMask mask);
 //    in: factor * 1, colour * 1); unlit drops it.
 //  - the shared detail footprint needs two of the base colour, metallic-roughness, occlusion
 //    and normal maps (after the rules above).
+//  - the metallic-roughness in alpha channels needs the metallic-roughness, base colour and
+//    normal maps (and the emissive map with the occlusion in the metallic-roughness texture),
+//    and neither specular-glossiness, an alpha mode nor the debug view.
 // Normal maps and the anisotropy map are never stood in for: a flat normal texel is not
 // exactly (0, 0, 1), a white anisotropy texel is direction (1, 1).
 FeatureMask canonical_features(FeatureMask mask);
