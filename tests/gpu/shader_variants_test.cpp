@@ -220,7 +220,7 @@ TEST(ShaderFeatures, RulesAreCanonicalAndEnumerated) {
     for (FeatureMask other : {FeatureMask(AlphaMask), FeatureMask(AlphaBlend), FeatureMask(DebugView),
                               FeatureMask(SpecularGlossiness), FeatureMask(0)})
         EXPECT_EQ(canonical_features(in_alpha | other) & MetallicRoughnessInAlpha,
-                  other ? 0u : MetallicRoughnessInAlpha) << std::hex << other;
+                  other ? FeatureMask(0) : FeatureMask(MetallicRoughnessInAlpha)) << std::hex << other;
     EXPECT_EQ(canonical_features(in_alpha & ~HasTangent) & MetallicRoughnessInAlpha, 0u);  // no normal map
     // DamagedHelmet's variant exists unchanged.
     const FeatureMask helmet = HasNormal | HasTangent | HasUv0 | UseIbl | BaseColorMap | MetallicRoughnessMap |
