@@ -270,21 +270,26 @@ TEST_F(RenderTargets, AlternatingFrameFormatsKeepTheirTargets) {
     renderer.finish();
 }
 
+// A 64^2 RGBA image of byte noise (a linear congruential sequence from `seed`), the texels of
+// the packing tests: every channel different, so a channel read from the wrong place shows.
+namespace {
+Image8 noise_image(std::uint32_t seed) {
+    Image8 img(64, 64, 4);
+    for (auto& v : img.pixels) {
+        seed = seed * 1664525u + 1013904223u;
+        v = std::uint8_t(seed >> 24);
+    }
+    return img;
+}
+}  // namespace
+
 // The occlusion read from the metallic-roughness texture's R channel (the renderer's packing of
 // two images, or one ORM texture: feature::OcclusionInMetallicRoughness) is the occlusion read
 // from its own texture through the same anisotropic probes: a sphere whose occlusion is on
 // TEXCOORD_1 (a copy of TEXCOORD_0, so it cannot be packed) renders the same frame.
 TEST_F(RenderTargets, PackedOcclusionIsTheOcclusionMap) {
     if (!start()) GTEST_SKIP() << why_;
-    auto noise = [](std::uint32_t seed) {
-        Image8 img(64, 64, 4);
-        for (auto& v : img.pixels) {
-            seed = seed * 1664525u + 1013904223u;
-            v = std::uint8_t(seed >> 24);
-        }
-        return img;
-    };
-    const Image8 mr = noise(1), ao = noise(2);
+    const Image8 mr = noise_image(1), ao = noise_image(2);
     Image8 orm = mr;
     for (std::size_t i = 0; i < orm.pixels.size(); i += 4) orm.pixels[i] = ao.pixels[i];
     enum Layout { Packed, Separate, Orm };
@@ -349,17 +354,9 @@ TEST_F(RenderTargets, PackedOcclusionIsTheOcclusionMap) {
 // sRGB ones, whose alpha now holds the metallic, in float: measured 0.002 at most).
 TEST_F(RenderTargets, MetallicRoughnessInAlphaIsTheSameImage) {
     if (!start()) GTEST_SKIP() << why_;
-    auto noise = [](std::uint32_t seed) {
-        Image8 img(64, 64, 4);
-        for (auto& v : img.pixels) {
-            seed = seed * 1664525u + 1013904223u;
-            v = std::uint8_t(seed >> 24);
-        }
-        return img;
-    };
     Image8 flat_occlusion(64, 64, 4);
     for (std::size_t i = 0; i < flat_occlusion.pixels.size(); ++i) flat_occlusion.pixels[i] = i % 4 == 0 ? 90 : 255;
-    Image8 normals = noise(3);
+    Image8 normals = noise_image(3);
     for (std::size_t i = 2; i < normals.pixels.size(); i += 4) normals.pixels[i] = 255;  // z up, xy noise
     enum Case { Plain, WithOcclusion, Blended, OtherUvSet };
     auto scene_with = [&](Case c) {
@@ -382,8 +379,8 @@ TEST_F(RenderTargets, MetallicRoughnessInAlphaIsTheSameImage) {
         EXPECT_TRUE(generate_tangents(p, 0));
         p.material = 0;
         Scene s = make_single_primitive_scene(std::move(p), {m});
-        s.images = {{"base colour", noise(1)}, {"metallic-roughness", noise(2)}, {"normal", normals},
-                    {"emissive", noise(4)}, {"occlusion", flat_occlusion}};
+        s.images = {{"base colour", noise_image(1)}, {"metallic-roughness", noise_image(2)}, {"normal", normals},
+                    {"emissive", noise_image(4)}, {"occlusion", flat_occlusion}};
         s.textures = {{0, {}}, {1, {}}, {2, {}}, {3, {}}, {4, {}}};
         return s;
     };

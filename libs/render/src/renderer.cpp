@@ -476,22 +476,22 @@ struct Renderer::Impl {
         if (m.specular_glossiness) return -1;
         const TextureSlot& mr = m.metallic_roughness;
         const TextureSlot& ao = m.occlusion;
-        if (!usable(mr) || !usable(ao) || mr.tex_coord != ao.tex_coord || mr.transform != ao.transform) return -1;
-        if (mr.texture == ao.texture) return ao.texture;
-        const Texture& a = scene->textures[std::size_t(mr.texture)];
-        const Texture& b = scene->textures[std::size_t(ao.texture)];
-        const Image8& ia = scene->images[std::size_t(a.image)].pixels;
-        const Image8& ib = scene->images[std::size_t(b.image)].pixels;
-        const bool same_size = ia.width == ib.width && ia.height == ib.height && ia.channels == 4 && ib.channels == 4;
-        return a.sampler == b.sampler && same_size ? ao.texture : -1;
-    }
-    // The key of the metallic-roughness texture a material binds: with its occlusion packed in
-    // when occlusion_packs says so and the two are different textures.
-    static TextureKey metallic_roughness_key(const TextureSlot& mr, int packed) {
-        return {mr.texture, false, packed >= 0 && packed != mr.texture ? packed : -1};
+        if (mr.texture == ao.texture && usable(mr) && mr.tex_coord == ao.tex_coord && mr.transform == ao.transform)
+            return ao.texture;  // glTF's ORM packing: one texture already
+        return stored_alike(mr, ao) ? ao.texture : -1;
     }
     const Image8& image_of(int texture) const {
         return scene->images[std::size_t(scene->textures[std::size_t(texture)].image)].pixels;
+    }
+    // Whether the texels of maps `a` and `b` can share one texture, channel by channel (the
+    // renderer's packings, occlusion_packs and alpha_packs): both usable, on one UV set through
+    // one transform, textures with one sampler and RGBA images of one size.
+    bool stored_alike(const TextureSlot& a, const TextureSlot& b) const {
+        if (!usable(a) || !usable(b) || a.tex_coord != b.tex_coord || a.transform != b.transform) return false;
+        const Image8& ia = image_of(a.texture);
+        const Image8& ib = image_of(b.texture);
+        return scene->textures[std::size_t(a.texture)].sampler == scene->textures[std::size_t(b.texture)].sampler &&
+               ia.channels == 4 && ib.channels == 4 && ia.width == ib.width && ia.height == ib.height;
     }
     // The level-0 image of a packed key: the texture's image with the source's channel copied in.
     Image8 packed_image(const TextureKey& key) const {
@@ -507,8 +507,7 @@ struct Renderer::Impl {
     // (metallic) in the base colour texture's alpha, its G (roughness) in the normal texture's,
     // and, when the occlusion is packed with it (`occlusion`: occlusion_packs' texture, whose
     // R is the occlusion; -1 when it is not), the occlusion in the emissive texture's alpha.
-    // All of those maps usable, on one UV set through one transform, textures with one
-    // sampler and RGBA images of one size. The mip chains are built per channel and the alpha
+    // All of those maps stored alike (stored_alike; the occlusion is, by occlusion_packs). The mip chains are built per channel and the alpha
     // linearly in sRGB textures too (build_mip_chain), so every level holds the metallic-
     // roughness texture's own texels: the probes of the base colour and normal maps read what
     // the metallic-roughness probes read, one texture fewer. The occlusion in the emissive is
@@ -520,26 +519,26 @@ struct Renderer::Impl {
     std::optional<AlphaPacking> alpha_packs(const Material& m, int occlusion) const {
         if (m.specular_glossiness || m.alpha_mode != AlphaMode::Opaque) return std::nullopt;
         const TextureSlot& mr = m.metallic_roughness;
-        // Per draw: no allocation (a warm frame allocates nothing, frame_allocations_test).
-        const std::array<const TextureSlot*, 4> slots{&mr, &m.base_color, &m.normal, &m.emissive};
-        const Image8* size = nullptr;
-        for (const TextureSlot* t : std::span(slots).first(occlusion >= 0 ? 4 : 3)) {
-            if (!usable(*t) || t->tex_coord != mr.tex_coord || t->transform != mr.transform ||
-                !(scene->textures[std::size_t(t->texture)].sampler == scene->textures[std::size_t(mr.texture)].sampler))
-                return std::nullopt;
-            const Image8& img = image_of(t->texture);
-            if (img.channels != 4 || (size && (img.width != size->width || img.height != size->height))) return std::nullopt;
-            size = &img;
-        }
-        if (occlusion >= 0) {
-            const Image8& ao = image_of(occlusion);
-            if (ao.channels != 4 || ao.width != size->width || ao.height != size->height) return std::nullopt;
-        }
+        if (!stored_alike(mr, m.base_color) || !stored_alike(mr, m.normal) ||
+            (occlusion >= 0 && !stored_alike(mr, m.emissive)))
+            return std::nullopt;
         AlphaPacking p;
         p.base_color = {m.base_color.texture, true, mr.texture, 2, 3};
         p.normal = {m.normal.texture, false, mr.texture, 1, 3};
         if (occlusion >= 0) p.emissive = {m.emissive.texture, true, occlusion, 0, 3};
         return p;
+    }
+    // The texture a material's map `map` (its `slot`) binds under the packings in force:
+    // `occlusion`, the occlusion packed into the metallic-roughness texture (occlusion_packs)
+    // or -1; `alpha`, the metallic-roughness texture in alpha channels (alpha_packs) or null,
+    // under which the metallic-roughness map binds nothing.
+    static TextureKey map_key(const TextureSlot& slot, MaterialMap map, int occlusion, const AlphaPacking* alpha) {
+        if (alpha && map == MaterialMap::BaseColor) return alpha->base_color;
+        if (alpha && map == MaterialMap::Normal) return alpha->normal;
+        if (alpha && occlusion >= 0 && map == MaterialMap::Emissive) return alpha->emissive;
+        if (map == MaterialMap::MetallicRoughness)  // with the occlusion's R unless one texture has both
+            return {slot.texture, false, occlusion >= 0 && occlusion != slot.texture ? occlusion : -1};
+        return {slot.texture, material_map_info(map).srgb};
     }
 
     // Creates the GL texture for `key` from the image and its CPU-built mip chain.
@@ -581,11 +580,7 @@ struct Renderer::Impl {
                 const TextureSlot* slot = material_map(m, map);
                 if (!slot || !usable(*slot) || (packed >= 0 && map == MaterialMap::Occlusion)) continue;
                 if (alpha && map == MaterialMap::MetallicRoughness) continue;
-                if (alpha && map == MaterialMap::BaseColor) keys.push_back(alpha->base_color);
-                else if (alpha && map == MaterialMap::Normal) keys.push_back(alpha->normal);
-                else if (alpha && packed >= 0 && map == MaterialMap::Emissive) keys.push_back(alpha->emissive);
-                else if (map == MaterialMap::MetallicRoughness) keys.push_back(metallic_roughness_key(*slot, packed));
-                else keys.push_back(TextureKey{slot->texture, material_map_info(map).srgb});
+                keys.push_back(map_key(*slot, map, packed, alpha ? &*alpha : nullptr));
             }
         }
         std::sort(keys.begin(), keys.end());
@@ -926,18 +921,14 @@ struct Renderer::Impl {
         // Upload the maps the variant reads; one without a usable image counts as absent.
         FeatureMask features = canonical_features(raw);
         const bool in_alpha = features & feature::MetallicRoughnessInAlpha;
-        const bool occlusion_in_emissive = in_alpha && (features & feature::OcclusionInMetallicRoughness);
         for (int i = 0; i < kMaterialMapCount; ++i) {
             if (!(features & raw & feature::map_bit(i))) continue;
             const MaterialMap map = MaterialMap(i);
             const MaterialMapInfo& info = material_map_info(map);
-            std::optional<TextureKey> key;
             if (map == MaterialMap::MetallicRoughness && in_alpha) continue;  // no texture of its own
-            if (map == MaterialMap::MetallicRoughness && (features & feature::OcclusionInMetallicRoughness))
-                key = metallic_roughness_key(*mu.maps[std::size_t(i)], packed);
-            if (in_alpha && map == MaterialMap::BaseColor) key = alpha->base_color;
-            if (in_alpha && map == MaterialMap::Normal) key = alpha->normal;
-            if (occlusion_in_emissive && map == MaterialMap::Emissive) key = alpha->emissive;
+            const TextureKey key =
+                map_key(*mu.maps[std::size_t(i)], map, (features & feature::OcclusionInMetallicRoughness) ? packed : -1,
+                        in_alpha ? &*alpha : nullptr);
             bound[i] = texture_for(*mu.maps[std::size_t(i)], info.srgb,
                                    anisotropic_map(map) ? Anisotropic::Shader : Anisotropic::Off,
                                    settings.anisotropy, &mu.block.maps[std::size_t(i)].anisotropy, key);
