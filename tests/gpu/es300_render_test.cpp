@@ -18,6 +18,7 @@
 #include "fresnel/core/image.h"
 #include "fresnel/core/metrics.h"
 #include "fresnel/gpu/context.h"
+#include "fresnel/gpu/resources.h"
 #include "fresnel/ibl/bake.h"
 #include "fresnel/ibl/environment.h"
 #include "fresnel/render/camera.h"
@@ -162,4 +163,35 @@ TEST_F(Es300Render, FallbackTargetsMatchDesktop) {
     // target holds the display values; it only quantises them before the MSAA average
     // (measured on llvmpipe: RGBA16F identical, RGBA8 60.0 dB).
     expect_agreement(desktop, es, half ? "DamagedHelmet, RGBA16F targets, ES 3.0 vs GL 3.3" : "DamagedHelmet, RGBA8 targets, ES 3.0 vs GL 3.3", 40.0);
+}
+
+TEST_F(Es300Render, UnfilterableFloatTablesMatchDesktop) {
+    // Run by es300_fallback_float_nearest with MESA_EXTENSION_OVERRIDE hiding
+    // OES_texture_float_linear: ES 3.0 alone does not filter 32-bit float textures linearly
+    // (a LINEAR one is incomplete and samples as zero), so the split-sum and sheen tables and
+    // the other RGBA32F textures must be read with NEAREST there, whatever sampler is asked for.
+    const char* hidden = std::getenv("MESA_EXTENSION_OVERRIDE");
+    if (!hidden || !std::strstr(hidden, "-GL_OES_texture_float_linear"))
+        GTEST_SKIP() << "run with MESA_EXTENSION_OVERRIDE=-GL_OES_texture_float_linear (ctest -R es300_fallback)";
+    Result desktop = render_with(gpu::Api::OpenGL33, *scene_, *env_, DebugChannel::None);
+    Result es = render_with(gpu::Api::OpenGLES30, *scene_, *env_, DebugChannel::None);
+    EXPECT_TRUE(desktop.caps.float_linear_filtering);
+    EXPECT_FALSE(es.caps.float_linear_filtering);
+    EXPECT_EQ(es.gl_errors, "");
+    expect_agreement(desktop, es, "DamagedHelmet, float tables read NEAREST, ES 3.0 vs GL 3.3", 40.0);
+    // Mesa still filters what the override hides, so the images cannot show a zero table:
+    // check the filter the GPU layer chose instead.
+    for (gpu::Api api : {gpu::Api::OpenGL33, gpu::Api::OpenGLES30}) {
+        gpu::ContextOptions options;
+        options.api = api;
+        auto context = gpu::create_headless_context(options);
+        const float texel[4] = {1, 1, 1, 1};
+        gpu::Texture table = gpu::Texture::create_2d(1, 1, gpu::TextureFormat::RGBA32F, texel, false);
+        table.set_sampler(gpu::SamplerState::clamped(Filter::Linear));
+        gpu::Texture colour = gpu::Texture::create_2d(1, 1, gpu::TextureFormat::RGBA8, nullptr, false);
+        colour.set_sampler(gpu::SamplerState::clamped(Filter::Linear));
+        const bool es_api = api == gpu::Api::OpenGLES30;
+        EXPECT_EQ(table.filters_linearly(), !es_api) << (es_api ? "ES 3.0" : "GL 3.3");
+        EXPECT_TRUE(colour.filters_linearly());
+    }
 }

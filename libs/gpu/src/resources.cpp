@@ -98,6 +98,23 @@ bool filterable(TextureFormat f) {
     if (f != TextureFormat::RGBA32F || gl::is_desktop()) return true;
     return gl::has_extension("GL_OES_texture_float_linear");
 }
+GLint gl_filter(Filter f) { return f == Filter::Nearest ? GL_NEAREST : GL_LINEAR; }
+GLint gl_min_filter(Filter f, MipmapMode m) {
+    switch (m) {
+        case MipmapMode::None: return gl_filter(f);
+        case MipmapMode::Nearest: return f == Filter::Nearest ? GL_NEAREST_MIPMAP_NEAREST : GL_LINEAR_MIPMAP_NEAREST;
+        case MipmapMode::Linear: break;
+    }
+    return f == Filter::Nearest ? GL_NEAREST_MIPMAP_LINEAR : GL_LINEAR_MIPMAP_LINEAR;
+}
+GLint gl_wrap(Wrap w) {
+    switch (w) {
+        case Wrap::ClampToEdge: return GL_CLAMP_TO_EDGE;
+        case Wrap::MirroredRepeat: return GL_MIRRORED_REPEAT;
+        case Wrap::Repeat: break;
+    }
+    return GL_REPEAT;
+}
 }  // namespace
 
 Texture Texture::create_2d(int width, int height, TextureFormat format, const void* data, bool mipmaps) {
@@ -113,6 +130,7 @@ Texture Texture::create_2d(int width, int height, TextureFormat format, const vo
     if (mipmaps) glGenerateMipmap(GL_TEXTURE_2D);
     t.bytes_ = texels(width, height, mipmaps) * texel_bytes(format);
     const bool linear = filterable(format);
+    t.linear_ = linear;
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
                     linear ? (mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR) : (mipmaps ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST));
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, linear ? GL_LINEAR : GL_NEAREST);
@@ -151,8 +169,11 @@ Texture Texture::create_2d_levels(TextureFormat format, std::span<const MipLevel
         t.bytes_ += texels(levels[l].width, levels[l].height, false) * texel_bytes(format);
     }
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, GLint(levels.size() - 1));
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, levels.size() > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    t.linear_ = filterable(format);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
+                    gl_min_filter(t.linear_ ? Filter::Linear : Filter::Nearest,
+                                  levels.size() > 1 ? (t.linear_ ? MipmapMode::Linear : MipmapMode::Nearest) : MipmapMode::None));
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, t.linear_ ? GL_LINEAR : GL_NEAREST);
     glBindTexture(GL_TEXTURE_2D, 0);
     return t;
 }
@@ -188,8 +209,11 @@ Texture Texture::create_cube(int size, TextureFormat format, int levels, bool im
         t.bytes_ += 6 * texels(std::max(1, size >> level), std::max(1, size >> level), false) * texel_bytes(format);
     }
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, levels - 1);
-    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    t.linear_ = filterable(format);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER,
+                    gl_min_filter(t.linear_ ? Filter::Linear : Filter::Nearest,
+                                  levels > 1 ? (t.linear_ ? MipmapMode::Linear : MipmapMode::Nearest) : MipmapMode::None));
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, t.linear_ ? GL_LINEAR : GL_NEAREST);
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
@@ -205,31 +229,16 @@ void Texture::upload_cube_face(int face, int level, int size, const float* rgba)
     glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
 }
 
-namespace {
-GLint gl_filter(Filter f) { return f == Filter::Nearest ? GL_NEAREST : GL_LINEAR; }
-GLint gl_min_filter(Filter f, MipmapMode m) {
-    switch (m) {
-        case MipmapMode::None: return gl_filter(f);
-        case MipmapMode::Nearest: return f == Filter::Nearest ? GL_NEAREST_MIPMAP_NEAREST : GL_LINEAR_MIPMAP_NEAREST;
-        case MipmapMode::Linear: break;
-    }
-    return f == Filter::Nearest ? GL_NEAREST_MIPMAP_LINEAR : GL_LINEAR_MIPMAP_LINEAR;
-}
-GLint gl_wrap(Wrap w) {
-    switch (w) {
-        case Wrap::ClampToEdge: return GL_CLAMP_TO_EDGE;
-        case Wrap::MirroredRepeat: return GL_MIRRORED_REPEAT;
-        case Wrap::Repeat: break;
-    }
-    return GL_REPEAT;
-}
-}  // namespace
-
 void Texture::set_sampler(const SamplerState& s) {
     GLenum target = kind_ == Kind::Cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
     glBindTexture(target, id_);
-    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, gl_min_filter(s.min_filter, s.mipmap));
-    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, gl_filter(s.mag_filter));
+    const bool linear_ok = filterable(format_);
+    const Filter min_filter = linear_ok ? s.min_filter : Filter::Nearest;
+    const MipmapMode mipmap = linear_ok || s.mipmap == MipmapMode::None ? s.mipmap : MipmapMode::Nearest;
+    const Filter mag_filter = linear_ok ? s.mag_filter : Filter::Nearest;
+    linear_ = mag_filter == Filter::Linear;
+    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, gl_min_filter(min_filter, mipmap));
+    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, gl_filter(mag_filter));
     glTexParameteri(target, GL_TEXTURE_WRAP_S, gl_wrap(s.wrap_s));
     glTexParameteri(target, GL_TEXTURE_WRAP_T, gl_wrap(s.wrap_t));
     if (kind_ == Kind::Cube) glTexParameteri(target, GL_TEXTURE_WRAP_R, gl_wrap(s.wrap_r));

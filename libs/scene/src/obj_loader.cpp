@@ -886,10 +886,15 @@ private:
             if (kind == Kind::Face) {
                 if (std::size_t bad = repair_normals(p))
                     warn_once("bad normals", std::to_string(bad) + " invalid normals (zero or not finite) replaced by computed ones");
+                // Tangents where the glTF loader makes them too (mesh_ops' tangent_source): a
+                // normal map, a clearcoat normal map, or anisotropy (MTL aniso), from the one UV set.
                 const Material& mat = scene_.materials[std::size_t(material)];
-                if (mat.normal.valid()) {
+                if (const TextureSlot* map = tangent_source(mat)) {
                     if (!generate_tangents(p, 0))
-                        warn_once("no uv normal map", "normal map on faces without texture coordinates; normal map ignored");
+                        warn_once("no uv tangents",
+                                  mat.anisotropy && map == &mat.anisotropy->anisotropy_texture
+                                      ? "anisotropy on faces without texture coordinates (no tangents); shaded isotropically"
+                                      : "normal map on faces without texture coordinates; normal map ignored");
                     repair_tangents(p.tangents);
                 }
             }

@@ -554,6 +554,44 @@ TEST(ObjLoader, TexturesResolveAgainstTheMtlFolderAndArePacked) {
     EXPECT_FALSE(m.phong->specular_map.valid());
 }
 
+TEST(ObjLoader, AnisotropyGetsTangentsAsInGltf) {
+    // MTL aniso is KHR_materials_anisotropy, whose direction lies in the tangent frame: the
+    // faces get tangents from their UVs without a normal map (mesh_ops' tangent_source, the
+    // glTF loader's rule), and none without aniso.
+    TempDir dir;
+    dir.write("m.mtl", "newmtl a\nKd 1 1 1\nPr 0.4\naniso 0.6\nnewmtl plain\nKd 1 1 1\n");
+    const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n";
+    fs::path obj = dir.write("m.obj", "mtllib m.mtl\n" + tri + "usemtl a\nf 1/1/1 2/2/1 3/3/1\nusemtl plain\nf 1/1/1 3/3/1 2/2/1\n");
+    Diagnostics diag;
+    Scene s = load_obj(obj, diag);
+    ASSERT_EQ(s.materials.size(), 2u);
+    ASSERT_TRUE(s.materials[0].has_anisotropy());
+    int with = 0, without = 0;
+    for (const Mesh& mesh : s.meshes)
+        for (const Primitive& p : mesh.primitives) {
+            if (p.material == 0) {
+                ASSERT_EQ(p.tangents.size(), p.positions.size());
+                // u runs along +x: the tangent is +x, right-handed.
+                for (const glm::vec4& t : p.tangents) {
+                    EXPECT_NEAR(t.x, 1.0f, 1e-5f);
+                    EXPECT_NEAR(t.w, 1.0f, 1e-5f);
+                }
+                ++with;
+            } else {
+                EXPECT_TRUE(p.tangents.empty());
+                ++without;
+            }
+        }
+    EXPECT_EQ(with, 1);
+    EXPECT_EQ(without, 1);
+    // Without texture coordinates: no tangents, said once.
+    Diagnostics diag2;
+    fs::path bare = dir.write("bare.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
+    Scene b = load_obj(bare, diag2);
+    EXPECT_TRUE(b.meshes.at(0).primitives.at(0).tangents.empty());
+    EXPECT_TRUE(has_warning(diag2, "anisotropy"));
+}
+
 TEST(ObjLoader, PathsOutsideTheFolderAreRefused) {
     TempDir dir;
     dir.write("outside.mtl", "newmtl m\nKd 1 0 0\n");

@@ -127,7 +127,11 @@ public:
     // `immutable_storage` (Capabilities::texture_storage): glTexStorage2D, allocated once.
     static Texture create_cube(int size, TextureFormat format, int levels, bool immutable_storage = false);
     void upload_cube_face(int face, int level, int size, const float* rgba);
+    // Where the format cannot filter linearly (RGBA32F on OpenGL ES 3.0 without
+    // OES_texture_float_linear, where a LINEAR float texture is incomplete and samples as zero),
+    // LINEAR filters become NEAREST: filters_linearly() tells which one the texture got.
     void set_sampler(const SamplerState& s);
+    bool filters_linearly() const { return linear_; }
     // Regenerates levels 1.. of a 2D texture from level 0 (glGenerateMipmap), e.g. after
     // rendering into it.
     void generate_mipmaps();
@@ -147,6 +151,7 @@ private:
     int width_ = 0, height_ = 0;
     Kind kind_ = Kind::Tex2D;
     TextureFormat format_ = TextureFormat::RGBA8;
+    bool linear_ = true;  // the magnification filter set: LINEAR (else NEAREST)
 };
 
 enum class RenderbufferFormat { RGBA16F, RGBA32F, RGBA8, Depth24 };
