@@ -3,6 +3,10 @@
 // and fresnel::shade_light. Inputs: u_points (RGBA32F), kTexels texels per point:
 //   0 (uv0.xy, uv1.xy)  1 vertex colour  2 tangent  3 bitangent  4 geometric normal
 //   5 view  6 light  7 energy compensation (dielectric)  8 energy compensation (metal)
+//   9 (d uv0/dx, d uv0/dy)  10 (d uv1/dx, d uv1/dy)
+// With MATERIAL_PROBE_QUADS each point covers a 2x2 quad whose pixels hold uv + i d/dx +
+// j d/dy (i, j = 0, 1), so that dFdx / dFdy give the point's derivatives to the renderer's
+// filters (sample_detail_map, texture()); its result is the quad's first pixel.
 // u_output selects which results the pixel writes (see main). u_brdf_lut's A channel is
 // the sheen albedo table (brdf::SheenAlbedoTable::standard() on the C++ side).
 in vec2 v_texcoord;
@@ -21,10 +25,13 @@ vec4 v_color;
 #include "ibl.glsl"
 #include "material_inputs.glsl"
 
-const int kTexels = 9;
+const int kTexels = 11;
 
 vec4 point_texel(int k) {
     ivec2 p = ivec2(gl_FragCoord.xy);
+#ifdef MATERIAL_PROBE_QUADS
+    p /= 2;
+#endif
     return texelFetch(u_points, ivec2(p.x * kTexels + k, p.y), 0);
 }
 
@@ -32,6 +39,12 @@ void main() {
     vec4 uv = point_texel(0);
     v_uv0 = uv.xy;
     v_uv1 = uv.zw;
+#ifdef MATERIAL_PROBE_QUADS
+    vec2 ij = vec2(ivec2(gl_FragCoord.xy) % 2);
+    vec4 d0 = point_texel(9), d1 = point_texel(10);
+    v_uv0 += ij.x * d0.xy + ij.y * d0.zw;
+    v_uv1 += ij.x * d1.xy + ij.y * d1.zw;
+#endif
     v_color = point_texel(1);
     MaterialInputs m = read_material(point_texel(2).xyz, point_texel(3).xyz, point_texel(4).xyz);
     if (u_output == 0) frag_color = m.base_color;

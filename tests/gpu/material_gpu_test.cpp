@@ -6,11 +6,12 @@
 // and filters, sRGB and linear slots, specular-glossiness and metallic-roughness,
 // KHR_materials_ior / _specular / _clearcoat / _sheen / _anisotropy / _iridescence / _diffuse_transmission
 // (with lights behind the surface) / _emissive_strength, alpha modes, vertex
-// colour, missing UV sets and tangents. Uniforms are packed by the renderer's own
-// material_uniforms / set_material_uniforms, so the packing is under test too.
+// colour, missing second UV sets and tangents. Uniforms are packed by the renderer's own
+// material_uniforms / set_material_uniforms (the material block); the probe binds map i to
+// unit i, where the renderer packs units per draw (its images test that).
 // shaders/material_probe.frag evaluates one surface point per pixel.
 //
-// Two regimes:
+// Three regimes:
 //  - exact sampling: every map is read at a texel centre of level 0 (uv at texel centres,
 //    transforms that map centres to centres: offsets k/N, quarter-turn rotations, odd
 //    integer scales; explicit LOD 0 with NEAREST magnification, see Gen::make). The GPU
@@ -22,8 +23,21 @@
 //    samplers. llvmpipe quantises filter weights (bilinear and between levels) to 1/256
 //    steps, so texture-derived values agree to a few 8-bit steps: kFilteredAbsTol (0.025)
 //    per texel value, scaled by what multiplies it (strengths, F0 tints, normal scales);
-//    measured 0.0158. Normals are skipped where the filtered tangent-space vector is
-//    shorter than 0.5 (normalising a near-zero vector amplifies any difference).
+//    measured 0.0038. Normals are skipped where the filtered vector, scaled and in the
+//    (random, not orthogonal) world frame, is shorter than 0.5, and the anisotropy
+//    direction's tolerance is divided by its length (normalising a short vector amplifies
+//    any difference).
+//  - footprint sampling: the filters the renderer draws with. Each point covers a 2x2 quad
+//    (MATERIAL_PROBE_QUADS) whose UVs step by the point's random derivatives (1/16 to 8
+//    texels a pixel, footprints up to 20:1, skewed; square and oblong textures), so dFdx /
+//    dFdy give them to sample_detail_map's anisotropic footprint with at most 1 to 16 probes,
+//    against evaluate's detail_footprint with the same derivatives and limit. Only the detail
+//    maps are read there (the others' texture() takes the driver's level of detail); the
+//    filtered tolerance applies (measured 0.0061). Points where float rounding of the
+//    derivatives could change the probe count or the major axis are skipped (11 of 3072).
+// Not covered here: the transmission maps (gpu_transmission_test), and the renderer's own
+// variants that pack textures (shared footprints, channels in alpha): render_target_test and
+// the Khronos image tests hold those to the unpacked images.
 // Points whose alpha lies within 1e-4 (filtered: kFilteredAbsTol) of the MASK cutoff are
 // skipped: a rounding there may legitimately flip the discard.
 #include <gtest/gtest.h>
@@ -55,7 +69,7 @@ namespace {
 using namespace fresnel;
 
 constexpr int kSide = 8;                 // points per case: kSide x kSide pixels
-constexpr int kTexels = 9;               // input texels per point (material_probe.frag)
+constexpr int kTexels = 11;              // input texels per point (material_probe.frag)
 constexpr int kOutputs = 12;             // u_output values (6 = shade_light)
 constexpr float kRelTol = 1e-4f;         // exact sampling: relative ...
 constexpr float kAbsFloor = 1e-6f;       // ... or absolute near zero
@@ -105,13 +119,22 @@ struct Case {
     std::vector<TextureDesc> textures;
     VertexInputs inputs;
     float lod = 0.0f;
+    // The footprint regime: no explicit LOD; each point has its UV derivatives and the
+    // detail maps are read through the renderer's anisotropic filter, at most max_anisotropy
+    // probes (RenderSettings::anisotropy).
+    bool footprint = false;
+    float max_anisotropy = 1.0f;
     std::vector<Point> points;  // kSide * kSide
 };
+
+// The regimes of the file comment.
+enum class Regime { Exact, Filtered, Footprint };
 
 class Gen {
 public:
     explicit Gen(unsigned seed)
-        : rng_(seed), side_(seed ^ 0x5eedu), aniso_(seed ^ 0xa2150u), film_(seed ^ 0xf11du), dt_(seed ^ 0xd1f7u) {}
+        : rng_(seed), side_(seed ^ 0x5eedu), aniso_(seed ^ 0xa2150u), film_(seed ^ 0xf11du), dt_(seed ^ 0xd1f7u),
+          deriv_(seed ^ 0xd0d0u) {}
     float u() { return u01_(*cur_); }
     float range(float a, float b) { return a + (b - a) * u(); }
     int pick(int n) { return int(u() * float(n)) % n; }
@@ -130,7 +153,8 @@ public:
         return d;
     }
 
-    Case make(bool exact) {
+    Case make(Regime regime) {
+        const bool exact = regime == Regime::Exact;
         Case c;
         int n = 1 << (1 + pick(3));  // 2, 4, 8 texels per side (power of two: mip chains agree)
         const int filters[] = {9728, 9729}, mins[] = {9728, 9729, 9984, 9985, 9986, 9987};
@@ -284,12 +308,56 @@ public:
         if (m.diffuse_transmission)
             for (Point& pt : c.points)
                 if (chance(0.5f)) pt.l = -pt.l;
+        // The footprint regime (its own stream): derivatives from 1/16 to 8 texels a pixel of
+        // the largest texture, footprints from round to 20:1, skewed, either axis the major.
+        cur_ = &deriv_;
+        if (regime == Regime::Footprint) {
+            c.footprint = true;
+            // Only the detail maps: the others are read with texture(), whose level of detail
+            // is the driver's (llvmpipe takes a fast approximation of log2, up to ~0.09 off),
+            // not the GL formula evaluate follows; the other regimes read them at explicit levels.
+            for (int i = 0; i < kMaterialMapCount; ++i)
+                if (!material_map_info(MaterialMap(i)).detail)
+                    if (const TextureSlot* slot = material_map(m, MaterialMap(i))) *const_cast<TextureSlot*>(slot) = TextureSlot{};
+            const float limits[] = {1.0f, 2.0f, 6.0f, 16.0f};
+            c.max_anisotropy = chance(0.6f) ? limits[pick(4)] : range(1.0f, 16.0f);
+            auto derivatives = [&](glm::vec2& dx, glm::vec2& dy) {
+                float len = std::exp2(range(-4.0f, 3.0f)) / float(n);
+                float ratio = chance(0.2f) ? 1.0f : std::exp2(range(0.0f, 4.3f));
+                // A round footprint is square (perpendicular axes of one length): which axis is
+                // the major one is then float rounding's choice, which only a single probe ignores.
+                float angle = range(-3.2f, 3.2f), skew = ratio == 1.0f ? 0.0f : range(-0.6f, 0.6f);
+                dx = len * glm::vec2(std::cos(angle), std::sin(angle));
+                dy = len / ratio * glm::vec2(std::cos(angle + 1.5708f + skew), std::sin(angle + 1.5708f + skew));
+                if (chance(0.5f)) std::swap(dx, dy);
+            };
+            // Most textures trilinear with linear magnification, the samplers the filter applies
+            // to; half of them oblong (the footprint is measured in texels of each axis).
+            for (TextureDesc& d : c.textures) {
+                if (chance(0.6f)) d.mag = 9729, d.min = 9987;
+                if (chance(0.5f)) {
+                    d.image = Image8(1 << (1 + pick(3)), 1 << (1 + pick(3)), 4);
+                    for (auto& b : d.image.pixels) b = std::uint8_t(pick(256));
+                }
+            }
+            for (Point& pt : c.points) {
+                pt.p.lod.reset();
+                pt.p.max_anisotropy = c.max_anisotropy;
+                derivatives(pt.p.duv0_dx, pt.p.duv0_dy);
+                if (c.inputs.has_uv1) derivatives(pt.p.duv1_dx, pt.p.duv1_dy);
+                else pt.p.duv1_dx = pt.p.duv0_dx, pt.p.duv1_dy = pt.p.duv0_dy;  // uv1 = uv0
+                // What the quad's neighbours hold minus the point (float rounding as on the GPU).
+                auto rounded = [](glm::vec2 uv, glm::vec2& d) { d = (uv + d) - uv; };
+                rounded(pt.p.uv0, pt.p.duv0_dx), rounded(pt.p.uv0, pt.p.duv0_dy);
+                rounded(pt.p.uv1, pt.p.duv1_dx), rounded(pt.p.uv1, pt.p.duv1_dy);
+            }
+        }
         cur_ = &rng_;
         return c;
     }
 
 private:
-    std::mt19937 rng_, side_, aniso_, film_, dt_;  // aniso_, film_, dt_: KHR_materials_anisotropy's, _iridescence's, _diffuse_transmission's own streams
+    std::mt19937 rng_, side_, aniso_, film_, dt_, deriv_;  // aniso_, film_, dt_: KHR_materials_anisotropy's, _iridescence's, _diffuse_transmission's own streams; deriv_: the footprint regime's
     std::mt19937* cur_ = &rng_;
     std::uniform_real_distribution<float> u01_{0.0f, 1.0f};
 };
@@ -318,13 +386,51 @@ std::array<glm::vec4, kOutputs> cpu_outputs(const Case& c, const TextureSource& 
 // without a map). Filtering random texels can make it nearly 0, where normalising it
 // amplifies any difference without bound; the filtered regime skips such normals.
 float tangent_length(const Case& c, const TextureSource& tex, const Point& pt, MaterialMap map, float scale) {
-    const TextureSlot* slot = material_map(c.material, map);
-    if (!slot || !map_usable(*slot, map, c.inputs)) return 1.0f;
-    const SampledTexture* t = tex.get(slot->texture, false);
-    glm::vec2 uv = slot->tex_coord == 1 ? pt.p.uv1 : pt.p.uv0;
-    uv = glm::vec2(slot->transform * glm::vec3(uv, 1.0f));
-    glm::vec3 tn = glm::vec3(t->sample(uv, c.lod)) * 2.0f - 1.0f;
-    return glm::length(tn * glm::vec3(scale, scale, 1.0f));
+    std::optional<glm::vec4> texel = sample_material_map(c.material, tex, pt.p, map);
+    if (!texel) return 1.0f;
+    glm::vec3 tn = (glm::vec3(*texel) * 2.0f - 1.0f) * glm::vec3(scale, scale, 1.0f);
+    // In world space, before normalising: the random frames are not orthogonal, and a tangent
+    // nearly opposite the bitangent shortens the vector as much as a short texel does.
+    return glm::length(glm::mat3(pt.p.tangent, pt.p.bitangent, pt.p.normal) * tn);
+}
+
+// Whether float rounding of the derivatives (the GPU takes them as differences of transformed
+// coordinates) may change a detail map's probes at the point: its anisotropy within 2e-3 of
+// a half (relative: 5e-4; the probe count rounds there) or its two axes within 1e-3 of the same length
+// (the major axis flips there). The footprint regime skips such points.
+// `anisotropic` counts the detail maps read at the point with more than one probe, `detail`
+// all detail maps read there (what shows the regime covers the anisotropic filter).
+bool near_probe_change(const Case& c, const TextureSource& tex, const Point& pt, int* detail = nullptr,
+                       int* anisotropic = nullptr) {
+    if (!c.footprint) return false;
+    for (int i = 0; i < kMaterialMapCount; ++i) {
+        const MaterialMap map = MaterialMap(i);
+        const TextureSlot* slot = material_map(c.material, map);
+        if (!material_map_info(map).detail || !slot || !map_usable(*slot, map, c.inputs)) continue;
+        const SampledTexture* t = tex.get(slot->texture, material_map_info(map).srgb);
+        if (!t) continue;
+        const float most = detail_anisotropy(t->sampler().mag_filter, t->sampler().mip_filter, c.max_anisotropy);
+        if (detail && most <= 1.0f) ++*detail;
+        if (most <= 1.0f) continue;
+        const glm::mat2 linear(slot->transform);
+        const glm::vec2 size(float(t->width()), float(t->height()));
+        if (detail) {
+            const glm::vec2 uv = slot->tex_coord == 1 ? pt.p.uv1 : pt.p.uv0;
+            ++*detail;
+            *anisotropic += detail_footprint(uv, linear * (slot->tex_coord == 1 ? pt.p.duv1_dx : pt.p.duv0_dx),
+                                             linear * (slot->tex_coord == 1 ? pt.p.duv1_dy : pt.p.duv0_dy), size, most)
+                                .n > 1;
+        }
+        const glm::vec2 tx = linear * (slot->tex_coord == 1 ? pt.p.duv1_dx : pt.p.duv0_dx) * size;
+        const glm::vec2 ty = linear * (slot->tex_coord == 1 ? pt.p.duv1_dy : pt.p.duv0_dy) * size;
+        const float lx = glm::dot(tx, tx), ly = glm::dot(ty, ty);
+        const float area = std::abs(tx.x * ty.y - tx.y * ty.x);
+        const float anisotropy = std::clamp(std::max(lx, ly) / std::max(area, 1e-30f), 1.0f, most);
+        const float half = anisotropy + 0.5f - std::round(anisotropy + 0.5f);
+        if (std::abs(half) < 5e-4f * anisotropy) return true;
+        if (anisotropy >= 1.4f && std::abs(lx - ly) <= 1e-3f * std::max(lx, ly)) return true;  // one probe: no axis
+    }
+    return false;
 }
 
 const char* kOutputNames[kOutputs][4] = {
@@ -345,13 +451,9 @@ const char* kOutputNames[kOutputs][4] = {
 // The length of the direction the anisotropy map gives at the point (1 without a map):
 // normalising a filtered direction near 0 amplifies any difference, as for normals.
 float anisotropy_direction_length(const Case& c, const TextureSource& tex, const Point& pt) {
-    const TextureSlot* slot = material_map(c.material, MaterialMap::Anisotropy);
-    if (!slot || !map_usable(*slot, MaterialMap::Anisotropy, c.inputs)) return 1.0f;
-    const SampledTexture* t = tex.get(slot->texture, false);
-    glm::vec2 uv = slot->tex_coord == 1 ? pt.p.uv1 : pt.p.uv0;
-    uv = glm::vec2(slot->transform * glm::vec3(uv, 1.0f));
-    glm::vec4 texel = t->sample(uv, c.lod);
-    return glm::length(glm::vec2(texel.x, texel.y) * 2.0f - 1.0f);
+    std::optional<glm::vec4> texel = sample_material_map(c.material, tex, pt.p, MaterialMap::Anisotropy);
+    if (!texel) return 1.0f;
+    return glm::length(glm::vec2(texel->x, texel->y) * 2.0f - 1.0f);
 }
 
 class MaterialProbe : public test::ProbeSuite {
@@ -370,14 +472,17 @@ protected:
                 const glm::vec4 in[kTexels] = {glm::vec4(pt.p.uv0, pt.p.uv1), pt.p.color,
                                                glm::vec4(pt.p.tangent, 0), glm::vec4(pt.p.bitangent, 0),
                                                glm::vec4(pt.p.normal, 0), glm::vec4(pt.v, 0), glm::vec4(pt.l, 0),
-                                               glm::vec4(pt.comp_d, 0), glm::vec4(pt.comp_m, 0)};
+                                               glm::vec4(pt.comp_d, 0), glm::vec4(pt.comp_m, 0),
+                                               glm::vec4(pt.p.duv0_dx, pt.p.duv0_dy), glm::vec4(pt.p.duv1_dx, pt.p.duv1_dy)};
                 return in[k];
             });
         gpu::Device device;
         gpu::Texture points = gpu::Texture::create_2d(kSide * kTexels, kSide, gpu::TextureFormat::RGBA32F,
                                                       texels.data(), false);
         points.set_sampler(gpu::SamplerState::clamped(Filter::Nearest));
-        test::ProbeTarget target(kSide, kSide);
+        // The footprint regime: a 2x2 quad a point (MATERIAL_PROBE_QUADS), read at its first pixel.
+        const int quad = c.footprint ? 2 : 1;
+        test::ProbeTarget target(kSide * quad, kSide * quad);
 
         // Textures and defines as the renderer makes them (draw_primitive / texture_for).
         MaterialUniforms mu = material_uniforms(c.material);
@@ -387,7 +492,7 @@ protected:
             if (f.bit == feature::Anisotropy && !c.inputs.has_tangent) continue;
             if (material_features(c.material) & f.bit) defines.emplace_back(f.define);
         }
-        defines.push_back("MATERIAL_EXPLICIT_LOD");
+        defines.push_back(c.footprint ? "MATERIAL_PROBE_QUADS" : "MATERIAL_EXPLICIT_LOD");
         std::vector<gpu::Texture> maps;
         std::array<bool, kMaterialMapCount> bound{};
         std::vector<std::pair<int, int>> units;  // (unit, index into maps)
@@ -404,8 +509,12 @@ protected:
             for (const auto& l : chain) levels.push_back({l.width, l.height, l.pixels.data()});
             maps.push_back(gpu::Texture::create_2d_levels(
                 info.srgb ? gpu::TextureFormat::SRGB8_ALPHA8 : gpu::TextureFormat::RGBA8, levels));
+            // The detail maps' probes, as texture_for in the renderer sets them: more than one
+            // minify linearly whatever the sampler's filter.
+            const float most = info.detail ? detail_anisotropy(ts.mag_filter, ts.mip_filter, c.max_anisotropy) : 1.0f;
+            mu.block.maps[std::size_t(i)].anisotropy = most;
             gpu::SamplerState ss;
-            ss.min_filter = ts.min_filter;
+            ss.min_filter = most > 1.0f ? Filter::Linear : ts.min_filter;
             ss.mipmap = ts.mip_filter;
             ss.mag_filter = ts.mag_filter;
             ss.wrap_s = ts.wrap_s;
@@ -432,7 +541,15 @@ protected:
         std::array<std::vector<glm::vec4>, kOutputs> out;
         for (int o = 0; o < kOutputs; ++o) {
             prog.set("u_output", o);
-            out[std::size_t(o)] = target.draw(device, std::size_t(kSide * kSide));
+            std::vector<glm::vec4> px = target.draw(device, std::size_t(kSide * kSide * quad * quad));
+            if (quad > 1) {
+                std::vector<glm::vec4> first(std::size_t(kSide * kSide));
+                for (int y = 0; y < kSide; ++y)
+                    for (int x = 0; x < kSide; ++x)
+                        first[std::size_t(y * kSide + x)] = px[std::size_t(2 * y * 2 * kSide + 2 * x)];
+                px = std::move(first);
+            }
+            out[std::size_t(o)] = std::move(px);
         }
         EXPECT_EQ(device.take_errors(), "");
         return out;
@@ -503,18 +620,25 @@ protected:
 
     // Compares `cases` cases; returns the largest error seen per output (relative for
     // exact sampling, absolute for filtered).
-    void run(bool exact, int cases, unsigned seed) {
+    void run(Regime regime, int cases, unsigned seed) {
+        const bool exact = regime == Regime::Exact;
+        const char* regime_name = exact ? "exact" : regime == Regime::Filtered ? "filtered" : "footprint";
+        int near_probe_changes = 0, detail_maps = 0, anisotropic_maps = 0;
         Gen gen(seed);
         int failures = 0, compared = 0, skipped = 0;
         float worst_rel = 0.0f, worst_shade = 0.0f, worst_abs = 0.0f;
         int shown[kOutputs][4] = {};
         const char* worst_what = "-";
         for (int ci = 0; ci < cases; ++ci) {
-            Case c = gen.make(exact);
+            Case c = gen.make(regime);
             CpuTextures tex(c.textures, &decode());
             auto gpu_out = probe(c);
             for (int i = 0; i < kSide * kSide; ++i) {
                 const Point& pt = c.points[std::size_t(i)];
+                if (near_probe_change(c, tex, pt, &detail_maps, &anisotropic_maps)) {
+                    ++near_probe_changes;
+                    continue;
+                }
                 auto cpu = cpu_outputs(c, tex, pt);
                 if (c.material.alpha_mode == AlphaMode::Mask) {
                     // The alpha before the mode is not an output; recompute it with the mode off.
@@ -530,7 +654,8 @@ protected:
                 bool short_coat_normal =
                     !exact && c.material.clearcoat &&
                     tangent_length(c, tex, pt, MaterialMap::ClearcoatNormal, c.material.clearcoat->clearcoat_normal_scale) < 0.5f;
-                bool short_direction = !exact && anisotropy_direction_length(c, tex, pt) < 0.5f;
+                const float direction_length = exact ? 1.0f : anisotropy_direction_length(c, tex, pt);
+                bool short_direction = direction_length < 0.5f;
                 for (int o = 0; o < kOutputs; ++o) {
                     for (int ch = 0; ch < 4; ++ch) {
                         if ((o == 4 && ch < 3 && short_normal) || (o == 5 && ch < 3 && short_coat_normal)) continue;
@@ -572,23 +697,30 @@ protected:
                                 norm = std::max(1.0f, std::max({m.sheen->sheen_color_factor.x, m.sheen->sheen_color_factor.y,
                                                                 m.sheen->sheen_color_factor.z}));
                             if (o == 5 && ch < 3 && m.clearcoat) norm = 1.0f + std::abs(m.clearcoat->clearcoat_normal_scale);
+                            // The anisotropy direction and frame: normalising the filtered direction
+                            // scales its error by 1 / its length.
+                            if ((o == 8 && ch < 3) || o == 9) norm = std::max(1.0f, 1.0f / direction_length);
                             if (o == 10 && ch == 1 && m.iridescence)  // thickness: mix(min, max, G) in nm
                                 norm = std::max(1.0f, std::abs(m.iridescence->iridescence_thickness_maximum -
                                                                m.iridescence->iridescence_thickness_minimum));
                             ok = err <= kFilteredAbsTol * norm;
-                            worst_abs = std::max(worst_abs, err / norm);
+                            if (err / norm > worst_abs) {
+                                worst_abs = err / norm;
+                                worst_what = kOutputNames[o][ch];
+                            }
                         }
                         ++compared;
                         if (!ok) ++failures;
                         if (!ok && ++shown[o][ch] <= 2) {
-                            ADD_FAILURE() << (exact ? "exact" : "filtered") << " case " << ci << " point " << i << " "
+                            ADD_FAILURE() << regime_name << " case " << ci << " point " << i << " "
                                           << kOutputNames[o][ch] << ": C++ " << want << " GPU " << got << " (lod "
                                           << c.lod << ", uv0 " << pt.p.uv0.x << "," << pt.p.uv0.y << ", SG "
                                           << bool(c.material.specular_glossiness) << ", coat "
                                           << c.material.has_clearcoat() << ", sheen " << c.material.has_sheen()
                                           << ", anisotropy " << c.material.has_anisotropy() << ", film "
                                           << c.material.has_iridescence() << ", diffuse transmission "
-                                          << c.material.has_diffuse_transmission() << ")";
+                                          << c.material.has_diffuse_transmission() << ", most probes "
+                                          << c.max_anisotropy << ")";
                         }
                     }
                 }
@@ -596,12 +728,20 @@ protected:
         }
         std::printf("%s sampling: %d cases, %d values compared, %d near the cutoff skipped; worst relative %.3g (%s), "
                     "shade_light %.3g, filtered absolute %.3g\n",
-                    exact ? "exact" : "filtered", cases, compared, skipped, worst_rel, worst_what, worst_shade, worst_abs);
+                    regime_name, cases, compared, skipped, worst_rel, worst_what, worst_shade, worst_abs);
+        if (regime == Regime::Footprint) {
+            std::printf("footprint: %d detail-map reads, %d of them with more than one probe; %d points near a change "
+                        "of probes skipped\n",
+                        detail_maps, anisotropic_maps, near_probe_changes);
+            EXPECT_GT(anisotropic_maps, detail_maps / 5);
+            EXPECT_LT(near_probe_changes, cases * kSide * kSide / 20);
+        }
         EXPECT_EQ(failures, 0);
         EXPECT_GT(compared, cases * kSide * kSide * 20);
         for (int i = 0; i < kMaterialMapCount; ++i) {
             // The transmission maps are read by transmission.glsl, which gpu_transmission_test covers.
             if (MaterialMap(i) == MaterialMap::Transmission || MaterialMap(i) == MaterialMap::Thickness) continue;
+            if (regime == Regime::Footprint && !material_map_info(MaterialMap(i)).detail) continue;  // only these there
             EXPECT_GT(maps_bound_[std::size_t(i)], 2) << "map " << material_map_info(MaterialMap(i)).name << " hardly covered";
         }
     }
@@ -656,14 +796,19 @@ TEST_F(MaterialProbe, DriverTexelResponseIsCloseToExact) {
                 "relative of byte/255\n", worst_srgb, worst_rel);
 }
 
-TEST_F(MaterialProbe, ReadMaterialAndShadeLightMatchEvaluateAtTexelCentres) { run(true, 96, 20261201u); }
+TEST_F(MaterialProbe, ReadMaterialAndShadeLightMatchEvaluateAtTexelCentres) { run(Regime::Exact, 96, 20261201u); }
 
-TEST_F(MaterialProbe, FilteredSamplingAgreesToAnEightBitStep) { run(false, 48, 777u); }
+TEST_F(MaterialProbe, FilteredSamplingAgreesToAnEightBitStep) { run(Regime::Filtered, 48, 777u); }
+
+// The filter the renderer draws with: screen-space derivatives, the detail maps through the
+// anisotropic footprint (sample_detail_map) and the others through texture(), against
+// evaluate with the same derivatives (detail_footprint, SampledTexture::sample_footprint).
+TEST_F(MaterialProbe, FootprintSamplingMatchesTheRenderersFilters) { run(Regime::Footprint, 48, 4242u); }
 
 // The comparison can fail: a rule changed on one side only is caught.
 TEST_F(MaterialProbe, CatchesADifferentRule) {
     Gen gen(5);
-    Case c = gen.make(true);
+    Case c = gen.make(Regime::Exact);
     c.material.specular_glossiness.reset();
     c.material.metallic_factor = 0.5f;
     c.material.metallic_roughness = TextureSlot{};

@@ -12,26 +12,26 @@ namespace fresnel {
 
 namespace {
 constexpr MaterialMapInfo kMaps[kMaterialMapCount] = {
-    {"base_color", "HAS_BASE_COLOR_MAP", true, false},
-    {"metallic_roughness", "HAS_METALLIC_ROUGHNESS_MAP", false, false},
-    {"normal", "HAS_NORMAL_MAP", false, true},
-    {"occlusion", "HAS_OCCLUSION_MAP", false, false},
-    {"emissive", "HAS_EMISSIVE_MAP", true, false},
-    {"specular", "HAS_SPECULAR_MAP", false, false},
-    {"specular_color", "HAS_SPECULAR_COLOR_MAP", true, false},
-    {"specular_glossiness", "HAS_SPECULAR_GLOSSINESS_MAP", true, false},
-    {"clearcoat", "HAS_CLEARCOAT_MAP", false, false},
-    {"clearcoat_roughness", "HAS_CLEARCOAT_ROUGHNESS_MAP", false, false},
-    {"clearcoat_normal", "HAS_CLEARCOAT_NORMAL_MAP", false, true},
-    {"sheen_color", "HAS_SHEEN_COLOR_MAP", true, false},
-    {"sheen_roughness", "HAS_SHEEN_ROUGHNESS_MAP", false, false},
-    {"transmission", "HAS_TRANSMISSION_MAP", false, false},
-    {"thickness", "HAS_THICKNESS_MAP", false, false},
-    {"anisotropy", "HAS_ANISOTROPY_MAP", false, false},
-    {"iridescence", "HAS_IRIDESCENCE_MAP", false, false},
-    {"iridescence_thickness", "HAS_IRIDESCENCE_THICKNESS_MAP", false, false},
-    {"diffuse_transmission", "HAS_DIFFUSE_TRANSMISSION_MAP", false, false},
-    {"diffuse_transmission_color", "HAS_DIFFUSE_TRANSMISSION_COLOR_MAP", true, false},
+    {"base_color", "HAS_BASE_COLOR_MAP", true, false, true},
+    {"metallic_roughness", "HAS_METALLIC_ROUGHNESS_MAP", false, false, true},
+    {"normal", "HAS_NORMAL_MAP", false, true, true},
+    {"occlusion", "HAS_OCCLUSION_MAP", false, false, true},
+    {"emissive", "HAS_EMISSIVE_MAP", true, false, false},
+    {"specular", "HAS_SPECULAR_MAP", false, false, false},
+    {"specular_color", "HAS_SPECULAR_COLOR_MAP", true, false, true},
+    {"specular_glossiness", "HAS_SPECULAR_GLOSSINESS_MAP", true, false, true},
+    {"clearcoat", "HAS_CLEARCOAT_MAP", false, false, false},
+    {"clearcoat_roughness", "HAS_CLEARCOAT_ROUGHNESS_MAP", false, false, false},
+    {"clearcoat_normal", "HAS_CLEARCOAT_NORMAL_MAP", false, true, true},
+    {"sheen_color", "HAS_SHEEN_COLOR_MAP", true, false, true},
+    {"sheen_roughness", "HAS_SHEEN_ROUGHNESS_MAP", false, false, false},
+    {"transmission", "HAS_TRANSMISSION_MAP", false, false, false},
+    {"thickness", "HAS_THICKNESS_MAP", false, false, false},
+    {"anisotropy", "HAS_ANISOTROPY_MAP", false, false, false},
+    {"iridescence", "HAS_IRIDESCENCE_MAP", false, false, false},
+    {"iridescence_thickness", "HAS_IRIDESCENCE_THICKNESS_MAP", false, false, false},
+    {"diffuse_transmission", "HAS_DIFFUSE_TRANSMISSION_MAP", false, false, false},
+    {"diffuse_transmission_color", "HAS_DIFFUSE_TRANSMISSION_COLOR_MAP", true, false, false},
 };
 
 // Reads one map at the point, or nullopt when the map is absent or unreadable.
@@ -47,19 +47,21 @@ public:
         // map_uv in the shader: the slot's UV set through its KHR_texture_transform.
         glm::vec2 uv = slot->tex_coord == 1 ? p_.uv1 : p_.uv0;
         uv = glm::vec2(slot->transform * glm::vec3(uv, 1.0f));
-        float lod;
-        if (p_.lod) {
-            lod = *p_.lod;
-        } else {
-            // λ = log2 of the larger screen-space footprint in texels (the GL spec's ρ).
-            glm::mat2 linear(slot->transform);
-            glm::vec2 dx = linear * (slot->tex_coord == 1 ? p_.duv1_dx : p_.duv0_dx);
-            glm::vec2 dy = linear * (slot->tex_coord == 1 ? p_.duv1_dy : p_.duv0_dy);
-            glm::vec2 size(float(tex->width()), float(tex->height()));
-            float rho = std::max(glm::length(dx * size), glm::length(dy * size));
-            lod = rho > 0.0f ? std::log2(rho) : -INFINITY;
+        if (p_.lod) return tex->sample(uv, *p_.lod);
+        // The derivatives of the transformed coordinates.
+        glm::mat2 linear(slot->transform);
+        glm::vec2 dx = linear * (slot->tex_coord == 1 ? p_.duv1_dx : p_.duv0_dx);
+        glm::vec2 dy = linear * (slot->tex_coord == 1 ? p_.duv1_dy : p_.duv0_dy);
+        glm::vec2 size(float(tex->width()), float(tex->height()));
+        if (info.detail) {
+            // sample_detail_map: the renderer's anisotropic filter.
+            const TextureSampler& s = tex->sampler();
+            float most = detail_anisotropy(s.mag_filter, s.mip_filter, p_.max_anisotropy);
+            return tex->sample_footprint(detail_footprint(uv, dx, dy, size, most), most > 1.0f);
         }
-        return tex->sample(uv, lod);
+        // texture(): λ = log2 of the larger screen-space footprint in texels (the GL spec's ρ).
+        float rho = std::max(glm::length(dx * size), glm::length(dy * size));
+        return tex->sample(uv, rho > 0.0f ? std::log2(rho) : -INFINITY);
     }
 
 private:
@@ -77,6 +79,11 @@ glm::vec3 perturb(glm::vec4 texel, float scale, const SurfacePoint& p) {
 }  // namespace
 
 const MaterialMapInfo& material_map_info(MaterialMap map) { return kMaps[int(map)]; }
+
+std::optional<glm::vec4> sample_material_map(const Material& material, const TextureSource& textures,
+                                             const SurfacePoint& point, MaterialMap map) {
+    return MapReader(material, textures, point).sample(map);
+}
 
 const TextureSlot* material_map(const Material& m, MaterialMap map) {
     const auto* sg = m.specular_glossiness ? &*m.specular_glossiness : nullptr;

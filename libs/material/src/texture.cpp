@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
 #include "fresnel/core/color.h"
 #include "fresnel/core/error.h"
 #include "fresnel/core/mipmap.h"
@@ -107,25 +109,57 @@ glm::vec4 SampledTexture::filter(int level, glm::vec2 uv, TextureFilter f) const
     return (1 - a) * (1 - b) * t00 + a * (1 - b) * t10 + (1 - a) * b * t01 + a * b * t11;
 }
 
-glm::vec4 SampledTexture::sample(glm::vec2 uv, float lod) const {
+glm::vec4 SampledTexture::sample(glm::vec2 uv, float lod) const { return sample_with(uv, lod, sampler_.min_filter); }
+
+glm::vec4 SampledTexture::sample_with(glm::vec2 uv, float lod, TextureFilter min_filter) const {
     if (!(lod > 0.0f)) return filter(0, uv, sampler_.mag_filter);  // magnification (also NaN / -inf)
     int q = level_count() - 1;
     switch (sampler_.mip_filter) {
-        case MipFilter::None: return filter(0, uv, sampler_.min_filter);
+        case MipFilter::None: return filter(0, uv, min_filter);
         case MipFilter::Nearest: {
             int d = lod <= 0.5f ? 0 : int(std::ceil(lod + 0.5f)) - 1;
-            return filter(std::min(d, q), uv, sampler_.min_filter);
+            return filter(std::min(d, q), uv, min_filter);
         }
         case MipFilter::Linear: {
-            if (lod >= float(q)) return filter(q, uv, sampler_.min_filter);
+            if (lod >= float(q)) return filter(q, uv, min_filter);
             int d1 = int(std::floor(lod));
             float frac = lod - float(d1);
-            glm::vec4 t1 = filter(d1, uv, sampler_.min_filter);
+            glm::vec4 t1 = filter(d1, uv, min_filter);
             if (frac == 0.0f) return t1;
-            return (1.0f - frac) * t1 + frac * filter(d1 + 1, uv, sampler_.min_filter);
+            return (1.0f - frac) * t1 + frac * filter(d1 + 1, uv, min_filter);
         }
     }
     return glm::vec4(1.0f);
+}
+
+glm::vec4 SampledTexture::sample_footprint(const DetailFootprint& f, bool linear_min) const {
+    const TextureFilter min_filter = linear_min ? TextureFilter::Linear : sampler_.min_filter;
+    glm::vec4 sum(0.0f);
+    glm::vec2 p = f.p;
+    for (int i = 0; i < f.n; ++i, p += f.delta) sum += sample_with(p, f.lod, min_filter);
+    return sum / float(f.n);
+}
+
+// The shader's detail_footprint (material_inputs.glsl), operation for operation.
+DetailFootprint detail_footprint(glm::vec2 uv, glm::vec2 dx, glm::vec2 dy, glm::vec2 size, float max_anisotropy) {
+    const glm::vec2 tx = dx * size, ty = dy * size;
+    const float lx = glm::dot(tx, tx), ly = glm::dot(ty, ty);
+    const float major2 = std::max(lx, ly);
+    const float area = std::abs(tx.x * ty.y - tx.y * ty.x);
+    const float anisotropy = std::clamp(major2 / std::max(area, 1e-30f), 1.0f, std::max(max_anisotropy, 1.0f));
+    const glm::vec2 axis = lx >= ly ? dx : dy;
+    DetailFootprint f;
+    f.anisotropy = anisotropy;
+    f.lod = 0.5f * std::log2(std::max(major2, 1e-30f) / (anisotropy * anisotropy));
+    const float probes = anisotropy + 0.5f;
+    f.n = int(probes < 17.0f ? probes : 1.0f);  // a NaN footprint takes one probe
+    f.delta = axis / float(f.n);
+    f.p = uv - axis * (float(f.n - 1) / float(2 * f.n));
+    return f;
+}
+
+float detail_anisotropy(Filter mag_filter, MipmapMode mip_filter, float requested) {
+    return mip_filter == MipmapMode::Linear && mag_filter != Filter::Nearest ? std::max(1.0f, requested) : 1.0f;
 }
 
 }  // namespace fresnel

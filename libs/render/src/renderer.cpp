@@ -414,28 +414,6 @@ struct Renderer::Impl {
         return textured;
     }
 
-    // Anisotropic filtering is a property of the map: it is what agrees with the Khronos
-    // Sample Viewer's texture filtering on the detail maps, and each anisotropic lookup costs
-    // a software rasteriser more probes, so the low-frequency maps (emissive, the scalar
-    // extension maps) go without: measured over the Khronos reference views, that moves
-    // agreement by <= 0.16 dB. The occlusion is filtered as the metallic-roughness map is,
-    // since it is usually read from the same texels (occlusion_packs), unless it is read from
-    // the emissive's (alpha_packs). The detail maps are
-    // filtered in the shader (sample_detail_map, shaders/material_inputs.glsl).
-    static bool anisotropic_map(MaterialMap map) {
-        switch (map) {
-            case MaterialMap::BaseColor:
-            case MaterialMap::MetallicRoughness:
-            case MaterialMap::Normal:
-            case MaterialMap::Occlusion:
-            case MaterialMap::SpecularColor:
-            case MaterialMap::SpecularGlossiness:
-            case MaterialMap::ClearcoatNormal:
-            case MaterialMap::SheenColor: return true;
-            default: return false;
-        }
-    }
-
     // A GL texture: a scene texture's image as stored (source -1), or with its channel `to`
     // replaced by channel `from` of texture `source`'s image of the same size: the occlusion's R
     // in a metallic-roughness texture's R (occlusion_packs), the metallic-roughness channels in
@@ -511,7 +489,7 @@ struct Renderer::Impl {
     // linearly in sRGB textures too (build_mip_chain), so every level holds the metallic-
     // roughness texture's own texels: the probes of the base colour and normal maps read what
     // the metallic-roughness probes read, one texture fewer. The occlusion in the emissive is
-    // filtered as the emissive (anisotropic_map: without anisotropy, as a low-frequency map).
+    // filtered as the emissive (not a detail map: without anisotropy, as a low-frequency map).
     // The keys of the textures then bound, or nothing.
     struct AlphaPacking {
         TextureKey base_color, normal, emissive;  // emissive: with the occlusion only
@@ -600,6 +578,16 @@ struct Renderer::Impl {
         }
     }
 
+    // Anisotropic filtering is a property of the map: it is what agrees with the Khronos
+    // Sample Viewer's texture filtering on the detail maps, and each anisotropic lookup costs
+    // a software rasteriser more probes, so the low-frequency maps (emissive, the scalar
+    // extension maps) go without: measured over the Khronos reference views, that moves
+    // agreement by <= 0.16 dB. The occlusion is filtered as the metallic-roughness map is,
+    // since it is usually read from the same texels (occlusion_packs), unless it is read from
+    // the emissive's (alpha_packs). The detail maps (MaterialMapInfo::detail) are filtered in the
+    // shader (sample_detail_map, shaders/material_inputs.glsl; fresnel::evaluate's twin:
+    // detail_footprint in material/texture.h).
+    //
     // How a slot's texture is filtered anisotropically: not at all, by the sampler (GL's
     // TEXTURE_MAX_ANISOTROPY), or in the shader (sample_detail_map in material_inputs.glsl).
     enum class Anisotropic { Off, Sampler, Shader };
@@ -619,9 +607,7 @@ struct Renderer::Impl {
         if (it == textures.end()) it = textures.emplace(key, make_texture(key, nullptr)).first;
         GpuTexture& g = it->second;
         const Sampler& sampler = scene->textures[std::size_t(ref.texture)].sampler;
-        bool trilinear = sampler.mipmap == MipmapMode::Linear;
-        float level = mode != Anisotropic::Off && trilinear && sampler.mag_filter != Filter::Nearest
-                          ? std::max(1.0f, anisotropy) : 1.0f;
+        float level = mode != Anisotropic::Off ? detail_anisotropy(sampler.mag_filter, sampler.mipmap, anisotropy) : 1.0f;
         float want = mode == Anisotropic::Sampler ? level : 1.0f;
         bool linear_min = mode == Anisotropic::Shader && level > 1.0f;
         if (shader_anisotropy && mode == Anisotropic::Shader) *shader_anisotropy = level;
@@ -930,7 +916,7 @@ struct Renderer::Impl {
                 map_key(*mu.maps[std::size_t(i)], map, (features & feature::OcclusionInMetallicRoughness) ? packed : -1,
                         in_alpha ? &*alpha : nullptr);
             bound[i] = texture_for(*mu.maps[std::size_t(i)], info.srgb,
-                                   anisotropic_map(map) ? Anisotropic::Shader : Anisotropic::Off,
+                                   info.detail ? Anisotropic::Shader : Anisotropic::Off,
                                    settings.anisotropy, &mu.block.maps[std::size_t(i)].anisotropy, key);
             if (!bound[i]) raw &= ~feature::map_bit(i);
         }

@@ -77,6 +77,9 @@ struct MaterialMapInfo {
     const char* define;  // GLSL: HAS_<NAME>_MAP
     bool srgb;           // colour data, decoded by the sampler
     bool normal_map;     // needs a tangent frame
+    // A detail map: read through the renderer's anisotropic filter (detail_footprint in
+    // texture.h, sample_detail_map in the shader); the others are read with one lookup.
+    bool detail;
 };
 const MaterialMapInfo& material_map_info(MaterialMap map);
 
@@ -105,6 +108,9 @@ struct SurfacePoint {
     // computes it (all zero: magnification, level 0).
     std::optional<float> lod;
     glm::vec2 duv0_dx{0.0f}, duv0_dy{0.0f}, duv1_dx{0.0f}, duv1_dy{0.0f};
+    // Without `lod`: the most probes of the detail maps' anisotropic filter, as the renderer
+    // asks for them (RenderSettings::anisotropy; 1: one probe at the GL level of detail).
+    float max_anisotropy = 1.0f;
 };
 
 // evaluate's result: the BRDF's inputs plus what the shader does with the rest.
@@ -138,6 +144,13 @@ struct EvaluatedMaterial {
 };
 
 EvaluatedMaterial evaluate(const Material& material, const TextureSource& textures, const SurfacePoint& point);
+
+// One map's filtered, decoded texel at the point, as evaluate reads it (its UV set through its
+// transform; the explicit level of detail, else the detail filter for detail maps and one
+// lookup at the GL level of detail for the others), or nullopt when the material has no usable
+// map there (evaluate then reads white).
+std::optional<glm::vec4> sample_material_map(const Material& material, const TextureSource& textures,
+                                             const SurfacePoint& point, MaterialMap map);
 
 // KHR_materials_pbrSpecularGlossiness -> metallic-roughness at one point, the documented
 // conversion (the same as in read_material):
