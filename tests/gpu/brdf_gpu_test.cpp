@@ -40,7 +40,7 @@ using fresnel::brdf::Terms;
 enum ProbeMode { kModeBrdf = 0, kModeDvf = 1, kModeToneMap = 2, kModeEncode = 3, kModeClearcoat = 4 };
 
 constexpr int kGrid = 64;                  // cases per side: kGrid x kGrid per draw
-constexpr float kRelTol = 1e-3f;           // BRDF values, D, V, F: relative error ...
+constexpr float kRelTol = 1e-4f;           // BRDF values, D, V, F: relative error ...
 constexpr float kAbsTolNearZero = 1e-5f;   // ... or this absolute error near zero
 constexpr float kColorAbsTol = 1e-4f;      // tone mappers and encodings: absolute error
 

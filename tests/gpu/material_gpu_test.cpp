@@ -73,11 +73,12 @@ constexpr int kTexels = 11;              // input texels per point (material_pro
 constexpr int kOutputs = 12;             // u_output values (6 = shade_light)
 constexpr float kRelTol = 1e-4f;         // exact sampling: relative ...
 constexpr float kAbsFloor = 1e-6f;       // ... or absolute near zero
-// shade_light: relative, as gpu_brdf_test (the GGX peak of glossy lobes turns float
-// rounding of n.h, 1e-7, into 1e-4..1e-3 of D; measured 1.9e-4 with this seed, 7.6e-4 with another) ...
-constexpr float kShadeRelTol = 1e-3f;
+// shade_light: relative beyond the band that float rounding of its directions explains
+// (shade_band: the GGX peak of a glossy lobe turns rounding of n.h, 1e-7, into up to 1e-3
+// of D, in C++ as on the GPU) ...
+constexpr float kShadeRelTol = 1e-4f;
 constexpr float kShadeAbsFloor = 1e-5f;  // ... or absolute (radiance of order 1..1e3)
-constexpr float kFilteredAbsTol = 2.5e-2f;  // filtered sampling: absolute, per texel value (measured 0.0158)
+constexpr float kFilteredAbsTol = 2.5e-2f;  // filtered sampling: absolute, per texel value (measured 0.0038)
 
 struct TextureDesc {
     Image8 image;
@@ -362,9 +363,38 @@ private:
     std::uniform_real_distribution<float> u01_{0.0f, 1.0f};
 };
 
-// The C++ side of the probe's outputs, in u_output order.
-std::array<glm::vec4, kOutputs> cpu_outputs(const Case& c, const TextureSource& tex, const Point& pt) {
+constexpr glm::vec3 kProbeRadiance(1.0f, 0.8f, 0.6f);  // material_probe.frag's light
+
+// How far shade_light moves when its directions move by float rounding: the shading normal,
+// the coat normal, the anisotropy frame, v and l each moved by 4e-7 (a few ulps) along
+// different axes, both ways.
+// The GPU's directions differ from the C++ ones by that much (normalised there, the normal
+// computed by read_material), and near the GGX peak of a glossy lobe that alone moves the
+// result by up to 1e-3 of itself, in either implementation.
+glm::vec3 shade_band(const EvaluatedMaterial& e, const Point& pt) {
+    const glm::vec3 base = shade_light(e, pt.v, pt.l, kProbeRadiance, pt.comp_d, pt.comp_m);
+    const glm::vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    constexpr float kTurn = 4e-7f;
+    glm::vec3 band(0.0f);
+    for (int k = 0; k < 6; ++k) {
+        const float sign = k < 3 ? kTurn : -kTurn;
+        EvaluatedMaterial moved = e;
+        moved.normal = glm::normalize(e.normal + sign * axes[k % 3]);
+        moved.clearcoat_normal = glm::normalize(e.clearcoat_normal + sign * axes[k % 3]);
+        moved.anisotropic_t = glm::normalize(e.anisotropic_t + sign * axes[(k + 2) % 3]);
+        moved.anisotropic_b = glm::normalize(e.anisotropic_b - sign * axes[(k + 1) % 3]);
+        const glm::vec3 v = glm::normalize(pt.v - sign * axes[(k + 1) % 3]);
+        const glm::vec3 l = glm::normalize(pt.l + sign * axes[(k + 2) % 3]);
+        band = glm::max(band, glm::abs(shade_light(moved, v, l, kProbeRadiance, pt.comp_d, pt.comp_m) - base));
+    }
+    return band;
+}
+
+// The C++ side of the probe's outputs, in u_output order; `band` (if given) receives shade_band.
+std::array<glm::vec4, kOutputs> cpu_outputs(const Case& c, const TextureSource& tex, const Point& pt,
+                                            glm::vec3* band = nullptr) {
     EvaluatedMaterial e = evaluate(c.material, tex, pt.p);
+    if (band) *band = shade_band(e, pt);
     const brdf::Surface& s = e.surface;
     std::array<glm::vec4, kOutputs> o;
     o[0] = glm::vec4(s.base_color, e.alpha);
@@ -373,7 +403,7 @@ std::array<glm::vec4, kOutputs> cpu_outputs(const Case& c, const TextureSource& 
     o[3] = glm::vec4(s.dielectric_f0(), e.clearcoat);
     o[4] = glm::vec4(e.normal, e.clearcoat_roughness);
     o[5] = glm::vec4(e.clearcoat_normal, e.clearcoat_f0);
-    o[6] = glm::vec4(shade_light(e, pt.v, pt.l, glm::vec3(1.0f, 0.8f, 0.6f), pt.comp_d, pt.comp_m), 1.0f);
+    o[6] = glm::vec4(shade_light(e, pt.v, pt.l, kProbeRadiance, pt.comp_d, pt.comp_m), 1.0f);
     o[7] = glm::vec4(e.sheen_color, e.sheen_roughness);
     o[8] = glm::vec4(e.anisotropic_t, e.anisotropy_strength);
     o[9] = glm::vec4(e.anisotropic_b, e.anisotropy_direction.x);
@@ -627,6 +657,8 @@ protected:
         Gen gen(seed);
         int failures = 0, compared = 0, skipped = 0;
         float worst_rel = 0.0f, worst_shade = 0.0f, worst_abs = 0.0f;
+        float worst_shade_raw = 0.0f;  // shade_light without the rounding band
+        int shade_in_band = 0;         // shade_light values beyond 1e-4 that the band explains
         int shown[kOutputs][4] = {};
         const char* worst_what = "-";
         for (int ci = 0; ci < cases; ++ci) {
@@ -639,7 +671,8 @@ protected:
                     ++near_probe_changes;
                     continue;
                 }
-                auto cpu = cpu_outputs(c, tex, pt);
+                glm::vec3 band(0.0f);
+                auto cpu = cpu_outputs(c, tex, pt, exact ? &band : nullptr);
                 if (c.material.alpha_mode == AlphaMode::Mask) {
                     // The alpha before the mode is not an output; recompute it with the mode off.
                     Material blend = c.material;
@@ -670,8 +703,13 @@ protected:
                         if (o == 6) {
                             // shade_light: exact sampling only (filtered inputs differ already).
                             if (!exact) continue;
-                            ok = err <= kShadeRelTol * scale || err <= kShadeAbsFloor;
-                            if (scale > 0) worst_shade = std::max(worst_shade, err > kShadeAbsFloor ? err / scale : 0.0f);
+                            const float rounding = ch < 3 ? band[ch] : 0.0f;
+                            ok = err <= kShadeRelTol * scale + rounding || err <= kShadeAbsFloor;
+                            if (scale > 0 && err > kShadeAbsFloor) {
+                                worst_shade = std::max(worst_shade, std::max(0.0f, err - rounding) / scale);
+                                worst_shade_raw = std::max(worst_shade_raw, err / scale);
+                                if (err > kShadeRelTol * scale) ++shade_in_band;
+                            }
                         } else if (exact) {
                             ok = err <= kRelTol * scale || err <= kAbsFloor;
                             if (scale > 1e-3f && err / scale > worst_rel) {
@@ -727,8 +765,10 @@ protected:
             }
         }
         std::printf("%s sampling: %d cases, %d values compared, %d near the cutoff skipped; worst relative %.3g (%s), "
-                    "shade_light %.3g, filtered absolute %.3g\n",
-                    regime_name, cases, compared, skipped, worst_rel, worst_what, worst_shade, worst_abs);
+                    "shade_light %.3g beyond its rounding band (%.3g without it, %d values within the band only), "
+                    "filtered absolute %.3g\n",
+                    regime_name, cases, compared, skipped, worst_rel, worst_what, worst_shade, worst_shade_raw,
+                    shade_in_band, worst_abs);
         if (regime == Regime::Footprint) {
             std::printf("footprint: %d detail-map reads, %d of them with more than one probe; %d points near a change "
                         "of probes skipped\n",
