@@ -3,7 +3,9 @@
 // (Debian's glslang-dev, in process, one thread per core): the mesh shaders for every
 // feature set of all_feature_sets() (shader_features.h, the same enumeration the renderer's
 // rules come from) and the other programs (fullscreen.vert, post.frag, sky.frag,
-// brdf_probe.frag, legacy_probe.frag).
+// brdf_probe.frag, legacy_probe.frag). pbr.frag's sources are compiled with a frame variant
+// each, as the renderer compiles them (tone mapper, encoding, with or without punctual
+// lights: every one of them in turn; all of them on the richest feature set).
 //
 // A stage's source depends only on the feature #defines it mentions, so each stage
 // is compiled once per distinct set of the bits it reads (the bits it never names
@@ -82,7 +84,8 @@ FeatureMask bits_read_by(const std::string& file) {
 
 // Compiles one stage; returns "" or the info log.
 std::string compile(const Job& job) {
-    const std::vector<std::string> defines = job.mesh ? feature_defines(job.mask) : job.defines;
+    std::vector<std::string> defines = job.mesh ? feature_defines(job.mask) : job.defines;
+    if (job.mesh) defines.insert(defines.end(), job.defines.begin(), job.defines.end());  // its frame variant
     const std::string src = assemble_shader(job.file, defines, job.target);
     glslang::TShader shader(is_vertex(job.file) ? EShLangVertex : EShLangFragment);
     const char* text = src.c_str();
@@ -96,7 +99,7 @@ std::string describe(const Job& job) {
     if (job.mesh) {
         s += ":";
         for (const auto& d : feature_defines(job.mask)) s += " " + d;
-    }
+    }  // then the frame variant, below
     for (const auto& d : job.defines) s += " " + d;
     return s;
 }
@@ -295,9 +298,32 @@ TEST(ShaderVariants, EveryVariantCompilesAsEs300AndGl330) {
         // (#version, precision statements), so every source compiles as 300 es and every
         // kDesktopStride-th (in mask order) as 330 core as well, which keeps this test's share
         // of CI's two cores near half of what compiling all twice cost (~580 s there).
+        // The renderer compiles pbr.frag with a frame variant always (frame_defines: tone mapper,
+        // encoding, with or without punctual lights); the sources take them in turn, so each
+        // variant is compiled with some thousand feature sets, and FRAME_NO_LIGHTS (which removes
+        // the light loop) meets every bit the stage reads both set and clear (asserted below).
+        std::vector<FrameVariant> frames;
+        for (int t = 0; t <= int(ToneMapper::None); ++t)
+            for (int e : {-1, 0, 1})
+                for (bool lights : {true, false}) frames.push_back({t, e, lights});
+        const bool fragment = std::string(file) == "pbr.frag";
+        FeatureMask set_lit = 0, set_unlit = 0, clear_lit = 0, clear_unlit = 0;
         for (std::size_t k = 0; k < sources.size(); ++k) {
-            jobs.push_back({file, sources[k], true, GlslTarget::Es30});
-            if (k % kDesktopStride == 0) jobs.push_back({file, sources[k], true, GlslTarget::Gl33});
+            // Consecutive variants alternate the lights, and the turn shifts by one every round
+            // (k / frames.size()), so that a bit that alternates with k meets both choices.
+            const FrameVariant& frame = frames[(k + k / frames.size()) % frames.size()];
+            const std::vector<std::string> fd = fragment ? frame_defines(frame) : std::vector<std::string>{};
+            if (fragment) {
+                (frame.lights ? set_lit : set_unlit) |= sources[k];
+                (frame.lights ? clear_lit : clear_unlit) |= ~sources[k] & read;
+            }
+            jobs.push_back({file, sources[k], true, GlslTarget::Es30, fd});
+            if (k % kDesktopStride == 0) jobs.push_back({file, sources[k], true, GlslTarget::Gl33, fd});
+        }
+        if (fragment) {
+            for (FeatureMask bits : {set_lit, set_unlit, clear_lit, clear_unlit}) {
+                EXPECT_EQ(bits & read, read) << "a bit pbr.frag reads never meets one of the light choices";
+            }
         }
     }
     // The legacy models' shaders (legacy.vert / legacy.frag): every legacy feature set.
