@@ -1,5 +1,5 @@
 // The material's factors and per-map parameters as one std140 uniform block: the layout of
-// fresnel::MaterialBlock (libs/render/include/fresnel/render/material_uniforms.h), which
+// fresnel::MaterialBlock (libs/render/include/fresnel/render/uniform_blocks.h), which
 // tests/gpu/material_gpu_test.cpp checks member by member against the driver's offsets.
 // The renderer keeps one buffer per material and binds it per draw; only the samplers
 // (u_<map>_map) stay plain uniforms. Every member exists in every variant (a fixed layout);

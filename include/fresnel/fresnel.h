@@ -1,8 +1,10 @@
 #pragma once
 // fresnel as a library: every layer's public headers and fresnel::version().
 // Link fresnel::fresnel (CMake: find_package(fresnel REQUIRED)). Layers, bottom up:
-// core (errors, colour, images), scene (glTF loader), material (BRDF), ibl (environments,
-// baking), gpu (OpenGL contexts and objects), render (cameras, lights, the renderer), trace (the CPU path tracer).
+// core (errors, colour, images), material (the material model, evaluate, the BRDF), scene
+// (the scene model, mesh operations, the glTF and OBJ loaders), ibl (environments, baking),
+// gpu (OpenGL contexts and objects), render (jobs, cameras, lights, the renderer), trace (the
+// CPU path tracer).
 #include "fresnel/core/version.h"
 
 #include "fresnel/core/color.h"

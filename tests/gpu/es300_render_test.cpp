@@ -4,8 +4,8 @@
 // shared studio_small_03 environment plus the default pair of lights) agrees to at
 // least 40 dB PSNR. Skips when ../shared or the model is absent.
 //
-// The two contexts are made one after the other: both live on the same EGL display,
-// and a context's destruction terminates it.
+// The two contexts are made one after the other: both live on the same EGL display, which
+// the last context's destruction terminates (egl_context.cpp).
 #include <gtest/gtest.h>
 
 #include <cstdio>

@@ -430,6 +430,115 @@ TEST_F(RenderTargets, MetallicRoughnessInAlphaIsTheSameImage) {
     EXPECT_EQ(packed_bytes[OtherUvSet], packed_bytes[Plain] + 5461u * 4u);
 }
 
+// A material that reads more maps than the texture units hold: with the limit at the 16 units
+// OpenGL 3.3 and ES 3.0 guarantee, its last maps in MaterialMap order go unread (the newest
+// extensions' first), with no GL error, and the frame is the one of the material without them.
+TEST_F(RenderTargets, MapsPastTheTextureUnitsGoUnread) {
+    if (!start()) GTEST_SKIP() << why_;
+    if (context_->capabilities().max_fragment_texture_units < 20)
+        GTEST_SKIP() << "the context has " << context_->capabilities().max_fragment_texture_units
+                     << " fragment texture units; the reference frame needs 20";
+    // Every map but specular-glossiness's (19), with transmission: the occlusion is read from
+    // the metallic-roughness texture (one texture: the same image and UV set), so 18 textures +
+    // the transmitted scene and the split-sum table (no environment) = 20 units. At 16 the last
+    // four go, in their pairs: diffuse transmission's two maps and iridescence's two.
+    auto everything = [] {
+        Material m;
+        TextureSlot slot;
+        slot.texture = 0;
+        auto next = [&] {
+            TextureSlot s = slot;
+            slot.texture = (slot.texture + 1) % 4;
+            return s;
+        };
+        m.base_color = next();
+        m.metallic_roughness = next();
+        m.normal = next();
+        m.occlusion = next();
+        m.emissive = next();
+        m.emissive_factor = glm::vec3(0.3f);
+        m.specular = SpecularExt{1.0f, next(), glm::vec3(1.0f), next()};
+        ClearcoatExt cc;
+        cc.clearcoat_factor = 0.5f;
+        cc.clearcoat_texture = next();
+        cc.clearcoat_roughness_texture = next();
+        cc.clearcoat_normal_texture = next();
+        m.clearcoat = cc;
+        SheenExt sh;
+        sh.sheen_color_factor = glm::vec3(0.5f);
+        sh.sheen_color_texture = next();
+        sh.sheen_roughness_texture = next();
+        m.sheen = sh;
+        TransmissionExt tr;
+        tr.transmission_factor = 0.5f;
+        tr.transmission_texture = next();
+        m.transmission = tr;
+        VolumeExt vol;
+        vol.thickness_factor = 0.1f;
+        vol.thickness_texture = next();
+        m.volume = vol;
+        AnisotropyExt an;
+        an.anisotropy_strength = 0.5f;
+        an.anisotropy_texture = next();
+        m.anisotropy = an;
+        IridescenceExt ir;
+        ir.iridescence_factor = 0.5f;
+        ir.iridescence_texture = next();
+        ir.iridescence_thickness_texture = next();
+        m.iridescence = ir;
+        DiffuseTransmissionExt dt;
+        dt.diffuse_transmission_factor = 0.5f;
+        dt.diffuse_transmission_texture = next();
+        dt.diffuse_transmission_color_texture = next();
+        m.diffuse_transmission = dt;
+        return m;
+    };
+    auto scene_with = [](const Material& m) {
+        Primitive p = make_uv_sphere(32, 16);
+        EXPECT_TRUE(generate_tangents(p, 0));
+        p.material = 0;
+        Scene s = make_single_primitive_scene(std::move(p), {m});
+        s.images = {{"a", noise_image(1)}, {"b", noise_image(2)}, {"c", noise_image(3)}, {"d", noise_image(4)}};
+        s.textures = {{0, {}}, {1, {}}, {2, {}}, {3, {}}};
+        return s;
+    };
+    auto render = [&](const Scene& scene, int units, FrameStats& stats) {
+        RenderSettings rs;
+        rs.width = rs.height = 64;
+        rs.ambient = glm::vec3(0.5f);
+        rs.max_texture_units = units;
+        Renderer renderer(*context_);
+        renderer.set_scene(scene);
+        CameraSetup cam = orbit_camera(scene_bounds(scene, flatten(scene)), {}, rs.width, rs.height);
+        return renderer.render(cam, default_lights(), rs, &stats);
+    };
+    const Material full = everything();
+    Material without = full;  // the four last maps in MaterialMap order, by hand
+    without.iridescence->iridescence_texture = {};
+    without.iridescence->iridescence_thickness_texture = {};
+    without.diffuse_transmission->diffuse_transmission_texture = {};
+    without.diffuse_transmission->diffuse_transmission_color_texture = {};
+    FrameStats limited_stats, unlimited_stats, reference_stats;
+    const ImageF limited = render(scene_with(full), 16, limited_stats);
+    const ImageF unlimited = render(scene_with(full), 0, unlimited_stats);
+    const ImageF reference = render(scene_with(without), 0, reference_stats);
+    EXPECT_EQ(limited_stats.gl_errors, "");
+    EXPECT_EQ(unlimited_stats.gl_errors, "");
+    EXPECT_GE(limited_stats.unit_limited_draws, 1);
+    EXPECT_EQ(unlimited_stats.unit_limited_draws, 0);
+    EXPECT_EQ(reference_stats.unit_limited_draws, 0);
+    float limited_vs_reference = 0.0f, limited_vs_unlimited = 0.0f;
+    for (std::size_t i = 0; i < limited.pixels.size(); ++i) {
+        limited_vs_reference = std::max(limited_vs_reference, std::abs(limited.pixels[i] - reference.pixels[i]));
+        limited_vs_unlimited = std::max(limited_vs_unlimited, std::abs(limited.pixels[i] - unlimited.pixels[i]));
+    }
+    std::printf("16 units: %d draws limited; against the material without its last four maps: max difference %g; "
+                "against all maps read: %g\n",
+                limited_stats.unit_limited_draws, double(limited_vs_reference), double(limited_vs_unlimited));
+    EXPECT_EQ(limited_vs_reference, 0.0f);
+    EXPECT_GT(limited_vs_unlimited, 0.0f);  // the maps did change the frame
+}
+
 // Contexts share the process's EGL display: one going (its destructor) must leave the others
 // working, in any order (`fresnel batch --jobs N` ends its workers' contexts on their threads
 // as each finishes; the first used to terminate the display under the rest).

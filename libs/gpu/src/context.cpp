@@ -89,6 +89,9 @@ void Context::init_context(const ContextOptions& options) {
     }
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &n);
     c.max_texture_units = n;
+    n = 16;
+    glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &n);
+    c.max_fragment_texture_units = n;
     c.debug_output = gl::has_extension("GL_KHR_debug");
     while (glGetError() != GL_NO_ERROR) {
     }

@@ -51,13 +51,16 @@ constexpr NamedChannel kChannels[] = {
 
 constexpr int kMaxLights = kMaxShaderLights;
 
-// Texture units of the passes with fixed layouts: the output pass reads its frame from unit 0,
-// the legacy models' image-based light sits at the top of the 16 units OpenGL ES 3.0
-// guarantees. The glTF draws pack theirs (draw_primitive).
+// Texture units of the passes with fixed layouts: the output pass, the sky and the legacy
+// models' diffuse map read one texture each from unit 0; the legacy models' image-based light
+// sits at the top of the 16 units OpenGL ES 3.0 guarantees. The glTF draws pack theirs
+// (draw_primitive).
 enum class TextureUnit : int {
-    FirstMaterialMap = 0,
-    Frame = 0,
-    // The legacy models' image-based light (the glTF model packs its units per draw).
+    Frame = 0,             // the output pass's frame (multisampled or resolved)
+    SkyEnvironment = 0,    // the background's cube map
+    LegacyDiffuseMap = 0,  // OpenGL 1 and Blinn-Phong's diffuse texture
+    // The Blinn-Phong image-based light. Its shader declares the split-sum table without
+    // sampling it; the unit keeps that sampler off the cube maps' units all the same.
     BrdfLut = 13,
     SpecularEnvironment = 14,
     IrradianceEnvironment = 15,
@@ -297,8 +300,8 @@ struct Renderer::Impl {
         device.apply(st);
         const gpu::Program& prog = shaders.get("fullscreen.vert", "sky.frag", 0, frame_variant(s, linear));
         prog.use();
-        device.bind_texture(0, env_specular);
-        prog.set("u_specular_env", 0);
+        device.bind_texture(int(TextureUnit::SkyEnvironment), env_specular);
+        prog.set("u_specular_env", int(TextureUnit::SkyEnvironment));
         prog.set("u_inverse_view_projection", glm::inverse(cam.projection * cam.view));
         prog.set("u_env_rotation", env_rotation(s));
         prog.set("u_env_intensity", s.env_intensity);
@@ -588,6 +591,12 @@ struct Renderer::Impl {
     // shader (sample_detail_map, shaders/material_inputs.glsl; fresnel::evaluate's twin:
     // detail_footprint in material/texture.h).
     //
+    // The texture units a draw may use (RenderSettings::max_texture_units).
+    int unit_limit(const RenderSettings& settings) const {
+        const int limit = context.capabilities().max_fragment_texture_units;
+        return settings.max_texture_units > 0 ? std::clamp(settings.max_texture_units, 16, limit) : limit;
+    }
+
     // How a slot's texture is filtered anisotropically: not at all, by the sampler (GL's
     // TEXTURE_MAX_ANISOTROPY), or in the shader (sample_detail_map in material_inputs.glsl).
     enum class Anisotropic { Off, Sampler, Shader };
@@ -829,8 +838,8 @@ struct Renderer::Impl {
         prog.set("u_shininess", legacy::ogl1_shininess(ph.shininess));
         prog.set("u_separate_specular", map ? 1 : 0);  // as rgl: separate specular for textured materials
         if (map) {
-            device.bind_texture(0, *map);
-            prog.set("u_diffuse_map", 0);
+            device.bind_texture(int(TextureUnit::LegacyDiffuseMap), *map);
+            prog.set("u_diffuse_map", int(TextureUnit::LegacyDiffuseMap));
             prog.set("u_diffuse_transform", slot.transform);
         }
         if (features & lf::Fogged) {
@@ -884,8 +893,8 @@ struct Renderer::Impl {
 
         // Texture units are packed per draw: the maps the variant reads take units 0, 1, ... in
         // MaterialMap order, then the opaque scene (transmission), the split-sum table, the
-        // environment's two cubes and sheen's cube and table follow; so a draw needs 16 units (what
-        // OpenGL ES 3.0 guarantees) unless it reads more than 10 maps with sheen under an environment.
+        // environment's two cubes and sheen's cube and table follow; a draw that would need more
+        // than the limit leaves its last maps unread (below: unit_limit).
         static_assert(kMaterialMapCount == feature::kMapCount);
         const gpu::Texture* bound[kMaterialMapCount] = {};
         const VertexInputs vertex{p.has_uv0, p.has_uv1, p.has_tangent};
@@ -923,11 +932,36 @@ struct Renderer::Impl {
         features = canonical_features(raw);
         // alpha_packs found every texture it names usable, so none went missing above.
         assert(in_alpha == bool(features & feature::MetallicRoughnessInAlpha));
-        for (int i = 0; i < kMaterialMapCount; ++i) {
-            // A map the variant samples but the material lacks reads the white texture: x * 1.0 = x.
-            if (!(features & feature::map_bit(i)) || (in_alpha && MaterialMap(i) == MaterialMap::MetallicRoughness))
-                bound[i] = nullptr;
-            else if (!bound[i]) bound[i] = &white_texture();
+        auto settle_maps = [&] {
+            for (int i = 0; i < kMaterialMapCount; ++i) {
+                // A map the variant samples but the material lacks reads the white texture: x * 1.0 = x.
+                if (!(features & feature::map_bit(i)) || (in_alpha && MaterialMap(i) == MaterialMap::MetallicRoughness))
+                    bound[i] = nullptr;
+                else if (!bound[i]) bound[i] = &white_texture();
+            }
+        };
+        settle_maps();
+        // The texture units (the packing below): the maps take what the transmitted scene, the
+        // split-sum table and the environment's cubes leave; past the limit the last maps go
+        // unread (RenderSettings::max_texture_units). 16 units hold 10 maps with everything else.
+        // Maps the variants read in pairs (clearcoat's, sheen's, ...: canonical_features) go in pairs.
+        {
+            auto units_for = [&](FeatureMask f) {
+                int units = ((f & feature::Transmission) ? 1 : 0) + 1 + (settings.environment ? 2 : 0) +
+                            ((f & feature::Sheen) && settings.environment && env_sheen && charlie_lut ? 2 : 0);
+                for (int i = 0; i < kMaterialMapCount; ++i)
+                    units += (f & feature::map_bit(i)) && !(in_alpha && MaterialMap(i) == MaterialMap::MetallicRoughness);
+                return units;
+            };
+            const int limit = unit_limit(settings);
+            FeatureMask trial = features;
+            for (int i = kMaterialMapCount - 1; i >= 0 && units_for(canonical_features(trial)) > limit; --i)
+                trial &= ~feature::map_bit(i);
+            if (trial != features) {
+                features = canonical_features(trial);
+                settle_maps();
+                ++stats.unit_limited_draws;
+            }
         }
         // One anisotropic footprint for the detail maps that agree (DetailSharedFootprint).
         const bool shared_footprint = settings.share_footprints && shares_detail_footprint(features, bound, mu);
@@ -1207,11 +1241,11 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
         });
     prog.use();
     if (ft.shader_resolve) {
-        r.device.bind_texture(0, ft.msaa_texture);
-        prog.set("u_frame_ms", 0);  // the sample count and the alpha choice are compiled in
+        r.device.bind_texture(int(TextureUnit::Frame), ft.msaa_texture);
+        prog.set("u_frame_ms", int(TextureUnit::Frame));  // the sample count and the alpha choice are compiled in
     } else {
-        r.device.bind_texture(0, ft.resolved);
-        prog.set("u_frame", 0);
+        r.device.bind_texture(int(TextureUnit::Frame), ft.resolved);
+        prog.set("u_frame", int(TextureUnit::Frame));
     }
     const bool scissored = to_default && target.scissor;
     if (scissored) r.device.scissor(target.scissor->x, target.scissor->y, target.scissor->width, target.scissor->height);

@@ -41,6 +41,9 @@ struct Capabilities {
     bool seamless_cube_maps = true;  // desktop: enabled once at creation; ES 3.0 filters seamlessly always
     bool debug_output = false;       // KHR_debug
     int max_texture_units = 16;      // GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS
+    // Units a fragment shader can sample (GL_MAX_TEXTURE_IMAGE_UNITS; OpenGL 3.3 and ES 3.0
+    // guarantee 16).
+    int max_fragment_texture_units = 16;
     // Multisampled textures (texelFetch on sampler2DMS): OpenGL 3.2+, not OpenGL ES 3.0.
     bool multisample_textures = true;
     int max_color_texture_samples = 0;  // GL_MAX_COLOR_TEXTURE_SAMPLES (0 on ES 3.0)

@@ -47,7 +47,8 @@
 
 namespace fresnel {
 
-// The texture maps a material can read, in the shader's order (texture units).
+// The texture maps a material can read, in the order of the material block's per-map entries
+// (MaterialBlock::maps; the renderer packs the texture units per draw).
 enum class MaterialMap {
     BaseColor,           // baseColorTexture, or the diffuseTexture of specular-glossiness
     MetallicRoughness,
@@ -180,6 +181,10 @@ MetallicRoughnessPoint specular_glossiness_to_metallic_roughness(glm::vec4 diffu
 // is returned unchanged. The renderer keeps the block and converts per point instead.
 Material to_metallic_roughness(const Material& material, bool* lost_glossiness_map = nullptr);
 
+// The thin film of `m` at the view v (KHR_materials_iridescence; factor 0 without one): the
+// film shade_light and shade_light_transmission use.
+brdf::IridescenceFresnel film_at(const EvaluatedMaterial& m, glm::vec3 v);
+
 // KHR_materials_sheen and _clearcoat layering of one punctual light (pbr.frag's light loop):
 //   base = (f_diffuse + f_specular_dielectric * comp_dielectric + f_specular_metal * comp_metal) n.l
 //   with anisotropy the specular lobes' D and V are the anisotropic ones (brdf::apply_anisotropy)
@@ -193,10 +198,6 @@ Material to_metallic_roughness(const Material& material, bool* lost_glossiness_m
 //   result = radiance * mix(base, clearcoat_specular, clearcoat_mix)
 // comp_* are the energy-compensation factors (1 without); `model` selects the BRDF's terms
 // (brdf_model.h; the default is glTF's). The twin of shade_light in shaders/material_inputs.glsl.
-// The thin film of `m` at the view v (KHR_materials_iridescence; factor 0 without one): the
-// film shade_light and shade_light_transmission use.
-brdf::IridescenceFresnel film_at(const EvaluatedMaterial& m, glm::vec3 v);
-
 glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 radiance,
                       glm::vec3 comp_dielectric = glm::vec3(1.0f), glm::vec3 comp_metal = glm::vec3(1.0f),
                       const brdf::BrdfModel& model = {});

@@ -57,7 +57,7 @@ struct TextureSlot {
         has_transform = true;
     }
 };
-using TextureRef = TextureSlot;  // the former name, still used by renderer code
+using TextureRef = TextureSlot;  // the former name (the glTF loader and its tests still say it)
 
 // ---- Extension blocks (glTF names in comments; defaults are the specification's) ----
 

@@ -35,7 +35,8 @@
 namespace fresnel {
 
 struct Job {
-    // The scene: a glTF 2.0 file, or the built-in demo (7x7 spheres) when `model` is empty.
+    // The scene: a glTF 2.0 (.gltf, .glb) or Wavefront OBJ file, or the built-in demo (7x7
+    // spheres) when `model` is empty.
     struct Source {
         std::string model;
         int scene = -1;                     // scene index; -1 = the file's `scene`

@@ -138,6 +138,13 @@ struct RenderSettings {
     // agrees with the Khronos references as well on average, docs/performance.md). false
     // reads the textures as stored (tests compare the two).
     bool pack_channels = true;
+    // Texture units a draw may use: 0 is the context's fragment limit
+    // (gpu::Capabilities::max_fragment_texture_units; OpenGL 3.3 and ES 3.0 guarantee 16), a
+    // smaller value (at least 16) stands in for a smaller GPU (tests). A glTF draw takes one
+    // unit per map it reads and up to six for the transmitted scene, the split-sum table and
+    // the environment's cubes; a material that needs more leaves its last maps (in MaterialMap
+    // order: the newest extensions' first) unread and counts in FrameStats::unit_limited_draws.
+    int max_texture_units = 0;
 };
 
 // Whether every skin and morphed primitive of `scene` fits RenderSettings::gpu_animation's
@@ -173,6 +180,8 @@ struct FrameStats {
     int shared_footprint_draws = 0;
     // Draws that read their metallic-roughness texture from alpha channels (RenderSettings::pack_channels).
     int alpha_packed_draws = 0;
+    // Draws that left maps unread for want of texture units (RenderSettings::max_texture_units).
+    int unit_limited_draws = 0;
 };
 
 class Renderer {
