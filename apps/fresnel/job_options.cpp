@@ -175,11 +175,7 @@ std::optional<Job> job_from_options(const RenderOptions& o, Job job, const Given
     if (given("--tonemap")) out.tone_mapper = *tone;
     if (given("--encoding")) out.encoding = *encoding;
     if (given("--debug")) out.debug = *debug;
-    if (o.msaa > 0) {
-        if (given("--msaa")) out.msaa = o.msaa;
-    } else if (given("--shading") && (out.shading == ShadingModel::Ogl1 || out.shading == ShadingModel::Ogl1Pixel)) {
-        out.msaa = 1;  // no --msaa: OpenGL 1's framebuffer has no multisampling (nor has ogl1-ref's)
-    }
+    if (given("--msaa") && o.msaa > 0) out.msaa = o.msaa;  // else automatic (Job::Output::msaa)
     if (given("--anisotropy")) out.anisotropy = o.anisotropy;
     if (given("--exposure")) out.exposure_ev = o.exposure;
     if (given("--no-energy-compensation")) out.energy_compensation = !o.no_energy_compensation;

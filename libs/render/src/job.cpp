@@ -122,7 +122,8 @@ ResolvedJob resolve(const Job& job, const Scene& scene) {
     RenderSettings& rs = r.settings;
     rs.width = out.width;
     rs.height = out.height;
-    rs.msaa = out.msaa;
+    rs.msaa = out.msaa > 0 ? out.msaa
+                           : (out.shading == ShadingModel::Ogl1 || out.shading == ShadingModel::Ogl1Pixel ? 1 : 4);
     rs.anisotropy = out.anisotropy;
     rs.exposure_ev = out.exposure_ev;
     rs.tone_mapper = out.tone_mapper;

@@ -487,8 +487,6 @@ void read_render(const Reader& r, const json& o, Job& job) {
         auto m = parse_shading_model(r.string(*v, at(ptr, "shading")));
         if (!m) r.fail(at(ptr, "shading"), "must be auto, gltf, ogl1, ogl1-pixel or blinn-phong-normalized");
         out.shading = *m;
-        // OpenGL 1's framebuffer has no multisampling: without a "msaa" of its own, none.
-        if ((out.shading == ShadingModel::Ogl1 || out.shading == ShadingModel::Ogl1Pixel) && !r.find(o, "msaa")) out.msaa = 1;
     }
 }
 
@@ -799,7 +797,7 @@ json scene_document(const Job& job, const fs::path& base_dir, const std::optiona
     const Job::Output& o = job.output;
     json r = json::object();
     r["size"] = json::array({o.width, o.height});
-    r["msaa"] = o.msaa;
+    if (o.msaa > 0) r["msaa"] = o.msaa;  // else automatic
     r["anisotropy"] = num(o.anisotropy);
     r["toneMapping"] = std::string(tone_mapper_name(o.tone_mapper));
     r["exposure"] = num(o.exposure_ev);

@@ -95,7 +95,15 @@ TEST(JobTest, IsARegularValueType) {
     Job d;
     EXPECT_EQ(d.output.width, 1024);
     EXPECT_EQ(d.output.height, 768);
-    EXPECT_EQ(d.output.msaa, 4);
+    EXPECT_EQ(d.output.msaa, 0);  // automatic: 4, 1 with OpenGL 1 shading
+    EXPECT_EQ(resolve(d, sphere_scene()).settings.msaa, 4);
+    d.output.shading = ShadingModel::Ogl1;
+    EXPECT_EQ(resolve(d, sphere_scene()).settings.msaa, 1);
+    d.output.shading = ShadingModel::Ogl1Pixel;
+    EXPECT_EQ(resolve(d, sphere_scene()).settings.msaa, 1);
+    d.output.msaa = 8;
+    EXPECT_EQ(resolve(d, sphere_scene()).settings.msaa, 8);
+    d = Job{};
     EXPECT_EQ(d.output.tone_mapper, ToneMapper::Neutral);
     EXPECT_EQ(d.environment.kind, EnvKind::Automatic);
     EXPECT_EQ(d.background.mode, Mode::Automatic);

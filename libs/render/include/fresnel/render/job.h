@@ -121,7 +121,9 @@ struct Job {
     };
     struct Output {
         int width = 1024, height = 768;
-        int msaa = 4;  // samples, 1 = off
+        // Samples, 1 = off; 0 = automatic: 4, or 1 with OpenGL 1 shading (Ogl1, Ogl1Pixel), whose
+        // framebuffer has no multisampling (nor has ogl1-ref's). resolve() applies it.
+        int msaa = 0;
         float anisotropy = kDefaultAnisotropy;  // anisotropic filtering of the detail maps, 1 = off (RenderSettings::anisotropy)
         ToneMapper tone_mapper = ToneMapper::Neutral;
         float exposure_ev = 0.0f;
