@@ -156,6 +156,7 @@ struct Renderer::Impl {
     // besides the mesh variants: no strings are built per draw.
     enum ProgramFamily { kLegacyPrograms = 1, kBrdfPrograms, kOutputPrograms };
     std::vector<Draw> opaque_draws, blended_draws, transmissive_draws;  // a frame's, storage kept
+    SkinMatrices skin_pose;  // GPU animation's joint matrices, storage kept
     const Scene* scene = nullptr;
     int scene_index = -1;
     std::vector<NodeInstance> instances;
@@ -1140,18 +1141,9 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
         opaque.clear();
         blended.clear();
         transmissive.clear();
-        // GPU animation: joint matrices from the nodes' current world matrices.
-        std::vector<std::vector<glm::mat4>> skin_matrices;
-        if (settings.gpu_animation) {
-            std::vector<glm::mat4> world = world_matrices(r.scene->nodes);
-            skin_matrices.resize(r.scene->skins.size());
-            for (std::size_t k = 0; k < r.scene->skins.size(); ++k) {
-                const Skin& s = r.scene->skins[k];
-                bool ok = !s.joints.empty() && s.joints.size() <= std::size_t(kMaxShaderJoints);
-                for (int j : s.joints) ok = ok && j >= 0 && std::size_t(j) < world.size();
-                if (ok) skin_matrices[k] = joint_matrices(world, s.joints, s.inverse_bind);
-            }
-        }
+        // GPU animation: joint matrices from the nodes' current world matrices (storage kept).
+        if (settings.gpu_animation) skin_matrices(r.scene->nodes, r.scene->skins, r.skin_pose, kMaxShaderJoints);
+        const std::vector<std::vector<glm::mat4>>& skins = r.skin_pose.skins;
         for (const auto& inst : r.instances) {
             const Node& node = r.scene->nodes[std::size_t(inst.node)];
             if (node.mesh < 0 || !inst.visible) continue;
@@ -1162,9 +1154,9 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
                 Draw d{&p, model, std::isnan(c.z) ? 0.0f : -c.z};  // a NaN would break the sort's ordering
                 d.sequence = std::uint32_t(opaque.size() + blended.size() + transmissive.size());
                 if (settings.gpu_animation && !node.world_space_mesh) {
-                    if (p.has_skin && node.skin >= 0 && std::size_t(node.skin) < skin_matrices.size() &&
-                        !skin_matrices[std::size_t(node.skin)].empty())
-                        d.joints = &skin_matrices[std::size_t(node.skin)];
+                    if (p.has_skin && node.skin >= 0 && std::size_t(node.skin) < skins.size() &&
+                        !skins[std::size_t(node.skin)].empty())
+                        d.joints = &skins[std::size_t(node.skin)];
                     const std::vector<float>& weights = node.weights.empty() ? mesh.weights : node.weights;
                     for (int k = 0; k < p.morph_targets; ++k) {
                         float w = std::size_t(k) < weights.size() ? weights[std::size_t(k)] : 0.0f;

@@ -1038,10 +1038,10 @@ private:
     void pose_skins() {
         if (scene_.skins.empty() || !opt_.pose_skins) return;
         // The hierarchy is a forest (checked in load_nodes).
-        std::vector<glm::mat4> world = world_matrices(scene_.nodes);
-        std::vector<std::vector<glm::mat4>> skin_matrices(scene_.skins.size());
-        for (std::size_t k = 0; k < scene_.skins.size(); ++k)
-            skin_matrices[k] = joint_matrices(world, scene_.skins[k].joints, scene_.skins[k].inverse_bind);
+        SkinMatrices posed;
+        fresnel::skin_matrices(scene_.nodes, scene_.skins, posed);
+        const std::vector<glm::mat4>& world = posed.world;
+        const std::vector<std::vector<glm::mat4>>& skin_matrices = posed.skins;
         for (std::size_t i = 0; i < scene_.nodes.size(); ++i) {
             Node& node = scene_.nodes[i];
             if (node.skin < 0 || node.mesh < 0) continue;

@@ -186,41 +186,69 @@ std::vector<std::uint32_t> compact_vertices(Primitive& p) {
     return remap;
 }
 
-std::vector<glm::mat4> world_matrices(std::span<const Node> nodes) {
-    std::vector<glm::mat4> world(nodes.size());
-    std::vector<bool> has_parent(nodes.size(), false), done(nodes.size(), false);
+namespace {
+// world_matrices into `world`, with the workspace's storage.
+void world_matrices_into(std::span<const Node> nodes, SkinMatrices& ws) {
+    std::vector<glm::mat4>& world = ws.world;
+    world.resize(nodes.size());
+    ws.has_parent.assign(nodes.size(), 0);
+    ws.done.assign(nodes.size(), 0);
+    ws.stack.clear();
     for (const Node& n : nodes)
         for (int c : n.children)
-            if (c >= 0 && std::size_t(c) < nodes.size()) has_parent[std::size_t(c)] = true;
-    std::vector<std::size_t> stack;
+            if (c >= 0 && std::size_t(c) < nodes.size()) ws.has_parent[std::size_t(c)] = 1;
     for (std::size_t root = 0; root < nodes.size(); ++root) {
-        if (has_parent[root]) continue;
+        if (ws.has_parent[root]) continue;
         world[root] = nodes[root].local;
-        done[root] = true;
-        stack.push_back(root);
-        while (!stack.empty()) {
-            std::size_t n = stack.back();
-            stack.pop_back();
+        ws.done[root] = 1;
+        ws.stack.push_back(root);
+        while (!ws.stack.empty()) {
+            std::size_t n = ws.stack.back();
+            ws.stack.pop_back();
             for (int c : nodes[n].children) {
-                if (c < 0 || std::size_t(c) >= nodes.size() || done[std::size_t(c)]) continue;
+                if (c < 0 || std::size_t(c) >= nodes.size() || ws.done[std::size_t(c)]) continue;
                 world[std::size_t(c)] = world[n] * nodes[std::size_t(c)].local;
-                done[std::size_t(c)] = true;
-                stack.push_back(std::size_t(c));
+                ws.done[std::size_t(c)] = 1;
+                ws.stack.push_back(std::size_t(c));
             }
         }
     }
     for (std::size_t i = 0; i < nodes.size(); ++i)
-        if (!done[i]) world[i] = nodes[i].local;
-    return world;
+        if (!ws.done[i]) world[i] = nodes[i].local;
+}
+
+void joint_matrices_into(std::span<const glm::mat4> world, std::span<const int> joints,
+                         std::span<const glm::mat4> inverse_bind, std::vector<glm::mat4>& out) {
+    out.clear();
+    for (std::size_t j = 0; j < joints.size(); ++j)
+        out.push_back(world[std::size_t(joints[j])] * (j < inverse_bind.size() ? inverse_bind[j] : glm::mat4(1.0f)));
+}
+}  // namespace
+
+std::vector<glm::mat4> world_matrices(std::span<const Node> nodes) {
+    SkinMatrices ws;
+    world_matrices_into(nodes, ws);
+    return std::move(ws.world);
 }
 
 std::vector<glm::mat4> joint_matrices(std::span<const glm::mat4> world, std::span<const int> joints,
                                       std::span<const glm::mat4> inverse_bind) {
     std::vector<glm::mat4> out;
     out.reserve(joints.size());
-    for (std::size_t j = 0; j < joints.size(); ++j)
-        out.push_back(world[std::size_t(joints[j])] * (j < inverse_bind.size() ? inverse_bind[j] : glm::mat4(1.0f)));
+    joint_matrices_into(world, joints, inverse_bind, out);
     return out;
+}
+
+void skin_matrices(std::span<const Node> nodes, std::span<const Skin> skins, SkinMatrices& out, std::size_t max_joints) {
+    world_matrices_into(nodes, out);
+    out.skins.resize(skins.size());
+    for (std::size_t k = 0; k < skins.size(); ++k) {
+        const Skin& s = skins[k];
+        bool ok = !s.joints.empty() && s.joints.size() <= max_joints;
+        for (int j : s.joints) ok = ok && j >= 0 && std::size_t(j) < out.world.size();
+        if (ok) joint_matrices_into(out.world, s.joints, s.inverse_bind, out.skins[k]);
+        else out.skins[k].clear();
+    }
 }
 
 std::optional<InvalidJoint> find_invalid_joint(const Primitive& p, std::size_t joint_count) {

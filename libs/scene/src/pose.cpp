@@ -105,14 +105,10 @@ void apply_morph_weights(Primitive& p, std::span<const float> weights) {
 }
 
 void pose_meshes(Scene& scene) {
-    std::vector<glm::mat4> world = world_matrices(scene.nodes);
-    std::vector<std::vector<glm::mat4>> skin_matrices(scene.skins.size());
-    for (std::size_t k = 0; k < scene.skins.size(); ++k) {
-        const Skin& s = scene.skins[k];
-        bool ok = !s.joints.empty();
-        for (int j : s.joints) ok = ok && j >= 0 && std::size_t(j) < world.size();
-        if (ok) skin_matrices[k] = joint_matrices(world, s.joints, s.inverse_bind);
-    }
+    SkinMatrices posed;
+    fresnel::skin_matrices(scene.nodes, scene.skins, posed);
+    const std::vector<glm::mat4>& world = posed.world;
+    const std::vector<std::vector<glm::mat4>>& skin_matrices = posed.skins;
     std::size_t mesh_count = scene.meshes.size();  // copies are appended after the originals
     for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
         Node& node = scene.nodes[i];

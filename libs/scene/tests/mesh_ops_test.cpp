@@ -293,6 +293,40 @@ TEST(MeshOpsTest, WorldMatricesSurviveBadHierarchies) {
     EXPECT_TRUE(world_matrices(std::vector<Node>{}).empty());
 }
 
+TEST(MeshOpsTest, SkinMatricesOfEverySkinInKeptStorage) {
+    // Node 0 holds node 1 (translated by 2 in y); skins: a good one, one with a joint out of
+    // range, one without joints, one past a joint limit of 2.
+    std::vector<Node> nodes(3);
+    nodes[0].children = {1};
+    nodes[0].local = glm::translate(glm::mat4(1.0f), glm::vec3(1, 0, 0));
+    nodes[1].local = glm::translate(glm::mat4(1.0f), glm::vec3(0, 2, 0));
+    std::vector<Skin> skins(4);
+    skins[0].joints = {0, 1};
+    skins[0].inverse_bind = {glm::mat4(1.0f), glm::translate(glm::mat4(1.0f), glm::vec3(-1, -2, 0))};
+    skins[1].joints = {0, 7};
+    skins[3].joints = {0, 1, 2};
+    SkinMatrices out;
+    skin_matrices(nodes, skins, out, 2);
+    ASSERT_EQ(out.world.size(), 3u);
+    expect_near(out.world[1], glm::translate(glm::mat4(1.0f), glm::vec3(1, 2, 0)));
+    ASSERT_EQ(out.skins.size(), 4u);
+    ASSERT_EQ(out.skins[0].size(), 2u);
+    expect_near(out.skins[0][0], nodes[0].local);  // no inverse bind: the world matrix
+    expect_near(out.skins[0][1], glm::mat4(1.0f));  // bind pose = current pose
+    EXPECT_TRUE(out.skins[1].empty());
+    EXPECT_TRUE(out.skins[2].empty());
+    EXPECT_TRUE(out.skins[3].empty());
+    // As world_matrices and joint_matrices give them.
+    auto world = world_matrices(nodes);
+    for (std::size_t i = 0; i < world.size(); ++i) expect_near(out.world[i], world[i]);
+    // A second call with the nodes moved reuses the storage (the renderer calls it every frame).
+    const glm::mat4* kept = out.skins[0].data();
+    nodes[1].local = glm::mat4(1.0f);
+    skin_matrices(nodes, skins, out, 2);
+    EXPECT_EQ(out.skins[0].data(), kept);
+    expect_near(out.skins[0][1], glm::translate(glm::mat4(1.0f), glm::vec3(0, -2, 0)));
+}
+
 TEST(MeshOpsTest, JointMatricesAreWorldTimesInverseBind) {
     std::vector<glm::mat4> world = {glm::mat4(1.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0, 2, 0)),
                                     glm::scale(glm::mat4(1.0f), glm::vec3(2.0f))};

@@ -119,6 +119,21 @@ std::vector<glm::mat4> world_matrices(std::span<const Node> nodes);
 std::vector<glm::mat4> joint_matrices(std::span<const glm::mat4> world, std::span<const int> joints,
                                       std::span<const glm::mat4> inverse_bind);
 
+// Every skin's joint matrices at the nodes' current matrices, in storage that is kept from one
+// call to the next (a viewer poses every frame: a warm call allocates nothing). The loader's
+// posing, fresnel::pose_meshes and the renderer's GPU skinning all take them from here.
+struct SkinMatrices {
+    std::vector<glm::mat4> world;                // every node's world matrix (world_matrices)
+    std::vector<std::vector<glm::mat4>> skins;   // per skin; empty where the skin cannot be posed
+    // world_matrices' workspace.
+    std::vector<std::uint8_t> has_parent, done;
+    std::vector<std::size_t> stack;
+};
+// Fills `out` for `skins` over `nodes`. A skin without joints, with a joint index out of range
+// or with more than `max_joints` joints (the renderer's shader limit) gets no matrices.
+void skin_matrices(std::span<const Node> nodes, std::span<const Skin> skins, SkinMatrices& out,
+                   std::size_t max_joints = std::size_t(-1));
+
 // The first vertex of a skinned primitive that gives weight to a joint >= joint_count.
 struct InvalidJoint {
     std::size_t vertex = 0;
