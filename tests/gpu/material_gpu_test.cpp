@@ -64,6 +64,7 @@
 #include "fresnel/render/material_uniforms.h"
 #include "fresnel/render/shader_library.h"
 #include "probe_harness.h"
+#include "gltf_sampler.h"
 
 namespace {
 using namespace fresnel;
@@ -97,7 +98,7 @@ public:
         auto it = cache_.find(key);
         if (it == cache_.end()) {
             const TextureDesc& d = t_[std::size_t(texture)];
-            auto s = TextureSampler::from_gl(d.mag, d.min, d.wrap_s, d.wrap_t);
+            auto s = test::sampler_from_gltf(d.mag, d.min, d.wrap_s, d.wrap_t);
             const TexelDecode* dec = decode_ ? &(*decode_)[d.mag == 9729 ? 1 : 0][srgb ? 1 : 0] : nullptr;
             it = cache_.emplace(key, std::make_unique<SampledTexture>(d.image, s, srgb, dec)).first;
         }
@@ -531,7 +532,7 @@ protected:
             if (!slot || !map_usable(*slot, MaterialMap(i), c.inputs)) continue;
             const MaterialMapInfo& info = material_map_info(MaterialMap(i));
             const TextureDesc& d = c.textures[std::size_t(slot->texture)];
-            const TextureSampler ts = TextureSampler::from_gl(d.mag, d.min, d.wrap_s, d.wrap_t);
+            const TextureSampler ts = test::sampler_from_gltf(d.mag, d.min, d.wrap_s, d.wrap_t);
             // Every level from the CPU chain, as the renderer uploads them (Renderer::Impl::make_texture).
             std::vector<Image8> chain;
             if (ts.mip_filter != MipFilter::None) chain = build_mip_chain(d.image, info.srgb);

@@ -29,6 +29,7 @@
 #include "fresnel/render/material_uniforms.h"
 #include "fresnel/render/shader_library.h"
 #include "probe_harness.h"
+#include "gltf_sampler.h"
 
 namespace {
 using namespace fresnel;
@@ -46,7 +47,7 @@ struct Point {
 class OneTexture final : public TextureSource {
 public:
     explicit OneTexture(const Image8& image)
-        : tex_(image, TextureSampler::from_gl(9728, 9728, 33071, 33071), false) {}
+        : tex_(image, test::sampler_from_gltf(9728, 9728, 33071, 33071), false) {}
     const SampledTexture* get(int texture, bool srgb) const override { return texture == 0 && !srgb ? &tex_ : nullptr; }
 
 private:

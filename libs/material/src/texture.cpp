@@ -11,25 +11,6 @@
 
 namespace fresnel {
 
-TextureSampler TextureSampler::from_gl(int mag_filter, int min_filter, int wrap_s, int wrap_t) {
-    TextureSampler s;
-    s.mag_filter = mag_filter == 9728 ? TextureFilter::Nearest : TextureFilter::Linear;
-    switch (min_filter) {
-        case 9728: s.min_filter = TextureFilter::Nearest; s.mip_filter = MipFilter::None; break;
-        case 9729: s.min_filter = TextureFilter::Linear; s.mip_filter = MipFilter::None; break;
-        case 9984: s.min_filter = TextureFilter::Nearest; s.mip_filter = MipFilter::Nearest; break;
-        case 9985: s.min_filter = TextureFilter::Linear; s.mip_filter = MipFilter::Nearest; break;
-        case 9986: s.min_filter = TextureFilter::Nearest; s.mip_filter = MipFilter::Linear; break;
-        default: s.min_filter = TextureFilter::Linear; s.mip_filter = MipFilter::Linear; break;
-    }
-    auto wrap = [](int w) {
-        return w == 33071 ? TextureWrap::ClampToEdge : w == 33648 ? TextureWrap::MirroredRepeat : TextureWrap::Repeat;
-    };
-    s.wrap_s = wrap(wrap_s);
-    s.wrap_t = wrap(wrap_t);
-    return s;
-}
-
 namespace {
 Image8 to_rgba(const Image8& in) {
     if (in.channels == 4) return in;

@@ -9,6 +9,7 @@
 
 #include "fresnel/core/color.h"
 #include "fresnel/material/evaluate.h"
+#include "gltf_sampler.h"
 
 namespace {
 using namespace fresnel;
@@ -294,7 +295,7 @@ TEST(SpecularGlossiness, MaterialConversionShadesTheSame) {
     std::uniform_int_distribution<int> byte(0, 255);
     Image8 img(4, 4, 4);
     for (auto& v : img.pixels) v = std::uint8_t(byte(rng));
-    int t = tex.add(img, TextureSampler::from_gl(9728, 9728, 10497, 10497));
+    int t = tex.add(img, test::sampler_from_gltf(9728, 9728, 10497, 10497));
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     for (int trial = 0; trial < 50; ++trial) {
         Material m;
@@ -339,21 +340,21 @@ TEST(TextureSampling, WrapModesAndFilters) {
     auto red = [&](TextureSampler s, float u, float lod = 0.0f) {
         return SampledTexture(img, s, false).sample(glm::vec2(u, 0.5f), lod).x * 255.0f;
     };
-    TextureSampler nearest = TextureSampler::from_gl(9728, 9728, 10497, 10497);
+    TextureSampler nearest = test::sampler_from_gltf(9728, 9728, 10497, 10497);
     EXPECT_NEAR(red(nearest, 0.125f), 0.0f, 1e-3f);
     EXPECT_NEAR(red(nearest, 1.375f), 80.0f, 1e-3f);   // repeat
     EXPECT_NEAR(red(nearest, -0.125f), 240.0f, 1e-3f);  // repeat below 0
-    TextureSampler clamp = TextureSampler::from_gl(9728, 9728, 33071, 33071);
+    TextureSampler clamp = test::sampler_from_gltf(9728, 9728, 33071, 33071);
     EXPECT_NEAR(red(clamp, 1.375f), 240.0f, 1e-3f);
     EXPECT_NEAR(red(clamp, -3.0f), 0.0f, 1e-3f);
-    TextureSampler mirror = TextureSampler::from_gl(9728, 9728, 33648, 33648);
+    TextureSampler mirror = test::sampler_from_gltf(9728, 9728, 33648, 33648);
     EXPECT_NEAR(red(mirror, 1.125f), 240.0f, 1e-3f);  // mirrored: texel 4 -> 3
     EXPECT_NEAR(red(mirror, 1.875f), 0.0f, 1e-3f);
     EXPECT_NEAR(red(mirror, -0.125f), 0.0f, 1e-3f);
-    TextureSampler linear = TextureSampler::from_gl(9729, 9729, 10497, 10497);
+    TextureSampler linear = test::sampler_from_gltf(9729, 9729, 10497, 10497);
     EXPECT_NEAR(red(linear, 0.25f), 40.0f, 1e-3f);   // halfway between texels 0 and 1
     EXPECT_NEAR(red(linear, 0.0f), 120.0f, 1e-3f);   // repeat: between texels 3 and 0
-    TextureSampler clamp_linear = TextureSampler::from_gl(9729, 9729, 33071, 33071);
+    TextureSampler clamp_linear = test::sampler_from_gltf(9729, 9729, 33071, 33071);
     EXPECT_NEAR(red(clamp_linear, 0.0f), 0.0f, 1e-3f);
 }
 
@@ -363,7 +364,7 @@ TEST(TextureSampling, SrgbDecodedBeforeFiltering) {
     img.at(1, 0)[0] = 255;
     img.at(0, 0)[3] = 0;
     img.at(1, 0)[3] = 255;
-    SampledTexture t(img, TextureSampler::from_gl(9729, 9729, 33071, 33071), true);
+    SampledTexture t(img, test::sampler_from_gltf(9729, 9729, 33071, 33071), true);
     glm::vec4 mid = t.sample(glm::vec2(0.5f, 0.5f), 0.0f);
     EXPECT_NEAR(mid.x, 0.5f, 1e-6f);  // the mean of linear 0 and 1, not the decode of the mean
     EXPECT_NEAR(mid.w, 0.5f, 1e-6f);  // alpha is linear
@@ -376,7 +377,7 @@ TEST(TextureSampling, MipLevelsAndLod) {
             img.at(x, y)[0] = std::uint8_t((x + y) % 2 ? 200 : 0);
             img.at(x, y)[3] = 255;
         }
-    SampledTexture t(img, TextureSampler::from_gl(9728, 9987, 10497, 10497), false);
+    SampledTexture t(img, test::sampler_from_gltf(9728, 9987, 10497, 10497), false);
     ASSERT_EQ(t.level_count(), 3);
     EXPECT_EQ(t.level(1).width, 2);
     EXPECT_EQ(t.level(1).at(0, 0)[0], 100);  // box average
@@ -385,7 +386,7 @@ TEST(TextureSampling, MipLevelsAndLod) {
     EXPECT_NEAR(t.sample(uv, 1.0f).x, 100.0f / 255.0f, 1e-6f);    // level 1
     EXPECT_NEAR(t.sample(uv, 0.5f).x, 50.0f / 255.0f, 1e-6f);     // halfway between levels 0 and 1
     EXPECT_NEAR(t.sample(uv, 9.0f).x, 100.0f / 255.0f, 1e-6f);    // clamped to the last level
-    SampledTexture srgb(img, TextureSampler::from_gl(9728, 9987, 10497, 10497), true);
+    SampledTexture srgb(img, test::sampler_from_gltf(9728, 9987, 10497, 10497), true);
     // sRGB levels average in linear light and store sRGB bytes.
     EXPECT_EQ(srgb.level(1).at(0, 0)[0], std::uint8_t(std::lround(linear_to_srgb(0.5f * srgb_to_linear(200.0f / 255.0f)) * 255.0f)));
 }
@@ -399,7 +400,7 @@ TEST(MaterialEvaluate, TextureTransformAndLodFromDerivatives) {
             img.at(x, y)[3] = 255;
         }
     Textures tex;
-    int t = tex.add(img, TextureSampler::from_gl(9728, 9984, 10497, 10497));
+    int t = tex.add(img, test::sampler_from_gltf(9728, 9984, 10497, 10497));
     Material m;
     m.metallic_factor = 0.0f;
     m.metallic_roughness = slot(t);

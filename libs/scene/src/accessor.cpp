@@ -1,4 +1,5 @@
 #include "accessor.h"
+#include "gltf_codes.h"
 
 #include <cstring>
 
@@ -6,9 +7,9 @@ namespace fresnel::gltf {
 
 int component_size(int t) {
     switch (t) {
-        case 5120: case 5121: return 1;
-        case 5122: case 5123: return 2;
-        case 5125: case 5126: return 4;
+        case gltf_code::kByte: case gltf_code::kUnsignedByte: return 1;
+        case gltf_code::kShort: case gltf_code::kUnsignedShort: return 2;
+        case gltf_code::kUnsignedInt: case gltf_code::kFloat: return 4;
         default: return 0;
     }
 }
@@ -33,12 +34,12 @@ std::size_t element_size(int comps, int csize, bool matrix) {
 }
 double decode_component(const std::uint8_t* p, int ctype, bool normalized) {
     switch (ctype) {
-        case 5120: { std::int8_t v; std::memcpy(&v, p, 1); return normalized ? std::max(v / 127.0, -1.0) : v; }
-        case 5121: { std::uint8_t v = *p; return normalized ? v / 255.0 : v; }
-        case 5122: { std::int16_t v; std::memcpy(&v, p, 2); return normalized ? std::max(v / 32767.0, -1.0) : v; }
-        case 5123: { std::uint16_t v; std::memcpy(&v, p, 2); return normalized ? v / 65535.0 : v; }
-        case 5125: { std::uint32_t v; std::memcpy(&v, p, 4); return normalized ? v / 4294967295.0 : v; }
-        case 5126: { float v; std::memcpy(&v, p, 4); return v; }
+        case gltf_code::kByte: { std::int8_t v; std::memcpy(&v, p, 1); return normalized ? std::max(v / 127.0, -1.0) : v; }
+        case gltf_code::kUnsignedByte: { std::uint8_t v = *p; return normalized ? v / 255.0 : v; }
+        case gltf_code::kShort: { std::int16_t v; std::memcpy(&v, p, 2); return normalized ? std::max(v / 32767.0, -1.0) : v; }
+        case gltf_code::kUnsignedShort: { std::uint16_t v; std::memcpy(&v, p, 2); return normalized ? v / 65535.0 : v; }
+        case gltf_code::kUnsignedInt: { std::uint32_t v; std::memcpy(&v, p, 4); return normalized ? v / 4294967295.0 : v; }
+        case gltf_code::kFloat: { float v; std::memcpy(&v, p, 4); return v; }
     }
     return 0;
 }
@@ -109,7 +110,7 @@ void AccessorDecoder::describe(int index, int& components, int& component_type, 
     components = type_components(r_.string(a, "type", ptr));
     if (components == 0) r_.fail(ptr + "/type", "missing or invalid type '" + r_.string(a, "type", ptr) + "'");
     normalized = r_.boolean(a, "normalized", ptr, false);
-    if (normalized && (component_type == 5126 || component_type == 5125))
+    if (normalized && (component_type == gltf_code::kFloat || component_type == gltf_code::kUnsignedInt))
         r_.fail(ptr + "/normalized", "only 8- and 16-bit integer accessors can be normalized");
     count = std::size_t(r_.integer(a, "count", ptr, 0, 1, (long long)max_elements_, true));
 }
@@ -185,7 +186,7 @@ AccessorData AccessorDecoder::read(int index) const {
         std::string ip = sp + "/indices", vp = sp + "/values";
         int iview = r_.index(idx, "bufferView", ip, views_.size(), "bufferView", true);
         int ictype = int(r_.integer(idx, "componentType", ip, 0, 0, 1 << 20, true));
-        if (ictype != 5121 && ictype != 5123 && ictype != 5125)
+        if (ictype != gltf_code::kUnsignedByte && ictype != gltf_code::kUnsignedShort && ictype != gltf_code::kUnsignedInt)
             r_.fail(ip + "/componentType", "sparse indices must be UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
         if (views_[std::size_t(iview)].stride) r_.fail(ip + "/bufferView", "sparse indices' bufferView must not have byteStride");
         std::size_t ioff = std::size_t(r_.integer(idx, "byteOffset", ip, 0, 0, LLONG_MAX));

@@ -20,7 +20,7 @@ struct BufferViewInfo {
 struct AccessorData {
     std::size_t count = 0;
     int components = 0;     // 1..16
-    int component_type = 0;  // 5120..5126
+    int component_type = 0;  // gltf_code::kByte .. kFloat (gltf_codes.h)
     bool normalized = false;
     std::vector<double> values;  // count * components, dequantized when normalized
 };

@@ -1,4 +1,5 @@
 #include "draco_decoder.h"
+#include "gltf_codes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,10 +20,10 @@ constexpr const char* kExt = "KHR_draco_mesh_compression";
 // The accessor's normalization of an integer read as a double (glTF 2.0, 3.11).
 double normalize(double v, int ctype) {
     switch (ctype) {
-        case 5120: return std::max(v / 127.0, -1.0);
-        case 5121: return v / 255.0;
-        case 5122: return std::max(v / 32767.0, -1.0);
-        case 5123: return v / 65535.0;
+        case gltf_code::kByte: return std::max(v / 127.0, -1.0);
+        case gltf_code::kUnsignedByte: return v / 255.0;
+        case gltf_code::kShort: return std::max(v / 32767.0, -1.0);
+        case gltf_code::kUnsignedShort: return v / 65535.0;
         default: return v;
     }
 }

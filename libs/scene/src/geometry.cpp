@@ -7,6 +7,7 @@
 
 #include "draco_decoder.h"
 #include "fresnel/scene/mesh_ops.h"
+#include "gltf_codes.h"
 
 namespace fresnel::gltf {
 namespace {
@@ -74,8 +75,8 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
             r.fail(where, std::string("accessor ") + std::to_string(idx) + " has the wrong type for " + name);
         // KHR_mesh_quantization also allows non-normalized 8/16-bit texture coordinates.
         bool quantized_ok = mesh_quantization && std::string_view(name).rfind("TEXCOORD", 0) == 0 &&
-                            d.component_type != 5125;
-        if (float_or_normalized && d.component_type != 5126 && !d.normalized && !quantized_ok)
+                            d.component_type != gltf_code::kUnsignedInt;
+        if (float_or_normalized && d.component_type != gltf_code::kFloat && !d.normalized && !quantized_ok)
             r.fail(where, std::string(name) + " must be float or normalized integers");
         if (vertex_count && d.count != vertex_count)
             r.fail(where, "has " + std::to_string(d.count) + " elements, POSITION has " + std::to_string(vertex_count));
@@ -102,7 +103,7 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
     if (auto t = attribute("TEXCOORD_1", {2}, true)) p.uv1 = to_vectors<glm::vec2>(*t);
     if (auto c = attribute("COLOR_0", {3, 4}, true)) p.colors = to_vectors<glm::vec4>(*c);
     if (auto j = attribute("JOINTS_0", {4}, false)) {
-        if (j->component_type != 5121 && j->component_type != 5123)
+        if (j->component_type != gltf_code::kUnsignedByte && j->component_type != gltf_code::kUnsignedShort)
             r.fail(ap + "/JOINTS_0", "must be UNSIGNED_BYTE or UNSIGNED_SHORT");
         p.joints.resize(j->count);
         for (std::size_t i = 0; i < j->count; ++i)
@@ -179,7 +180,7 @@ std::optional<Primitive> build_primitive(const JsonReader& r, const json& prim, 
     int iidx = r.index(prim, "indices", ptr, accessors.accessor_count(), "accessor");
     if (iidx >= 0) {
         AccessorData d = read(iidx);
-        if (d.components != 1 || (d.component_type != 5121 && d.component_type != 5123 && d.component_type != 5125))
+        if (d.components != 1 || (d.component_type != gltf_code::kUnsignedByte && d.component_type != gltf_code::kUnsignedShort && d.component_type != gltf_code::kUnsignedInt))
             r.fail(ptr + "/indices", "indices must be SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
         indices.resize(d.count);
         for (std::size_t i = 0; i < d.count; ++i) {

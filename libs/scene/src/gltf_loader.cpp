@@ -22,6 +22,7 @@
 #include "meshopt_decoder.h"
 #include "uri_policy.h"
 #include "webp_decoder.h"
+#include "gltf_codes.h"
 
 namespace fresnel {
 namespace fs = std::filesystem;
@@ -364,10 +365,7 @@ private:
             std::string ptr = "/samplers/" + std::to_string(i);
             const json& s = sarr[i];
             if (!s.is_object()) r_.fail(ptr, "must be an object");
-            // glTF's sampler numbers (the values its specification lists for each field).
-            enum : int { kNearest = 9728, kLinear = 9729, kNearestMipmapNearest = 9984, kLinearMipmapNearest = 9985,
-                         kNearestMipmapLinear = 9986, kLinearMipmapLinear = 9987, kClampToEdge = 33071,
-                         kMirroredRepeat = 33648, kRepeat = 10497 };
+            using namespace gltf_code;  // the sampler numbers
             Sampler out;
             int mag = int(r_.integer(s, "magFilter", ptr, kLinear, 0, 1 << 20));
             if (mag == kNearest) out.mag_filter = Filter::Nearest;
@@ -932,7 +930,7 @@ private:
             int in = r_.index(sj, "input", sp, accessors.accessor_count(), "accessor", true);
             int outi = r_.index(sj, "output", sp, accessors.accessor_count(), "accessor", true);
             gltf::AccessorData din = accessors.read(in);
-            if (din.components != 1 || din.component_type != 5126)
+            if (din.components != 1 || din.component_type != gltf_code::kFloat)
                 r_.fail(sp + "/input", "keyframe times must be SCALAR FLOAT");
             if (din.count == 0) r_.fail(sp + "/input", "a sampler needs at least one keyframe");
             s.input.resize(din.count);
@@ -943,7 +941,7 @@ private:
                     r_.fail(sp + "/input", "keyframe times must be strictly increasing (time " + std::to_string(t) + ")");
             }
             gltf::AccessorData dout = accessors.read(outi);
-            if (dout.component_type != 5126 && !dout.normalized)
+            if (dout.component_type != gltf_code::kFloat && !dout.normalized)
                 r_.fail(sp + "/output", "keyframe values must be FLOAT or normalized integers");
             std::size_t per = s.interpolation == Interpolation::CubicSpline ? 3 : 1;
             std::size_t elements = din.count * per;

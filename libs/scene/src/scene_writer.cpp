@@ -21,6 +21,7 @@
 
 #include "fresnel/core/float_text.h"
 #include "fresnel/scene/paths.h"
+#include "gltf_codes.h"
 
 namespace fresnel {
 
@@ -95,7 +96,7 @@ struct GltfBuilder {
     template <class V>
     int accessor(const std::vector<V>& values, int components, const char* type, bool min_max, int target) {
         int view = buffer_view(values.data(), values.size() * sizeof(V), target);
-        json a = {{"bufferView", view}, {"componentType", 5126}, {"count", values.size()}, {"type", type}};
+        json a = {{"bufferView", view}, {"componentType", gltf_code::kFloat}, {"count", values.size()}, {"type", type}};
         if (min_max) {
             std::vector<float> lo(components, INFINITY), hi(components, -INFINITY);
             for (const V& v : values)
@@ -110,8 +111,8 @@ struct GltfBuilder {
         return int(doc["accessors"].size()) - 1;
     }
     int index_accessor(const std::vector<std::uint32_t>& indices) {
-        int view = buffer_view(indices.data(), indices.size() * 4, 34963);
-        doc["accessors"].push_back({{"bufferView", view}, {"componentType", 5125}, {"count", indices.size()}, {"type", "SCALAR"}});
+        int view = buffer_view(indices.data(), indices.size() * 4, gltf_code::kElementArrayBuffer);
+        doc["accessors"].push_back({{"bufferView", view}, {"componentType", gltf_code::kUnsignedInt}, {"count", indices.size()}, {"type", "SCALAR"}});
         return int(doc["accessors"].size()) - 1;
     }
     json texture_info(const TextureSlot& s, int texture_count) {
@@ -282,17 +283,17 @@ json material_json(const Material& m, const Scene& scene, GltfBuilder& b, bool h
     return j;
 }
 
-int filter_enum(Filter f) { return f == Filter::Nearest ? 9728 : 9729; }
+int filter_enum(Filter f) { return f == Filter::Nearest ? gltf_code::kNearest : gltf_code::kLinear; }
 int min_filter_enum(const Sampler& s) {
     bool near = s.min_filter == Filter::Nearest;
     switch (s.mipmap) {
-        case MipmapMode::None: return near ? 9728 : 9729;
-        case MipmapMode::Nearest: return near ? 9984 : 9985;
-        case MipmapMode::Linear: return near ? 9986 : 9987;
+        case MipmapMode::None: return near ? gltf_code::kNearest : gltf_code::kLinear;
+        case MipmapMode::Nearest: return near ? gltf_code::kNearestMipmapNearest : gltf_code::kLinearMipmapNearest;
+        case MipmapMode::Linear: return near ? gltf_code::kNearestMipmapLinear : gltf_code::kLinearMipmapLinear;
     }
-    return 9987;
+    return gltf_code::kLinearMipmapLinear;
 }
-int wrap_enum(Wrap w) { return w == Wrap::ClampToEdge ? 33071 : w == Wrap::MirroredRepeat ? 33648 : 10497; }
+int wrap_enum(Wrap w) { return w == Wrap::ClampToEdge ? gltf_code::kClampToEdge : w == Wrap::MirroredRepeat ? gltf_code::kMirroredRepeat : gltf_code::kRepeat; }
 
 }  // namespace
 
@@ -375,13 +376,13 @@ void write_gltf(const Scene& in, const fs::path& path, Diagnostics& diagnostics)
         for (const Primitive& p : mesh.primitives) {
             if (p.positions.empty()) continue;
             json attrs;
-            attrs["POSITION"] = b.accessor(p.positions, 3, "VEC3", true, 34962);
-            if (p.normals.size() == p.positions.size()) attrs["NORMAL"] = b.accessor(p.normals, 3, "VEC3", false, 34962);
+            attrs["POSITION"] = b.accessor(p.positions, 3, "VEC3", true, gltf_code::kArrayBuffer);
+            if (p.normals.size() == p.positions.size()) attrs["NORMAL"] = b.accessor(p.normals, 3, "VEC3", false, gltf_code::kArrayBuffer);
             if (p.tangents.size() == p.positions.size())
-                attrs["TANGENT"] = b.accessor(p.tangents, 4, "VEC4", false, 34962);
-            if (p.uv0.size() == p.positions.size()) attrs["TEXCOORD_0"] = b.accessor(p.uv0, 2, "VEC2", false, 34962);
-            if (p.uv1.size() == p.positions.size()) attrs["TEXCOORD_1"] = b.accessor(p.uv1, 2, "VEC2", false, 34962);
-            if (p.colors.size() == p.positions.size()) attrs["COLOR_0"] = b.accessor(p.colors, 4, "VEC4", false, 34962);
+                attrs["TANGENT"] = b.accessor(p.tangents, 4, "VEC4", false, gltf_code::kArrayBuffer);
+            if (p.uv0.size() == p.positions.size()) attrs["TEXCOORD_0"] = b.accessor(p.uv0, 2, "VEC2", false, gltf_code::kArrayBuffer);
+            if (p.uv1.size() == p.positions.size()) attrs["TEXCOORD_1"] = b.accessor(p.uv1, 2, "VEC2", false, gltf_code::kArrayBuffer);
+            if (p.colors.size() == p.positions.size()) attrs["COLOR_0"] = b.accessor(p.colors, 4, "VEC4", false, gltf_code::kArrayBuffer);
             json jp = {{"attributes", attrs}};
             if (!p.indices.empty()) jp["indices"] = b.index_accessor(p.indices);
             int mode = 4;

@@ -35,9 +35,6 @@ struct TextureSampler {
     MipFilter mip_filter = MipFilter::Linear;
     TextureWrap wrap_s = TextureWrap::Repeat;
     TextureWrap wrap_t = TextureWrap::Repeat;
-    // From glTF / OpenGL enum values (9728 NEAREST ... 9987 LINEAR_MIPMAP_LINEAR,
-    // 10497 REPEAT, 33071 CLAMP_TO_EDGE, 33648 MIRRORED_REPEAT).
-    static TextureSampler from_gl(int mag_filter, int min_filter, int wrap_s, int wrap_t);
 };
 
 // The detail maps' anisotropic filter (the shader's detail_footprint): from a map's
