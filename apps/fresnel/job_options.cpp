@@ -290,7 +290,10 @@ ContextFlags context_flags(const RenderOptions& o) {
     return f;
 }
 
-void write_image_atomically(const std::string& path, const ImageF& image, bool transparent) {
+namespace {
+// Writes `path` through `write` (given a temporary in the same folder), then renames it into
+// place: a reader never sees half a file, and a failed write leaves no file behind.
+void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
     namespace fs = std::filesystem;
     std::string ext = lower_extension(path);
     fs::path target(path);
@@ -299,9 +302,7 @@ void write_image_atomically(const std::string& path, const ImageF& image, bool t
                    ("." + target.stem().string() + ".partial-" + std::to_string(::getpid()) + "-" +
                     std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()) % 100000) + ext);
     try {
-        if (ext == ".png") write_png(tmp.string(), to_image8(image, transparent));
-        else if (ext == ".exr") write_exr(tmp.string(), image);
-        else write_hdr(tmp.string(), image);
+        write(tmp.string());
     } catch (const Error& e) {
         std::error_code ec;
         fs::remove(tmp, ec);
@@ -317,6 +318,20 @@ void write_image_atomically(const std::string& path, const ImageF& image, bool t
         fs::remove(tmp, ec);
         throw Error(path, "", "cannot write the image: " + ec.message());
     }
+}
+}  // namespace
+
+void write_image_atomically(const std::string& path, const ImageF& image, bool transparent) {
+    const std::string ext = lower_extension(path);
+    write_atomically(path, [&](const std::string& tmp) {
+        if (ext == ".png") write_png(tmp, to_image8(image, transparent));
+        else if (ext == ".exr") write_exr(tmp, image);
+        else write_hdr(tmp, image);
+    });
+}
+
+void write_png_atomically(const std::string& path, const Image8& image) {
+    write_atomically(path, [&](const std::string& tmp) { write_png(tmp, image); });
 }
 
 void add_model_and_output(CLI::App* cmd, RenderOptions& o) {

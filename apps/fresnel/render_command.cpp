@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <thread>
 #include <filesystem>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -228,11 +229,17 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
         upload_ms += ms_since(i == 0 ? t_gpu : t_upload);
         auto t_draw = Clock::now();
         stats = FrameStats{};
-        ImageF image = renderer.render(frame_job.camera, frame_job.lights, rs, &stats);
+        outputs.push_back(numbered ? frame_path(output, i, frames) : output);
+        // PNG: the 8-bit target, a quarter of the float frame's bytes to read back.
+        const bool png = lower_extension(outputs.back()) == ".png";
+        std::optional<Image8> image8;
+        ImageF image;
+        if (png) image8 = renderer.render8(frame_job.camera, frame_job.lights, rs, resolved.transparent(), &stats);
+        else image = renderer.render(frame_job.camera, frame_job.lights, rs, &stats);
         draw_ms += ms_since(t_draw);
         if (!stats.gl_errors.empty()) throw Error("OpenGL", "", "the frame raised " + stats.gl_errors);
-        outputs.push_back(numbered ? frame_path(output, i, frames) : output);
-        write_image_atomically(outputs.back(), image, resolved.transparent());
+        if (png) write_png_atomically(outputs.back(), *image8);
+        else write_image_atomically(outputs.back(), image, resolved.transparent());
     }
     double frame_ms = draw_ms / frames;
     if (!o.video.empty()) encode_video(ffmpeg, output, frames, o.fps, o.video);

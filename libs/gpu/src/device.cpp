@@ -105,6 +105,15 @@ std::vector<float> Device::read_rgba32f(const Framebuffer& fb, int w, int h) {
     return px;
 }
 
+std::vector<std::uint8_t> Device::read_rgba8(const Framebuffer& fb, int w, int h) {
+    std::vector<std::uint8_t> px(std::size_t(w) * std::size_t(h) * 4);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fb.id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return px;
+}
+
 std::vector<std::uint8_t> Device::read_default_rgba8(int x, int y, int w, int h) {
     std::vector<std::uint8_t> px(std::size_t(w) * std::size_t(h) * 4);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);

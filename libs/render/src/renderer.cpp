@@ -708,6 +708,20 @@ struct Renderer::Impl {
         return true;
     }
 
+    // The 8-bit output (RenderTarget::offscreen8), made on first use.
+    gpu::Texture output8;
+    gpu::Framebuffer output8_fb;
+    int output8_w = 0, output8_h = 0;
+    void ensure_output8(int w, int h) {
+        if (w == output8_w && h == output8_h) return;
+        output8_w = w;
+        output8_h = h;
+        output8 = gpu::Texture::create_2d(w, h, gpu::TextureFormat::RGBA8, nullptr, false);
+        output8_fb = gpu::Framebuffer();
+        output8_fb.attach_color(output8);
+        output8_fb.check();
+    }
+
     void ensure_output(int w, int h) {
         if (w == output_w && h == output_h) return;
         output_w = w;
@@ -1067,7 +1081,7 @@ std::size_t Renderer::texture_bytes() const {
     std::size_t n = 0;
     for (const auto& [key, t] : m.textures) n += t.texture.bytes();
     for (const auto& t : m.frame_targets) n += t.resolved.bytes() + t.msaa_texture.bytes();
-    for (const gpu::Texture* t : {&m.output, &m.transmission_texture, &m.env_specular, &m.env_irradiance, &m.env_sheen,
+    for (const gpu::Texture* t : {&m.output, &m.output8, &m.transmission_texture, &m.env_specular, &m.env_irradiance, &m.env_sheen,
                                   &m.charlie_lut, &m.lut_texture})
         n += t->bytes();
     if (m.white_map) n += m.white_map->bytes();
@@ -1085,6 +1099,27 @@ ImageF Renderer::render(const CameraSetup& cam, const std::vector<LightInstance>
     ImageF img(w, h);
     for (int y = 0; y < h; ++y)  // GL rows are bottom to top
         std::copy_n(&px[std::size_t(h - 1 - y) * std::size_t(w) * 4], std::size_t(w) * 4, img.at(0, y));
+    std::string errors = r.device.take_errors();
+    if (stats_out && !errors.empty()) stats_out->gl_errors += (stats_out->gl_errors.empty() ? "" : ", ") + errors;
+    return img;
+}
+
+Image8 Renderer::render8(const CameraSetup& cam, const std::vector<LightInstance>& lights,
+                         const RenderSettings& settings, bool alpha, FrameStats* stats_out) {
+    draw(cam, lights, settings, RenderTarget::offscreen8(), stats_out);
+    Impl& r = *impl_;
+    const int w = settings.width, h = settings.height;
+    const std::vector<std::uint8_t> px = r.device.read_rgba8(r.output8_fb, w, h);
+    Image8 img(w, h, alpha ? 4 : 3);
+    for (int y = 0; y < h; ++y) {  // GL rows are bottom to top
+        const std::uint8_t* src = &px[std::size_t(h - 1 - y) * std::size_t(w) * 4];
+        std::uint8_t* dst = img.at(0, y);
+        if (alpha) {
+            std::copy_n(src, std::size_t(w) * 4, dst);
+        } else {
+            for (int x = 0; x < w; ++x, src += 4, dst += 3) dst[0] = src[0], dst[1] = src[1], dst[2] = src[2];
+        }
+    }
     std::string errors = r.device.take_errors();
     if (stats_out && !errors.empty()) stats_out->gl_errors += (stats_out->gl_errors.empty() ? "" : ", ") + errors;
     return img;
@@ -1211,7 +1246,10 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
 
     // Output pass, into the offscreen image or the default framebuffer.
     const bool to_default = target.kind == RenderTarget::Kind::DefaultFramebuffer;
-    r.device.bind_framebuffer(to_default ? nullptr : &r.output_fb);
+    if (target.kind == RenderTarget::Kind::Offscreen8) r.ensure_output8(w, h);
+    r.device.bind_framebuffer(to_default                                       ? nullptr
+                              : target.kind == RenderTarget::Kind::Offscreen8 ? &r.output8_fb
+                                                                               : &r.output_fb);
     if (to_default) r.device.viewport(target.x, target.y, w, h);
     else r.device.viewport(0, 0, w, h);
     gpu::PipelineState post;

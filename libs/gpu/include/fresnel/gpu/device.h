@@ -46,6 +46,8 @@ public:
     void blit_color(const Framebuffer& src, const Framebuffer& dst, int width, int height);
     // Reads RGBA float pixels of the bound read framebuffer, rows bottom to top (GL order).
     std::vector<float> read_rgba32f(const Framebuffer& fb, int width, int height);
+    // Reads 8-bit RGBA of an RGBA8 framebuffer's colour, rows bottom to top (GL order).
+    std::vector<std::uint8_t> read_rgba8(const Framebuffer& fb, int width, int height);
     // Reads 8-bit RGBA from the default framebuffer (a window's, or a pbuffer's), rows bottom to top.
     std::vector<std::uint8_t> read_default_rgba8(int x, int y, int width, int height);
     // Counts the live objects (a few ms: one glIs* call per name handed out so far).

@@ -153,10 +153,11 @@ bool gpu_animatable(const Scene& scene);
 
 // Where a frame goes. Every frame is drawn into the renderer's own multisampled HDR target;
 // the output pass (resolve, un-premultiply, NaN check) then writes it to the offscreen
-// image that render() reads back, or into the context's default framebuffer (a window's,
-// which the caller then presents; a GUI can draw on top first), at a viewport origin.
+// float image that render() reads back, to the offscreen 8-bit image that render8() reads
+// back, or into the context's default framebuffer (a window's, which the caller then
+// presents; a GUI can draw on top first), at a viewport origin.
 struct RenderTarget {
-    enum class Kind { Offscreen, DefaultFramebuffer } kind = Kind::Offscreen;
+    enum class Kind { Offscreen, Offscreen8, DefaultFramebuffer } kind = Kind::Offscreen;
     int x = 0, y = 0;  // DefaultFramebuffer: the viewport's lower-left corner (size = RenderSettings)
     // DefaultFramebuffer: when set, only the pixels of this rectangle (x, y, width, height in
     // framebuffer pixels, lower-left origin) are written; a split view draws a second frame
@@ -166,6 +167,7 @@ struct RenderTarget {
     };
     std::optional<Rect> scissor;
     static RenderTarget offscreen() { return {}; }
+    static RenderTarget offscreen8() { return {Kind::Offscreen8, 0, 0, {}}; }
     static RenderTarget default_framebuffer(int x = 0, int y = 0) { return {Kind::DefaultFramebuffer, x, y, {}}; }
 };
 
@@ -202,6 +204,12 @@ public:
     // values in [0,1] when settings.encoding is set, linear otherwise.
     ImageF render(const CameraSetup& camera, const std::vector<LightInstance>& lights, const RenderSettings& settings,
                   FrameStats* stats = nullptr);
+    // Renders one frame into the 8-bit offscreen target (RenderTarget::offscreen8) and reads it
+    // back: for display-encoded frames (PNG files, thumbnails), a quarter of render()'s bytes.
+    // The GPU quantises as to_image8 does (round to nearest; values clamped to [0, 1]), so the
+    // two agree to one step at rounding ties. RGBA with `alpha`, else RGB; rows top to bottom.
+    Image8 render8(const CameraSetup& camera, const std::vector<LightInstance>& lights, const RenderSettings& settings,
+                   bool alpha, FrameStats* stats = nullptr);
 
     // Draws a frame into the renderer's output target without reading it back (for
     // timing, and for windows that present it). finish() waits until the GPU is done.
