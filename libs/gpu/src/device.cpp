@@ -15,7 +15,13 @@ void Device::clear(glm::vec4 c, bool depth) {
     glDepthMask(GL_TRUE);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glClearColor(c.x, c.y, c.z, c.w);
+#ifdef __EMSCRIPTEN__
     glClearDepthf(1.0f);
+#else
+    // glClearDepthf is OpenGL ES (and desktop 4.1 / ARB_ES2_compatibility); 3.3 core has glClearDepth.
+    if (gl::is_desktop()) glClearDepth(1.0);
+    else glClearDepthf(1.0f);
+#endif
     glClear(GL_COLOR_BUFFER_BIT | (depth ? GL_DEPTH_BUFFER_BIT : 0));
 }
 
