@@ -124,7 +124,7 @@ protected:
     void SetUp() override {
         ASSERT_TRUE(context_) << "no headless OpenGL context (EGL/llvmpipe): " << context_error_;
         context_->make_current();
-        if (!library_) library_ = std::make_unique<ShaderLibrary>();
+        if (!library_) library_ = std::make_unique<ShaderLibrary>(glsl_target(context_->api()));
     }
     static ShaderLibrary& library() { return *library_; }
 

@@ -37,7 +37,9 @@ std::string assemble_shader(const std::string& file, const std::vector<std::stri
 
 class ShaderLibrary {
 public:
-    explicit ShaderLibrary(GlslTarget target = GlslTarget::Gl33) : target_(target) {}
+    // The dialect is the context's (glsl_target(context.api())): no default, so that a caller on
+    // OpenGL ES cannot get desktop GLSL by leaving it out.
+    explicit ShaderLibrary(GlslTarget target) : target_(target) {}
     // Returns the program for this vertex/fragment pair and define set, compiling it once.
     const gpu::Program& get(const std::string& vertex, const std::string& fragment, std::vector<std::string> defines);
     // The variant of a mesh shader pair for a feature set (see shader_features.h): its
