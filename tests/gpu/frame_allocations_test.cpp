@@ -40,6 +40,18 @@ void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 using namespace fresnel;
 
+namespace {
+// The allocations `f` makes.
+template <class F>
+long allocations_in(F&& f) {
+    g_allocations = 0;
+    g_counting = true;
+    f();
+    g_counting = false;
+    return g_allocations.load();
+}
+}  // namespace
+
 TEST(FrameAllocations, AWarmFrameAllocatesNothing) {
     std::string why;
     auto context = test_support::try_headless_context(why);
@@ -76,22 +88,18 @@ TEST(FrameAllocations, AWarmFrameAllocatesNothing) {
         renderer.finish();
     }
     FrameStats stats;
-    g_allocations = 0;
-    g_counting = true;
-    for (int i = 0; i < 3; ++i) {
-        renderer.draw(cam, lights, rs, &stats);
-        renderer.finish();
-    }
-    g_counting = false;
+    const long warm = allocations_in([&] {
+        for (int i = 0; i < 3; ++i) {
+            renderer.draw(cam, lights, rs, &stats);
+            renderer.finish();
+        }
+    });
     EXPECT_GT(stats.draw_calls, 40);
     EXPECT_TRUE(stats.gl_errors.empty()) << stats.gl_errors;
-    EXPECT_EQ(g_allocations.load(), 0) << "allocations in three warm frames";
+    EXPECT_EQ(warm, 0) << "allocations in three warm frames";
     // The control: render() returns a new image, and the counter sees it.
-    g_allocations = 0;
-    g_counting = true;
-    ImageF image = renderer.render(cam, lights, rs);
-    g_counting = false;
-    EXPECT_GE(g_allocations.load(), 1);
+    ImageF image;
+    EXPECT_GE(allocations_in([&] { image = renderer.render(cam, lights, rs); }), 1);
     EXPECT_EQ(image.width, rs.width);
 }
 
@@ -136,11 +144,10 @@ TEST(FrameAllocations, AWarmAnimatedFrameAllocatesNothing) {
     };
     for (int i = 0; i < 2; ++i) frame(i, nullptr);
     FrameStats stats;
-    g_allocations = 0;
-    g_counting = true;
-    for (int i = 2; i < 5; ++i) frame(i, &stats);
-    g_counting = false;
+    const long warm = allocations_in([&] {
+        for (int i = 2; i < 5; ++i) frame(i, &stats);
+    });
     EXPECT_GE(stats.draw_calls, 1);
     EXPECT_TRUE(stats.gl_errors.empty()) << stats.gl_errors;
-    EXPECT_EQ(g_allocations.load(), 0) << "allocations in three warm animated frames";
+    EXPECT_EQ(warm, 0) << "allocations in three warm animated frames";
 }

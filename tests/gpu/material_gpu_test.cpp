@@ -366,29 +366,18 @@ private:
 
 constexpr glm::vec3 kProbeRadiance(1.0f, 0.8f, 0.6f);  // material_probe.frag's light
 
-// How far shade_light moves when its directions move by float rounding: the shading normal,
-// the coat normal, the anisotropy frame, v and l each moved by 4e-7 (a few ulps) along
-// different axes, both ways.
-// The GPU's directions differ from the C++ ones by that much (normalised there, the normal
-// computed by read_material), and near the GGX peak of a glossy lobe that alone moves the
-// result by up to 1e-3 of itself, in either implementation.
+// How far shade_light moves when its directions move by float rounding (test::rounding_band):
+// the shading and coat normals as direction 0, v and the anisotropy bitangent as 1, l and the
+// anisotropy tangent as 2.
 glm::vec3 shade_band(const EvaluatedMaterial& e, const Point& pt) {
-    const glm::vec3 base = shade_light(e, pt.v, pt.l, kProbeRadiance, pt.comp_d, pt.comp_m);
-    const glm::vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    constexpr float kTurn = 4e-7f;
-    glm::vec3 band(0.0f);
-    for (int k = 0; k < 6; ++k) {
-        const float sign = k < 3 ? kTurn : -kTurn;
+    return test::rounding_band([&](auto&& move) {
         EvaluatedMaterial moved = e;
-        moved.normal = glm::normalize(e.normal + sign * axes[k % 3]);
-        moved.clearcoat_normal = glm::normalize(e.clearcoat_normal + sign * axes[k % 3]);
-        moved.anisotropic_t = glm::normalize(e.anisotropic_t + sign * axes[(k + 2) % 3]);
-        moved.anisotropic_b = glm::normalize(e.anisotropic_b - sign * axes[(k + 1) % 3]);
-        const glm::vec3 v = glm::normalize(pt.v - sign * axes[(k + 1) % 3]);
-        const glm::vec3 l = glm::normalize(pt.l + sign * axes[(k + 2) % 3]);
-        band = glm::max(band, glm::abs(shade_light(moved, v, l, kProbeRadiance, pt.comp_d, pt.comp_m) - base));
-    }
-    return band;
+        moved.normal = move(e.normal, 0);
+        moved.clearcoat_normal = move(e.clearcoat_normal, 0);
+        moved.anisotropic_t = move(e.anisotropic_t, 2);
+        moved.anisotropic_b = move(e.anisotropic_b, 1);
+        return shade_light(moved, move(pt.v, 1), move(pt.l, 2), kProbeRadiance, pt.comp_d, pt.comp_m);
+    });
 }
 
 // The C++ side of the probe's outputs, in u_output order; `band` (if given) receives shade_band.
@@ -445,21 +434,17 @@ bool near_probe_change(const Case& c, const TextureSource& tex, const Point& pt,
         if (most <= 1.0f) continue;
         const glm::mat2 linear(slot->transform);
         const glm::vec2 size(float(t->width()), float(t->height()));
+        const glm::vec2 dx = linear * (slot->tex_coord == 1 ? pt.p.duv1_dx : pt.p.duv0_dx);
+        const glm::vec2 dy = linear * (slot->tex_coord == 1 ? pt.p.duv1_dy : pt.p.duv0_dy);
+        const DetailFootprint f = detail_footprint(slot->tex_coord == 1 ? pt.p.uv1 : pt.p.uv0, dx, dy, size, most);
         if (detail) {
-            const glm::vec2 uv = slot->tex_coord == 1 ? pt.p.uv1 : pt.p.uv0;
             ++*detail;
-            *anisotropic += detail_footprint(uv, linear * (slot->tex_coord == 1 ? pt.p.duv1_dx : pt.p.duv0_dx),
-                                             linear * (slot->tex_coord == 1 ? pt.p.duv1_dy : pt.p.duv0_dy), size, most)
-                                .n > 1;
+            *anisotropic += f.n > 1;
         }
-        const glm::vec2 tx = linear * (slot->tex_coord == 1 ? pt.p.duv1_dx : pt.p.duv0_dx) * size;
-        const glm::vec2 ty = linear * (slot->tex_coord == 1 ? pt.p.duv1_dy : pt.p.duv0_dy) * size;
-        const float lx = glm::dot(tx, tx), ly = glm::dot(ty, ty);
-        const float area = std::abs(tx.x * ty.y - tx.y * ty.x);
-        const float anisotropy = std::clamp(std::max(lx, ly) / std::max(area, 1e-30f), 1.0f, most);
-        const float half = anisotropy + 0.5f - std::round(anisotropy + 0.5f);
-        if (std::abs(half) < 5e-4f * anisotropy) return true;
-        if (anisotropy >= 1.4f && std::abs(lx - ly) <= 1e-3f * std::max(lx, ly)) return true;  // one probe: no axis
+        const float half = f.anisotropy + 0.5f - std::round(f.anisotropy + 0.5f);
+        if (std::abs(half) < 5e-4f * f.anisotropy) return true;
+        const float lx = glm::dot(dx * size, dx * size), ly = glm::dot(dy * size, dy * size);
+        if (f.anisotropy >= 1.4f && std::abs(lx - ly) <= 1e-3f * std::max(lx, ly)) return true;  // one probe: no axis
     }
     return false;
 }

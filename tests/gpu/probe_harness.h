@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
 #include "fresnel/gpu/context.h"
@@ -35,6 +37,29 @@ std::vector<float> pack_case_texels(std::size_t count, int per_case, int per_row
         }
     }
     return texels;
+}
+
+// How far a value moves when the directions it is computed from move by float rounding: `f(move)`
+// evaluates it with each of its directions passed through move(direction, i), and the band is
+// the largest change over six moves, along each axis both ways, of 4e-7 (a few ulps) with
+// direction i along axis (k + i) mod 3 and the sign alternating with i. The GPU's directions
+// differ from the C++ ones by that much (normalised there), and near the GGX peak of a glossy
+// lobe that alone moves a value by up to 1e-3 of itself, in either implementation; the shading
+// suites allow the band on top of their relative tolerance.
+template <class F>
+glm::vec3 rounding_band(F&& f) {
+    const glm::vec3 base = f([](glm::vec3 d, int) { return d; });
+    glm::vec3 band(0.0f);
+    for (int k = 0; k < 6; ++k) {
+        const float step = k < 3 ? 4e-7f : -4e-7f;
+        band = glm::max(band, glm::abs(f([&](glm::vec3 d, int i) {
+                                           glm::vec3 offset(0.0f);
+                                           offset[(k + i) % 3] = i % 2 ? -step : step;
+                                           return glm::normalize(d + offset);
+                                       }) -
+                                       base));
+    }
+    return band;
 }
 
 // The w x h RGBA32F target a probe draws into, one result a pixel (row-major from the bottom

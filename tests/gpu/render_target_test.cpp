@@ -502,39 +502,18 @@ TEST_F(RenderTargets, MapsPastTheTextureUnitsGoUnread) {
         m.emissive = next();
         m.emissive_factor = glm::vec3(0.3f);
         m.specular = SpecularExt{1.0f, next(), glm::vec3(1.0f), next()};
-        ClearcoatExt cc;
-        cc.clearcoat_factor = 0.5f;
-        cc.clearcoat_texture = next();
-        cc.clearcoat_roughness_texture = next();
-        cc.clearcoat_normal_texture = next();
-        m.clearcoat = cc;
-        SheenExt sh;
-        sh.sheen_color_factor = glm::vec3(0.5f);
-        sh.sheen_color_texture = next();
-        sh.sheen_roughness_texture = next();
-        m.sheen = sh;
-        TransmissionExt tr;
-        tr.transmission_factor = 0.5f;
-        tr.transmission_texture = next();
-        m.transmission = tr;
-        VolumeExt vol;
-        vol.thickness_factor = 0.1f;
-        vol.thickness_texture = next();
-        m.volume = vol;
-        AnisotropyExt an;
-        an.anisotropy_strength = 0.5f;
-        an.anisotropy_texture = next();
-        m.anisotropy = an;
-        IridescenceExt ir;
-        ir.iridescence_factor = 0.5f;
-        ir.iridescence_texture = next();
-        ir.iridescence_thickness_texture = next();
-        m.iridescence = ir;
-        DiffuseTransmissionExt dt;
-        dt.diffuse_transmission_factor = 0.5f;
-        dt.diffuse_transmission_texture = next();
-        dt.diffuse_transmission_color_texture = next();
-        m.diffuse_transmission = dt;
+        m.clearcoat = ClearcoatExt{.clearcoat_factor = 0.5f, .clearcoat_texture = next(),
+                                   .clearcoat_roughness_texture = next(), .clearcoat_normal_texture = next()};
+        m.sheen = SheenExt{.sheen_color_factor = glm::vec3(0.5f), .sheen_color_texture = next(),
+                           .sheen_roughness_texture = next()};
+        m.transmission = TransmissionExt{.transmission_factor = 0.5f, .transmission_texture = next()};
+        m.volume = VolumeExt{.thickness_factor = 0.1f, .thickness_texture = next()};
+        m.anisotropy = AnisotropyExt{.anisotropy_strength = 0.5f, .anisotropy_texture = next()};
+        m.iridescence = IridescenceExt{.iridescence_factor = 0.5f, .iridescence_texture = next(),
+                                       .iridescence_thickness_texture = next()};
+        m.diffuse_transmission = DiffuseTransmissionExt{.diffuse_transmission_factor = 0.5f,
+                                                        .diffuse_transmission_texture = next(),
+                                                        .diffuse_transmission_color_texture = next()};
         return m;
     };
     auto scene_with = [](const Material& m) {

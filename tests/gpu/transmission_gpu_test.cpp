@@ -7,7 +7,7 @@
 //
 // Tolerance: relative 1e-4 with an absolute floor 1e-5 for the smooth functions (transcendentals
 // in float; measured below 1e-5), and for the BTDF and the transmission term 1e-4 beyond the
-// band that float rounding of their directions explains (rounding_band: their GGX peak
+// band that float rounding of their directions explains (test::rounding_band: their GGX peak
 // amplifies the rounding of n.h, as material_gpu_test's shade_band allows for shade_light).
 // The maps are read at texel centres of level 0 with NEAREST filtering (exact in both).
 #include <gtest/gtest.h>
@@ -54,30 +54,11 @@ private:
     SampledTexture tex_;
 };
 
-// `band`: what float rounding of the inputs alone moves the value by (rounding_band), allowed on top.
+// `band`: what float rounding of the inputs alone moves the value by (test::rounding_band), allowed on top.
 float rel_error(float gpu, float cpu, float rel, float band = 0.0f) {
     float e = std::abs(gpu - cpu);
     float bound = std::max(kAbsFloor, rel * std::abs(cpu) + band);
     return e / bound;  // <= 1 passes
-}
-
-// How far f(n, v, l, lt) moves when its directions move by float rounding: each moved by 4e-7
-// (a few ulps) along a different axis, both ways. The GPU's directions differ from the C++ ones
-// by that much (normalised there), and near the GGX peak of a smooth lobe that alone moves the
-// value by up to 1e-3 of itself, in either implementation.
-template <class F>
-glm::vec3 rounding_band(glm::vec3 n, glm::vec3 v, glm::vec3 l, glm::vec3 lt, F&& f) {
-    const glm::vec3 base = f(n, v, l, lt);
-    const glm::vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    glm::vec3 band(0.0f);
-    for (int k = 0; k < 6; ++k) {
-        const float d = k < 3 ? 4e-7f : -4e-7f;
-        band = glm::max(band, glm::abs(f(glm::normalize(n + d * axes[k % 3]), glm::normalize(v - d * axes[(k + 1) % 3]),
-                                         glm::normalize(l + d * axes[(k + 2) % 3]),
-                                         glm::normalize(lt - d * axes[k % 3])) -
-                                       base));
-    }
-    return band;
 }
 
 class TransmissionProbe : public test::ProbeSuite {};
@@ -193,7 +174,11 @@ TEST_F(TransmissionProbe, GlslMatchesCpp) {
             };
             cpu[2] = glm::vec4(btdf(n, v, l, lt), 0.0f);
             glm::vec3 band[kOutputs] = {};
-            band[2] = rounding_band(n, v, l, lt, btdf);
+            // n, v, l, lt as directions 0..3 of test::rounding_band.
+            auto band_of = [&](auto&& f) {
+                return test::rounding_band([&](auto&& move) { return f(move(n, 0), move(v, 1), move(l, 2), move(lt, 3)); });
+            };
+            band[2] = band_of(btdf);
             cpu[3] = glm::vec4(transmission::dispersion_iors(ior, t[3].w), 0.0f);
             cpu[4] = glm::vec4(transmission::refraction_weight(glm::vec3(t[3]), glm::vec3(1.0f), t[9].x, t[9].y,
                                                                glm::vec3(t[4])), 0.0f);
@@ -220,7 +205,7 @@ TEST_F(TransmissionProbe, GlslMatchesCpp) {
                 return shade_light_transmission(moved, v_, l_, lt_, t[9].w, glm::vec3(t[7]));
             };
             cpu[5] = glm::vec4(lobe_light(n, v, l, lt), 0.0f);
-            band[5] = rounding_band(n, v, l, lt, lobe_light);
+            band[5] = band_of(lobe_light);
             SurfacePoint sp;
             sp.uv0 = sp.uv1 = glm::vec2(t[10].z, t[10].w);
             sp.lod = 0.0f;

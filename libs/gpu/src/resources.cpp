@@ -107,6 +107,17 @@ GLint gl_min_filter(Filter f, MipmapMode m) {
     }
     return f == Filter::Nearest ? GL_NEAREST_MIPMAP_LINEAR : GL_LINEAR_MIPMAP_LINEAR;
 }
+// Sets the bound texture's filters, LINEAR ones made NEAREST where the format cannot filter
+// linearly (filterable); returns whether it filters linearly. The one place texture filters are set.
+bool set_filters(GLenum target, TextureFormat format, Filter min_filter, MipmapMode mipmap, Filter mag_filter) {
+    if (!filterable(format)) {
+        min_filter = mag_filter = Filter::Nearest;
+        if (mipmap != MipmapMode::None) mipmap = MipmapMode::Nearest;
+    }
+    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, gl_min_filter(min_filter, mipmap));
+    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, gl_filter(mag_filter));
+    return mag_filter == Filter::Linear;
+}
 GLint gl_wrap(Wrap w) {
     switch (w) {
         case Wrap::ClampToEdge: return GL_CLAMP_TO_EDGE;
@@ -129,11 +140,8 @@ Texture Texture::create_2d(int width, int height, TextureFormat format, const vo
     glTexImage2D(GL_TEXTURE_2D, 0, fi.internal, width, height, 0, fi.format, fi.type, data);
     if (mipmaps) glGenerateMipmap(GL_TEXTURE_2D);
     t.bytes_ = texels(width, height, mipmaps) * texel_bytes(format);
-    const bool linear = filterable(format);
-    t.linear_ = linear;
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
-                    linear ? (mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR) : (mipmaps ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST));
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, linear ? GL_LINEAR : GL_NEAREST);
+    t.linear_ = set_filters(GL_TEXTURE_2D, format, Filter::Linear, mipmaps ? MipmapMode::Linear : MipmapMode::None,
+                            Filter::Linear);
     glBindTexture(GL_TEXTURE_2D, 0);
     return t;
 }
@@ -169,11 +177,8 @@ Texture Texture::create_2d_levels(TextureFormat format, std::span<const MipLevel
         t.bytes_ += texels(levels[l].width, levels[l].height, false) * texel_bytes(format);
     }
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, GLint(levels.size() - 1));
-    t.linear_ = filterable(format);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
-                    gl_min_filter(t.linear_ ? Filter::Linear : Filter::Nearest,
-                                  levels.size() > 1 ? (t.linear_ ? MipmapMode::Linear : MipmapMode::Nearest) : MipmapMode::None));
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, t.linear_ ? GL_LINEAR : GL_NEAREST);
+    t.linear_ = set_filters(GL_TEXTURE_2D, format, Filter::Linear,
+                            levels.size() > 1 ? MipmapMode::Linear : MipmapMode::None, Filter::Linear);
     glBindTexture(GL_TEXTURE_2D, 0);
     return t;
 }
@@ -209,11 +214,8 @@ Texture Texture::create_cube(int size, TextureFormat format, int levels, bool im
         t.bytes_ += 6 * texels(std::max(1, size >> level), std::max(1, size >> level), false) * texel_bytes(format);
     }
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, levels - 1);
-    t.linear_ = filterable(format);
-    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER,
-                    gl_min_filter(t.linear_ ? Filter::Linear : Filter::Nearest,
-                                  levels > 1 ? (t.linear_ ? MipmapMode::Linear : MipmapMode::Nearest) : MipmapMode::None));
-    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, t.linear_ ? GL_LINEAR : GL_NEAREST);
+    t.linear_ = set_filters(GL_TEXTURE_CUBE_MAP, format, Filter::Linear, levels > 1 ? MipmapMode::Linear : MipmapMode::None,
+                            Filter::Linear);
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
@@ -232,13 +234,7 @@ void Texture::upload_cube_face(int face, int level, int size, const float* rgba)
 void Texture::set_sampler(const SamplerState& s) {
     GLenum target = kind_ == Kind::Cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
     glBindTexture(target, id_);
-    const bool linear_ok = filterable(format_);
-    const Filter min_filter = linear_ok ? s.min_filter : Filter::Nearest;
-    const MipmapMode mipmap = linear_ok || s.mipmap == MipmapMode::None ? s.mipmap : MipmapMode::Nearest;
-    const Filter mag_filter = linear_ok ? s.mag_filter : Filter::Nearest;
-    linear_ = mag_filter == Filter::Linear;
-    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, gl_min_filter(min_filter, mipmap));
-    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, gl_filter(mag_filter));
+    linear_ = set_filters(target, format_, s.min_filter, s.mipmap, s.mag_filter);
     glTexParameteri(target, GL_TEXTURE_WRAP_S, gl_wrap(s.wrap_s));
     glTexParameteri(target, GL_TEXTURE_WRAP_T, gl_wrap(s.wrap_t));
     if (kind_ == Kind::Cube) glTexParameteri(target, GL_TEXTURE_WRAP_R, gl_wrap(s.wrap_r));

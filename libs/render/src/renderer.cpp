@@ -592,12 +592,6 @@ struct Renderer::Impl {
     // shader (sample_detail_map, shaders/material_inputs.glsl; fresnel::evaluate's twin:
     // detail_footprint in material/texture.h).
     //
-    // The texture units a draw may use (RenderSettings::max_texture_units).
-    int unit_limit(const RenderSettings& settings) const {
-        const int limit = context.capabilities().max_fragment_texture_units;
-        return settings.max_texture_units > 0 ? std::clamp(settings.max_texture_units, 16, limit) : limit;
-    }
-
     // How a slot's texture is filtered anisotropically: not at all, by the sampler (GL's
     // TEXTURE_MAX_ANISOTROPY), or in the shader (sample_detail_map in material_inputs.glsl).
     enum class Anisotropic { Off, Sampler, Shader };
@@ -706,6 +700,25 @@ struct Renderer::Impl {
         t.msaa_fb.attach_depth(t.msaa_depth);
         t.msaa_fb.check();
         return true;
+    }
+
+    // The texture units a draw may use (RenderSettings::max_texture_units).
+    int unit_limit(const RenderSettings& settings) const {
+        const int limit = context.capabilities().max_fragment_texture_units;
+        return settings.max_texture_units > 0 ? std::clamp(settings.max_texture_units, 16, limit) : limit;
+    }
+    // The units a glTF draw of `features` takes besides its maps, as draw_primitive packs them:
+    // the transmitted scene, the split-sum table, the environment's two cubes, sheen's cube and table.
+    int fixed_units(FeatureMask features, const RenderSettings& settings) const {
+        const bool env = settings.environment != nullptr;
+        return ((features & feature::Transmission) ? 1 : 0) + 1 + (env ? 2 : 0) +
+               ((features & feature::Sheen) && env && env_sheen && charlie_lut ? 2 : 0);
+    }
+
+    // Adds the GL errors raised since the last look to `stats` (if given).
+    void note_errors(FrameStats* stats) {
+        std::string errors = device.take_errors();
+        if (stats && !errors.empty()) stats->gl_errors += (stats->gl_errors.empty() ? "" : ", ") + errors;
     }
 
     // The 8-bit output (RenderTarget::offscreen8), made on first use.
@@ -962,8 +975,7 @@ struct Renderer::Impl {
         // Maps the variants read in pairs (clearcoat's, sheen's, ...: canonical_features) go in pairs.
         {
             auto units_for = [&](FeatureMask f) {
-                int units = ((f & feature::Transmission) ? 1 : 0) + 1 + (settings.environment ? 2 : 0) +
-                            ((f & feature::Sheen) && settings.environment && env_sheen && charlie_lut ? 2 : 0);
+                int units = fixed_units(f, settings);
                 for (int i = 0; i < kMaterialMapCount; ++i)
                     units += (f & feature::map_bit(i)) && !(in_alpha && MaterialMap(i) == MaterialMap::MetallicRoughness);
                 return units;
@@ -1041,6 +1053,7 @@ struct Renderer::Impl {
                 prog.set("u_charlie_lut", kCharlieUnit);
             }
         }
+        assert(next_unit <= unit_limit(settings));  // fixed_units counts what this packs
         bind_material_block(p.material, mu);
         set_material_samplers(prog, map_units);
 
@@ -1099,8 +1112,7 @@ ImageF Renderer::render(const CameraSetup& cam, const std::vector<LightInstance>
     ImageF img(w, h);
     for (int y = 0; y < h; ++y)  // GL rows are bottom to top
         std::copy_n(&px[std::size_t(h - 1 - y) * std::size_t(w) * 4], std::size_t(w) * 4, img.at(0, y));
-    std::string errors = r.device.take_errors();
-    if (stats_out && !errors.empty()) stats_out->gl_errors += (stats_out->gl_errors.empty() ? "" : ", ") + errors;
+    r.note_errors(stats_out);
     return img;
 }
 
@@ -1120,8 +1132,7 @@ Image8 Renderer::render8(const CameraSetup& cam, const std::vector<LightInstance
             for (int x = 0; x < w; ++x, src += 4, dst += 3) dst[0] = src[0], dst[1] = src[1], dst[2] = src[2];
         }
     }
-    std::string errors = r.device.take_errors();
-    if (stats_out && !errors.empty()) stats_out->gl_errors += (stats_out->gl_errors.empty() ? "" : ", ") + errors;
+    r.note_errors(stats_out);
     return img;
 }
 
