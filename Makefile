@@ -74,7 +74,7 @@ bench: build
 # (~10 min on 2 cores); writes docs/fidelity/ and the README's fidelity-report section.
 fidelity-report: configure
 	cmake --build $(BUILD) -j $(JOBS) --target fresnel
-	bench/fidelity_report.py $(BUILD)/bin/fresnel --readme README.md
+	bench/fidelity_report.py $(BUILD)/bin/fresnel --readme docs/fidelity.md
 
 # The web page: the same libraries through Debian's Emscripten on WebGL 2, into $(WEB_BUILD)/
 # (index.html, fresnel.js, fresnel.wasm; serve the folder with any static server). Debian's

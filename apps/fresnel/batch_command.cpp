@@ -38,10 +38,11 @@
 #include "fresnel/gpu/context.h"
 #include "fresnel/ibl/bake.h"
 #include "fresnel/ibl/environment.h"
-#include "fresnel/render/job.h"
+#include "fresnel/job/job.h"
 #include "fresnel/render/renderer.h"
-#include "fresnel/render/scene_file.h"
+#include "fresnel/job/scene_file.h"
 #include "fresnel/scene/paths.h"
+#include "command_line.h"
 #include "job_options.h"
 
 namespace fresnel::cli {
@@ -513,7 +514,6 @@ int run_batch(const BatchOptions& o, const CLI::App* cmd) {
     std::mutex print_mutex;
     std::atomic<std::size_t> next{0};
     std::atomic<std::size_t> failed{0}, rendered{0}, skipped{0};
-    const ContextFlags cf = context_flags(o.render);
 
     auto report = [&](const json& j, bool ok, const std::string& text) {
         std::lock_guard lock(print_mutex);
@@ -632,11 +632,7 @@ int run_batch(const BatchOptions& o, const CLI::App* cmd) {
             if (t->error.empty() && !t->skip) {
                 try {
                     if (!worker.context) {
-                        gpu::ContextOptions co;
-                        co.debug = cf.debug;
-                        co.api = cf.es3 ? gpu::Api::OpenGLES30 : gpu::Api::OpenGL33;
-                        co.log = [](const std::string& m) { std::fprintf(stderr, "fresnel: %s\n", m.c_str()); };
-                        worker.context = gpu::create_headless_context(co);
+                        worker.context = gpu::create_headless_context(context_options(o.render));
                         worker.renderer = std::make_unique<Renderer>(*worker.context);
                     }
                     auto t_upload = Clock::now();

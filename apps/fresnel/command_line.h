@@ -4,12 +4,13 @@
 #include <string>
 
 #include "fresnel/gpu/context.h"
-#include "fresnel/render/job.h"
+#include "fresnel/job/job.h"
 #include "job_options.h"
 
 namespace fresnel::cli {
 
-// The GL context the flags ask for (--gl, --gl-debug; debug builds always debug), logging to stderr.
+// The GL context the flags ask for (--gl, --gl-debug; debug builds always debug), logging to
+// stderr: the one setup of render, batch's workers and the viewer's window.
 gpu::ContextOptions context_options(const RenderOptions& flags);
 
 // Quotes `s` for a POSIX shell when it needs it ('...').

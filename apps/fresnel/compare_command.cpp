@@ -13,6 +13,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "fresnel/core/atomic_file.h"
 #include "fresnel/core/heatmap.h"
 #include "fresnel/core/image.h"
 #include "fresnel/core/metrics.h"
@@ -57,23 +58,9 @@ Loaded load(const std::string& path) {
 
 std::string size_text(const ImageF& i) { return std::to_string(i.width) + "x" + std::to_string(i.height); }
 
-// Writes next to the destination, then renames, so a reader never sees half a file.
+// Whole or absent (fresnel/core/atomic_file.h).
 void write_png_atomically(const fs::path& path, const Image8& image) {
-    fs::path tmp = path;
-    tmp += ".tmp" + std::to_string(::getpid());
-    try {
-        write_png(tmp, image);
-    } catch (const Error&) {
-        std::error_code ec;
-        fs::remove(tmp, ec);
-        throw Error(path.string(), "", "cannot write PNG");
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw Error(path.string(), "", "cannot write PNG: " + ec.message());
-    }
+    write_file_atomically(path, [&](const fs::path& tmp) { write_png(tmp, image); });
 }
 
 // compare.py's conventions for identical images (PSNR 99 dB, RMS -99 dB); NaN -> null.

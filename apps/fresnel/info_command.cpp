@@ -5,8 +5,8 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "fresnel/render/job.h"
-#include "fresnel/render/scene_file.h"
+#include "fresnel/job/job.h"
+#include "fresnel/job/scene_file.h"
 #include "fresnel/scene/gltf_loader.h"
 #include "fresnel/scene/obj_loader.h"
 

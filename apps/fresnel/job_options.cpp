@@ -13,9 +13,10 @@
 #include <thread>
 
 #include "cli_common.h"
+#include "fresnel/core/atomic_file.h"
 #include "fresnel/ibl/environment.h"
 #include "fresnel/render/renderer.h"
-#include "fresnel/render/scene_file.h"
+#include "fresnel/job/scene_file.h"
 
 namespace fresnel::cli {
 namespace {
@@ -290,40 +291,9 @@ ContextFlags context_flags(const RenderOptions& o) {
     return f;
 }
 
-namespace {
-// Writes `path` through `write` (given a temporary in the same folder), then renames it into
-// place: a reader never sees half a file, and a failed write leaves no file behind.
-void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
-    namespace fs = std::filesystem;
-    std::string ext = lower_extension(path);
-    fs::path target(path);
-    // The temporary keeps the extension (the writers need not look at it, but tools do).
-    fs::path tmp = target.parent_path() /
-                   ("." + target.stem().string() + ".partial-" + std::to_string(::getpid()) + "-" +
-                    std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()) % 100000) + ext);
-    try {
-        write(tmp.string());
-    } catch (const Error& e) {
-        std::error_code ec;
-        fs::remove(tmp, ec);
-        throw Error(path, e.where(), e.reason());  // name the output, not the temporary
-    } catch (...) {
-        std::error_code ec;
-        fs::remove(tmp, ec);
-        throw;
-    }
-    std::error_code ec;
-    fs::rename(tmp, target, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw Error(path, "", "cannot write the image: " + ec.message());
-    }
-}
-}  // namespace
-
 void write_image_atomically(const std::string& path, const ImageF& image, bool transparent) {
     const std::string ext = lower_extension(path);
-    write_atomically(path, [&](const std::string& tmp) {
+    write_file_atomically(path, [&](const std::filesystem::path& tmp) {
         if (ext == ".png") write_png(tmp, to_image8(image, transparent));
         else if (ext == ".exr") write_exr(tmp, image);
         else write_hdr(tmp, image);
@@ -331,7 +301,7 @@ void write_image_atomically(const std::string& path, const ImageF& image, bool t
 }
 
 void write_png_atomically(const std::string& path, const Image8& image) {
-    write_atomically(path, [&](const std::string& tmp) { write_png(tmp, image); });
+    write_file_atomically(path, [&](const std::filesystem::path& tmp) { write_png(tmp, image); });
 }
 
 void add_model_and_output(CLI::App* cmd, RenderOptions& o) {

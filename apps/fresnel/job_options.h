@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "fresnel/render/job.h"
+#include "fresnel/job/job.h"
 
 namespace fresnel::cli {
 

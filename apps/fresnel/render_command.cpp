@@ -21,11 +21,11 @@
 #include "commands.h"
 #include "fresnel/gpu/context.h"
 #include "fresnel/ibl/environment.h"
-#include "fresnel/render/job.h"
+#include "fresnel/job/job.h"
 #include "fresnel/render/renderer.h"
-#include "fresnel/render/scene_file.h"
-#include "fresnel/render/shader_features.h"
+#include "fresnel/job/scene_file.h"
 #include "fresnel/scene/pose.h"
+#include "command_line.h"
 #include "job_options.h"
 #include "progress.h"
 
@@ -167,12 +167,7 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
 
     // GPU.
     auto t_gpu = Clock::now();
-    gpu::ContextOptions co;
-    ContextFlags cf = context_flags(o);
-    co.debug = cf.debug;
-    co.api = cf.es3 ? gpu::Api::OpenGLES30 : gpu::Api::OpenGL33;
-    co.log = [](const std::string& m) { std::fprintf(stderr, "fresnel: %s\n", m.c_str()); };
-    auto context = gpu::create_headless_context(co);
+    auto context = gpu::create_headless_context(context_options(o));
     Renderer renderer(*context);
     double upload_ms = 0.0;
 
@@ -186,8 +181,8 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
     if (animated && o.posing == "gpu" && !gpu_posing) {
         Diagnostics note;
         note.warn(model_name, "--posing gpu",
-                  "a skin has more than " + std::to_string(kMaxShaderJoints) + " joints or a primitive more than " +
-                      std::to_string(kMaxShaderMorphTargets) + " morph targets; posing on the CPU");
+                  "a skin has more than " + std::to_string(kMaxGpuSkinJoints) + " joints or a primitive more than " +
+                      std::to_string(kMaxGpuMorphTargets) + " morph targets; posing on the CPU");
         print_warnings(note);
     }
     rs.gpu_animation = gpu_posing;

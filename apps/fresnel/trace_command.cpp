@@ -12,7 +12,7 @@
 #include "commands.h"
 #include "fresnel/ibl/bake.h"
 #include "fresnel/ibl/environment.h"
-#include "fresnel/render/job.h"
+#include "fresnel/job/job.h"
 #include "fresnel/trace/environment_light.h"
 #include "fresnel/trace/tracer.h"
 #include "job_options.h"

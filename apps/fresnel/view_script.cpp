@@ -7,7 +7,7 @@
 
 #include "fresnel/core/color.h"
 #include "fresnel/core/error.h"
-#include "fresnel/render/lights.h"
+#include "fresnel/job/lights.h"
 #include "fresnel/render/renderer.h"
 
 namespace fresnel::cli {

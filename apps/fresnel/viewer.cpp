@@ -1,5 +1,5 @@
 // `fresnel view`: a window that shows what `fresnel render` would write for a Job and
-// lets the job change: the camera by mouse (fresnel/render/orbit_controller.h), models and
+// lets the job change: the camera by mouse (fresnel/job/orbit_controller.h), models and
 // environments by drag and drop, a file browser, PageUp/PageDown and recent files, and the
 // tone mapping, exposure, background and debug channel from the panel.
 //
@@ -31,9 +31,10 @@
 #include "fresnel/gpu/resources.h"
 #include "fresnel/gui/window.h"
 #include "fresnel/ibl/bake.h"
-#include "fresnel/render/lights.h"
-#include "fresnel/render/orbit_controller.h"
-#include "fresnel/render/scene_file.h"
+#include "fresnel/job/lights.h"
+#include "fresnel/job/orbit_controller.h"
+#include "fresnel/job/scene_file.h"
+#include "fresnel/render/renderer.h"
 #include "fresnel/scene/pick.h"
 #include "fresnel/scene/scene_writer.h"
 #include "view_script.h"
@@ -594,7 +595,7 @@ private:
 
     // --- saving ----------------------------------------------------------------------
 
-    // The view as a scene file (fresnel/render/scene_file.h): the job at the window's size,
+    // The view as a scene file (fresnel/job/scene_file.h): the job at the window's size,
     // the material edits as overrides of their models, "output" the .png beside it, so
     // `fresnel render PATH` renders this frame. Atomic; false (error_ set) when it fails.
     bool save_scene(const std::string& path) {

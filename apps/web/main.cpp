@@ -20,10 +20,10 @@
 #include "fresnel/core/error.h"
 #include "fresnel/gpu/context.h"
 #include "fresnel/gpu/device.h"
-#include "fresnel/render/job.h"
-#include "fresnel/render/orbit_controller.h"
+#include "fresnel/job/job.h"
+#include "fresnel/job/orbit_controller.h"
 #include "fresnel/render/renderer.h"
-#include "fresnel/render/scene_file.h"
+#include "fresnel/job/scene_file.h"
 
 namespace fresnel::web {
 namespace {

@@ -3,8 +3,8 @@
 // Link fresnel::fresnel (CMake: find_package(fresnel REQUIRED)). Layers, bottom up:
 // core (errors, colour, images), material (the material model, evaluate, the BRDF), scene
 // (the scene model, mesh operations, the glTF and OBJ loaders), ibl (environments, baking),
-// gpu (OpenGL contexts and objects), render (jobs, cameras, lights, the renderer), trace (the
-// CPU path tracer).
+// job (what to render, GL-free: jobs, settings, scene files, cameras, lights), gpu (OpenGL
+// contexts and objects), render (the rasteriser), trace (the CPU path tracer).
 #include "fresnel/core/version.h"
 
 #include "fresnel/core/color.h"
@@ -51,16 +51,14 @@
 #include "fresnel/gpu/device.h"
 #include "fresnel/gpu/resources.h"
 
-#include "fresnel/render/camera.h"
-#include "fresnel/render/job.h"
-#include "fresnel/render/lights.h"
-#include "fresnel/render/orbit_controller.h"
-#include "fresnel/render/material_uniforms.h"
+#include "fresnel/job/camera.h"
+#include "fresnel/job/render_settings.h"
+#include "fresnel/job/job.h"
+#include "fresnel/job/lights.h"
+#include "fresnel/job/orbit_controller.h"
+#include "fresnel/render/limits.h"
 #include "fresnel/render/renderer.h"
-#include "fresnel/render/scene_file.h"
-#include "fresnel/render/shader_features.h"
-#include "fresnel/render/shader_library.h"
-#include "fresnel/render/uniform_blocks.h"
+#include "fresnel/job/scene_file.h"
 
 #include "fresnel/trace/bsdf.h"
 #include "fresnel/trace/distribution.h"

@@ -8,7 +8,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "fresnel/render/orbit_controller.h"
+#include "fresnel/job/orbit_controller.h"
 
 using namespace fresnel;
 using namespace fresnel::cli;

@@ -28,7 +28,7 @@
 #include "fresnel/gpu/resources.h"
 #include "fresnel/material/brdf.h"
 #include "fresnel/material/brdf_model.h"
-#include "fresnel/render/shader_library.h"
+#include "details/shader_library.h"
 #include "probe_harness.h"
 
 namespace {

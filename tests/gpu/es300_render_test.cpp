@@ -21,8 +21,8 @@
 #include "fresnel/gpu/resources.h"
 #include "fresnel/ibl/bake.h"
 #include "fresnel/ibl/environment.h"
-#include "fresnel/render/camera.h"
-#include "fresnel/render/lights.h"
+#include "fresnel/job/camera.h"
+#include "fresnel/job/lights.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/scene/gltf_loader.h"
 

@@ -24,7 +24,7 @@
 #include "fresnel/gpu/resources.h"
 #include "fresnel/material/legacy_shading.h"
 #include "fresnel/material/phong.h"
-#include "fresnel/render/shader_library.h"
+#include "details/shader_library.h"
 #include "probe_harness.h"
 
 namespace {

@@ -61,8 +61,8 @@
 #include "fresnel/gpu/device.h"
 #include "fresnel/gpu/resources.h"
 #include "fresnel/material/evaluate.h"
-#include "fresnel/render/material_uniforms.h"
-#include "fresnel/render/shader_library.h"
+#include "details/material_uniforms.h"
+#include "details/shader_library.h"
 #include "probe_harness.h"
 #include "gltf_sampler.h"
 

@@ -17,7 +17,7 @@
 #include "fresnel/gpu/context.h"
 #include "fresnel/gpu/device.h"
 #include "fresnel/gpu/resources.h"
-#include "fresnel/render/shader_library.h"
+#include "details/shader_library.h"
 
 namespace fresnel::test {
 

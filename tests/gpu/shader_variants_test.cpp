@@ -45,8 +45,8 @@
 
 #include "fresnel/core/color.h"
 #include "fresnel/material/brdf_model.h"
-#include "fresnel/render/shader_features.h"
-#include "fresnel/render/shader_library.h"
+#include "details/shader_features.h"
+#include "details/shader_library.h"
 
 using namespace fresnel;
 

@@ -26,8 +26,8 @@
 #include "fresnel/gpu/resources.h"
 #include "fresnel/material/evaluate.h"
 #include "fresnel/material/transmission.h"
-#include "fresnel/render/material_uniforms.h"
-#include "fresnel/render/shader_library.h"
+#include "details/material_uniforms.h"
+#include "details/shader_library.h"
 #include "probe_harness.h"
 #include "gltf_sampler.h"
 

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "fresnel/core/atomic_file.h"
 #include "fresnel/core/error.h"
 #include "fresnel/core/version.h"
 #include "fresnel/ibl/ktx2.h"
@@ -276,13 +277,11 @@ ImageF load_or_bake_lut(const BakeOptions& o, bool use_cache) {
     ImageF lut = bake_lut(o);
     if (use_cache) {
         fs::create_directories(file.parent_path(), ec);
-        fs::path tmp = file.string() + ".tmp" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count());
         try {
-            write_ktx2_2d(tmp, lut);
-            fs::rename(tmp, file, ec);
+            write_file_atomically(file, [&](const fs::path& tmp) { write_ktx2_2d(tmp, lut); });
         } catch (const Error&) {
+            // caching is best effort
         }
-        fs::remove(tmp, ec);
     }
     return lut;
 }
@@ -315,7 +314,7 @@ BakedIbl load_or_bake(const EnvironmentSource& source, const BakeOptions& option
     ibl.source = source.describe();
     if (use_cache) {
         // Write to a temporary folder and rename, so a concurrent reader never sees half a bake.
-        fs::path tmp = dir.string() + ".tmp" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count());
+        const fs::path tmp = temporary_path_beside(dir);
         try {
             save_baked(ibl, tmp, options, false);
             std::error_code ec;

@@ -1,4 +1,4 @@
-#include "fresnel/render/material_uniforms.h"
+#include "details/material_uniforms.h"
 
 #include <cmath>
 

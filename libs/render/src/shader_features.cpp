@@ -1,4 +1,4 @@
-#include "fresnel/render/shader_features.h"
+#include "details/shader_features.h"
 
 #include <algorithm>
 #include <bit>

@@ -1,4 +1,4 @@
-#include "fresnel/render/shader_library.h"
+#include "details/shader_library.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "fresnel/core/error.h"
-#include "fresnel/render/uniform_blocks.h"
+#include "details/uniform_blocks.h"
 #include "fresnel/shaders/shaders.h"
 
 namespace fresnel {

@@ -2,7 +2,7 @@
 // defines, #include expansion (each file once), and the errors for a missing file, an
 // include cycle and a malformed #include. Pure CPU: the GL compile is not needed here
 // (tests/gpu compiles every program on llvmpipe).
-#include "fresnel/render/shader_library.h"
+#include "details/shader_library.h"
 
 #include <gtest/gtest.h>
 

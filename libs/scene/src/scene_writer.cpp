@@ -19,6 +19,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "fresnel/core/atomic_file.h"
 #include "fresnel/core/float_text.h"
 #include "fresnel/scene/paths.h"
 #include "gltf_codes.h"
@@ -30,43 +31,33 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-// Writes bytes to a temporary file beside `path`, then renames it over `path`.
+// Whole or absent (fresnel/core/atomic_file.h).
 void write_atomically(const fs::path& path, const void* data, std::size_t size) {
-    fs::path tmp = path;
-    tmp += ".tmp" + std::to_string(::getpid());
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw Error(path.string(), "", "cannot write (" + std::string(std::strerror(errno)) + ")");
-        out.write(static_cast<const char*>(data), std::streamsize(size));
-        out.close();
-        if (!out) {
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            throw Error(path.string(), "", "write failed");
-        }
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw Error(path.string(), "", "cannot rename into place: " + ec.message());
-    }
+    write_file_atomically(path, std::span<const std::uint8_t>(static_cast<const std::uint8_t*>(data), size));
 }
-void write_atomically(const fs::path& path, const std::string& text) { write_atomically(path, text.data(), text.size()); }
+void write_atomically(const fs::path& path, const std::string& text) { write_file_atomically(path, std::string_view(text)); }
 
-// PNG bytes of an image (write_png writes files only: through a temporary file).
+// PNG bytes of an image (write_png writes files only: through a temporary file beside `beside`,
+// named as every temporary of fresnel is, so threads and processes never share one).
 std::vector<std::uint8_t> png_bytes(const Image8& image, const fs::path& beside) {
     fs::path tmp = beside;
-    tmp += ".png.tmp" + std::to_string(::getpid());
-    write_png(tmp, image);
-    std::vector<std::uint8_t> bytes = read_file_bytes(tmp, std::size_t(1) << 31);
+    tmp += ".png";
+    tmp = temporary_path_beside(tmp);
+    std::vector<std::uint8_t> bytes;
+    try {
+        write_png(tmp, image);
+        bytes = read_file_bytes(tmp, std::size_t(1) << 31);
+    } catch (...) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw;
+    }
     std::error_code ec;
     fs::remove(tmp, ec);
     return bytes;
 }
 void write_png_atomically(const fs::path& path, const Image8& image) {
-    auto bytes = png_bytes(image, path);
-    write_atomically(path, bytes.data(), bytes.size());
+    write_file_atomically(path, [&](const fs::path& tmp) { write_png(tmp, image); });
 }
 
 json vec_json(const float* v, int n) {

@@ -16,7 +16,7 @@
 
 #include "fresnel/ibl/environment.h"
 #include "fresnel/material/brdf.h"
-#include "fresnel/render/camera.h"
+#include "fresnel/job/camera.h"
 #include "fresnel/scene/procedural.h"
 
 #include <glm/ext/matrix_clip_space.hpp>

@@ -9,6 +9,7 @@
 
 #include "fresnel/core/error.h"
 #include "fresnel/gpu/context.h"
+#include "fresnel/gpu/libraries.h"
 
 namespace fresnel::gpu {
 namespace {
@@ -157,6 +158,8 @@ Created try_create(EGLDisplay display, const ContextOptions& options) {
 }  // namespace
 
 std::unique_ptr<Context> create_headless_context(const ContextOptions& options) {
+    // Before libepoxy's first call: it aborts the process when it cannot open a library.
+    require_libraries(runtime_libraries(options.api, Windowing::Headless));
     for (EGLDisplay display : candidate_displays()) {
         if (!DisplayReferences::acquire(display)) continue;
         Created made = try_create(display, options);

@@ -1,6 +1,7 @@
 // Windowed OpenGL through GLFW (used by `fresnel view`).
 #include "fresnel/core/error.h"
 #include "fresnel/gpu/context.h"
+#include "fresnel/gpu/libraries.h"
 
 #ifdef FRESNEL_HAVE_GLFW
 #include <epoxy/gl.h>
@@ -47,6 +48,8 @@ std::string glfw_reason() {
 
 std::unique_ptr<Context> create_window_context(int width, int height, const std::string& title,
                                                const ContextOptions& options) {
+    // Before libepoxy's first call: it aborts the process when it cannot open a library.
+    require_libraries(runtime_libraries(options.api, Windowing::Window));
     if (glfw_references() == 0 && !glfwInit())
         throw Error("GLFW", "", "cannot initialise GLFW (no display?)" + glfw_reason());
     ++glfw_references();

@@ -28,9 +28,9 @@
 
 #include "fresnel/core/image.h"
 #include "fresnel/material/brdf_model.h"
-#include "fresnel/render/camera.h"
-#include "fresnel/render/lights.h"
-#include "fresnel/render/renderer.h"
+#include "fresnel/job/camera.h"
+#include "fresnel/job/lights.h"
+#include "fresnel/job/render_settings.h"
 #include "fresnel/scene/scene.h"
 #include "fresnel/trace/environment_light.h"
 

@@ -1,0 +1,81 @@
+#pragma once
+// Scene files (*.fresnel.json): a render job written down, so a look can be versioned,
+// shared and reloaded. The format is docs/scene.schema.json (JSON Schema), described in
+// docs/scene-file.md; the "fresnel" key holds the format's version (kSceneFileVersion).
+//
+// A scene file is read *onto* a job: keys present replace the job's values, keys absent
+// keep them. So `fresnel render` reads the file onto the default job, then applies the
+// flags the user gave; `fresnel batch` reads each job onto the job its flags describe.
+//
+// The file is hostile input: its size and nesting are capped, every value is type- and
+// range-checked (fresnel::Error naming the file and the JSON pointer, e.g.
+// "/models/1/translation/2"), paths are relative to the file's folder and may not leave it
+// (the URI policy of models, fresnel/scene/paths.h) unless external files are allowed.
+// Unknown keys are warnings naming their pointer.
+#include <filesystem>
+#include <nlohmann/json_fwd.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fresnel/core/error.h"
+#include "fresnel/job/job.h"
+
+namespace fresnel {
+
+inline constexpr int kSceneFileVersion = 1;
+
+struct SceneFileOptions {
+    bool allow_external_files = false;  // paths outside the file's folder (absolute, ..)
+    std::size_t max_bytes = std::size_t(16) << 20;
+    int max_depth = 64;  // nesting of arrays and objects
+    // false: the "fresnel" version key may be absent (inline jobs of a batch job list).
+    bool require_version = true;
+};
+
+struct SceneFile {
+    Job job;
+    // "output": the image to write, resolved against the file's folder (as written when
+    // external files are allowed and it is absolute).
+    std::optional<std::filesystem::path> output;
+};
+
+// True for names ending in ".json" (scene files; models are .gltf, .glb, ...).
+bool is_scene_file(const std::filesystem::path& path);
+
+// Reads the scene file `path` onto `defaults`. Throws fresnel::Error (file, pointer, reason);
+// warnings (unknown keys, ignored values) go to `diag`.
+SceneFile load_scene_file(const std::filesystem::path& path, const Job& defaults, Diagnostics& diag,
+                          const SceneFileOptions& options = {});
+
+// The same for a document already parsed: `name` appears in messages, relative paths resolve
+// against `base_dir`. `ignore` lists top-level keys the caller handles (no unknown-key warning).
+SceneFile parse_scene_document(const nlohmann::json& doc, const std::string& name,
+                               const std::filesystem::path& base_dir, const Job& defaults, Diagnostics& diag,
+                               const SceneFileOptions& options = {}, const std::vector<std::string>& ignore = {});
+
+// Parses JSON text with the options' size and depth limits; throws fresnel::Error (name,
+// "byte N" or "line L", reason). For job lists and other JSON the scene-file rules apply to.
+nlohmann::json parse_json_limited(std::string_view text, const std::string& name, const SceneFileOptions& options = {});
+
+// The other way: `job` as a scene file document, every field a scene file holds (the reader
+// gives the same job back, floats exactly). Paths are written relative to `base_dir` (the
+// folder the file will be in); those outside it are written with "..", or absolute when no
+// relative path exists, and listed in `outside` (the reader then needs allow_external_files).
+// Fields a scene file cannot hold (ambient, fog, fog colour, and flags such as --no-cache)
+// are reported in `dropped`. `output` is written as "output" when given.
+struct SceneDocumentReport {
+    std::vector<std::string> outside, dropped;
+};
+nlohmann::json scene_document(const Job& job, const std::filesystem::path& base_dir,
+                              const std::optional<std::filesystem::path>& output = {},
+                              SceneDocumentReport* report = nullptr);
+
+// Writes scene_document(job, the file's folder) to `path` atomically (a temporary file in the
+// same folder, flushed, renamed over `path`; a failed write leaves `path` as it was). Files
+// outside the folder and dropped fields are warnings in `diag`. Throws fresnel::Error.
+void save_scene_file(const std::filesystem::path& path, const Job& job, Diagnostics& diag,
+                     const std::optional<std::filesystem::path>& output = {});
+
+}  // namespace fresnel

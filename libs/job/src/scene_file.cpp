@@ -1,0 +1,830 @@
+// Scene files: JSON onto a Job. Every read goes through Reader, which checks the type and
+// range and names the JSON pointer of the value; every object's keys are checked against
+// the keys it may hold, and the others reported as warnings (a misspelt key should not
+// silently do nothing). Paths go through the models' URI policy (fresnel/scene/paths.h).
+#include "fresnel/job/scene_file.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "fresnel/core/atomic_file.h"
+#include "fresnel/core/float_text.h"
+#include "fresnel/ibl/environment.h"
+#include "fresnel/scene/paths.h"
+
+namespace fresnel {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+bool is_scene_file(const fs::path& path) {
+    std::string e = path.extension().string();
+    for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return e == ".json";
+}
+
+namespace {
+
+constexpr std::size_t kMaxModels = 1024, kMaxLights = 1024, kMaxOverrides = 4096;
+
+std::string at(const std::string& ptr, const std::string& key) {
+    std::string k;  // JSON pointer escaping (RFC 6901)
+    for (char c : key) k += c == '~' ? std::string("~0") : c == '/' ? std::string("~1") : std::string(1, c);
+    return ptr + "/" + k;
+}
+std::string at(const std::string& ptr, std::size_t i) { return ptr + "/" + std::to_string(i); }
+
+class Reader {
+public:
+    Reader(std::string name, fs::path base, Diagnostics& diag, const SceneFileOptions& o)
+        : name_(std::move(name)), base_(std::move(base)), diag_(diag), options_(o) {}
+
+    [[noreturn]] void fail(const std::string& ptr, const std::string& what) const { throw Error(name_, ptr, what); }
+    void warn(const std::string& ptr, const std::string& what) const { diag_.warn(name_, ptr, what); }
+
+    // Warns about each key of `obj` not in `known`.
+    void keys(const json& obj, const std::string& ptr, std::initializer_list<const char*> known,
+              const std::vector<std::string>& also = {}) const {
+        for (auto it = obj.begin(); it != obj.end(); ++it) {
+            bool ok = false;
+            for (const char* k : known) ok |= it.key() == k;
+            for (const auto& k : also) ok |= it.key() == k;
+            if (!ok) warn(at(ptr, it.key()), "unknown key '" + it.key() + "' (ignored)");
+        }
+    }
+    const json& object(const json& v, const std::string& ptr) const {
+        if (!v.is_object()) fail(ptr, "must be an object");
+        return v;
+    }
+    const json& array(const json& v, const std::string& ptr, std::size_t max) const {
+        if (!v.is_array()) fail(ptr, "must be an array");
+        if (v.size() > max) fail(ptr, "has " + std::to_string(v.size()) + " entries; at most " + std::to_string(max));
+        return v;
+    }
+    double number(const json& v, const std::string& ptr, double lo = -1e30, double hi = 1e30) const {
+        if (!v.is_number()) fail(ptr, "must be a number");
+        double d = v.get<double>();
+        if (!std::isfinite(d)) fail(ptr, "must be finite");
+        if (d < lo || d > hi) {
+            std::ostringstream ss;
+            ss << "value " << d << " out of range [" << lo << ", " << hi << "]";
+            fail(ptr, ss.str());
+        }
+        return d;
+    }
+    int integer(const json& v, const std::string& ptr, long long lo, long long hi) const {
+        if (!v.is_number()) fail(ptr, "must be an integer");
+        double d = v.get<double>();
+        if (!std::isfinite(d) || d != std::floor(d)) fail(ptr, "must be an integer");
+        if (d < double(lo) || d > double(hi))
+            fail(ptr, "value " + v.dump() + " out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        return int(d);
+    }
+    bool boolean(const json& v, const std::string& ptr) const {
+        if (!v.is_boolean()) fail(ptr, "must be true or false");
+        return v.get<bool>();
+    }
+    std::string string(const json& v, const std::string& ptr) const {
+        if (!v.is_string()) fail(ptr, "must be a string");
+        return v.get<std::string>();
+    }
+    template <int N>
+    glm::vec<N, float> vec(const json& v, const std::string& ptr, double lo = -1e30, double hi = 1e30) const {
+        if (!v.is_array() || v.size() != std::size_t(N)) fail(ptr, "must be an array of " + std::to_string(N) + " numbers");
+        glm::vec<N, float> out;
+        for (int i = 0; i < N; ++i) out[i] = float(number(v[std::size_t(i)], at(ptr, std::size_t(i)), lo, hi));
+        return out;
+    }
+    // A file the document names: resolved by the URI policy, and it must exist.
+    fs::path path(const json& v, const std::string& ptr) const {
+        std::string s = string(v, ptr);
+        std::string error;
+        auto p = resolve_relative_path(s, base_, options_.allow_external_files, error);
+        if (!p) fail(ptr, error);
+        std::error_code ec;
+        if (!fs::exists(*p, ec)) fail(ptr, "'" + s + "' does not exist (" + p->string() + ")");
+        return *p;
+    }
+    // An output path: the same policy, but it need not exist.
+    fs::path output_path(const json& v, const std::string& ptr) const {
+        std::string s = string(v, ptr);
+        std::string error;
+        auto p = resolve_relative_path(s, base_, options_.allow_external_files, error);
+        if (!p) fail(ptr, error);
+        return *p;
+    }
+    const json* find(const json& obj, const char* key) const {
+        auto it = obj.find(key);
+        return it == obj.end() ? nullptr : &*it;
+    }
+
+private:
+    std::string name_;
+    fs::path base_;
+    Diagnostics& diag_;
+    SceneFileOptions options_;
+};
+
+glm::mat4 read_transform(const Reader& r, const json& m, const std::string& ptr) {
+    const json* matrix = r.find(m, "matrix");
+    const json* t = r.find(m, "translation");
+    const json* q = r.find(m, "rotation");
+    const json* s = r.find(m, "scale");
+    if (matrix) {
+        if (t || q || s) r.fail(ptr, "has both 'matrix' and translation/rotation/scale");
+        if (!matrix->is_array() || matrix->size() != 16) r.fail(at(ptr, "matrix"), "must be an array of 16 numbers");
+        glm::mat4 out;
+        float* f = glm::value_ptr(out);  // column-major, as glTF's node.matrix
+        for (std::size_t i = 0; i < 16; ++i) f[i] = float(r.number((*matrix)[i], at(at(ptr, "matrix"), i)));
+        return out;
+    }
+    glm::mat4 out(1.0f);
+    if (t) out = glm::translate(out, r.vec<3>(*t, at(ptr, "translation")));
+    if (q) {
+        glm::vec4 v = r.vec<4>(*q, at(ptr, "rotation"), -1e6, 1e6);  // x, y, z, w as glTF
+        float len = glm::length(v);
+        if (!(len > 1e-6f)) r.fail(at(ptr, "rotation"), "must be a unit quaternion [x, y, z, w]");
+        v /= len;
+        out = out * glm::mat4_cast(glm::quat(v.w, v.x, v.y, v.z));
+    }
+    if (s) out = glm::scale(out, r.vec<3>(*s, at(ptr, "scale")));
+    return out;
+}
+
+void read_material_override(const Reader& r, const json& o, const std::string& ptr, Job::Source::MaterialOverride& mo) {
+    r.object(o, ptr);
+    r.keys(o, ptr, {"name", "index", "baseColorFactor", "metallicFactor", "roughnessFactor", "emissiveFactor",
+                    "emissiveStrength", "alphaMode", "alphaCutoff", "doubleSided", "ior"});
+    if (auto* v = r.find(o, "name")) mo.name = r.string(*v, at(ptr, "name"));
+    if (auto* v = r.find(o, "index")) mo.index = r.integer(*v, at(ptr, "index"), 0, 1 << 30);
+    if (mo.name && mo.index) r.fail(ptr, "has both 'name' and 'index'");
+    if (auto* v = r.find(o, "baseColorFactor")) mo.base_color_factor = r.vec<4>(*v, at(ptr, "baseColorFactor"), 0, 1);
+    if (auto* v = r.find(o, "metallicFactor")) mo.metallic_factor = float(r.number(*v, at(ptr, "metallicFactor"), 0, 1));
+    if (auto* v = r.find(o, "roughnessFactor")) mo.roughness_factor = float(r.number(*v, at(ptr, "roughnessFactor"), 0, 1));
+    if (auto* v = r.find(o, "emissiveFactor")) mo.emissive_factor = r.vec<3>(*v, at(ptr, "emissiveFactor"), 0, 1);
+    if (auto* v = r.find(o, "emissiveStrength")) mo.emissive_strength = float(r.number(*v, at(ptr, "emissiveStrength"), 0, 1e9));
+    if (auto* v = r.find(o, "alphaMode")) {
+        std::string m = r.string(*v, at(ptr, "alphaMode"));
+        if (m == "OPAQUE") mo.alpha_mode = AlphaMode::Opaque;
+        else if (m == "MASK") mo.alpha_mode = AlphaMode::Mask;
+        else if (m == "BLEND") mo.alpha_mode = AlphaMode::Blend;
+        else r.fail(at(ptr, "alphaMode"), "must be OPAQUE, MASK or BLEND, not '" + m + "'");
+    }
+    if (auto* v = r.find(o, "alphaCutoff")) mo.alpha_cutoff = float(r.number(*v, at(ptr, "alphaCutoff"), 0, 1e9));
+    if (auto* v = r.find(o, "doubleSided")) mo.double_sided = r.boolean(*v, at(ptr, "doubleSided"));
+    if (auto* v = r.find(o, "ior")) mo.ior = float(r.number(*v, at(ptr, "ior"), 0, 1e3));
+}
+
+void read_models(const Reader& r, const json& doc, Job& job) {
+    const json* single = r.find(doc, "model");
+    const json* list = r.find(doc, "models");
+    if (single && list) r.fail("", "has both 'model' and 'models'");
+    std::vector<Job::Source::Model> models;
+    if (single) {
+        Job::Source::Model m;
+        if (!(single->is_string() && single->get<std::string>() == "demo")) m.path = r.path(*single, "/model").string();
+        m.scene = job.source.scene;  // the job's (a batch's --scene) still applies
+        models.push_back(m);
+    }
+    if (list) {
+        r.array(*list, "/models", kMaxModels);
+        if (list->empty()) r.fail("/models", "must hold at least one model");
+        for (std::size_t i = 0; i < list->size(); ++i) {
+            std::string ptr = at("/models", i);
+            const json& o = r.object((*list)[i], ptr);
+            r.keys(o, ptr, {"path", "scene", "translation", "rotation", "scale", "matrix", "materials", "visible", "name"});
+            Job::Source::Model m;
+            const json* p = r.find(o, "path");
+            if (!p) r.fail(ptr, "needs a 'path' (a model file; \"demo\" for the built-in demo)");
+            if (p->is_string() && p->get<std::string>() == "demo") m.path.clear();
+            else m.path = r.path(*p, at(ptr, "path")).string();
+            if (auto* v = r.find(o, "scene")) m.scene = r.integer(*v, at(ptr, "scene"), 0, 1 << 20);
+            if (auto* v = r.find(o, "visible")) m.visible = r.boolean(*v, at(ptr, "visible"));
+            if (auto* v = r.find(o, "name")) r.string(*v, at(ptr, "name"));
+            m.transform = read_transform(r, o, ptr);
+            if (auto* v = r.find(o, "materials")) {
+                r.array(*v, at(ptr, "materials"), kMaxOverrides);
+                for (std::size_t k = 0; k < v->size(); ++k) {
+                    Job::Source::MaterialOverride mo;
+                    read_material_override(r, (*v)[k], at(at(ptr, "materials"), k), mo);
+                    m.materials.push_back(mo);
+                }
+            }
+            models.push_back(std::move(m));
+        }
+    }
+    if (models.empty()) return;
+    // One model at the origin, as written, is what a plain `render MODEL` does: keep the
+    // one-model form so both load the same way.
+    const auto& m0 = models.front();
+    if (models.size() == 1 && m0.transform == glm::mat4(1.0f) && m0.visible && m0.materials.empty()) {
+        job.source.model = m0.path;
+        job.source.scene = m0.scene;
+        job.source.models.clear();
+    } else {
+        job.source.model.clear();
+        job.source.scene = -1;
+        job.source.models = std::move(models);
+    }
+}
+
+void read_camera(const Reader& r, const json& c, Job& job) {
+    const std::string ptr = "/camera";
+    r.object(c, ptr);
+    r.keys(c, ptr, {"type", "yaw", "pitch", "distance", "fov", "eye", "target", "up", "model", "index"});
+    std::string type;
+    if (auto* v = r.find(c, "type")) type = r.string(*v, at(ptr, "type"));
+    else type = r.find(c, "eye") ? "lookAt" : r.find(c, "index") ? "model" : "orbit";
+    Job::Camera& cam = job.camera;
+    auto unused = [&](std::initializer_list<const char*> keys) {
+        for (const char* k : keys)
+            if (r.find(c, k)) r.warn(at(ptr, k), std::string("not used by a camera of type ") + type + " (ignored)");
+    };
+    if (type == "orbit") unused({"eye", "up", "model", "index"});
+    if (type == "lookAt") unused({"yaw", "pitch", "distance", "model", "index"});
+    if (type == "model") unused({"yaw", "pitch", "distance", "fov", "eye", "target", "up"});
+    auto fov = [&] {
+        if (auto* v = r.find(c, "fov")) cam.yfov_deg = float(r.number(*v, at(ptr, "fov"), 0.01, 179.0));
+    };
+    if (type == "orbit") {
+        cam.scene_camera.reset();
+        cam.look_at.reset();
+        if (auto* v = r.find(c, "yaw")) cam.yaw_deg = float(r.number(*v, at(ptr, "yaw"), -1e6, 1e6));
+        if (auto* v = r.find(c, "pitch")) cam.pitch_deg = float(r.number(*v, at(ptr, "pitch"), -90, 90));
+        if (auto* v = r.find(c, "distance")) cam.distance_k = float(r.number(*v, at(ptr, "distance"), 1e-6, 1e6));
+        if (auto* v = r.find(c, "target")) cam.target = r.vec<3>(*v, at(ptr, "target"));  // a panned orbit
+        fov();
+    } else if (type == "lookAt") {
+        cam.scene_camera.reset();
+        Job::Camera::LookAt la;
+        const json* eye = r.find(c, "eye");
+        const json* target = r.find(c, "target");
+        if (!eye || !target) r.fail(ptr, "a lookAt camera needs 'eye' and 'target'");
+        la.eye = r.vec<3>(*eye, at(ptr, "eye"));
+        la.target = r.vec<3>(*target, at(ptr, "target"));
+        if (auto* v = r.find(c, "up")) la.up = r.vec<3>(*v, at(ptr, "up"));
+        if (glm::length(la.eye - la.target) <= 0.0f) r.fail(ptr, "'eye' and 'target' must differ");
+        cam.look_at = la;
+        fov();
+    } else if (type == "model") {
+        cam.look_at.reset();
+        cam.scene_camera = 0;
+        if (auto* v = r.find(c, "index")) cam.scene_camera = r.integer(*v, at(ptr, "index"), 0, 1 << 20);
+        cam.scene_camera_model = 0;
+        if (auto* v = r.find(c, "model")) cam.scene_camera_model = r.integer(*v, at(ptr, "model"), 0, 1 << 20);
+    } else {
+        r.fail(at(ptr, "type"), "must be orbit, lookAt or model, not '" + type + "'");
+    }
+}
+
+LightInstance read_light(const Reader& r, const json& l, const std::string& ptr) {
+    r.object(l, ptr);
+    r.keys(l, ptr, {"type", "color", "intensity", "range", "direction", "azimuth", "elevation", "position", "target",
+                    "innerConeAngle", "outerConeAngle", "name"});
+    const json* t = r.find(l, "type");
+    if (!t) r.fail(ptr, "needs a 'type': directional, point or spot");
+    std::string type = r.string(*t, at(ptr, "type"));
+    LightInstance li;
+    glm::vec3 color(1.0f);
+    if (auto* v = r.find(l, "color")) color = r.vec<3>(*v, at(ptr, "color"), 0, 1e6);
+    float intensity = 1.0f;
+    if (auto* v = r.find(l, "intensity")) intensity = float(r.number(*v, at(ptr, "intensity"), 0, 1e12));
+    li.radiance = color * intensity;
+    if (auto* v = r.find(l, "range")) li.range = float(r.number(*v, at(ptr, "range"), 0, 1e12));
+    auto direction = [&](bool required) {
+        const json* d = r.find(l, "direction");
+        const json* az = r.find(l, "azimuth");
+        const json* el = r.find(l, "elevation");
+        const json* target = r.find(l, "target");
+        if (int(d != nullptr) + int(az || el) + int(target != nullptr) > 1)
+            r.fail(ptr, "give one of 'direction', 'azimuth'/'elevation' or 'target'");
+        if (d) {
+            glm::vec3 v = r.vec<3>(*d, at(ptr, "direction"));
+            if (!(glm::length(v) > 0.0f)) r.fail(at(ptr, "direction"), "must not be zero");
+            li.direction = glm::normalize(v);
+        } else if (az || el) {
+            float a = az ? float(r.number(*az, at(ptr, "azimuth"), -1e6, 1e6)) : 0.0f;
+            float e = el ? float(r.number(*el, at(ptr, "elevation"), -90, 90)) : 0.0f;
+            li.direction = direction_from_angles(a, e);  // as --light dir:AZ,EL: arriving from there
+        } else if (target) {
+            glm::vec3 v = r.vec<3>(*target, at(ptr, "target")) - li.position;
+            if (!(glm::length(v) > 0.0f)) r.fail(at(ptr, "target"), "must differ from 'position'");
+            li.direction = glm::normalize(v);
+        } else if (required) {
+            r.fail(ptr, "needs 'direction', 'azimuth'/'elevation' or 'target'");
+        }
+    };
+    auto position = [&] {
+        const json* p = r.find(l, "position");
+        if (!p) r.fail(ptr, "needs a 'position'");
+        li.position = r.vec<3>(*p, at(ptr, "position"));
+    };
+    if (type == "directional") {
+        li.type = Light::Type::Directional;
+        direction(true);
+    } else if (type == "point") {
+        li.type = Light::Type::Point;
+        position();
+    } else if (type == "spot") {
+        li.type = Light::Type::Spot;
+        position();
+        direction(true);
+        li.inner_cone = 0.0f;
+        li.outer_cone = 0.7853982f;
+        if (auto* v = r.find(l, "innerConeAngle")) li.inner_cone = float(r.number(*v, at(ptr, "innerConeAngle"), 0, 1.5707964));
+        if (auto* v = r.find(l, "outerConeAngle")) li.outer_cone = float(r.number(*v, at(ptr, "outerConeAngle"), 0, 1.5707964));
+        if (!(li.inner_cone < li.outer_cone)) r.fail(ptr, "innerConeAngle must be less than outerConeAngle (radians)");
+    } else {
+        r.fail(at(ptr, "type"), "must be directional, point or spot, not '" + type + "'");
+    }
+    if (auto* v = r.find(l, "name")) r.string(*v, at(ptr, "name"));
+    return li;
+}
+
+void read_environment(const Reader& r, const json& e, Job& job) {
+    const std::string ptr = "/environment";
+    using Kind = Job::Environment::Kind;
+    Job::Environment& env = job.environment;
+    auto from_string = [&](const json& v, const std::string& p) {
+        std::string s = r.string(v, p);
+        if (s == "studio") env.kind = Kind::Studio;
+        else if (s == "none") env.kind = Kind::None;
+        else if (s == "automatic") env.kind = Kind::Automatic;
+        else if (s.rfind("color:", 0) == 0) {
+            ibl::EnvironmentSource src;
+            try {
+                src = ibl::parse_environment(s);
+            } catch (const Error& err) {
+                r.fail(p, err.reason());
+            }
+            env.kind = Kind::Color;
+            env.color = src.color;
+        } else {
+            env.kind = Kind::File;
+            env.path = r.path(v, p).string();
+        }
+    };
+    if (e.is_string()) return from_string(e, ptr);
+    if (!e.is_object()) r.fail(ptr, "must be a string (studio, none, color:R,G,B or a file) or an object");
+    r.keys(e, ptr, {"type", "file", "color", "rotation", "intensity", "bakeSamples", "bakeSize"});
+    const json* type = r.find(e, "type");
+    const json* file = r.find(e, "file");
+    const json* color = r.find(e, "color");
+    std::string t = type ? r.string(*type, at(ptr, "type")) : file ? "file" : color ? "color" : "";
+    if (t == "file") {
+        if (!file) r.fail(ptr, "a file environment needs 'file'");
+        env.kind = Kind::File;
+        env.path = r.path(*file, at(ptr, "file")).string();
+    } else if (t == "color") {
+        if (!color) r.fail(ptr, "a color environment needs 'color'");
+        env.kind = Kind::Color;
+        env.color = r.vec<3>(*color, at(ptr, "color"), 0, 1e9);
+    } else if (t == "studio") {
+        env.kind = Kind::Studio;
+    } else if (t == "none") {
+        env.kind = Kind::None;
+    } else if (t == "automatic") {
+        env.kind = Kind::Automatic;
+    } else if (!t.empty()) {
+        r.fail(at(ptr, "type"), "must be file, color, studio, none or automatic, not '" + t + "'");
+    }
+    if (auto* v = r.find(e, "rotation")) env.rotation_deg = float(r.number(*v, at(ptr, "rotation"), -1e6, 1e6));
+    if (auto* v = r.find(e, "intensity")) env.intensity = float(r.number(*v, at(ptr, "intensity"), 0, 1e9));
+    if (auto* v = r.find(e, "bakeSamples")) env.bake_samples = r.integer(*v, at(ptr, "bakeSamples"), 1, 65536);
+    if (auto* v = r.find(e, "bakeSize")) {
+        int s = r.integer(*v, at(ptr, "bakeSize"), 4, 4096);
+        if (s & (s - 1)) r.fail(at(ptr, "bakeSize"), "must be a power of two");
+        env.bake_size = s;
+    }
+}
+
+void read_background(const Reader& r, const json& b, Job& job) {
+    const std::string ptr = "/background";
+    using Mode = Job::Background::Mode;
+    Job::Background& bg = job.background;
+    auto mode = [&](const std::string& s, const std::string& p) {
+        if (s == "environment" || s == "env") bg.mode = Mode::Environment;
+        else if (s == "blur") bg.mode = Mode::Blurred;
+        else if (s == "transparent") bg.mode = Mode::Transparent;
+        else if (s == "color") bg.mode = Mode::Color;
+        else if (s == "automatic") bg.mode = Mode::Automatic;
+        else r.fail(p, "must be environment, blur, color, transparent or automatic, not '" + s + "'");
+    };
+    if (b.is_string()) return mode(b.get<std::string>(), ptr);
+    if (b.is_array()) {
+        bg.mode = Mode::Color;
+        bg.color = r.vec<3>(b, ptr, 0, 1);
+        return;
+    }
+    if (!b.is_object()) r.fail(ptr, "must be a string, an [R, G, B] colour or an object");
+    r.keys(b, ptr, {"type", "color"});
+    const json* color = r.find(b, "color");
+    if (auto* t = r.find(b, "type")) mode(r.string(*t, at(ptr, "type")), at(ptr, "type"));
+    else if (color) bg.mode = Mode::Color;
+    if (color) bg.color = r.vec<3>(*color, at(ptr, "color"), 0, 1);
+}
+
+void read_render(const Reader& r, const json& o, Job& job) {
+    const std::string ptr = "/render";
+    r.object(o, ptr);
+    r.keys(o, ptr, {"size", "msaa", "anisotropy", "toneMapping", "exposure", "encoding", "debug", "energyCompensation",
+                    "shading", "brdf"});
+    Job::Output& out = job.output;
+    if (auto* v = r.find(o, "size")) {
+        const std::string p = at(ptr, "size");
+        if (v->is_string()) {
+            char x = 0;
+            std::stringstream ss(v->get<std::string>());
+            int w = 0, h = 0;
+            if (!(ss >> w >> x >> h) || x != 'x' || !ss.eof() || w < 1 || h < 1 || w > 16384 || h > 16384)
+                r.fail(p, "expected \"WxH\" or [W, H] with 1..16384 pixels per side");
+            out.width = w;
+            out.height = h;
+        } else {
+            if (!v->is_array() || v->size() != 2) r.fail(p, "must be [W, H] or \"WxH\"");
+            out.width = r.integer((*v)[0], at(p, std::size_t(0)), 1, 16384);
+            out.height = r.integer((*v)[1], at(p, std::size_t(1)), 1, 16384);
+        }
+    }
+    if (auto* v = r.find(o, "msaa")) out.msaa = r.integer(*v, at(ptr, "msaa"), 1, 16);
+    if (auto* v = r.find(o, "anisotropy")) out.anisotropy = float(r.number(*v, at(ptr, "anisotropy"), 1, 16));
+    if (auto* v = r.find(o, "toneMapping")) {
+        auto t = parse_tone_mapper(r.string(*v, at(ptr, "toneMapping")));
+        if (!t) r.fail(at(ptr, "toneMapping"), "must be neutral, aces, aces-hill, reinhard, agx or none");
+        out.tone_mapper = *t;
+    }
+    if (auto* v = r.find(o, "exposure")) out.exposure_ev = float(r.number(*v, at(ptr, "exposure"), -64, 64));
+    if (auto* v = r.find(o, "encoding")) {
+        auto e = parse_encoding(r.string(*v, at(ptr, "encoding")));
+        if (!e) r.fail(at(ptr, "encoding"), "must be srgb or gamma2.2");
+        out.encoding = *e;
+    }
+    if (auto* v = r.find(o, "debug")) {
+        auto d = parse_debug_channel(r.string(*v, at(ptr, "debug")));
+        if (!d) r.fail(at(ptr, "debug"), "unknown debug channel (see fresnel render --help)");
+        out.debug = *d;
+    }
+    if (auto* v = r.find(o, "energyCompensation")) out.energy_compensation = r.boolean(*v, at(ptr, "energyCompensation"));
+    if (auto* v = r.find(o, "brdf")) {  // "D=beckmann,G=kelemen,..." as --brdf
+        std::string why;
+        auto m = brdf::parse_brdf_model(r.string(*v, at(ptr, "brdf")), &why);
+        if (!m) r.fail(at(ptr, "brdf"), why);
+        out.brdf = *m;
+    }
+    if (auto* v = r.find(o, "shading")) {
+        auto m = parse_shading_model(r.string(*v, at(ptr, "shading")));
+        if (!m) r.fail(at(ptr, "shading"), "must be auto, gltf, ogl1, ogl1-pixel or blinn-phong-normalized");
+        out.shading = *m;
+    }
+}
+
+// The deepest nesting of arrays and objects in `text` (strings skipped), stopping past `limit`.
+int nesting_depth(std::string_view text, int limit) {
+    int depth = 0, max = 0;
+    bool in_string = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        char c = text[i];
+        if (in_string) {
+            if (c == '\\') ++i;
+            else if (c == '"') in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            max = std::max(max, ++depth);
+            if (max > limit) return max;
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+    return max;
+}
+
+}  // namespace
+
+json parse_json_limited(std::string_view text, const std::string& name, const SceneFileOptions& options) {
+    if (text.size() > options.max_bytes)
+        throw Error(name, "", "is " + std::to_string(text.size()) + " bytes; the limit is " +
+                                  std::to_string(options.max_bytes));
+    if (nesting_depth(text, options.max_depth) > options.max_depth)
+        throw Error(name, "", "nests arrays and objects deeper than " + std::to_string(options.max_depth));
+    try {
+        return json::parse(text.begin(), text.end());
+    } catch (const json::parse_error& e) {
+        // e.what() reads "[json.exception.parse_error.101] parse error at line 1, column 2: ..."
+        std::string what = e.what();
+        auto p = what.find("] ");
+        throw Error(name, "byte " + std::to_string(e.byte), p == std::string::npos ? what : what.substr(p + 2));
+    } catch (const json::exception& e) {  // e.g. out_of_range.406: a number too large for a double
+        std::string what = e.what();
+        auto p = what.find("] ");
+        throw Error(name, "", p == std::string::npos ? what : what.substr(p + 2));
+    }
+}
+
+SceneFile parse_scene_document(const json& doc, const std::string& name, const fs::path& base_dir, const Job& defaults,
+                               Diagnostics& diag, const SceneFileOptions& options, const std::vector<std::string>& ignore) {
+    Reader r(name, base_dir, diag, options);
+    if (!doc.is_object()) r.fail("", "a scene file is a JSON object");
+    r.keys(doc, "", {"fresnel", "$schema", "description", "model", "models", "camera", "lights", "sceneLights",
+                     "environment", "background", "render", "output", "poseSkins", "variant", "objNormals"},
+           ignore);
+    if (auto* v = r.find(doc, "fresnel")) {
+        int version = r.integer(*v, "/fresnel", 1, 1 << 30);
+        if (version > kSceneFileVersion)
+            r.fail("/fresnel", "format version " + std::to_string(version) + " is newer than this fresnel reads (" +
+                                   std::to_string(kSceneFileVersion) + ")");
+    } else if (options.require_version) {
+        r.fail("/fresnel", "a scene file needs \"fresnel\": " + std::to_string(kSceneFileVersion) + " (the format version)");
+    }
+    if (auto* v = r.find(doc, "$schema")) r.string(*v, "/$schema");
+    if (auto* v = r.find(doc, "description")) r.string(*v, "/description");
+
+    SceneFile sf;
+    sf.job = defaults;
+    Job& job = sf.job;
+    read_models(r, doc, job);
+    if (auto* v = r.find(doc, "poseSkins")) job.source.pose_skins = r.boolean(*v, "/poseSkins");
+    if (auto* v = r.find(doc, "objNormals")) {
+        const std::string s = r.string(*v, "/objNormals");
+        using N = Job::Source::ObjNormals;
+        if (s == "auto") job.source.obj_normals = N::Auto;
+        else if (s == "groups") job.source.obj_normals = N::Groups;
+        else if (s == "smooth") job.source.obj_normals = N::Smooth;
+        else r.fail("/objNormals", "must be auto, groups or smooth");
+    }
+    if (auto* v = r.find(doc, "variant")) job.source.variant = r.string(*v, "/variant");
+    if (auto* v = r.find(doc, "camera")) read_camera(r, *v, job);
+    if (auto* v = r.find(doc, "lights")) {
+        r.array(*v, "/lights", kMaxLights);
+        job.lights.extra.clear();
+        for (std::size_t i = 0; i < v->size(); ++i) job.lights.extra.push_back(read_light(r, (*v)[i], at("/lights", i)));
+    }
+    if (auto* v = r.find(doc, "sceneLights")) job.lights.scene_lights = r.boolean(*v, "/sceneLights");
+    if (auto* v = r.find(doc, "environment")) read_environment(r, *v, job);
+    if (auto* v = r.find(doc, "background")) read_background(r, *v, job);
+    if (auto* v = r.find(doc, "render")) read_render(r, *v, job);
+    if (auto* v = r.find(doc, "output")) {
+        sf.output = r.output_path(*v, "/output");
+        std::string e = sf.output->extension().string();
+        for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+        if (e != ".png" && e != ".exr" && e != ".hdr") r.fail("/output", "must end in .png, .exr or .hdr");
+        job.output.float_output = e != ".png";
+    }
+    return sf;
+}
+
+SceneFile load_scene_file(const fs::path& path, const Job& defaults, Diagnostics& diag, const SceneFileOptions& options) {
+    const std::string name = path.string();
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw Error(name, "", "is a folder, not a scene file");
+    auto size = fs::file_size(path, ec);
+    if (ec) throw Error(name, "", "cannot read the scene file: " + ec.message());
+    if (size > options.max_bytes)
+        throw Error(name, "", "is " + std::to_string(size) + " bytes; the limit is " + std::to_string(options.max_bytes));
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(name, "", "cannot open the scene file");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    json doc = parse_json_limited(text, name, options);
+    fs::path base = path.parent_path();
+    return parse_scene_document(doc, name, base.empty() ? fs::path(".") : base, defaults, diag, options);
+}
+
+
+// --- writing -------------------------------------------------------------------------
+
+namespace {
+
+// A float as the JSON number that reads back to the same float: its shortest decimal form
+// (0.2f is written 0.2, not 0.20000000298023224).
+json num(float v) { return json(std::strtod(shortest_text(v).c_str(), nullptr)); }
+template <int N>
+json nums(const glm::vec<N, float>& v) {
+    json a = json::array();
+    for (int i = 0; i < N; ++i) a.push_back(num(v[i]));
+    return a;
+}
+
+class Writer {
+public:
+    Writer(const fs::path& base, SceneDocumentReport& report) : report_(report) {
+        std::error_code ec;
+        base_ = fs::weakly_canonical(fs::absolute(base.empty() ? fs::path(".") : base), ec);
+        if (ec) base_ = fs::absolute(base).lexically_normal();
+    }
+    // `p` relative to the base folder, as the reader's URI policy reads it back ('%' and ':'
+    // percent-encoded, '/' separators).
+    std::string path(const std::string& p) const {
+        std::error_code ec;
+        fs::path full = fs::weakly_canonical(fs::absolute(p), ec);
+        if (ec) full = fs::absolute(p).lexically_normal();
+        fs::path rel = full.lexically_relative(base_);
+        std::string out;
+        if (rel.empty()) {
+            out = full.generic_string();
+            report_.outside.push_back(p);
+        } else {
+            if (*rel.begin() == "..") report_.outside.push_back(p);
+            out = rel.generic_string();
+        }
+        std::string encoded;
+        for (char c : out) encoded += c == '%' ? std::string("%25") : c == ':' ? std::string("%3A") : std::string(1, c);
+        return encoded;
+    }
+
+private:
+    fs::path base_;
+    SceneDocumentReport& report_;
+};
+
+json material_override_json(const Job::Source::MaterialOverride& mo) {
+    json o = json::object();
+    if (mo.name) o["name"] = *mo.name;
+    if (mo.index) o["index"] = *mo.index;
+    if (mo.base_color_factor) o["baseColorFactor"] = nums<4>(*mo.base_color_factor);
+    if (mo.metallic_factor) o["metallicFactor"] = num(*mo.metallic_factor);
+    if (mo.roughness_factor) o["roughnessFactor"] = num(*mo.roughness_factor);
+    if (mo.emissive_factor) o["emissiveFactor"] = nums<3>(*mo.emissive_factor);
+    if (mo.emissive_strength) o["emissiveStrength"] = num(*mo.emissive_strength);
+    if (mo.alpha_mode)
+        o["alphaMode"] = *mo.alpha_mode == AlphaMode::Mask ? "MASK" : *mo.alpha_mode == AlphaMode::Blend ? "BLEND" : "OPAQUE";
+    if (mo.alpha_cutoff) o["alphaCutoff"] = num(*mo.alpha_cutoff);
+    if (mo.double_sided) o["doubleSided"] = *mo.double_sided;
+    if (mo.ior) o["ior"] = num(*mo.ior);
+    return o;
+}
+
+json light_json(const LightInstance& l) {
+    json o = json::object();
+    float intensity = std::max({l.radiance.x, l.radiance.y, l.radiance.z});
+    glm::vec3 color = intensity > 0.0f ? l.radiance / intensity : glm::vec3(1.0f);
+    switch (l.type) {
+        case Light::Type::Directional: o["type"] = "directional"; break;
+        case Light::Type::Point: o["type"] = "point"; break;
+        case Light::Type::Spot: o["type"] = "spot"; break;
+    }
+    if (color != glm::vec3(1.0f)) o["color"] = nums<3>(color);
+    o["intensity"] = num(intensity);
+    if (l.type != Light::Type::Directional) o["position"] = nums<3>(l.position);
+    if (l.type != Light::Type::Point) o["direction"] = nums<3>(l.direction);
+    if (l.type != Light::Type::Directional && l.range > 0.0f) o["range"] = num(l.range);
+    if (l.type == Light::Type::Spot) {
+        o["innerConeAngle"] = num(l.inner_cone);
+        o["outerConeAngle"] = num(l.outer_cone);
+    }
+    return o;
+}
+
+}  // namespace
+
+json scene_document(const Job& job, const fs::path& base_dir, const std::optional<fs::path>& output,
+                    SceneDocumentReport* report) {
+    SceneDocumentReport local;
+    SceneDocumentReport& rep = report ? *report : local;
+    Writer w(base_dir, rep);
+    const Job defaults;
+    json doc = json::object();
+    doc["fresnel"] = kSceneFileVersion;
+    auto model_path = [&](const std::string& p) { return p.empty() ? std::string("demo") : w.path(p); };
+
+    // Models: one at the origin as "model" (a plain `render MODEL`), else the list.
+    if (job.source.models.empty() && job.source.scene < 0) {
+        doc["model"] = model_path(job.source.model);
+    } else {
+        std::vector<Job::Source::Model> models = job.source.models;
+        if (models.empty()) {
+            Job::Source::Model m;
+            m.path = job.source.model;
+            m.scene = job.source.scene;
+            models.push_back(m);
+        }
+        json list = json::array();
+        for (const auto& m : models) {
+            json o = json::object();
+            o["path"] = model_path(m.path);
+            if (m.scene >= 0) o["scene"] = m.scene;
+            if (!m.visible) o["visible"] = false;
+            if (m.transform != glm::mat4(1.0f)) {
+                json a = json::array();
+                const float* f = glm::value_ptr(m.transform);  // column-major, as glTF
+                for (int i = 0; i < 16; ++i) a.push_back(num(f[i]));
+                o["matrix"] = a;
+            }
+            if (!m.materials.empty()) {
+                json mats = json::array();
+                for (const auto& mo : m.materials) mats.push_back(material_override_json(mo));
+                o["materials"] = mats;
+            }
+            list.push_back(o);
+        }
+        doc["models"] = list;
+    }
+    if (!job.source.variant.empty()) doc["variant"] = job.source.variant;
+    if (job.source.pose_skins) doc["poseSkins"] = true;
+    if (job.source.obj_normals != Job::Source::ObjNormals::Auto)
+        doc["objNormals"] = job.source.obj_normals == Job::Source::ObjNormals::Smooth ? "smooth" : "groups";
+
+    // Camera.
+    const Job::Camera& c = job.camera;
+    json cam = json::object();
+    if (c.scene_camera) {
+        cam["type"] = "model";
+        cam["index"] = *c.scene_camera;
+        if (c.scene_camera_model != 0) cam["model"] = c.scene_camera_model;
+    } else if (c.look_at) {
+        cam["type"] = "lookAt";
+        cam["eye"] = nums<3>(c.look_at->eye);
+        cam["target"] = nums<3>(c.look_at->target);
+        cam["up"] = nums<3>(c.look_at->up);
+        cam["fov"] = num(c.yfov_deg);
+    } else {
+        cam["type"] = "orbit";
+        cam["yaw"] = num(c.yaw_deg);
+        cam["pitch"] = num(c.pitch_deg);
+        if (c.distance_k) cam["distance"] = num(*c.distance_k);
+        cam["fov"] = num(c.yfov_deg);
+        if (c.target) cam["target"] = nums<3>(*c.target);
+    }
+    doc["camera"] = cam;
+
+    // Lights: the job's extra lights (given, they replace the defaults, as the reader reads them).
+    if (!job.lights.extra.empty()) {
+        json lights = json::array();
+        for (const auto& l : job.lights.extra) lights.push_back(light_json(l));
+        doc["lights"] = lights;
+    }
+    doc["sceneLights"] = job.lights.scene_lights;
+
+    // Environment, background.
+    using Kind = Job::Environment::Kind;
+    const Job::Environment& e = job.environment;
+    json env = json::object();
+    switch (e.kind) {
+        case Kind::Automatic: env["type"] = "automatic"; break;
+        case Kind::File: env["type"] = "file"; env["file"] = w.path(e.path); break;
+        case Kind::Color: env["type"] = "color"; env["color"] = nums<3>(e.color); break;
+        case Kind::Studio: env["type"] = "studio"; break;
+        case Kind::None: env["type"] = "none"; break;
+    }
+    env["rotation"] = num(e.rotation_deg);
+    env["intensity"] = num(e.intensity);
+    if (e.bake_samples != defaults.environment.bake_samples) env["bakeSamples"] = e.bake_samples;
+    if (e.bake_size != defaults.environment.bake_size) env["bakeSize"] = e.bake_size;
+    doc["environment"] = env;
+    using Mode = Job::Background::Mode;
+    switch (job.background.mode) {
+        case Mode::Automatic: doc["background"] = "automatic"; break;
+        case Mode::Environment: doc["background"] = "environment"; break;
+        case Mode::Blurred: doc["background"] = "blur"; break;
+        case Mode::Transparent: doc["background"] = "transparent"; break;
+        case Mode::Color: doc["background"] = json{{"type", "color"}, {"color", nums<3>(job.background.color)}}; break;
+    }
+
+    // Render settings.
+    const Job::Output& o = job.output;
+    json r = json::object();
+    r["size"] = json::array({o.width, o.height});
+    if (o.msaa > 0) r["msaa"] = o.msaa;  // else automatic
+    r["anisotropy"] = num(o.anisotropy);
+    r["toneMapping"] = std::string(tone_mapper_name(o.tone_mapper));
+    r["exposure"] = num(o.exposure_ev);
+    r["encoding"] = o.encoding == Encoding::Gamma22 ? "gamma2.2" : "srgb";
+    std::string debug = "none";
+    for (const std::string& n : debug_channel_names())
+        if (parse_debug_channel(n) == o.debug) debug = n;
+    r["debug"] = debug;
+    r["energyCompensation"] = o.energy_compensation;
+    r["shading"] = shading_model_name(o.shading);
+    if (!o.brdf.is_default()) r["brdf"] = brdf::to_string(o.brdf);
+    doc["render"] = r;
+    if (o.ambient != defaults.output.ambient) rep.dropped.push_back("ambient");
+    if (o.fog.mode != defaults.output.fog.mode) rep.dropped.push_back("fog");
+    if (o.fog_color) rep.dropped.push_back("fog colour");
+    if (output) doc["output"] = w.path(output->string());
+    return doc;
+}
+
+void save_scene_file(const fs::path& path, const Job& job, Diagnostics& diag, const std::optional<fs::path>& output) {
+    const std::string name = path.string();
+    SceneDocumentReport report;
+    fs::path base = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    json doc = scene_document(job, base, output, &report);
+    std::string text = doc.dump(2) + "\n";
+    for (const auto& p : report.outside)
+        diag.warn(name, "", "names '" + p + "', outside the file's folder: read it with --allow-external-files");
+    for (const auto& d : report.dropped) diag.warn(name, "", "a scene file holds no " + d + " (not written)");
+    write_file_atomically(path, std::string_view(text));  // whole or absent; throws naming `path`
+}
+
+}  // namespace fresnel

@@ -1,0 +1,228 @@
+// Lights (fresnel/job/lights.h): the --light forms and their errors, KHR_lights_punctual
+// nodes placed by their world matrices, and the default pair as README "Lighting rules"
+// states it. Pure CPU.
+#include "fresnel/job/lights.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "fresnel/core/error.h"
+#include "fresnel/job/camera.h"
+
+using namespace fresnel;
+
+namespace {
+
+constexpr float kDeg = 3.14159265358979f / 180.0f;
+
+void expect_near(glm::vec3 a, glm::vec3 b, float eps, const std::string& what) {
+    EXPECT_NEAR(a.x, b.x, eps) << what;
+    EXPECT_NEAR(a.y, b.y, eps) << what;
+    EXPECT_NEAR(a.z, b.z, eps) << what;
+}
+
+// The direction a light from azimuth/elevation travels, written from the README: the
+// opposite of (cos e sin a, sin e, cos e cos a).
+glm::vec3 travel(float az, float el) {
+    float a = az * kDeg, e = el * kDeg;
+    return -glm::vec3(std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a));
+}
+
+TEST(DirectionFromAngles, UsesTheOrbitCameraConvention) {
+    expect_near(direction_from_angles(0, 0), {0, 0, -1}, 1e-6f, "from +Z travels -Z");
+    expect_near(direction_from_angles(90, 0), {-1, 0, 0}, 1e-6f, "from +X travels -X");
+    expect_near(direction_from_angles(0, 90), {0, -1, 0}, 1e-6f, "from above travels down");
+    // A light from (yaw, pitch) arrives from where the orbit camera at (yaw, pitch) stands.
+    Bounds b;
+    b.min = glm::vec3(-1);
+    b.max = glm::vec3(1);
+    b.empty = false;
+    for (auto [az, el] : {std::pair{30.0f, 45.0f}, std::pair{-120.0f, 15.0f}, std::pair{200.0f, -10.0f}}) {
+        OrbitParams p;
+        p.yaw_deg = az;
+        p.pitch_deg = el;
+        CameraSetup c = orbit_camera(b, p, 100, 100);
+        expect_near(-direction_from_angles(az, el), glm::normalize(c.eye - c.target), 1e-5f,
+                    "azimuth " + std::to_string(az) + " elevation " + std::to_string(el));
+        expect_near(direction_from_angles(az, el), travel(az, el), 1e-6f, "formula");
+    }
+}
+
+TEST(ParseLight, DirectionalForms) {
+    LightInstance l = parse_light("dir:30,45,3");
+    EXPECT_EQ(l.type, Light::Type::Directional);
+    expect_near(l.direction, travel(30, 45), 1e-6f, "direction");
+    expect_near(l.radiance, glm::vec3(3.0f), 1e-6f, "white, 3 lux");
+
+    l = parse_light("dir:-90,10,2,1,0.5,0.25");
+    EXPECT_EQ(l.type, Light::Type::Directional);
+    expect_near(l.direction, travel(-90, 10), 1e-6f, "direction");
+    expect_near(l.radiance, {2.0f, 1.0f, 0.5f}, 1e-6f, "colour times lux");
+    EXPECT_FLOAT_EQ(glm::length(l.direction), 1.0f);
+}
+
+TEST(ParseLight, PointForms) {
+    LightInstance l = parse_light("point:1,-2,3.5,100");
+    EXPECT_EQ(l.type, Light::Type::Point);
+    expect_near(l.position, {1.0f, -2.0f, 3.5f}, 1e-6f, "position");
+    expect_near(l.radiance, glm::vec3(100.0f), 1e-4f, "white, 100 cd");
+    EXPECT_EQ(l.range, 0.0f) << "infinite range";
+
+    l = parse_light("point:0,0,0,8,0.5,1,0");
+    expect_near(l.radiance, {4.0f, 8.0f, 0.0f}, 1e-6f, "colour times candela");
+    l = parse_light("point:1e1,2E-1,-0,0");
+    expect_near(l.position, {10.0f, 0.2f, 0.0f}, 1e-6f, "exponent forms");
+    expect_near(l.radiance, glm::vec3(0.0f), 0.0f, "zero intensity is allowed");
+}
+
+TEST(ParseLight, SpotForms) {
+    // Above the origin, shining straight down (as a dir light from elevation 90 travels).
+    LightInstance l = parse_light("spot:0,2,0,0,90,50,10,30");
+    EXPECT_EQ(l.type, Light::Type::Spot);
+    expect_near(l.position, {0.0f, 2.0f, 0.0f}, 1e-6f, "position");
+    expect_near(l.direction, {0.0f, -1.0f, 0.0f}, 1e-6f, "aimed down");
+    EXPECT_NEAR(l.inner_cone, 10.0f * 3.14159265f / 180.0f, 1e-6f);
+    EXPECT_NEAR(l.outer_cone, 30.0f * 3.14159265f / 180.0f, 1e-6f);
+    expect_near(l.radiance, glm::vec3(50.0f), 1e-5f, "white, 50 cd");
+    l = parse_light("spot:1,2,3,-90,10,4,0,45,1,0.5,0");
+    expect_near(l.direction, travel(-90, 10), 1e-6f, "direction as dir: travels");
+    expect_near(l.radiance, {4.0f, 2.0f, 0.0f}, 1e-6f, "colour times candela");
+}
+
+TEST(ParseLight, ErrorsNameTheOptionTheSpecAndTheReason) {
+    struct Case {
+        const char* spec;
+        const char* reason;  // a part of the message
+    };
+    const Case cases[] = {
+        {"", "expected dir:AZIMUTH,ELEVATION,LUX[,R,G,B], point:X,Y,Z,CANDELA[,R,G,B] or spot:"},
+        {"dir", "expected dir:"},
+        {"30,45,3", "expected dir:"},
+        {"dir:", "dir: needs AZIMUTH,ELEVATION,LUX[,R,G,B]"},
+        {"dir:30,45", "dir: needs AZIMUTH,ELEVATION,LUX[,R,G,B]"},
+        {"dir:30,45,3,1", "dir: needs"},
+        {"dir:30,45,3,1,1", "dir: needs"},
+        {"dir:30,45,3,1,1,1,1", "dir: needs"},
+        {"point:1,2,3", "point: needs X,Y,Z,CANDELA[,R,G,B]"},
+        {"point:1,2,3,4,5", "point: needs"},
+        {"point:1,2,3,4,5,6,7,8", "point: needs"},
+        {"spot:1,2,3,4", "spot: needs X,Y,Z,AZIMUTH,ELEVATION,CANDELA,INNER,OUTER[,R,G,B]"},
+        {"spot:0,1,0,0,90,5,30,20", "0 <= INNER < OUTER <= 90"},
+        {"spot:0,1,0,0,90,5,10,95", "0 <= INNER < OUTER <= 90"},
+        {"cone:1,2,3,4", "unknown light type 'cone' (use dir, point or spot)"},
+        {"DIR:30,45,3", "unknown light type 'DIR'"},
+        {"dir:a,45,3", "'a' is not a number"},
+        {"dir:30,45,3x", "'3x' is not a number"},
+        {"dir:30,,3", "'' is not a number"},
+        {"dir:30,45,inf", "'inf' is not a number"},
+        {"dir:30,45,nan", "'nan' is not a number"},
+        {"dir:30,45,1e99", "'1e99' is not a number"},
+        {"dir:30,45,-3", "must not be negative"},
+        {"point:0,0,0,1,1,-0.5,1", "must not be negative"},
+    };
+    for (const auto& c : cases) {
+        try {
+            parse_light(c.spec);
+            ADD_FAILURE() << "'" << c.spec << "' was accepted";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.file(), "--light") << c.spec;
+            EXPECT_EQ(e.where(), c.spec);
+            EXPECT_NE(e.reason().find(c.reason), std::string::npos) << "'" << c.spec << "': " << e.reason();
+            EXPECT_NE(std::string(e.what()).find(c.reason), std::string::npos) << e.what();
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << "'" << c.spec << "' threw something other than fresnel::Error: " << e.what();
+        }
+    }
+}
+
+TEST(DefaultLights, AreTheReadmesKeyAndFill) {
+    auto lights = default_lights();
+    ASSERT_EQ(lights.size(), 2u);
+    const LightInstance& key = lights[0];
+    const LightInstance& fill = lights[1];
+    EXPECT_EQ(key.type, Light::Type::Directional);
+    EXPECT_EQ(fill.type, Light::Type::Directional);
+    // key: from azimuth 30, elevation 45, 3 lux, white.
+    expect_near(key.direction, travel(30, 45), 1e-6f, "key direction");
+    expect_near(key.radiance, glm::vec3(3.0f), 1e-6f, "key");
+    // fill: from azimuth -120, elevation 15, 1 lux, slightly cool.
+    expect_near(fill.direction, travel(-120, 15), 1e-6f, "fill direction");
+    EXPECT_NEAR(std::max({fill.radiance.x, fill.radiance.y, fill.radiance.z}), 1.0f, 1e-6f) << "1 lux";
+    EXPECT_LT(fill.radiance.x, fill.radiance.z) << "cool: more blue than red";
+    expect_near(fill.radiance, {0.85f, 0.9f, 1.0f}, 1e-6f, "fill colour (lights.h)");
+    // Both arrive from above the horizon.
+    EXPECT_LT(key.direction.y, 0.0f);
+    EXPECT_LT(fill.direction.y, 0.0f);
+}
+
+// Node 0: translated (1, 2, 3), turned 90 degrees about +X, scaled by 3; its child node 1
+// carries a spot light, node 2 (a root) a point light, node 3 a directional one; node 4
+// has a light but belongs to scene 1 only, node 5 has none.
+Scene light_scene() {
+    Scene s;
+    Light spot;
+    spot.type = Light::Type::Spot;
+    spot.color = {1.0f, 0.5f, 0.25f};
+    spot.intensity = 40.0f;
+    spot.range = 12.0f;
+    spot.inner_cone_angle = 0.2f;
+    spot.outer_cone_angle = 0.5f;
+    Light point;
+    point.type = Light::Type::Point;
+    point.intensity = 7.0f;
+    Light sun;
+    sun.type = Light::Type::Directional;
+    sun.intensity = 2.0f;
+    sun.color = {0.5f, 0.5f, 1.0f};
+    s.lights = {spot, point, sun};
+    Node parent, spot_node, point_node, sun_node, other, plain;
+    parent.local = glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(1, 2, 3)), 90.0f * kDeg,
+                                          glm::vec3(1, 0, 0)),
+                              glm::vec3(3.0f));
+    parent.children = {1};
+    spot_node.light = 0;
+    spot_node.local = glm::translate(glm::mat4(1.0f), glm::vec3(0, 1, 0));
+    point_node.light = 1;
+    point_node.local = glm::translate(glm::mat4(1.0f), glm::vec3(-5, 0, 0));
+    sun_node.light = 2;
+    sun_node.local = glm::rotate(glm::mat4(1.0f), -90.0f * kDeg, glm::vec3(1, 0, 0));  // -Z turned to -Y
+    other.light = 1;
+    s.nodes = {parent, spot_node, point_node, sun_node, other, plain};
+    s.scenes = {{0, 2, 3, 5}, {4}};
+    return s;
+}
+
+TEST(SceneLights, PlacedByTheirNodesWorldMatrices) {
+    Scene s = light_scene();
+    auto lights = scene_lights(s, flatten(s, 0));
+    ASSERT_EQ(lights.size(), 3u) << "the spot, point and directional light of scene 0";
+    const LightInstance& spot = lights[0];
+    EXPECT_EQ(spot.type, Light::Type::Spot);
+    // (1,2,3) + R_x(90) * 3 * (0,1,0) = (1,2,3) + (0,0,3).
+    expect_near(spot.position, {1, 2, 6}, 1e-5f, "spot position");
+    // Lights shine down their local -Z: R_x(90) * (0,0,-1) = (0,1,0), unit length despite the scale.
+    expect_near(spot.direction, {0, 1, 0}, 1e-5f, "spot direction");
+    expect_near(spot.radiance, {40.0f, 20.0f, 10.0f}, 1e-5f, "colour times intensity");
+    EXPECT_FLOAT_EQ(spot.range, 12.0f);
+    EXPECT_FLOAT_EQ(spot.inner_cone, 0.2f);
+    EXPECT_FLOAT_EQ(spot.outer_cone, 0.5f);
+
+    const LightInstance& point = lights[1];
+    EXPECT_EQ(point.type, Light::Type::Point);
+    expect_near(point.position, {-5, 0, 0}, 1e-6f, "point position");
+    expect_near(point.radiance, glm::vec3(7.0f), 1e-6f, "point");
+
+    const LightInstance& sun = lights[2];
+    EXPECT_EQ(sun.type, Light::Type::Directional);
+    expect_near(sun.direction, {0, -1, 0}, 1e-5f, "sun shines down");
+    expect_near(sun.radiance, {1.0f, 1.0f, 2.0f}, 1e-6f, "sun");
+
+    auto other = scene_lights(s, flatten(s, 1));
+    ASSERT_EQ(other.size(), 1u);
+    EXPECT_EQ(other[0].type, Light::Type::Point);
+    EXPECT_TRUE(scene_lights(s, {}).empty());
+}
+
+}  // namespace
