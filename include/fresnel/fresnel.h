@@ -7,6 +7,7 @@
 // contexts and objects), render (the rasteriser), trace (the CPU path tracer).
 #include "fresnel/core/version.h"
 
+#include "fresnel/core/atomic_file.h"
 #include "fresnel/core/color.h"
 #include "fresnel/core/error.h"
 #include "fresnel/core/float_text.h"
@@ -49,6 +50,7 @@
 
 #include "fresnel/gpu/context.h"
 #include "fresnel/gpu/device.h"
+#include "fresnel/gpu/libraries.h"
 #include "fresnel/gpu/resources.h"
 
 #include "fresnel/job/camera.h"
