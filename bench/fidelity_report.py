@@ -18,7 +18,7 @@ Writes docs/fidelity/report.md, one thumbnail per case (raster | trace | FLIP of
 128 px each) and, with --readme, the summary between the fidelity-report markers of README.md.
 Standard library only.
   usage: bench/fidelity_report.py FRESNEL_BINARY [--size N] [--spp N] [--cycles-spp N] [--threads N]
-                                  [--out DIR] [--readme README.md] [--quick]
+                                  [--out DIR] [--readme docs/fidelity.md] [--quick]
 """
 import argparse
 import datetime
@@ -245,7 +245,7 @@ def main():
                        cases=cases, cycles=cycles), f, indent=1)
     write_report(out, cases, cycles, a, spp, elapsed)
     if a.readme:
-        update_readme(a.readme, cases, spp, a.size)
+        update_readme(a.readme, cases, spp, a.size, out)
     for f in os.listdir(tmp):
         os.remove(os.path.join(tmp, f))
     os.rmdir(tmp)
@@ -315,7 +315,9 @@ def write_report(out, cases, cycles, a, spp, elapsed):
         f.write("\n".join(L))
 
 
-def update_readme(path, cases, spp, size):
+def update_readme(path, cases, spp, size, out):
+    # The thumbnail's link, relative to the page written (docs/fidelity.md: fidelity/...).
+    img = os.path.relpath(os.path.join(out, cases[0]['thumb']), os.path.dirname(os.path.abspath(path)))
     begin, end = "<!-- fidelity-report:begin -->", "<!-- fidelity-report:end -->"
     text = open(path).read()
     if begin not in text or end not in text or not cases:
@@ -326,7 +328,7 @@ def update_readme(path, cases, spp, size):
     for c in cases:
         L.append(f"| {c['model']} × {c['env']} | {pf(c['raster_full'])} | {pf(c['raster_b1'])} | {pf(c['b1_full'])} "
                  f"| {pf(c['noise'])} |")
-    L += ["", f"![{cases[0]['model']} {cases[0]['env']}: raster, trace, FLIP](docs/fidelity/{cases[0]['thumb']})", end]
+    L += ["", f"![{cases[0]['model']} {cases[0]['env']}: raster, trace, FLIP]({img})", end]
     head, rest = text.split(begin, 1)
     with open(path, "w") as f:
         f.write(head + "\n".join(L) + rest.split(end, 1)[1])
