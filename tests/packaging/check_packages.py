@@ -22,9 +22,11 @@ exit 0: all named; 1: a package is missing from the lists (each printed); 77: ca
 import os
 import re
 import shutil
+import socket
 import subprocess
 import sys
 import tempfile
+import time
 
 build, source, shared = (os.path.abspath(a) for a in sys.argv[1:4])
 if not shutil.which("dpkg-query") or not shutil.which("dpkg"):
@@ -153,13 +155,25 @@ if os.path.exists(os.path.join(ogl1, "render")):
 runs.append(("Python with NumPy and Pillow", [python, "-c", "import numpy, PIL.Image, PIL.PngImagePlugin"]))
 
 display_proc = None
+display_pipe = None
 if xvfb and os.path.exists(fresnel):
     r, w = os.pipe()
-    display_proc = subprocess.Popen([xvfb, "-displayfd", str(w), "-screen", "0", "320x240x24", "-nolisten", "tcp"],
-                                    pass_fds=(w,), stderr=subprocess.DEVNULL)
+    # As view_test starts its server: -noreset keeps it up between the two windows.
+    display_proc = subprocess.Popen([xvfb, "-displayfd", str(w), "-screen", "0", "320x240x24", "-nolisten", "tcp",
+                                     "-noreset"], pass_fds=(w,), stderr=open(os.path.join(scratch, "xvfb.log"), "w"))
     os.close(w)
     number = os.read(r, 16).decode().strip()
-    os.close(r)
+    # The read end stays open while the server runs: Xvfb writes the number again at times and
+    # dies ("Cannot write display number") when nobody is there to read it.
+    display_pipe = r
+    # Wait until the server answers on its socket (the number can come before it accepts).
+    for _ in range(100):
+        try:
+            with socket.socket(socket.AF_UNIX) as probe:
+                probe.connect(f"/tmp/.X11-unix/X{number}")
+            break
+        except OSError:
+            time.sleep(0.1)
     if number:
         for api in ("gl33", "es3"):
             runs.append((f"view on {api} under Xvfb",
@@ -183,11 +197,15 @@ try:
         if p.returncode != 0:
             tail = "\n".join(l for l in p.stderr.splitlines() if "file=" not in l and not re.match(r"\s*\d+:", l))[-600:]
             print(f"FAIL {what} exited {p.returncode}: {' '.join(cmd)}\n{tail}")
+            if extra and os.path.exists(os.path.join(scratch, "xvfb.log")):
+                print("Xvfb: " + open(os.path.join(scratch, "xvfb.log")).read()[-800:])
             missing.setdefault(f"(a run: {what})", tail.strip().splitlines()[-1] if tail.strip() else "")
 finally:
     if display_proc:
         display_proc.terminate()
         display_proc.wait()
+    if display_pipe is not None:
+        os.close(display_pipe)
     shutil.rmtree(scratch, ignore_errors=True)
 
 listed, base = listed_packages(), base_packages()
