@@ -41,6 +41,7 @@
 #include "fresnel/job/job.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/job/scene_file.h"
+#include "fresnel/job/settings.h"
 #include "fresnel/scene/paths.h"
 #include "command_line.h"
 #include "job_options.h"
@@ -93,17 +94,24 @@ std::string stem_of(const std::string& path) {
     return s.empty() ? std::string("job") : s;
 }
 
-// Sweep parameter names (render's flag names) and the scene-file keys they set.
+// A sweep parameter: a setting sweeps offer (fresnel/job/settings.h; its key "camera.yaw" or its
+// flag's name "yaw") as the scene-file pointer it sets, or a JSON pointer as given; "" when unknown.
+const settings::Setting* sweep_setting(const std::string& name) {
+    const settings::Setting* s = settings::find(name);
+    return s && s->offered(settings::kSweep) ? s : nullptr;
+}
 std::string sweep_pointer(const std::string& name) {
-    static const std::map<std::string, std::string> names = {
-        {"yaw", "/camera/yaw"},           {"pitch", "/camera/pitch"},
-        {"distance", "/camera/distance"}, {"fov", "/camera/fov"},
-        {"env-rotation", "/environment/rotation"}, {"env-intensity", "/environment/intensity"},
-        {"exposure", "/render/exposure"},
-    };
     if (!name.empty() && name[0] == '/') return name;
-    auto it = names.find(name);
-    return it == names.end() ? std::string() : it->second;
+    const settings::Setting* s = sweep_setting(name);
+    if (!s) return {};
+    std::string ptr = "/" + s->key;
+    std::replace(ptr.begin(), ptr.end(), '.', '/');
+    return ptr;
+}
+std::string sweep_names() {
+    std::string names;
+    for (const settings::Setting* s : settings::offered_by(settings::kSweep)) names += s->flag.substr(2) + ", ";
+    return names;
 }
 
 // "sweep": {"NAME": [start, stop, count] | {"values": [...]}, ...}: the frames, every
@@ -115,8 +123,8 @@ std::vector<std::vector<std::pair<std::string, double>>> expand_sweep(const json
     for (auto it = sweep.begin(); it != sweep.end(); ++it) {
         std::string ptr = sweep_pointer(it.key());
         if (ptr.empty())
-            throw std::runtime_error("/sweep/" + it.key() + ": unknown parameter (yaw, pitch, distance, fov, "
-                                     "env-rotation, env-intensity, exposure, or a JSON pointer such as /camera/yaw)");
+            throw std::runtime_error("/sweep/" + it.key() + ": unknown parameter (" + sweep_names() +
+                                     "their keys such as camera.yaw, or a JSON pointer such as /camera/yaw)");
         std::vector<double> values;
         const json& v = it.value();
         auto num = [&](const json& x) {
@@ -128,7 +136,8 @@ std::vector<std::vector<std::pair<std::string, double>>> expand_sweep(const json
             double a = num(v[0]), b = num(v[1]), n = num(v[2]);
             if (n < 1 || n > 100000 || n != std::floor(n))
                 throw std::runtime_error("/sweep/" + it.key() + ": the count (third value) must be an integer 1..100000");
-            bool angle = ptr == "/camera/yaw" || ptr == "/environment/rotation";
+            const settings::Setting* setting = sweep_setting(it.key());
+            bool angle = setting ? setting->periodic : ptr == "/camera/yaw" || ptr == "/environment/rotation";
             bool turn = angle && std::fabs(b - a) > 0 && std::fmod(std::fabs(b - a), 360.0) == 0.0;
             int count = int(n);
             for (int i = 0; i < count; ++i)
@@ -212,7 +221,7 @@ std::vector<BatchJob> read_job_list(const BatchOptions& o) {
                 if (doc.contains("scene")) {
                     if (!doc["scene"].is_string()) throw std::runtime_error("/scene: must be a string (a scene file)");
                     std::string error;
-                    auto p = resolve_relative_path(doc["scene"].get<std::string>(), base, o.render.allow_external, error);
+                    auto p = resolve_relative_path(doc["scene"].get<std::string>(), base, o.render.allow_external(), error);
                     if (!p) throw std::runtime_error("/scene: " + error);
                     j.scene_path = p->string();
                     stem = stem_of(j.scene_path);
@@ -366,8 +375,7 @@ public:
     }
 
     std::shared_ptr<const ibl::BakedIbl> environment(const ResolvedJob& r) {
-        std::string key = r.environment->describe() + "|" + std::to_string(r.bake_options.samples) + "|" +
-                          std::to_string(r.bake_options.size) + "|" + std::to_string(r.use_cache);
+        const std::string key = lighting_key(r);  // the job layer's one key (the viewer's and the page's)
         std::lock_guard lock(env_mutex_);  // one load or bake at a time; the others wait for it
         for (auto it = envs_.begin(); it != envs_.end(); ++it)
             if (it->first == key) {
@@ -381,9 +389,11 @@ public:
     }
 
     std::shared_ptr<const ImageF> brdf_lut(const ResolvedJob& r) {
+        const std::string key = lighting_key(r);
         std::lock_guard lock(env_mutex_);
-        if (!lut_) lut_ = std::make_shared<const ImageF>(ibl::load_or_bake_lut(r.bake_options, r.use_cache));
-        return lut_;
+        auto& lut = luts_[key];
+        if (!lut) lut = std::make_shared<const ImageF>(ibl::load_or_bake_lut(r.bake_options, r.use_cache));
+        return lut;
     }
 
 private:
@@ -391,7 +401,7 @@ private:
     std::mutex mutex_, env_mutex_;
     std::list<std::pair<Job::Source, std::shared_ptr<const Scene>>> scenes_;
     std::list<std::pair<std::string, std::shared_ptr<const ibl::BakedIbl>>> envs_;
-    std::shared_ptr<const ImageF> lut_;
+    std::map<std::string, std::shared_ptr<const ImageF>> luts_;  // by lighting key (a few bake options at most)
 };
 
 // Progress on stderr: a bar with the rate and the time left on a terminal, else a plain
@@ -559,7 +569,7 @@ int run_batch(const BatchOptions& o, const CLI::App* cmd) {
                 t->skip = true;
                 return t;
             }
-            t->job = read_job(*b, *defaults, o.render.allow_external, t->diag);
+            t->job = read_job(*b, *defaults, o.render.allow_external(), t->diag);
             std::string ext = lower_extension(t->output.string());
             t->job.output.float_output = ext == ".exr" || ext == ".hdr";
             auto t_load = Clock::now();

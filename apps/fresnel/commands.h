@@ -17,5 +17,6 @@ Runner add_batch_command(CLI::App& app);
 Runner add_fit_command(CLI::App& app);
 Runner add_convert_command(CLI::App& app);
 Runner add_view_command(CLI::App& app);
+Runner add_settings_command(CLI::App& app);
 
 }  // namespace fresnel::cli

@@ -4,6 +4,7 @@
 // are declared and documented once, in job_options.cpp (add_job_flags).
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,43 +23,21 @@ struct RenderOptions {
     std::optional<int> animation;    // render --animation: which one (default: all)
     std::optional<int> frames;       // render --frames: numbered images from --time
     std::string posing = "gpu";      // render --posing: skins and morph targets on the gpu or the cpu
-    std::string size = "1024x768";
-    float yaw = 0, pitch = 0;
-    std::optional<float> distance;
-    float fov = 45.0f;
-    std::string target;  // --target X,Y,Z; empty = the bounds' centre
-    std::optional<int> camera;
-    int scene = -1;
-    std::string tonemap = "neutral";
-    float exposure = 0;
-    std::string encoding = "srgb";
-    std::string background;
-    std::vector<std::string> lights;
-    bool no_scene_lights = false;
-    int msaa = 0;  // 0: not given (4, or 1 with --shading ogl1 / ogl1-pixel)
-    float anisotropy = kDefaultAnisotropy;
-    std::string debug = "none";
+    // The job settings (fresnel/job/settings.h) as given on the command line: a valued flag's
+    // text by the setting's key, a switch (--no-cache, --pose-skins) by its key, a shortcut
+    // (--no-ibl) by its flag. A value
+    // present before parsing is that command's default (view: render.size 1280x720).
+    std::map<std::string, std::string> settings;
+    std::map<std::string, bool> switches;
+    std::vector<std::string> lights;  // --light SPEC (repeatable): the added lights, not a setting
     bool json = false;
-    bool allow_external = false;
     bool gl_debug = false;
     std::string gl = "gl33";
-    bool pose_skins = false;
-    std::string obj_normals = "auto";
-    std::string variant;  // KHR_materials_variants name; empty = the default materials
-    std::string env;
-    bool env_given = false;
-    float env_rotation = 0;
-    float env_intensity = 1;
-    bool no_ibl = false;
-    bool no_cache = false;
-    bool no_energy_compensation = false;
-    int env_samples = 1024;
-    int env_size = 256;
-    std::string brdf;              // --brdf D=...,G=...,F=...,diffuse=... (empty: glTF's terms)
-    std::string shading = "auto";  // --shading, --ambient, --fog, --fog-color (legacy models)
-    std::string ambient;
-    std::string fog;
-    std::string fog_color;
+    // --allow-external-files (the setting allowExternalFiles), which also governs the scene file's paths.
+    bool allow_external() const {
+        auto it = switches.find("allowExternalFiles");
+        return it != switches.end() && it->second;
+    }
 };
 
 // Which flags apply. Without a command (`cmd` null) every flag does, defaults included: the

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
     auto fit = fresnel::cli::add_fit_command(app);
     auto convert = fresnel::cli::add_convert_command(app);
     auto view = fresnel::cli::add_view_command(app);
+    auto settings = fresnel::cli::add_settings_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("fit")) return fit();
         if (app.got_subcommand("convert")) return convert();
         if (app.got_subcommand("view")) return view();
+        if (app.got_subcommand("settings")) return settings();
     } catch (const fresnel::Error& e) {
         fresnel::cli::print_error(e);
         return fresnel::cli::kExitBadInput;

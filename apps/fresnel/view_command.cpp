@@ -9,7 +9,7 @@ namespace fresnel::cli {
 
 Runner add_view_command(CLI::App& app) {
     auto o = std::make_shared<ViewOptions>();
-    o->job->size = "1280x720";
+    o->job->settings["render.size"] = "1280x720";  // the window's size, not render's 1024x768
     CLI::App* cmd = app.add_subcommand("view", "Open a model or a scene file in a window: orbit, swap models and environments, inspect channels, save");
     o->cmd = cmd;
     cmd->add_option("model", o->job->models,

@@ -1,6 +1,7 @@
 #include "view_script.h"
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -8,6 +9,7 @@
 #include "fresnel/core/color.h"
 #include "fresnel/core/error.h"
 #include "fresnel/job/lights.h"
+#include "fresnel/job/settings.h"
 #include "fresnel/render/renderer.h"
 
 namespace fresnel::cli {
@@ -32,8 +34,7 @@ const std::map<std::string, Signature>& commands() {
     static const std::map<std::string, Signature> c = {
         {"orbit", {2, 2}},        {"pan", {2, 2}},           {"dolly", {1, 1}},        {"reset", {0, 0}},
         {"frame", {0, 0}},        {"camera", {1, 0}},        {"open", {-1, 0}},        {"env", {-1, 0}},
-        {"env-rotation", {1, 1}}, {"env-intensity", {1, 1}}, {"exposure", {1, 1}},     {"tonemap", {1, 0}},
-        {"debug", {1, 0}},        {"background", {1, 0}},    {"wait", {1, 1}},         {"screenshot", {-1, 0}},
+        {"wait", {1, 1}},         {"screenshot", {-1, 0}},
         {"print", {0, 0}},        {"stats", {0, 0}},        {"set", {-2, 0}},         {"split", {-3, 0}},        {"quit", {0, 0}},
         {"save", {-1, 0}},        {"save-scene", {-1, 0}},   {"auto-rotate", {2, 0}},  {"reload-shaders", {-4, 0}},
         {"light", {1, 0}},        {"light-remove", {1, 1}},  {"orbit-lights", {1, 0}}, {"hide", {1, 1}},
@@ -43,6 +44,16 @@ const std::map<std::string, Signature>& commands() {
 }
 
 }  // namespace
+
+const char* shorthand_key(const std::string& command) {
+    static const std::map<std::string, const char*> keys = {
+        {"env-rotation", "environment.rotation"}, {"env-intensity", "environment.intensity"},
+        {"exposure", "render.exposure"},          {"tonemap", "render.toneMapping"},
+        {"debug", "render.debug"},                {"background", "background"},
+    };
+    auto it = keys.find(command);
+    return it == keys.end() ? nullptr : it->second;
+}
 
 int material_field_size(const std::string& field) {
     static const std::map<std::string, int> sizes = {
@@ -133,10 +144,40 @@ std::vector<ScriptCommand> read_view_script(const std::string& path) {
         c.line = n;
         if (!(words >> c.name) || c.name[0] == '#') continue;
         auto fail = [&](const std::string& why) { throw Error(path, "line " + std::to_string(n), why); };
-        auto it = commands().find(c.name);
+        auto it = commands().find(shorthand_key(c.name) ? std::string("set") : c.name);
         if (it == commands().end()) fail("unknown command '" + c.name + "'");
         const Signature sig = it->second;
-        if (sig.args == -2) {  // set material INDEX FIELD VALUE...
+        // The shorthands of settings (exposure EV, tonemap NAME, ...): `set KEY VALUE`, with a
+        // warning naming it.
+        if (auto key = shorthand_key(c.name)) {
+            std::string rest;
+            std::getline(words >> std::ws, rest);
+            std::fprintf(stderr, "fresnel: warning: %s: line %d: '%s' is now 'set %s %s'\n", path.c_str(), n,
+                         c.name.c_str(), key, rest.c_str());
+            words = std::istringstream(std::string(key) + " " + rest);
+            c.name = "set";
+        }
+        if (sig.args == -2 || c.name == "set") {  // set material INDEX FIELD VALUE... | set KEY VALUE
+            std::string first;
+            words >> first;
+            if (first != "material") {  // a setting (fresnel/job/settings.h), its value the rest of the line
+                std::string value;
+                std::getline(words >> std::ws, value);
+                while (!value.empty() && (value.back() == ' ' || value.back() == '\r' || value.back() == '\t')) value.pop_back();
+                const settings::Setting* s = settings::find(first);
+                if (first.empty() || !s || !s->offered(settings::kViewScript))
+                    fail("set: expected set KEY VALUE (a setting: fresnel settings lists them) or set material INDEX "
+                         "FIELD VALUE..., got '" + first + "'");
+                try {
+                    settings::parse(*s, value, "set " + first);
+                } catch (const Error& e) {
+                    fail(e.what());
+                }
+                c.args = {s->key, value};
+                out.push_back(std::move(c));
+                continue;
+            }
+            c.args.push_back(first);
             for (std::string w; words >> w;) c.args.push_back(w);
             if (c.args.size() < 3 || c.args[0] != "material") fail("set: expected set material INDEX FIELD VALUE...");
             float index = 0.0f;
@@ -180,24 +221,12 @@ std::vector<ScriptCommand> read_view_script(const std::string& path) {
             if (!parse_float(c.args[std::size_t(i)], v) || !std::isfinite(v))
                 fail(c.name + ": '" + c.args[std::size_t(i)] + "' is not a number");
         }
-        if (c.name == "tonemap" && !parse_tone_mapper(c.args[0])) fail("tonemap: unknown tone mapper '" + c.args[0] + "'");
-        if (c.name == "debug" && !parse_debug_channel(c.args[0])) fail("debug: unknown channel '" + c.args[0] + "'");
         if (c.name == "camera" && c.args[0] != "orbit") {
             float v = 0.0f;
             if (!parse_float(c.args[0], v) || v < 0 || v != float(int(v))) fail("camera: expected N (>= 0) or orbit");
         }
         if (c.name == "wait" && (c.number(0) < 0 || c.number(0) > 1e6f || c.number(0) != float(int(c.number(0)))))
             fail("wait: expected a whole number of frames");
-        if (c.name == "background" && c.args[0] != "env" && c.args[0] != "blur" && c.args[0] != "transparent") {
-            std::stringstream rgb(c.args[0]);
-            int count = 0;
-            for (std::string item; std::getline(rgb, item, ',');) {
-                float v = 0.0f;
-                if (!parse_float(item, v)) count = -100;
-                ++count;
-            }
-            if (count != 3) fail("background: expected env, blur, transparent or R,G,B");
-        }
         if (c.name == "dolly" && !(c.number(0) > 0)) fail("dolly: the factor must be positive");
         if (c.name == "auto-rotate" && ((c.args[0] != "camera" && c.args[0] != "env") || (c.args[1] != "on" && c.args[1] != "off")))
             fail("auto-rotate: expected camera|env on|off");

@@ -8,8 +8,12 @@
 //   camera N | orbit       the file's N-th camera; the orbit camera
 //   open PATH              a model or a scene file (a broken file: reported, the current scene stays)
 //   env PATH|studio|none|color:R,G,B   the environment (a broken file: reported, the current one stays)
-//   env-rotation DEG | env-intensity X | exposure EV | tonemap NAME | debug CHANNEL
-//   background env|blur|transparent|R,G,B
+//   set KEY VALUE          a job setting by its key (fresnel/job/settings.h; `fresnel settings`
+//                          lists them): set render.exposure 1, set camera.fov 30, set background blur.
+//                          VALUE is the rest of the line; set environment FILE is env FILE
+//   env-rotation DEG | env-intensity X | exposure EV | tonemap NAME | debug CHANNEL | background B
+//                          older spellings of set environment.rotation, environment.intensity,
+//                          render.exposure, render.toneMapping, render.debug, background (a warning)
 //   wait FRAMES            let FRAMES frames pass
 //   screenshot PATH        write the frame (as --screenshot) once the lighting is ready
 //   print                  print the `fresnel render` command line of the view
@@ -57,6 +61,9 @@ struct ScriptCommand {
 // The number of values of a material field `set material` knows (0: unknown), and setting it.
 int material_field_size(const std::string& field);
 bool set_material_field(Material& m, const std::string& field, const std::vector<float>& values);
+
+// The setting an older command of the script stands for (exposure: render.exposure), or null.
+const char* shorthand_key(const std::string& command);
 
 // Reads and checks `path`. Throws fresnel::Error (file: the script, where: "line N").
 std::vector<ScriptCommand> read_view_script(const std::string& path);

@@ -34,6 +34,7 @@
 #include "fresnel/job/lights.h"
 #include "fresnel/job/orbit_controller.h"
 #include "fresnel/job/scene_file.h"
+#include "fresnel/job/settings.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/scene/pick.h"
 #include "fresnel/scene/scene_writer.h"
@@ -101,12 +102,6 @@ std::vector<std::string> sibling_models(const std::string& model) {
         models = list_models(folder);
     }
     return models;
-}
-
-// The key under which a resolved job's lighting is loaded: a new one only when it changes.
-std::string lighting_key(const ResolvedJob& r) {
-    return (r.environment ? r.environment->describe() : std::string("none")) + "|" + r.bake_options.key() + "|" +
-           (r.use_cache ? "cache" : "no-cache") + "|" + (r.needs_brdf_lut ? "lut" : "");
 }
 
 // The frame in the window's back buffer as `fresnel render` writes it (rows top to bottom;
@@ -274,7 +269,7 @@ private:
             return false;
         }
         while (script_pos_ < script_.size()) {
-            const ScriptCommand& c = script_[script_pos_];
+            ScriptCommand c = script_[script_pos_];  // a copy: `set environment` becomes `env`
             auto failed = [&](const std::string& what) {
                 std::fprintf(stderr, "fresnel: error: %s: line %d: %s\n", options_.script.c_str(), c.line, what.c_str());
                 script_failed_ = true;
@@ -298,6 +293,13 @@ private:
             if (c.name == "quit") return true;
             if (c.name == "wait") {
                 script_wait_ = int(c.number(0));
+                return false;
+            }
+            if (c.name == "set" && c.args[0] == "environment") {  // as `env`: a file is opened, a broken one reported
+                c.name = "env";
+                c.args = {c.args[1]};
+            } else if (c.name == "set" && c.args[0] != "material") {  // a setting, checked when the script was read
+                settings::set(job_, c.args[0], c.args[1], options_.script);
                 return false;
             }
             if (c.name == "set") {
@@ -411,41 +413,13 @@ private:
                 if (!open_model(c.args[0], false)) failed("open " + c.args[0] + ": " + error_);
             } else if (c.name == "env") {
                 env_line_ = c.line;
-                using Kind = Job::Environment::Kind;
-                const std::string& a = c.args[0];
-                if (a == "none") {
-                    job_.environment.kind = Kind::None;
-                } else {
-                    try {
-                        ibl::EnvironmentSource src = ibl::parse_environment(a);
-                        switch (src.kind) {
-                            case ibl::EnvironmentSource::Kind::File: open_environment(src.path.string()); break;
-                            case ibl::EnvironmentSource::Kind::Uniform:
-                                job_.environment.kind = Kind::Color;
-                                job_.environment.color = src.color;
-                                break;
-                            case ibl::EnvironmentSource::Kind::Studio: job_.environment.kind = Kind::Studio; break;
-                        }
-                    } catch (const std::exception& e) {
-                        failed(e.what());
-                    }
-                }
-            } else if (c.name == "env-rotation") job_.environment.rotation_deg = c.number(0);
-            else if (c.name == "env-intensity") job_.environment.intensity = c.number(0);
-            else if (c.name == "exposure") job_.output.exposure_ev = c.number(0);
-            else if (c.name == "tonemap") job_.output.tone_mapper = *parse_tone_mapper(c.args[0]);
-            else if (c.name == "debug") job_.output.debug = *parse_debug_channel(c.args[0]);
-            else if (c.name == "background") {
-                using Mode = Job::Background::Mode;
-                const std::string& a = c.args[0];
-                if (a == "env") job_.background.mode = Mode::Environment;
-                else if (a == "blur") job_.background.mode = Mode::Blurred;
-                else if (a == "transparent") job_.background.mode = Mode::Transparent;
-                else {
-                    float r = 0, g = 0, b = 0;
-                    std::sscanf(a.c_str(), "%f,%f,%f", &r, &g, &b);
-                    job_.background.mode = Mode::Color;
-                    job_.background.color = {r, g, b};
+                try {  // the registry's forms: studio, none, automatic, color:R,G,B or a file
+                    Job next = job_;
+                    settings::set(next, "environment", c.args[0], options_.script);
+                    if (next.environment.kind == Job::Environment::Kind::File) open_environment(next.environment.path);
+                    else job_.environment = next.environment;
+                } catch (const std::exception& e) {
+                    failed(e.what());
                 }
             }
             return false;  // the next frame shows the change
@@ -477,7 +451,7 @@ private:
         Diagnostics diag;
         try {
             SceneFileOptions so;
-            so.allow_external_files = options_.job->allow_external;
+            so.allow_external_files = options_.job->allow_external();
             SceneFile sf = load_scene_file(path, defaults_, diag, so);
             std::optional<Job> flagged = job_from_options(*options_.job, sf.job, GivenFlags{options_.cmd});
             if (!flagged) throw Error(path, "", "the command line's flags do not apply to it");

@@ -522,9 +522,9 @@ function bindPanel() {
         await draw();
         syncPanel();
     });
-    toggle('scene-lights', on => set('scene-lights', on ? 1 : 0));
+    toggle('scene-lights', on => set('sceneLights', on ? 1 : 0));
     toggle('ibl', on => set('no-ibl', on ? 0 : 1));
-    toggle('energy-compensation', on => set('energy-compensation', on ? 1 : 0));
+    toggle('energy-compensation', on => set('render.energyCompensation', on ? 1 : 0));
     const add = spec => async () => {
         try { set(`light:${$('add-dir').dataset.next || 0}`, spec); } catch (e) { showError(e.message); }
         await draw();
@@ -603,7 +603,7 @@ async function main() {
         const lights = params.getAll('light');
         if (lights.length) set('lights-clear', '');
         lights.forEach((spec, i) => set(`light:${i}`, spec));
-        if (params.has('no-scene-lights')) set('scene-lights', 0);
+        if (params.has('no-scene-lights')) set('sceneLights', 0);
         if (params.has('no-ibl')) set('no-ibl', 1);
     };
     try { lightParams(); } catch (e) { fail(e.message); }
@@ -613,7 +613,11 @@ async function main() {
                        state, materials, setMaterial: (i, k, v) => { setMaterial(i, k, v); return draw(); },
                        addLight: spec => { set(`light:${state().lights.filter(l => l.origin === 'extra').length}`, spec); return redraw(); },
                        removeLight: i => { set('light-remove', i); return redraw(); },
-                       frames: () => frames, error: () => ($('error').hidden ? '' : $('error').textContent) };
+                       frames: () => frames, error: () => ($('error').hidden ? '' : $('error').textContent),
+                       // The settings registry (key, flag, type, default, example, doc, ...), and a
+                       // setting changed without drawing (tests set many at once).
+                       settings: () => JSON.parse(M.ccall('fresnel_settings', 'string', [], [])),
+                       setOnly: (k, v) => set(k, v) };
     if (params.has('scene')) {  // a scene file: read as `fresnel render SCENE` reads it, then the other parameters as flags
         try {
             status('loading the scene file…');

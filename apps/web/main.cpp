@@ -24,26 +24,15 @@
 #include "fresnel/job/orbit_controller.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/job/scene_file.h"
+#include "fresnel/job/settings.h"
 
 namespace fresnel::web {
 namespace {
-
-std::string key_of(const ResolvedJob& r) {
-    return (r.environment ? r.environment->describe() : std::string("none")) + "|" + r.bake_options.key() + "|" +
-           (r.needs_brdf_lut ? "lut" : "");
-}
 
 bool parse_float(const std::string& s, float& out) {
     char* end = nullptr;
     out = std::strtof(s.c_str(), &end);
     return !s.empty() && end && *end == '\0';
-}
-
-// "R,G,B" (0..1).
-bool parse_rgb(const std::string& s, glm::vec3& out) {
-    std::istringstream in(s);
-    char c1 = 0, c2 = 0;
-    return bool(in >> out.x >> c1 >> out.y >> c2 >> out.z) && c1 == ',' && c2 == ',' && in.peek() == EOF;
 }
 
 // "A,B,..." with exactly `n` finite numbers.
@@ -102,62 +91,12 @@ struct App {
     std::vector<Material> loaded_materials;  // the scene's materials as loaded (the editor's "revert")
     Job::Environment environment_before_no_ibl;  // what `no-ibl 0` turns back to
 
-    // Sets one of the CLI's job settings by its flag name (without the dashes).
+    // Sets a job setting by its key (fresnel/job/settings.h: "render.exposure"), its flag
+    // name without the dashes ("exposure") or an older name (with a warning); and the page's
+    // own commands: no-ibl 1|0 (off, and back to the environment before), light:N SPEC,
+    // light-remove N, lights-clear. `size` also sizes the canvas.
     void set(const std::string& key, const std::string& value) {
-        float f = 0;
-        auto number = [&] {
-            if (!parse_float(value, f)) throw Error("--" + key, "", "not a number: '" + value + "'");
-            return f;
-        };
-        if (key == "yaw") job.camera.yaw_deg = number();
-        else if (key == "pitch") job.camera.pitch_deg = number();
-        else if (key == "distance") job.camera.distance_k = number();
-        else if (key == "fov") job.camera.yfov_deg = number();
-        else if (key == "exposure") job.output.exposure_ev = number();
-        else if (key == "env-intensity") job.environment.intensity = number();
-        else if (key == "env-rotation") job.environment.rotation_deg = number();
-        else if (key == "msaa") job.output.msaa = std::max(1, int(number()));
-        else if (key == "anisotropy") job.output.anisotropy = std::max(1.0f, number());
-        else if (key == "tonemap") {
-            auto t = parse_tone_mapper(value);
-            if (!t) throw Error("--tonemap", "", "unknown tone mapper '" + value + "' (neutral, aces, aces-hill, reinhard, agx, none)");
-            job.output.tone_mapper = *t;
-        } else if (key == "encoding") {
-            auto e = parse_encoding(value);
-            if (!e) throw Error("--encoding", "", "unknown encoding '" + value + "' (srgb, gamma2.2)");
-            job.output.encoding = *e;
-        } else if (key == "debug") {
-            auto d = parse_debug_channel(value);
-            if (!d) throw Error("--debug", "", "unknown debug channel '" + value + "'");
-            job.output.debug = *d;
-        } else if (key == "env") {  // a file in the page's file system, or studio / none / color:R,G,B
-            Job::Environment& e = job.environment;
-            if (value == "studio") e.kind = Job::Environment::Kind::Studio;
-            else if (value == "none") e.kind = Job::Environment::Kind::None;
-            else if (value == "auto") e.kind = Job::Environment::Kind::Automatic;
-            else if (value.rfind("color:", 0) == 0) {
-                if (!parse_rgb(value.substr(6), e.color)) throw Error("--env", "", "color:R,G,B expected, got '" + value + "'");
-                e.kind = Job::Environment::Kind::Color;
-            } else {
-                e.kind = Job::Environment::Kind::File;
-                e.path = value;
-            }
-        } else if (key == "background") {
-            Job::Background& b = job.background;
-            if (value == "env") b.mode = Job::Background::Mode::Environment;
-            else if (value == "blur") b.mode = Job::Background::Mode::Blurred;
-            else if (value == "auto") b.mode = Job::Background::Mode::Automatic;
-            else if (value == "transparent") b.mode = Job::Background::Mode::Transparent;
-            else if (parse_rgb(value, b.color)) b.mode = Job::Background::Mode::Color;
-            else throw Error("--background", "", "env, blur, transparent or R,G,B expected, got '" + value + "'");
-        } else if (key == "brdf") {  // --brdf D=...,G=...,F=...,diffuse=...
-            std::string why;
-            auto m = brdf::parse_brdf_model(value, &why);
-            if (!m) throw Error("--brdf", "", why);
-            job.output.brdf = *m;
-        } else if (key == "scene-lights") {  // 0: --no-scene-lights
-            job.lights.scene_lights = value != "0";
-        } else if (key == "no-ibl") {  // 1: --no-ibl; 0: the environment set before
+        if (key == "no-ibl") {  // 1: no image-based light; 0: the environment set before
             using Kind = Job::Environment::Kind;
             if (value != "0" && job.environment.kind != Kind::None) {
                 environment_before_no_ibl = job.environment;
@@ -166,8 +105,6 @@ struct App {
                 job.environment = environment_before_no_ibl;
                 if (job.environment.kind == Kind::None) job.environment.kind = Kind::Automatic;
             }
-        } else if (key == "energy-compensation") {  // 0: --no-energy-compensation
-            job.output.energy_compensation = value != "0";
         } else if (key.rfind("light:", 0) == 0) {  // light:N = --light SPEC (N = the count adds one)
             float n = 0;
             if (!parse_float(key.substr(6), n) || n < 0 || n > float(job.lights.extra.size()))
@@ -182,17 +119,14 @@ struct App {
             job.lights.extra.erase(job.lights.extra.begin() + std::ptrdiff_t(n));
         } else if (key == "lights-clear") {
             job.lights.extra.clear();
-        } else if (key == "size") {
-            int w = 0, h = 0;
-            char x = 0;
-            std::istringstream in(value);
-            if (!(in >> w >> x >> h) || x != 'x' || w < 1 || h < 1 || w > 8192 || h > 8192)
-                throw Error("--size", "", "WxH expected (1..8192), got '" + value + "'");
-            job.output.width = w;
-            job.output.height = h;
-            emscripten_set_canvas_element_size(canvas.c_str(), w, h);
         } else {
-            throw Error("fresnel_set", "", "unknown setting '" + key + "'");
+            const settings::Setting* s = settings::find(key);
+            if (!s || !s->offered(settings::kWeb)) throw Error("fresnel_set", "", "unknown setting '" + key + "'");
+            Diagnostics diag;
+            settings::set(job, key, value, key, &diag);
+            for (const std::string& w : diag.lines()) warnings += w + "\n";
+            if (s->key == "render.size")
+                emscripten_set_canvas_element_size(canvas.c_str(), job.output.width, job.output.height);
         }
     }
 
@@ -302,8 +236,13 @@ struct App {
     std::string state_json() {
         nlohmann::json lights = nlohmann::json::array();
         bool defaults = false;
-        if (scene) {
-            ResolvedJob r = resolve(job, *scene);
+        std::optional<ResolvedJob> resolved_now;  // none when the job does not resolve (a camera or scene it lacks)
+        if (scene) try {
+                resolved_now = resolve(job, *scene);
+            } catch (const Error&) {
+            }
+        if (resolved_now) {
+            const ResolvedJob& r = *resolved_now;
             defaults = r.default_lights;
             std::size_t n_scene = job.lights.scene_lights && !defaults ? r.lights.size() - job.lights.extra.size() : 0;
             for (std::size_t i = 0; i < r.lights.size(); ++i) {
@@ -314,8 +253,8 @@ struct App {
         }
         // The scene's lights when they are switched off, listed (greyed) so that the switch shows what it hides.
         nlohmann::json hidden = nlohmann::json::array();
-        if (scene && !job.lights.scene_lights) {
-            ResolvedJob r = resolve(job, *scene);
+        if (resolved_now && !job.lights.scene_lights) {
+            const ResolvedJob& r = *resolved_now;
             for (const LightInstance& l : scene_lights(*scene, r.instances)) hidden.push_back(light_json(l, "scene-off", 0));
         }
         using Kind = Job::Environment::Kind;
@@ -342,6 +281,10 @@ struct App {
             {"debug", debug_name(job.output.debug)}, {"brdf", brdf::to_string(job.output.brdf)},
             {"energyCompensation", job.output.energy_compensation},
             {"size", {job.output.width, job.output.height}}, {"yaw", job.camera.yaw_deg}, {"pitch", job.camera.pitch_deg}};
+        // Every setting the page offers, by its registry key, in the registry's text.
+        nlohmann::json values = nlohmann::json::object();
+        for (const settings::Setting* s : settings::offered_by(settings::kWeb)) values[s->key] = settings::get(job, *s);
+        out["settings"] = values;
         return out.dump();
     }
 
@@ -350,7 +293,7 @@ struct App {
     void prepare() {
         if (!scene) throw Error("fresnel", "", "no model loaded");
         resolved = resolve(job, *scene);
-        std::string key = key_of(resolved);
+        std::string key = fresnel::lighting_key(resolved);
         if (key == lighting_key) return;
         if (key == pending && lighting_key != "\n") return;  // the worker is baking it: the old lighting meanwhile
         try {
@@ -398,7 +341,7 @@ struct App {
     std::string pending_bake() {
         if (!scene) return "";
         resolved = resolve(job, *scene);
-        std::string key = key_of(resolved);
+        std::string key = fresnel::lighting_key(resolved);
         if (key == lighting_key || !resolved.environment || baked_folders.count(key) || bake_errors.count(key)) return "";
         const ibl::EnvironmentSource& e = *resolved.environment;
         if (e.kind == ibl::EnvironmentSource::Kind::Uniform) return "";  // quick enough here
@@ -459,6 +402,11 @@ EMSCRIPTEN_KEEPALIVE App* fresnel_create(const char* selector) {
 }
 EMSCRIPTEN_KEEPALIVE void fresnel_destroy(App* app) { delete app; }
 EMSCRIPTEN_KEEPALIVE const char* fresnel_error(App* app) { return app ? app->error.c_str() : "no fresnel"; }
+// The settings registry as JSON (fresnel/job/settings.h): what fresnel_set takes.
+EMSCRIPTEN_KEEPALIVE const char* fresnel_settings() {
+    static const std::string registry = fresnel::settings::describe_json();
+    return registry.c_str();
+}
 EMSCRIPTEN_KEEPALIVE const char* fresnel_warnings(App* app) { return app ? app->warnings.c_str() : ""; }
 EMSCRIPTEN_KEEPALIVE const char* fresnel_info(App* app) { return app ? app->info.c_str() : ""; }
 EMSCRIPTEN_KEEPALIVE double fresnel_frame_ms(App* app) { return app ? app->frame_ms : 0; }

@@ -61,6 +61,7 @@
 #include "fresnel/render/limits.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/job/scene_file.h"
+#include "fresnel/job/settings.h"
 
 #include "fresnel/trace/bsdf.h"
 #include "fresnel/trace/distribution.h"

@@ -1,17 +1,28 @@
 // The flags of a Job (apps/fresnel/job_options.h) and the way back: a Job written as a
 // `fresnel render` command line (the viewer's "copy as command line") parses back, through
-// the very flags `render` declares, to the same Job. No GL.
+// the very flags `render` declares, to the same Job; and every key of the settings registry
+// through every front end that offers it (flags, scene files, view scripts, the web page's
+// set). No GL.
 #include "command_line.h"
 #include "job_options.h"
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 #include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
 
 #include "fresnel/job/orbit_controller.h"
+#include "fresnel/job/scene_file.h"
+#include "fresnel/job/settings.h"
+#include "view_script.h"
 
 using namespace fresnel;
 using namespace fresnel::cli;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -114,4 +125,179 @@ TEST(JobFlags, ShellQuoting) {
     EXPECT_EQ(shell_quote("a b"), "'a b'");
     EXPECT_EQ(shell_quote("it's"), "'it'\\''s'");
     EXPECT_EQ(shell_quote(""), "''");
+}
+
+// --- the settings registry (fresnel/job/settings.h) through every front end ---------------
+
+namespace {
+
+// A scene file document of `job` read back onto the default job.
+Job through_scene_file(const Job& job) {
+    Diagnostics diag;
+    nlohmann::json doc = scene_document(job, ".");
+    SceneFile sf = parse_scene_document(doc, "roundtrip.fresnel.json", ".", Job{}, diag);
+    EXPECT_EQ(diag.total(), 0u) << doc.dump() << "\n" << (diag.lines().empty() ? "" : diag.lines().front());
+    return sf.job;
+}
+
+// `set KEY VALUE` as a view script line, read as `fresnel view --script` reads it and applied
+// as the viewer applies it (settings::set on its job).
+Job through_view_script(const std::string& key, const std::string& value) {
+    fs::path path = fs::temp_directory_path() / ("fresnel-settings-" + std::to_string(::getpid()) + ".txt");
+    std::ofstream(path) << "# round trip\nset " << key << " " << value << "\n";
+    std::vector<ScriptCommand> commands = read_view_script(path.string());
+    fs::remove(path);
+    EXPECT_EQ(commands.size(), 1u);
+    Job job;
+    if (commands.size() == 1) {
+        EXPECT_EQ(commands[0].name, "set");
+        settings::set(job, commands[0].args.at(0), commands[0].args.at(1), path.string());
+    }
+    return job;
+}
+
+}  // namespace
+
+// Every key of the registry, at a value other than its default: its flag parses to a Job
+// holding it, the print-back parses to the same Job, a scene file written from the Job reads
+// back to it, the view script's `set KEY VALUE` of the scene file's value gives it again, and
+// so does the web page's fresnel_set(KEY, VALUE) (settings::set by key; its browser test
+// drives the page itself).
+TEST(SettingsRegistry, EveryKeyRoundTripsThroughEveryFrontEnd) {
+    int cli = 0, file = 0, script = 0, web = 0;
+    for (const settings::Setting& s : settings::all()) {
+        SCOPED_TRACE(s.key);
+        const std::string example = settings::example(s);
+        const std::string want = settings::format(s, settings::parse(s, example, "test"));
+        ASSERT_NE(want, settings::default_text(s)) << "the example is the default";
+        // 1. The command line.
+        Job job;
+        if (s.offered(settings::kCli) && !s.flag.empty()) {
+            std::string line = "fresnel render -o a.png ";
+            if (s.type != settings::Type::Bool) line += s.flag + " " + shell_quote(example);
+            else if ((want == "false") == s.negated_flag) line += s.flag;
+            else FAIL() << "a switch that cannot set " << want;
+            job = parse(line);
+            ++cli;
+            EXPECT_EQ(parse(render_command_line(job, "a.png")), job) << render_command_line(job, "a.png");
+        } else {
+            settings::set(job, s, example, "test");
+        }
+        EXPECT_EQ(settings::get(job, s), want);
+        // 2. A scene file.
+        if (s.offered(settings::kSceneFile)) {
+            Job back = through_scene_file(job);
+            EXPECT_EQ(back, job);
+            EXPECT_EQ(settings::get(back, s), want);
+            ++file;
+        }
+        // 3. A view script.
+        if (s.offered(settings::kViewScript)) {
+            Job back = through_view_script(s.key, settings::get(job, s));
+            EXPECT_EQ(settings::get(back, s), want);
+            ++script;
+        }
+        // 4. The web page's fresnel_set: by key, and by the flag's name the page's URL uses.
+        if (s.offered(settings::kWeb)) {
+            Job by_key, by_flag;
+            settings::set(by_key, s.key, settings::get(job, s), "fresnel_set");
+            EXPECT_EQ(settings::get(by_key, s), want);
+            if (!s.flag.empty() && s.type != settings::Type::Bool) {
+                settings::set(by_flag, s.flag.substr(2), example, "fresnel_set");
+                EXPECT_EQ(settings::get(by_flag, s), want);
+            }
+            ++web;
+        }
+    }
+    std::printf("round trips: %d flags, %d scene-file keys, %d view-script keys, %d web keys\n", cli, file, script, web);
+    EXPECT_GE(cli, 30);
+    EXPECT_GE(file, 25);
+}
+
+// One error format for a bad value, whichever front end reads it: "expected <what the
+// setting takes>, got '<text>'", named by the flag, the file and JSON pointer, or the
+// script's file and line.
+TEST(SettingsRegistry, BadValuesGetOneMessageEverywhere) {
+    const settings::Setting& pitch = settings::at("camera.pitch");
+    const std::string reason = "expected a number in [-90, 90] (degrees), got '100'";
+    try {
+        settings::parse(pitch, "100", "--pitch");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), "--pitch: " + reason);
+    }
+    Diagnostics diag;
+    try {
+        parse_scene_document(nlohmann::json::parse(R"({"fresnel": 1, "camera": {"pitch": 100}})"), "s.fresnel.json", ".",
+                             Job{}, diag);
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_EQ(e.file(), "s.fresnel.json");
+        EXPECT_EQ(e.where(), "/camera/pitch");
+        EXPECT_EQ(e.reason(), reason);
+    }
+    fs::path path = fs::temp_directory_path() / ("fresnel-bad-" + std::to_string(::getpid()) + ".txt");
+    std::ofstream(path) << "set camera.pitch 100\n";
+    try {
+        read_view_script(path.string());
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_EQ(e.where(), "line 1");
+        EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
+    }
+    fs::remove(path);
+    // Unknown names: the registry's own message.
+    Job job;
+    EXPECT_THROW(settings::set(job, "camera.yawn", "1", "fresnel_set"), Error);
+}
+
+// Old spellings keep working and warn, naming the new key; the registry's texts are its own.
+TEST(SettingsRegistry, OldNamesWarnAndDriftsAreGone) {
+    Job job;
+    Diagnostics diag;
+    settings::set(job, "scene-lights", "0", "fresnel_set", &diag);
+    EXPECT_FALSE(job.lights.scene_lights);
+    ASSERT_EQ(diag.total(), 1u);
+    EXPECT_NE(diag.lines().front().find("sceneLights"), std::string::npos) << diag.lines().front();
+    // The background's automatic is one word everywhere (auto and env are accepted aliases).
+    settings::set(job, "background", "auto", "t");
+    EXPECT_EQ(settings::get(job, "background"), "automatic");
+    settings::set(job, "background", "env", "t");
+    EXPECT_EQ(settings::get(job, "background"), "environment");
+    // --env none and automatic are no longer file names.
+    settings::set(job, "environment", "none", "t");
+    EXPECT_EQ(job.environment.kind, Job::Environment::Kind::None);
+    settings::set(job, "environment", "automatic", "t");
+    EXPECT_EQ(job.environment.kind, Job::Environment::Kind::Automatic);
+    EXPECT_THROW(settings::set(job, "environment", "", "t"), Error);  // was the studio
+    // Ranges are the registry's: a negative intensity, an out-of-range colour, a huge MSAA.
+    EXPECT_THROW(settings::set(job, "environment.intensity", "-1", "t"), Error);
+    EXPECT_THROW(settings::set(job, "background", "2,0,0", "t"), Error);
+    EXPECT_THROW(settings::set(job, "render.msaa", "64", "t"), Error);
+    EXPECT_THROW(settings::set(job, "render.size", "10x10junk", "t"), Error);
+    EXPECT_THROW(settings::set(job, "environment.bakeSize", "100", "t"), Error);  // a power of two
+    // The exact-conductor BRDF spelling the schema once refused.
+    settings::set(job, "render.brdf", "F=exact:gold", "t");
+    EXPECT_FALSE(job.output.brdf.is_default());
+    // Scene files now hold the legacy settings the print-back and the file dropped.
+    job = Job{};
+    settings::set(job, "render.ambient", "0.1,0.2,0.3", "t");
+    settings::set(job, "render.fog", "exp2:0.5", "t");
+    settings::set(job, "render.fogColor", "0.5,0.5,0.5", "t");
+    EXPECT_EQ(through_scene_file(job), job);
+    EXPECT_NE(render_command_line(job, "a.png").find("--fog exp2:0.5"), std::string::npos);
+}
+
+// The lighting cache key: one function, the same for equal jobs, different when the bake differs.
+TEST(SettingsRegistry, OneLightingKey) {
+    ResolvedJob a;
+    a.environment = ibl::EnvironmentSource{};
+    ResolvedJob b = a;
+    EXPECT_EQ(lighting_key(a), lighting_key(b));
+    b.bake_options.samples = 64;
+    EXPECT_NE(lighting_key(a), lighting_key(b));
+    ResolvedJob none;
+    EXPECT_EQ(lighting_key(none), "none");
+    none.needs_brdf_lut = true;
+    EXPECT_NE(lighting_key(none), "none");
 }

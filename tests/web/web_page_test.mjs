@@ -10,7 +10,8 @@
 //   6. a scene file by ?scene= (DamagedHelmet, a light, a `fresnel bake` folder as environment,
 //      tone mapping, exposure, camera, size) matches `fresnel render SCENE.fresnel.json` at >= 30 dB;
 //   7. a material edit changes the frame and reverting restores it; adding a light changes the
-//      frame and removing it restores it.
+//      frame and removing it restores it;
+//   8. every setting of the registry the page offers round-trips through its fresnel_set.
 // Exit 77 (skipped) when build-web, Chromium, playwright-core or the shared assets are missing.
 // usage: node web_page_test.mjs WEB_DIR FRESNEL_EXE SHARED_DIR NODE_TOOLS_DIR OUT_DIR
 import { spawnSync } from 'node:child_process';
@@ -210,6 +211,22 @@ try {
         check(!pickError && pp >= 30, `the scene file picked with its files: ${pp.toFixed(2)} dB against fresnel render SCENE.fresnel.json${pickError ? ': ' + pickError : ''}`);
         const err = await scenePage.evaluate(() => window.fresnel.error());
         check(!err, `no error in the scene page${err ? ': ' + err : ''}`);
+
+        // 8. Every setting of the registry the page offers, set by its key through fresnel_set,
+        //    reads back in the registry's text (the C++ round trip test does the same for the
+        //    flags, scene files and view scripts).
+        const round = await scenePage.evaluate(() => {
+            const bad = [];
+            let n = 0;
+            for (const s of window.fresnel.settings().filter(s => s.frontEnds.includes('web'))) {
+                try { window.fresnel.setOnly(s.key, s.example); } catch (e) { bad.push(`${s.key}: ${e.message}`); continue; }
+                const got = window.fresnel.state().settings[s.key];
+                if (got !== s.example) bad.push(`${s.key}: set ${s.example}, reads ${got}`);
+                ++n;
+            }
+            return { n, bad };
+        });
+        check(round.n >= 25 && !round.bad.length, `${round.n} registry settings round-trip through the page's set${round.bad.length ? ': ' + round.bad.join('; ') : ''}`);
     }
     if (failures) console.log(log.join('\n'));
 } finally {

@@ -165,6 +165,12 @@ RenderSettings JobLighting::settings(const ResolvedJob& resolved) const {
     return rs;
 }
 
+std::string lighting_key(const ResolvedJob& r) {
+    if (!r.environment && !r.needs_brdf_lut) return "none";
+    return (r.environment ? r.environment->describe() : std::string("no-environment")) + "|" + r.bake_options.key() +
+           (r.use_cache ? "|cache" : "|no-cache") + (r.needs_brdf_lut ? "|lut" : "");
+}
+
 JobLighting load_lighting(const ResolvedJob& resolved, const ibl::Progress& progress) {
     JobLighting l;
     if (resolved.environment) {

@@ -22,6 +22,7 @@
 #include "fresnel/core/atomic_file.h"
 #include "fresnel/core/float_text.h"
 #include "fresnel/ibl/environment.h"
+#include "fresnel/job/settings.h"
 #include "fresnel/scene/paths.h"
 
 namespace fresnel {
@@ -136,6 +137,77 @@ private:
     Diagnostics& diag_;
     SceneFileOptions options_;
 };
+
+// The JSON value of a setting (fresnel/job/settings.h) as the registry's text, its JSON type
+// checked: booleans, numbers, [X, Y, Z], [W, H] or "WxH", strings; an optional setting's
+// word for unset ("fit", "auto") as a string.
+std::string setting_text(const Reader& r, const settings::Setting& s, const json& v, const std::string& ptr) {
+    using settings::Type;
+    if (!s.none.empty() && v.is_string() && v.get<std::string>() == s.none) return s.none;
+    switch (s.type) {
+        case Type::Bool:
+            return r.boolean(v, ptr) ? "true" : "false";
+        case Type::Int:
+        case Type::Number:
+            if (!v.is_number()) r.fail(ptr, "expected " + s.expected() + ", got " + v.dump());
+            return v.dump();
+        case Type::Vec3: {
+            if (!v.is_array() || v.size() != 3) r.fail(ptr, "expected " + s.expected() + " as [X, Y, Z], got " + v.dump());
+            std::string t;
+            for (std::size_t i = 0; i < 3; ++i) {
+                if (!v[i].is_number()) r.fail(at(ptr, i), "must be a number");
+                t += (i ? "," : "") + v[i].dump();
+            }
+            return t;
+        }
+        case Type::Size:
+            if (v.is_string()) return v.get<std::string>();
+            if (!v.is_array() || v.size() != 2) r.fail(ptr, "must be [W, H] or \"WxH\"");
+            return std::to_string(r.integer(v[0], at(ptr, std::size_t(0)), (long long)s.min, (long long)s.max)) + "x" +
+                   std::to_string(r.integer(v[1], at(ptr, std::size_t(1)), (long long)s.min, (long long)s.max));
+        case Type::Choice:
+        case Type::Text:
+            if (!v.is_string()) r.fail(ptr, "expected " + s.expected() + ", got " + v.dump());
+            return v.get<std::string>();
+    }
+    return {};
+}
+
+// Sets `s` from the JSON value at `ptr`; a bad value fails naming the file and the pointer.
+void apply_setting(const Reader& r, const settings::Setting& s, const json& v, const std::string& ptr, Job& job) {
+    std::string text = setting_text(r, s, v, ptr);
+    try {
+        settings::set(job, s, text, ptr);
+    } catch (const Error& e) {
+        r.fail(ptr, e.reason());
+    }
+}
+
+// The keys of object `obj` (at `ptr`, the settings' key prefix `prefix`) that are settings
+// scene files hold, set in the registry's order; the others, unless in `structural`, warned about.
+void read_settings(const Reader& r, const json& obj, const std::string& prefix, const std::string& ptr, Job& job,
+                   std::initializer_list<const char*> structural = {}, const std::vector<std::string>& also = {}) {
+    for (auto it = obj.begin(); it != obj.end(); ++it) {
+        const settings::Setting* s = settings::find(prefix.empty() ? it.key() : prefix + "." + it.key());
+        bool known = s && s->offered(settings::kSceneFile) && s->key == (prefix.empty() ? it.key() : prefix + "." + it.key());
+        for (const char* k : structural) known |= it.key() == k;
+        for (const auto& k : also) known |= it.key() == k;
+        if (!known) r.warn(at(ptr, it.key()), "unknown key '" + it.key() + "' (ignored)");
+    }
+    for (const settings::Setting& s : settings::all()) {
+        if (!s.offered(settings::kSceneFile)) continue;
+        std::string name = s.key;
+        if (!prefix.empty()) {
+            if (name.rfind(prefix + ".", 0) != 0) continue;
+            name = name.substr(prefix.size() + 1);
+        }
+        if (name.find('.') != std::string::npos) continue;  // deeper: another object's
+        bool skip = false;
+        for (const char* k : structural) skip |= name == k;
+        if (skip) continue;
+        if (auto* v = r.find(obj, name.c_str())) apply_setting(r, s, *v, at(ptr, name), job);
+    }
+}
 
 glm::mat4 read_transform(const Reader& r, const json& m, const std::string& ptr) {
     const json* matrix = r.find(m, "matrix");
@@ -255,17 +327,15 @@ void read_camera(const Reader& r, const json& c, Job& job) {
     if (type == "orbit") unused({"eye", "up", "model", "index"});
     if (type == "lookAt") unused({"yaw", "pitch", "distance", "model", "index"});
     if (type == "model") unused({"yaw", "pitch", "distance", "fov", "eye", "target", "up"});
-    auto fov = [&] {
-        if (auto* v = r.find(c, "fov")) cam.yfov_deg = float(r.number(*v, at(ptr, "fov"), 0.01, 179.0));
+    // The camera's settings (fresnel/job/settings.h): camera.yaw is /camera/yaw.
+    auto setting = [&](const char* key) {
+        if (auto* v = r.find(c, key)) apply_setting(r, settings::at(std::string("camera.") + key), *v, at(ptr, key), job);
     };
+    auto fov = [&] { setting("fov"); };
     if (type == "orbit") {
         cam.scene_camera.reset();
         cam.look_at.reset();
-        if (auto* v = r.find(c, "yaw")) cam.yaw_deg = float(r.number(*v, at(ptr, "yaw"), -1e6, 1e6));
-        if (auto* v = r.find(c, "pitch")) cam.pitch_deg = float(r.number(*v, at(ptr, "pitch"), -90, 90));
-        if (auto* v = r.find(c, "distance")) cam.distance_k = float(r.number(*v, at(ptr, "distance"), 1e-6, 1e6));
-        if (auto* v = r.find(c, "target")) cam.target = r.vec<3>(*v, at(ptr, "target"));  // a panned orbit
-        fov();
+        for (const char* key : {"yaw", "pitch", "distance", "target", "fov"}) setting(key);  // target: a panned orbit
     } else if (type == "lookAt") {
         cam.scene_camera.reset();
         Job::Camera::LookAt la;
@@ -281,8 +351,8 @@ void read_camera(const Reader& r, const json& c, Job& job) {
     } else if (type == "model") {
         cam.look_at.reset();
         cam.scene_camera = 0;
-        if (auto* v = r.find(c, "index")) cam.scene_camera = r.integer(*v, at(ptr, "index"), 0, 1 << 20);
         cam.scene_camera_model = 0;
+        setting("index");
         if (auto* v = r.find(c, "model")) cam.scene_camera_model = r.integer(*v, at(ptr, "model"), 0, 1 << 20);
     } else {
         r.fail(at(ptr, "type"), "must be orbit, lookAt or model, not '" + type + "'");
@@ -357,137 +427,67 @@ void read_environment(const Reader& r, const json& e, Job& job) {
     const std::string ptr = "/environment";
     using Kind = Job::Environment::Kind;
     Job::Environment& env = job.environment;
-    auto from_string = [&](const json& v, const std::string& p) {
-        std::string s = r.string(v, p);
-        if (s == "studio") env.kind = Kind::Studio;
-        else if (s == "none") env.kind = Kind::None;
-        else if (s == "automatic") env.kind = Kind::Automatic;
-        else if (s.rfind("color:", 0) == 0) {
-            ibl::EnvironmentSource src;
-            try {
-                src = ibl::parse_environment(s);
-            } catch (const Error& err) {
-                r.fail(p, err.reason());
-            }
-            env.kind = Kind::Color;
-            env.color = src.color;
-        } else {
-            env.kind = Kind::File;
-            env.path = r.path(v, p).string();
+    const settings::Setting& source = settings::at("environment");
+    // The registry's text (studio, none, automatic, color:R,G,B or a file); a file through
+    // the scene file's path policy, relative to its folder.
+    auto set_source = [&](const std::string& text, const std::string& p, const json* file) {
+        try {
+            settings::set(job, source, text, p);
+        } catch (const Error& err) {
+            r.fail(p, err.reason());
         }
+        if (env.kind == Kind::File) env.path = r.path(file ? *file : json(text), p).string();
     };
-    if (e.is_string()) return from_string(e, ptr);
-    if (!e.is_object()) r.fail(ptr, "must be a string (studio, none, color:R,G,B or a file) or an object");
-    r.keys(e, ptr, {"type", "file", "color", "rotation", "intensity", "bakeSamples", "bakeSize"});
+    if (e.is_string()) return set_source(e.get<std::string>(), ptr, &e);
+    if (!e.is_object()) r.fail(ptr, "must be a string (studio, none, automatic, color:R,G,B or a file) or an object");
     const json* type = r.find(e, "type");
     const json* file = r.find(e, "file");
     const json* color = r.find(e, "color");
     std::string t = type ? r.string(*type, at(ptr, "type")) : file ? "file" : color ? "color" : "";
     if (t == "file") {
         if (!file) r.fail(ptr, "a file environment needs 'file'");
-        env.kind = Kind::File;
-        env.path = r.path(*file, at(ptr, "file")).string();
+        set_source(r.string(*file, at(ptr, "file")), at(ptr, "file"), file);
     } else if (t == "color") {
         if (!color) r.fail(ptr, "a color environment needs 'color'");
-        env.kind = Kind::Color;
-        env.color = r.vec<3>(*color, at(ptr, "color"), 0, 1e9);
-    } else if (t == "studio") {
-        env.kind = Kind::Studio;
-    } else if (t == "none") {
-        env.kind = Kind::None;
-    } else if (t == "automatic") {
-        env.kind = Kind::Automatic;
+        glm::vec3 c = r.vec<3>(*color, at(ptr, "color"), 0, 1e9);
+        set_source("color:" + shortest_text(c.x) + "," + shortest_text(c.y) + "," + shortest_text(c.z), at(ptr, "color"),
+                   nullptr);
+    } else if (t == "studio" || t == "none" || t == "automatic") {
+        set_source(t, at(ptr, "type"), nullptr);
     } else if (!t.empty()) {
         r.fail(at(ptr, "type"), "must be file, color, studio, none or automatic, not '" + t + "'");
     }
-    if (auto* v = r.find(e, "rotation")) env.rotation_deg = float(r.number(*v, at(ptr, "rotation"), -1e6, 1e6));
-    if (auto* v = r.find(e, "intensity")) env.intensity = float(r.number(*v, at(ptr, "intensity"), 0, 1e9));
-    if (auto* v = r.find(e, "bakeSamples")) env.bake_samples = r.integer(*v, at(ptr, "bakeSamples"), 1, 65536);
-    if (auto* v = r.find(e, "bakeSize")) {
-        int s = r.integer(*v, at(ptr, "bakeSize"), 4, 4096);
-        if (s & (s - 1)) r.fail(at(ptr, "bakeSize"), "must be a power of two");
-        env.bake_size = s;
-    }
+    read_settings(r, e, "environment", ptr, job, {"type", "file", "color"});
 }
 
 void read_background(const Reader& r, const json& b, Job& job) {
     const std::string ptr = "/background";
-    using Mode = Job::Background::Mode;
-    Job::Background& bg = job.background;
-    auto mode = [&](const std::string& s, const std::string& p) {
-        if (s == "environment" || s == "env") bg.mode = Mode::Environment;
-        else if (s == "blur") bg.mode = Mode::Blurred;
-        else if (s == "transparent") bg.mode = Mode::Transparent;
-        else if (s == "color") bg.mode = Mode::Color;
-        else if (s == "automatic") bg.mode = Mode::Automatic;
-        else r.fail(p, "must be environment, blur, color, transparent or automatic, not '" + s + "'");
+    const settings::Setting& background = settings::at("background");
+    auto set = [&](const std::string& text, const std::string& p) {
+        try {
+            settings::set(job, background, text, p);
+        } catch (const Error& e) {
+            r.fail(p, e.reason());
+        }
     };
+    auto rgb = [](const glm::vec3& c) {
+        return shortest_text(c.x) + "," + shortest_text(c.y) + "," + shortest_text(c.z);
+    };
+    // "color" alone: the colour the job has (the registry's R,G,B form).
+    auto mode = [&](const std::string& s, const std::string& p) { set(s == "color" ? rgb(job.background.color) : s, p); };
     if (b.is_string()) return mode(b.get<std::string>(), ptr);
-    if (b.is_array()) {
-        bg.mode = Mode::Color;
-        bg.color = r.vec<3>(b, ptr, 0, 1);
-        return;
-    }
+    if (b.is_array()) return set(rgb(r.vec<3>(b, ptr, 0, 1)), ptr);
     if (!b.is_object()) r.fail(ptr, "must be a string, an [R, G, B] colour or an object");
     r.keys(b, ptr, {"type", "color"});
     const json* color = r.find(b, "color");
+    if (color) job.background.color = r.vec<3>(*color, at(ptr, "color"), 0, 1);
     if (auto* t = r.find(b, "type")) mode(r.string(*t, at(ptr, "type")), at(ptr, "type"));
-    else if (color) bg.mode = Mode::Color;
-    if (color) bg.color = r.vec<3>(*color, at(ptr, "color"), 0, 1);
+    else if (color) mode("color", ptr);
 }
 
 void read_render(const Reader& r, const json& o, Job& job) {
-    const std::string ptr = "/render";
-    r.object(o, ptr);
-    r.keys(o, ptr, {"size", "msaa", "anisotropy", "toneMapping", "exposure", "encoding", "debug", "energyCompensation",
-                    "shading", "brdf"});
-    Job::Output& out = job.output;
-    if (auto* v = r.find(o, "size")) {
-        const std::string p = at(ptr, "size");
-        if (v->is_string()) {
-            char x = 0;
-            std::stringstream ss(v->get<std::string>());
-            int w = 0, h = 0;
-            if (!(ss >> w >> x >> h) || x != 'x' || !ss.eof() || w < 1 || h < 1 || w > 16384 || h > 16384)
-                r.fail(p, "expected \"WxH\" or [W, H] with 1..16384 pixels per side");
-            out.width = w;
-            out.height = h;
-        } else {
-            if (!v->is_array() || v->size() != 2) r.fail(p, "must be [W, H] or \"WxH\"");
-            out.width = r.integer((*v)[0], at(p, std::size_t(0)), 1, 16384);
-            out.height = r.integer((*v)[1], at(p, std::size_t(1)), 1, 16384);
-        }
-    }
-    if (auto* v = r.find(o, "msaa")) out.msaa = r.integer(*v, at(ptr, "msaa"), 1, 16);
-    if (auto* v = r.find(o, "anisotropy")) out.anisotropy = float(r.number(*v, at(ptr, "anisotropy"), 1, 16));
-    if (auto* v = r.find(o, "toneMapping")) {
-        auto t = parse_tone_mapper(r.string(*v, at(ptr, "toneMapping")));
-        if (!t) r.fail(at(ptr, "toneMapping"), "must be neutral, aces, aces-hill, reinhard, agx or none");
-        out.tone_mapper = *t;
-    }
-    if (auto* v = r.find(o, "exposure")) out.exposure_ev = float(r.number(*v, at(ptr, "exposure"), -64, 64));
-    if (auto* v = r.find(o, "encoding")) {
-        auto e = parse_encoding(r.string(*v, at(ptr, "encoding")));
-        if (!e) r.fail(at(ptr, "encoding"), "must be srgb or gamma2.2");
-        out.encoding = *e;
-    }
-    if (auto* v = r.find(o, "debug")) {
-        auto d = parse_debug_channel(r.string(*v, at(ptr, "debug")));
-        if (!d) r.fail(at(ptr, "debug"), "unknown debug channel (see fresnel render --help)");
-        out.debug = *d;
-    }
-    if (auto* v = r.find(o, "energyCompensation")) out.energy_compensation = r.boolean(*v, at(ptr, "energyCompensation"));
-    if (auto* v = r.find(o, "brdf")) {  // "D=beckmann,G=kelemen,..." as --brdf
-        std::string why;
-        auto m = brdf::parse_brdf_model(r.string(*v, at(ptr, "brdf")), &why);
-        if (!m) r.fail(at(ptr, "brdf"), why);
-        out.brdf = *m;
-    }
-    if (auto* v = r.find(o, "shading")) {
-        auto m = parse_shading_model(r.string(*v, at(ptr, "shading")));
-        if (!m) r.fail(at(ptr, "shading"), "must be auto, gltf, ogl1, ogl1-pixel or blinn-phong-normalized");
-        out.shading = *m;
-    }
+    r.object(o, "/render");
+    read_settings(r, o, "render", "/render", job);
 }
 
 // The deepest nesting of arrays and objects in `text` (strings skipped), stopping past `limit`.
@@ -537,9 +537,12 @@ SceneFile parse_scene_document(const json& doc, const std::string& name, const f
                                Diagnostics& diag, const SceneFileOptions& options, const std::vector<std::string>& ignore) {
     Reader r(name, base_dir, diag, options);
     if (!doc.is_object()) r.fail("", "a scene file is a JSON object");
-    r.keys(doc, "", {"fresnel", "$schema", "description", "model", "models", "camera", "lights", "sceneLights",
-                     "environment", "background", "render", "output", "poseSkins", "variant", "objNormals"},
-           ignore);
+    // The top-level settings (poseSkins, variant, objNormals, sceneLights) through the
+    // registry; the other keys are the file's structure.
+    std::vector<std::string> known = ignore;
+    for (const char* k : {"fresnel", "$schema", "description", "model", "models", "camera", "lights", "environment",
+                          "background", "render", "output"})
+        known.push_back(k);
     if (auto* v = r.find(doc, "fresnel")) {
         int version = r.integer(*v, "/fresnel", 1, 1 << 30);
         if (version > kSceneFileVersion)
@@ -555,23 +558,13 @@ SceneFile parse_scene_document(const json& doc, const std::string& name, const f
     sf.job = defaults;
     Job& job = sf.job;
     read_models(r, doc, job);
-    if (auto* v = r.find(doc, "poseSkins")) job.source.pose_skins = r.boolean(*v, "/poseSkins");
-    if (auto* v = r.find(doc, "objNormals")) {
-        const std::string s = r.string(*v, "/objNormals");
-        using N = Job::Source::ObjNormals;
-        if (s == "auto") job.source.obj_normals = N::Auto;
-        else if (s == "groups") job.source.obj_normals = N::Groups;
-        else if (s == "smooth") job.source.obj_normals = N::Smooth;
-        else r.fail("/objNormals", "must be auto, groups or smooth");
-    }
-    if (auto* v = r.find(doc, "variant")) job.source.variant = r.string(*v, "/variant");
+    read_settings(r, doc, "", "", job, {"environment", "background"}, known);
     if (auto* v = r.find(doc, "camera")) read_camera(r, *v, job);
     if (auto* v = r.find(doc, "lights")) {
         r.array(*v, "/lights", kMaxLights);
         job.lights.extra.clear();
         for (std::size_t i = 0; i < v->size(); ++i) job.lights.extra.push_back(read_light(r, (*v)[i], at("/lights", i)));
     }
-    if (auto* v = r.find(doc, "sceneLights")) job.lights.scene_lights = r.boolean(*v, "/sceneLights");
     if (auto* v = r.find(doc, "environment")) read_environment(r, *v, job);
     if (auto* v = r.find(doc, "background")) read_background(r, *v, job);
     if (auto* v = r.find(doc, "render")) read_render(r, *v, job);
@@ -648,6 +641,41 @@ private:
     SceneDocumentReport& report_;
 };
 
+// A setting's value as scene files hold it (the reader's setting_text the other way).
+json setting_json(const settings::Setting& s, const settings::Value& v) {
+    using settings::Type;
+    switch (s.type) {
+        case Type::Bool: return v.flag;
+        case Type::Int: return static_cast<long long>(v.number);
+        case Type::Number: return num(float(v.number));
+        case Type::Vec3: return nums<3>(v.vec);
+        case Type::Size: return json::array({v.width, v.height});
+        case Type::Choice:
+        case Type::Text: return v.text;
+    }
+    return nullptr;
+}
+
+// Every setting scene files hold whose value in `job` is set and differs from the default
+// job's (or is always named), at its key's place; `structural` keys are the caller's.
+void write_settings(json& doc, const Job& job, std::initializer_list<const char*> structural) {
+    for (const settings::Setting& s : settings::all()) {
+        if (!s.offered(settings::kSceneFile) || (s.applies && !s.applies(job))) continue;
+        bool skip = false;
+        for (const char* k : structural) skip |= s.key == k;
+        if (skip || (settings::is_default(job, s) && !s.print_always)) continue;
+        settings::Value v = s.get(job);
+        if (v.unset) continue;  // absent: the reader's default
+        json* at = &doc;
+        std::string key = s.key;
+        for (auto dot = key.find('.'); dot != std::string::npos; dot = key.find('.')) {
+            at = &(*at)[key.substr(0, dot)];
+            key = key.substr(dot + 1);
+        }
+        (*at)[key] = setting_json(s, v);
+    }
+}
+
 json material_override_json(const Job::Source::MaterialOverride& mo) {
     json o = json::object();
     if (mo.name) o["name"] = *mo.name;
@@ -693,7 +721,6 @@ json scene_document(const Job& job, const fs::path& base_dir, const std::optiona
     SceneDocumentReport local;
     SceneDocumentReport& rep = report ? *report : local;
     Writer w(base_dir, rep);
-    const Job defaults;
     json doc = json::object();
     doc["fresnel"] = kSceneFileVersion;
     auto model_path = [&](const std::string& p) { return p.empty() ? std::string("demo") : w.path(p); };
@@ -730,31 +757,19 @@ json scene_document(const Job& job, const fs::path& base_dir, const std::optiona
         }
         doc["models"] = list;
     }
-    if (!job.source.variant.empty()) doc["variant"] = job.source.variant;
-    if (job.source.pose_skins) doc["poseSkins"] = true;
-    if (job.source.obj_normals != Job::Source::ObjNormals::Auto)
-        doc["objNormals"] = job.source.obj_normals == Job::Source::ObjNormals::Smooth ? "smooth" : "groups";
-
-    // Camera.
+    // Camera: its type and the lookAt camera's structure; the settings below add the rest.
     const Job::Camera& c = job.camera;
     json cam = json::object();
     if (c.scene_camera) {
         cam["type"] = "model";
-        cam["index"] = *c.scene_camera;
         if (c.scene_camera_model != 0) cam["model"] = c.scene_camera_model;
     } else if (c.look_at) {
         cam["type"] = "lookAt";
         cam["eye"] = nums<3>(c.look_at->eye);
         cam["target"] = nums<3>(c.look_at->target);
         cam["up"] = nums<3>(c.look_at->up);
-        cam["fov"] = num(c.yfov_deg);
     } else {
         cam["type"] = "orbit";
-        cam["yaw"] = num(c.yaw_deg);
-        cam["pitch"] = num(c.pitch_deg);
-        if (c.distance_k) cam["distance"] = num(*c.distance_k);
-        cam["fov"] = num(c.yfov_deg);
-        if (c.target) cam["target"] = nums<3>(*c.target);
     }
     doc["camera"] = cam;
 
@@ -764,9 +779,8 @@ json scene_document(const Job& job, const fs::path& base_dir, const std::optiona
         for (const auto& l : job.lights.extra) lights.push_back(light_json(l));
         doc["lights"] = lights;
     }
-    doc["sceneLights"] = job.lights.scene_lights;
 
-    // Environment, background.
+    // Environment and background: their object forms (a file relative to the scene file).
     using Kind = Job::Environment::Kind;
     const Job::Environment& e = job.environment;
     json env = json::object();
@@ -777,40 +791,15 @@ json scene_document(const Job& job, const fs::path& base_dir, const std::optiona
         case Kind::Studio: env["type"] = "studio"; break;
         case Kind::None: env["type"] = "none"; break;
     }
-    env["rotation"] = num(e.rotation_deg);
-    env["intensity"] = num(e.intensity);
-    if (e.bake_samples != defaults.environment.bake_samples) env["bakeSamples"] = e.bake_samples;
-    if (e.bake_size != defaults.environment.bake_size) env["bakeSize"] = e.bake_size;
     doc["environment"] = env;
     using Mode = Job::Background::Mode;
-    switch (job.background.mode) {
-        case Mode::Automatic: doc["background"] = "automatic"; break;
-        case Mode::Environment: doc["background"] = "environment"; break;
-        case Mode::Blurred: doc["background"] = "blur"; break;
-        case Mode::Transparent: doc["background"] = "transparent"; break;
-        case Mode::Color: doc["background"] = json{{"type", "color"}, {"color", nums<3>(job.background.color)}}; break;
-    }
+    if (job.background.mode == Mode::Color)
+        doc["background"] = json{{"type", "color"}, {"color", nums<3>(job.background.color)}};
+    else
+        doc["background"] = settings::get(job, "background");
 
-    // Render settings.
-    const Job::Output& o = job.output;
-    json r = json::object();
-    r["size"] = json::array({o.width, o.height});
-    if (o.msaa > 0) r["msaa"] = o.msaa;  // else automatic
-    r["anisotropy"] = num(o.anisotropy);
-    r["toneMapping"] = std::string(tone_mapper_name(o.tone_mapper));
-    r["exposure"] = num(o.exposure_ev);
-    r["encoding"] = o.encoding == Encoding::Gamma22 ? "gamma2.2" : "srgb";
-    std::string debug = "none";
-    for (const std::string& n : debug_channel_names())
-        if (parse_debug_channel(n) == o.debug) debug = n;
-    r["debug"] = debug;
-    r["energyCompensation"] = o.energy_compensation;
-    r["shading"] = shading_model_name(o.shading);
-    if (!o.brdf.is_default()) r["brdf"] = brdf::to_string(o.brdf);
-    doc["render"] = r;
-    if (o.ambient != defaults.output.ambient) rep.dropped.push_back("ambient");
-    if (o.fog.mode != defaults.output.fog.mode) rep.dropped.push_back("fog");
-    if (o.fog_color) rep.dropped.push_back("fog colour");
+    // Every other setting, through the registry.
+    write_settings(doc, job, {"environment", "background"});
     if (output) doc["output"] = w.path(output->string());
     return doc;
 }

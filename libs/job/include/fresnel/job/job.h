@@ -193,6 +193,12 @@ struct JobLighting {
     RenderSettings settings(const ResolvedJob& resolved) const;
 };
 
+// Which image-based light and BRDF table a resolved job needs, as one key: two jobs with the
+// same key can share one JobLighting (the viewer, the web page and batch cache by it). The
+// environment's description, the bake options, whether the cache is used and whether the
+// table alone is needed; "none" when the job needs neither.
+std::string lighting_key(const ResolvedJob& resolved);
+
 // Loads or bakes resolved.environment (ibl::load_or_bake; `progress` gets the baking's
 // progress, from worker threads) and, when asked for, the BRDF table. Throws fresnel::Error.
 JobLighting load_lighting(const ResolvedJob& resolved, const ibl::Progress& progress = {});

@@ -11,7 +11,8 @@
 // range-checked (fresnel::Error naming the file and the JSON pointer, e.g.
 // "/models/1/translation/2"), paths are relative to the file's folder and may not leave it
 // (the URI policy of models, fresnel/scene/paths.h) unless external files are allowed.
-// Unknown keys are warnings naming their pointer.
+// Unknown keys are warnings naming their pointer. Settings (camera.yaw, render.exposure, ...)
+// are read through the settings registry, with its ranges and its one error message.
 #include <filesystem>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
@@ -63,8 +64,10 @@ nlohmann::json parse_json_limited(std::string_view text, const std::string& name
 // gives the same job back, floats exactly). Paths are written relative to `base_dir` (the
 // folder the file will be in); those outside it are written with "..", or absolute when no
 // relative path exists, and listed in `outside` (the reader then needs allow_external_files).
-// Fields a scene file cannot hold (ambient, fog, fog colour, and flags such as --no-cache)
-// are reported in `dropped`. `output` is written as "output" when given.
+// The settings are written through the settings registry (fresnel/job/settings.h): those
+// that differ from the default job's, at their keys' places. `dropped` lists what a scene file
+// cannot hold (nothing the registry offers to scene files). `output` is written as "output"
+// when given.
 struct SceneDocumentReport {
     std::vector<std::string> outside, dropped;
 };
