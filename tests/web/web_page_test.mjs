@@ -73,9 +73,9 @@ render(path.join(outDir, 'cli_gltf.png'), [], [path.join(shared, 'assets', gltfR
     if (b.status !== 0) throw new Error(`fresnel bake failed: ${b.stderr}`);
 }
 render(path.join(outDir, 'cli_scene.png'), [], [path.join(sceneDir, 'helmet.fresnel.json')]);
-// Every `render --debug` channel, from its help text.
-const help = spawnSync(fresnel, ['render', '--help'], { encoding: 'utf8' }).stdout.replace(/\s+/g, ' ');
-const debugNames = ((help.match(/Show a channel instead of shading: (.*?) \(NaN/) || [])[1] || '').split(' ').filter(Boolean);
+// Every `render --debug` channel, from the settings registry (`fresnel settings --json`).
+const registry = JSON.parse(spawnSync(fresnel, ['settings', '--json'], { encoding: 'utf8' }).stdout);
+const debugNames = registry.find(s => s.key === 'render.debug').choices.filter(n => n !== 'none');
 console.log(`fresnel render x5, bake: ${Date.now() - t0} ms`);
 
 const browser = await launch(chromium);

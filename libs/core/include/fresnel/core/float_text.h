@@ -15,6 +15,11 @@ namespace fresnel {
 inline std::string shortest_text(float v) {
 #ifdef __EMSCRIPTEN__
     char buf[32];
+    // Whole numbers as integers (10, not printf's shortest 1e+01), as std::to_chars writes them.
+    if (v == float(static_cast<long long>(v)) && v > -1e9f && v < 1e9f) {
+        std::snprintf(buf, sizeof buf, "%lld", static_cast<long long>(v));
+        return buf;
+    }
     for (int precision = 1; precision < 9; ++precision) {
         std::snprintf(buf, sizeof buf, "%.*g", precision, double(v));
         if (std::strtof(buf, nullptr) == v) return buf;
