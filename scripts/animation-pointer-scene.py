@@ -7,7 +7,7 @@ texture's KHR_texture_transform offset (the keyframes in a second, data-URI buff
 
 OUT_DIR gets Suzanne_pointer.gltf plus copies of Suzanne's buffer and textures (the model
 folder is not written to). Used to compare `fresnel render --time T` with the Khronos Sample
-Renderer at the same times (docs in README.md, "Animation").
+Renderer at the same times (docs in docs/shading.md, "Animation").
 """
 import base64
 import json

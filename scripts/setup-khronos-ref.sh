@@ -9,7 +9,7 @@ dir=${1:-build/khronos-ref}
 src="$(cd "$(dirname "$0")/.." && pwd)/../shared/tools/khronos-ref"
 here="$(cd "$(dirname "$0")" && pwd)"
 # Our copy takes `--time T [--animation K]` (scripts/khronos-ref-time.patch): animated models
-# at a time, for README's animation figures. The shared harness is left as it is.
+# at a time, for the animation figures of docs/shading.md. The shared harness is left as it is.
 add_time() { grep -q -- "'--time'" "$dir/render" || patch -s -d "$dir" -p0 < "$here/khronos-ref-time.patch" || echo "setup-khronos-ref: time patch failed"; }
 if [[ -x $dir/render && -d $dir/node_modules ]]; then add_time; exit 0; fi
 if [[ ! -d $src ]]; then echo "setup-khronos-ref: $src is absent"; exit 0; fi

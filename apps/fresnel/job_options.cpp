@@ -1,6 +1,6 @@
-// The job flags of `render`, `batch`, `trace` and `view` (job_options.h): their declaration
-// and documentation (add_job_flags; README.md's CLI reference is their --help), and how they
-// become a fresnel::Job, alone or over a scene file.
+// The job flags of `render`, `batch`, `trace` and `view` (job_options.h): declared from the
+// settings registry (fresnel/job/settings.h; add_job_flags, whose --help docs/cli-reference.md
+// shows), and how they become a fresnel::Job, alone or over a scene file.
 #include "job_options.h"
 
 #include <unistd.h>

@@ -1,7 +1,8 @@
 #pragma once
 // The flags that describe a render job, shared by `render` and `trace` (the job), `view` (the
-// first frame) and `batch` (every job's defaults), and how they become a fresnel::Job. They
-// are declared and documented once, in job_options.cpp (add_job_flags).
+// first frame) and `batch` (every job's defaults), and how they become a fresnel::Job. The
+// settings' flags come from the settings registry (fresnel/job/settings.h, add_job_flags);
+// the others (--light, --gl, --gl-debug) are declared in job_options.cpp.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <map>
@@ -71,7 +72,7 @@ nlohmann::json camera_json(const CameraSetup& camera);
 
 // `job` with the given flags applied (the output's float/encoded choice is the caller's).
 // Usage errors are printed and give nullopt (exit 2), before any file is touched; a
-// malformed --env throws fresnel::Error (exit 1).
+// malformed value of a setting is a usage error too (the registry's message).
 std::optional<Job> job_from_options(const RenderOptions& o, Job job, const GivenFlags& given = {});
 
 // The context options the flags ask for (--gl, --gl-debug; debug builds always debug).

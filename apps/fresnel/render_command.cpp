@@ -1,6 +1,6 @@
 // `fresnel render [MODEL... | SCENE.fresnel.json] -o OUT ...`: headless rendering to PNG, EXR or HDR.
 // Every option is documented where it is declared: here, or in job_options.cpp for the job
-// flags render shares with batch, trace and view; README.md's CLI reference is the output of
+// flags render shares with batch, trace and view; docs/cli-reference.md is the output of
 // `fresnel render --help`.
 #include <sys/wait.h>
 #include <unistd.h>
@@ -143,7 +143,7 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
     // An animated frame is posed from the bind pose (skins by the animated joints).
     if (animated) job.source.pose_skins = false;
 
-    // Scene, then the rules of README.md's "Lighting rules" (libs/render/job.h).
+    // Scene, then the rules of docs/shading.md's "Lighting rules" (fresnel/job/job.h).
     auto t_load = Clock::now();
     Scene scene = load_scene(job, diag);
     double load_ms = ms_since(t_load);

@@ -32,7 +32,7 @@ Runner add_view_command(CLI::App& app) {
         ->check(CLI::Range(1, 100000));
     cmd->add_option("--script", o->script,
                     "Run the commands of this file, one a line (orbit, dolly, open, env, debug, screenshot, save, "
-                    "save-scene, quit, ...: see README), then stay open unless it says quit")
+                    "save-scene, set KEY VALUE, quit, ...: docs/view.md), then stay open unless it says quit")
         ->excludes("--screenshot")->excludes("--frames");
     return [o]() -> int {
 #ifdef FRESNEL_HAVE_VIEWER

@@ -1,4 +1,4 @@
-// The camera convention (README "Camera convention", fresnel/job/camera.h): the orbit
+// The camera convention (docs/shading.md "Camera convention", fresnel/job/camera.h): the orbit
 // camera's eye, target, orientation, fit distance and clip planes against the formulae,
 // and cameras from a scene's nodes. Pure CPU, no GL context.
 #include "fresnel/job/camera.h"
@@ -35,7 +35,7 @@ Bounds box(glm::vec3 min, glm::vec3 max) {
     return b;
 }
 
-// The README's formulae, written out independently of camera.cpp (double precision).
+// docs/shading.md's formulae, written out independently of camera.cpp (double precision).
 struct Expected {
     glm::dvec3 eye, target;
     double D, R, znear, zfar;
@@ -258,7 +258,7 @@ TEST(SceneCamera, NoNodeUsesTheCamera) {
 }
 
 TEST(SceneBounds, CornersOfEachBoxTransformedAndBoxedAgain) {
-    // README: the 8 corners of each POSITION box, through its node's world matrix, boxed again.
+    // docs/shading.md: the 8 corners of each POSITION box, through its node's world matrix, boxed again.
     Scene s;
     Primitive prim;
     prim.bounds_min = glm::vec3(-1.0f);

@@ -1,4 +1,4 @@
-// Tests of resolve(): the lighting, background and camera rules of README.md applied to
+// Tests of resolve(): the lighting, background and camera rules of docs/shading.md applied to
 // a Job, on scenes built in code (no GL, no files).
 #include <gtest/gtest.h>
 

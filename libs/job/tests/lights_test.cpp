@@ -1,5 +1,5 @@
 // Lights (fresnel/job/lights.h): the --light forms and their errors, KHR_lights_punctual
-// nodes placed by their world matrices, and the default pair as README "Lighting rules"
+// nodes placed by their world matrices, and the default pair as docs/shading.md "Lighting rules"
 // states it. Pure CPU.
 #include "fresnel/job/lights.h"
 
@@ -23,7 +23,7 @@ void expect_near(glm::vec3 a, glm::vec3 b, float eps, const std::string& what) {
     EXPECT_NEAR(a.z, b.z, eps) << what;
 }
 
-// The direction a light from azimuth/elevation travels, written from the README: the
+// The direction a light from azimuth/elevation travels, written from docs/shading.md: the
 // opposite of (cos e sin a, sin e, cos e cos a).
 glm::vec3 travel(float az, float el) {
     float a = az * kDeg, e = el * kDeg;

@@ -2,7 +2,7 @@
 // Render jobs: what to render (Job, a plain value), and the rules that turn it into
 // what the renderer needs (resolve()). Every front end (the CLI, a viewer, a scene
 // file, a batch runner) describes a frame as a Job, so the lighting and background
-// rules of README.md ("Lighting rules") exist once, here:
+// rules of docs/shading.md ("Lighting rules") exist once, here:
 //   - environment: the job's, else the built-in studio unless the scene's lights or the
 //     job's extra lights light the scene; Environment::Kind::None turns image-based light off;
 //   - the default pair of directional lights only when nothing else lights the scene;
@@ -75,7 +75,7 @@ struct Job {
         enum class ObjNormals { Auto, Groups, Smooth } obj_normals = ObjNormals::Auto;
         bool operator==(const Source&) const = default;
     };
-    // The orbit camera of README.md's camera convention, or the file's camera N.
+    // The orbit camera of docs/shading.md's camera convention, or the file's camera N.
     struct Camera {
         std::optional<int> scene_camera;  // set: the file's N-th camera (the orbit fields are unused)
         int scene_camera_model = 0;       // with Source::models: whose file `scene_camera` counts in

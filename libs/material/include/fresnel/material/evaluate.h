@@ -172,7 +172,7 @@ MetallicRoughnessPoint specular_glossiness_to_metallic_roughness(glm::vec4 diffu
                                                                  float glossiness);
 
 // The same conversion for a whole material, for converters that must write
-// metallic-roughness (a future OBJ importer). Factors convert exactly: base colour
+// metallic-roughness (fresnel convert to OBJ/MTL and glTF). Factors convert exactly: base colour
 // factor/texture = diffuse factor/texture, metallic 0, roughness 1 - glossinessFactor,
 // KHR_materials_specular with specularColorFactor = specularFactor / ior_to_f0(ior) and
 // specularColorTexture = the RGB of specularGlossinessTexture, ior kept. Lost: the

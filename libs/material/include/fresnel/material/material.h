@@ -9,7 +9,7 @@
 // (shaders/material_inputs.glsl). tests/gpu/material_gpu_test.cpp keeps the two equal.
 //
 // Blocks marked "kept, not shaded" are parsed with the specification's defaults and
-// carried (for `fresnel info`, converters and a future renderer), but neither evaluate
+// carried (for `fresnel info`, and converters), but neither evaluate
 // nor the shader reads them yet.
 #include <cmath>
 #include <limits>
