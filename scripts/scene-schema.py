@@ -5,6 +5,8 @@ has drifted from it.
 
 Every setting scene files hold is a property at its key's place (camera.yaw is
 /camera/yaw: $defs.camera.properties.yaw), with its description, type, range and choices.
+A model's material overrides ($defs.materialOverride) hold the material property registry's
+properties (`fresnel settings --materials --json`, libs/material/src/properties.cpp).
 Properties the schema gives as a reference ($ref: the environment and background objects,
 the lookAt camera's target) are structures, written by hand.
 
@@ -46,6 +48,24 @@ def schema_of(s):
     return {"description": s["doc"] + "." + default + flag, **out}
 
 
+def material_schema_of(p):
+    def bounded(out):
+        for k, v in (("minimum", p["min"]), ("maximum", p["max"])):
+            if v is not None:
+                out[k] = int(v) if float(v).is_integer() else v
+        return out
+    if p["type"] == "bool":
+        out = {"type": "boolean"}
+    elif p["type"] == "choice":
+        out = {"enum": p["choices"]}
+    elif p["width"] == 1:
+        out = bounded({"type": "number"})
+    else:
+        out = {"type": "array", "items": bounded({"type": "number"}), "minItems": p["width"], "maxItems": p["width"]}
+    block = f" ({p['block']})" if p["block"] else ""
+    return {"description": f"{p['doc']}{block}. Default: {p['default']}.", **out}
+
+
 def container(schema, parts):
     """The object schema holding the properties of the key prefix `parts`."""
     node = schema
@@ -74,6 +94,14 @@ def main():
             continue  # a structure, by hand
         props[parts[-1]] = schema_of(s)
         written.append(s["key"])
+    materials = json.loads(subprocess.run([binary, "settings", "--materials", "--json"], check=True,
+                                          capture_output=True, text=True).stdout)
+    override = schema["$defs"]["materialOverride"]["properties"]
+    for key in [k for k in override if k not in ("name", "index")]:
+        del override[key]
+    for p in materials["properties"]:
+        override[p["name"]] = material_schema_of(p)
+        written.append("materials." + p["name"])
     new_text = json.dumps(schema, indent=2, ensure_ascii=False) + "\n"
     if mode == "--check":
         if new_text != old_text:
@@ -82,7 +110,7 @@ def main():
             import difflib
             sys.stdout.writelines(list(difflib.unified_diff(old_text.splitlines(True), new_text.splitlines(True)))[:60])
             return 1
-        print(f"docs/scene.schema.json holds the registry's {len(written)} scene-file settings")
+        print(f"docs/scene.schema.json holds the registries' {len(written)} scene-file settings and material properties")
         return 0
     page.write_text(new_text)
     print(f"wrote {len(written)} settings into docs/scene.schema.json")

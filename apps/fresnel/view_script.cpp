@@ -8,6 +8,8 @@
 
 #include "fresnel/core/color.h"
 #include "fresnel/core/error.h"
+#include "fresnel/core/float_text.h"
+#include "fresnel/material/properties.h"
 #include "fresnel/job/lights.h"
 #include "fresnel/job/settings.h"
 #include "fresnel/render/renderer.h"
@@ -55,75 +57,19 @@ const char* shorthand_key(const std::string& command) {
     return it == keys.end() ? nullptr : it->second;
 }
 
+// `set material` names a property of the material property registry (fresnel/material/properties.h).
 int material_field_size(const std::string& field) {
-    static const std::map<std::string, int> sizes = {
-        {"baseColorFactor", 4}, {"metallicFactor", 1},  {"roughnessFactor", 1}, {"emissiveFactor", 3},
-        {"alphaCutoff", 1},     {"normalScale", 1},     {"occlusionStrength", 1}, {"emissiveStrength", 1},
-        {"ior", 1},             {"specularFactor", 1},  {"clearcoatFactor", 1}, {"clearcoatRoughnessFactor", 1},
-        {"sheenColorFactor", 3}, {"sheenRoughnessFactor", 1}, {"transmissionFactor", 1}, {"thicknessFactor", 1},
-        {"attenuationDistance", 1}, {"attenuationColor", 3}, {"dispersion", 1}, {"iridescenceFactor", 1},
-        {"iridescenceIor", 1}, {"anisotropyStrength", 1}, {"anisotropyRotation", 1}, {"diffuseTransmissionFactor", 1},
-    };
-    auto it = sizes.find(field);
-    return it == sizes.end() ? 0 : it->second;
+    const material_properties::Property* p = material_properties::find(field);
+    return p ? p->width : 0;
 }
 
 bool set_material_field(Material& m, const std::string& field, const std::vector<float>& v) {
-    if (int(v.size()) != material_field_size(field)) return false;
-    if (field == "baseColorFactor") m.base_color_factor = {v[0], v[1], v[2], v[3]};
-    else if (field == "metallicFactor") m.metallic_factor = v[0];
-    else if (field == "roughnessFactor") m.roughness_factor = v[0];
-    else if (field == "emissiveFactor") m.emissive_factor = {v[0], v[1], v[2]};
-    else if (field == "alphaCutoff") m.alpha_cutoff = v[0];
-    else if (field == "normalScale") m.normal_scale = v[0];
-    else if (field == "occlusionStrength") m.occlusion_strength = v[0];
-    else if (field == "emissiveStrength") m.emissive_strength = EmissiveStrengthExt{v[0]};
-    else if (field == "ior") m.ior = IorExt{v[0]};
-    else if (field == "specularFactor") {
-        if (!m.specular) m.specular = SpecularExt{};
-        m.specular->specular_factor = v[0];
-    } else if (field == "clearcoatFactor") {
-        if (!m.clearcoat) m.clearcoat = ClearcoatExt{};
-        m.clearcoat->clearcoat_factor = v[0];
-    } else if (field == "clearcoatRoughnessFactor") {
-        if (!m.clearcoat) m.clearcoat = ClearcoatExt{};
-        m.clearcoat->clearcoat_roughness_factor = v[0];
-    } else if (field == "sheenColorFactor") {
-        if (!m.sheen) m.sheen = SheenExt{};
-        m.sheen->sheen_color_factor = {v[0], v[1], v[2]};
-    } else if (field == "sheenRoughnessFactor") {
-        if (!m.sheen) m.sheen = SheenExt{};
-        m.sheen->sheen_roughness_factor = v[0];
-    } else if (field == "transmissionFactor") {
-        if (!m.transmission) m.transmission = TransmissionExt{};
-        m.transmission->transmission_factor = v[0];
-    } else if (field == "thicknessFactor") {
-        if (!m.volume) m.volume = VolumeExt{};
-        m.volume->thickness_factor = v[0];
-    } else if (field == "attenuationDistance") {
-        if (!m.volume) m.volume = VolumeExt{};
-        m.volume->attenuation_distance = v[0];
-    } else if (field == "attenuationColor") {
-        if (!m.volume) m.volume = VolumeExt{};
-        m.volume->attenuation_color = {v[0], v[1], v[2]};
-    } else if (field == "dispersion") {
-        m.dispersion = DispersionExt{v[0]};
-    } else if (field == "iridescenceFactor") {
-        if (!m.iridescence) m.iridescence = IridescenceExt{};
-        m.iridescence->iridescence_factor = v[0];
-    } else if (field == "iridescenceIor") {
-        if (!m.iridescence) m.iridescence = IridescenceExt{};
-        m.iridescence->iridescence_ior = v[0];
-    } else if (field == "anisotropyStrength") {
-        if (!m.anisotropy) m.anisotropy = AnisotropyExt{};
-        m.anisotropy->anisotropy_strength = v[0];
-    } else if (field == "anisotropyRotation") {
-        if (!m.anisotropy) m.anisotropy = AnisotropyExt{};
-        m.anisotropy->anisotropy_rotation = v[0];
-    } else if (field == "diffuseTransmissionFactor") {
-        if (!m.diffuse_transmission) m.diffuse_transmission = DiffuseTransmissionExt{};
-        m.diffuse_transmission->diffuse_transmission_factor = v[0];
-    }
+    const material_properties::Property* p = material_properties::find(field);
+    if (!p || int(v.size()) != p->width) return false;
+    material_properties::Value value{};
+    for (std::size_t i = 0; i < v.size(); ++i) value[i] = v[i];
+    if (!material_properties::check(*p, value).empty()) return false;
+    p->put(m, value);
     return true;
 }
 
@@ -183,13 +129,17 @@ std::vector<ScriptCommand> read_view_script(const std::string& path) {
             float index = 0.0f;
             if (!parse_float(c.args[1], index) || index < 0 || index != float(int(index)))
                 fail("set material: '" + c.args[1] + "' is not a material index");
-            int want = material_field_size(c.args[2]);
-            if (want == 0) fail("set material: unknown field '" + c.args[2] + "'");
-            if (int(c.args.size()) - 3 != want)
-                fail("set material: " + c.args[2] + " needs " + std::to_string(want) + " number" + (want == 1 ? "" : "s"));
-            for (std::size_t i = 3; i < c.args.size(); ++i) {
-                float v = 0.0f;
-                if (!parse_float(c.args[i], v) || !std::isfinite(v)) fail("set material: '" + c.args[i] + "' is not a number");
+            const material_properties::Property* prop = material_properties::find(c.args[2]);
+            if (!prop) fail("set material: unknown property '" + c.args[2] + "' (fresnel settings lists them)");
+            std::string text;
+            for (std::size_t i = 3; i < c.args.size(); ++i) text += (i > 3 ? " " : "") + c.args[i];
+            try {
+                // Kept as the value's numbers (a choice's index, 0/1), what set_material_field takes.
+                material_properties::Value v = material_properties::parse(*prop, text, "set material " + c.args[2]);
+                c.args.resize(3);
+                for (int i = 0; i < prop->width; ++i) c.args.push_back(shortest_text(v[std::size_t(i)]));
+            } catch (const Error& e) {
+                fail(e.file() + ": " + e.reason());
             }
             out.push_back(std::move(c));
             continue;

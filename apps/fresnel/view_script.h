@@ -17,15 +17,11 @@
 //   wait FRAMES            let FRAMES frames pass
 //   screenshot PATH        write the frame (as --screenshot) once the lighting is ready
 //   print                  print the `fresnel render` command line of the view
-//   set material INDEX FIELD VALUE...   a material factor, FIELD as in glTF: baseColorFactor R G B A,
-//                          metallicFactor, roughnessFactor, emissiveFactor R G B, alphaCutoff,
-//                          normalScale, occlusionStrength, emissiveStrength, ior, specularFactor,
-//                          clearcoatFactor, clearcoatRoughnessFactor, sheenColorFactor R G B,
-//                          sheenRoughnessFactor, transmissionFactor, thicknessFactor, attenuationDistance,
-//                          attenuationColor R G B, dispersion, iridescenceFactor, iridescenceIor,
-//                          anisotropyStrength, anisotropyRotation, diffuseTransmissionFactor
-//                          (live; save writes the core, emissiveStrength, ior, specular and clearcoat
-//                          ones; save-scene the overrides a scene file holds)
+//   set material INDEX NAME VALUE...    a property of material INDEX from the material property
+//                          registry (fresnel/material/properties.h; `fresnel settings` lists them):
+//                          baseColorFactor 1 0 0 1, roughnessFactor 0.3, alphaMode MASK, ... A
+//                          missing extension block is added with its defaults (live; save writes
+//                          them into the glTF file, save-scene as material overrides)
 //   save PATH              the material edits written into a copy of the model's glTF file (or the
 //                          file itself), keeping everything else byte for byte (scene_writer.h)
 //   save-scene PATH        the view as a scene file (*.fresnel.json) that `fresnel render PATH` renders

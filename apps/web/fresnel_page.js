@@ -414,8 +414,13 @@ function buildLights(st) {
     $('add-dir').dataset.next = $('add-point').dataset.next = String(extras.length);
 }
 
-// The material editor: the scene's materials; the factors of the core and of the extensions
-// the material has. Edits show at the next frame; revert restores the material as loaded.
+// The material editor, built from the material property registry (fresnel_material_properties:
+// libs/material/src/properties.cpp): the core's properties and those of the extension blocks
+// the material has, and a list to add another block (with its defaults, which change nothing).
+// Edits show at the next frame; revert restores the material as loaded.
+let materialRegistry = null;
+const materialProperties = () =>
+    materialRegistry || (materialRegistry = JSON.parse(M.UTF8ToString(M._fresnel_material_properties())));
 function buildMaterial(list) {
     const box = $('material-controls'), select = $('material');
     const keep = select.value;
@@ -425,41 +430,53 @@ function buildMaterial(list) {
     box.textContent = '';
     const m = list.find(x => String(x.index) === select.value);
     if (!m) { box.textContent = list.length ? '' : 'no materials (the default material)'; return; }
-    const edit = key => value => setMaterial(m.index, key, value);
-    const range = (label, key, value, min, max, step = 0.01) => field(box, label, { type: 'range', min, max, step, value }, edit(key));
-    const colour = (label, key, rgb) => field(box, label, { type: 'color', value: toHex(rgb) }, v => setMaterial(m.index, key, fromHex(v).join(',')));
-    const base = m.baseColorFactor;
-    const baseColor = field(box, 'base colour', { type: 'color', value: toHex(base.slice(0, 3)) },
-                            v => setMaterial(m.index, 'baseColorFactor', [...fromHex(v), alpha.value].join(',')));
-    const alpha = field(box, 'alpha', { type: 'range', min: 0, max: 1, step: 0.01, value: base[3] },
-                        v => setMaterial(m.index, 'baseColorFactor', [...fromHex(baseColor.value), v].join(',')));
-    range('metallic', 'metallicFactor', m.metallicFactor, 0, 1);
-    range('roughness', 'roughnessFactor', m.roughnessFactor, 0, 1);
-    colour('emissive', 'emissiveFactor', m.emissiveFactor);
-    range('emissive strength', 'emissiveStrength', m.emissiveStrength, 0, 20, 0.1);
-    range('normal scale', 'normalScale', m.normalScale, 0, 2);
-    range('occlusion strength', 'occlusionStrength', m.occlusionStrength, 0, 1);
-    if (m.alphaMode === 'MASK') range('alpha cutoff', 'alphaCutoff', m.alphaCutoff, 0, 1);
-    range('ior', 'ior', m.ior, 1, 3);
-    const section = title => { const h = document.createElement('h2'); h.textContent = title; box.append(h); };
-    if (m.clearcoat) {
-        section('KHR_materials_clearcoat');
-        range('clearcoat', 'clearcoatFactor', m.clearcoat.clearcoatFactor, 0, 1);
-        range('clearcoat roughness', 'clearcoatRoughnessFactor', m.clearcoat.clearcoatRoughnessFactor, 0, 1);
+    const registry = materialProperties();
+    const put = name => value => setMaterial(m.index, name, value);
+    const control = p => {
+        const v = m.values[p.name];
+        if (p.type === 'bool') return field(box, p.name, { type: 'checkbox', checked: v }, x => put(p.name)(x ? 'true' : 'false'));
+        if (p.type === 'choice') {
+            const l = document.createElement('label'), el = document.createElement('select');
+            l.append(`${p.name} `, el);
+            p.choices.forEach(c => el.add(new Option(c, c)));
+            el.value = v;
+            el.addEventListener('input', () => { try { put(p.name)(el.value); } catch (e) { showError(e.message); return; } scheduleDraw(); });
+            box.append(l);
+            return el;
+        }
+        if (p.type === 'color') {
+            let alpha = null;
+            const rgb = field(box, p.name, { type: 'color', value: toHex(v.slice(0, 3)) },
+                              x => put(p.name)((alpha ? [...fromHex(x), alpha.value] : fromHex(x)).join(',')));
+            if (p.width === 4)
+                alpha = field(box, `${p.name} alpha`, { type: 'range', min: 0, max: 1, step: 0.01, value: v[3] },
+                              x => put(p.name)([...fromHex(rgb.value), x].join(',')));
+            return rgb;
+        }
+        const lo = p.sliderMin, hi = p.sliderMax;
+        return field(box, p.name + (p.unit ? ` (${p.unit})` : ''),
+                     { type: 'range', min: lo, max: hi, step: (hi - lo) / 200, value: v === null ? hi : v }, put(p.name));
+    };
+    registry.properties.filter(p => !p.block && p.name in m.values).forEach(control);
+    for (const block of m.blocks) {
+        const h = document.createElement('h2');
+        h.textContent = block;
+        box.append(h);
+        registry.properties.filter(p => p.block === block && p.name in m.values).forEach(control);
     }
-    if (m.sheen) {
-        section('KHR_materials_sheen');
-        colour('sheen colour', 'sheenColorFactor', m.sheen.sheenColorFactor);
-        range('sheen roughness', 'sheenRoughnessFactor', m.sheen.sheenRoughnessFactor, 0, 1);
-    }
-    if (m.transmission) {
-        section('KHR_materials_transmission');
-        range('transmission', 'transmissionFactor', m.transmission.transmissionFactor, 0, 1);
-    }
-    if (m.specular) {
-        section('KHR_materials_specular');
-        range('specular', 'specularFactor', m.specular.specularFactor, 0, 1);
-        colour('specular colour', 'specularColorFactor', m.specular.specularColorFactor);
+    const addable = registry.blocks.filter(b => !m.blocks.includes(b.name) && registry.properties.some(p => p.block === b.name));
+    if (addable.length) {
+        const l = document.createElement('label'), el = document.createElement('select');
+        l.append('add ', el);
+        el.add(new Option('an extension…', ''));
+        addable.forEach(b => el.add(new Option(`${b.name}: ${b.doc}`, b.name)));
+        el.addEventListener('input', () => {
+            const first = registry.properties.find(p => p.block === el.value);
+            try { put(first.name)(first.default); } catch (e) { showError(e.message); return; }
+            buildMaterial(materials());
+            scheduleDraw();
+        });
+        box.append(l);
     }
 }
 
@@ -610,7 +627,7 @@ async function main() {
     bindPanel();
     const redraw = async () => { await draw(); syncPanel(); };
     window.fresnel = { set: (k, v) => { set(k, v); return redraw(); }, openFiles, openUrl, openScene, draw, drawNow, screenshot,
-                       state, materials, setMaterial: (i, k, v) => { setMaterial(i, k, v); return draw(); },
+                       state, materials, materialProperties, setMaterial: (i, k, v) => { setMaterial(i, k, v); return draw(); },
                        addLight: spec => { set(`light:${state().lights.filter(l => l.origin === 'extra').length}`, spec); return redraw(); },
                        removeLight: i => { set('light-remove', i); return redraw(); },
                        frames: () => frames, error: () => ($('error').hidden ? '' : $('error').textContent),

@@ -25,6 +25,7 @@
 #include "fresnel/render/renderer.h"
 #include "fresnel/job/scene_file.h"
 #include "fresnel/job/settings.h"
+#include "fresnel/material/properties.h"
 
 namespace fresnel::web {
 namespace {
@@ -33,20 +34,6 @@ bool parse_float(const std::string& s, float& out) {
     char* end = nullptr;
     out = std::strtof(s.c_str(), &end);
     return !s.empty() && end && *end == '\0';
-}
-
-// "A,B,..." with exactly `n` finite numbers.
-std::vector<float> parse_floats(const std::string& key, const std::string& s, std::size_t n) {
-    std::vector<float> v;
-    std::stringstream in(s);
-    std::string item;
-    while (std::getline(in, item, ',')) {
-        float f = 0;
-        if (!parse_float(item, f) || !std::isfinite(f)) throw Error(key, "", "not a number: '" + item + "'");
-        v.push_back(f);
-    }
-    if (v.size() != n) throw Error(key, "", std::to_string(n) + " comma-separated numbers expected, got '" + s + "'");
-    return v;
 }
 
 std::string debug_name(DebugChannel c) {
@@ -168,65 +155,41 @@ struct App {
         for (const std::string& line : diag.lines()) warnings += line + "\n";
     }
 
-    // The material editor: one factor of material `index` by its glTF name (the scene
-    // file's override names, and the extensions' factors of the blocks the material has);
-    // "reset" restores the material as loaded. The renderer reads the scene's materials at
-    // every frame, so the next frame shows it.
+    // The material editor: a property of material `index` by its name in the material
+    // property registry (fresnel/material/properties.h; a missing extension block is added
+    // with its defaults); "reset" restores the material as loaded. The renderer reads the
+    // scene's materials at every frame, so the next frame shows it.
     void set_material(int index, const std::string& key, const std::string& value) {
         if (!scene || index < 0 || std::size_t(index) >= scene->materials.size())
             throw Error("material", "", "no material " + std::to_string(index));
         Material& m = scene->materials[std::size_t(index)];
-        auto number = [&] { return parse_floats(key, value, 1)[0]; };
-        auto rgb = [&] { auto v = parse_floats(key, value, 3); return glm::vec3(v[0], v[1], v[2]); };
-        auto need = [&](bool has, const char* ext) {
-            if (!has) throw Error(m.name.empty() ? "material " + std::to_string(index) : m.name, "", std::string("has no ") + ext);
-        };
         if (key == "reset") m = loaded_materials.at(std::size_t(index));
-        else if (key == "baseColorFactor") { auto v = parse_floats(key, value, 4); m.base_color_factor = {v[0], v[1], v[2], v[3]}; }
-        else if (key == "metallicFactor") m.metallic_factor = number();
-        else if (key == "roughnessFactor") m.roughness_factor = number();
-        else if (key == "emissiveFactor") m.emissive_factor = rgb();
-        else if (key == "emissiveStrength") {
-            if (!m.emissive_strength) m.emissive_strength.emplace();
-            m.emissive_strength->emissive_strength = number();
-        } else if (key == "normalScale") m.normal_scale = number();
-        else if (key == "occlusionStrength") m.occlusion_strength = number();
-        else if (key == "alphaCutoff") m.alpha_cutoff = number();
-        else if (key == "ior") {
-            if (!m.ior) m.ior.emplace();
-            m.ior->ior = number();
-        } else if (key == "clearcoatFactor") { need(bool(m.clearcoat), "KHR_materials_clearcoat"); m.clearcoat->clearcoat_factor = number(); }
-        else if (key == "clearcoatRoughnessFactor") { need(bool(m.clearcoat), "KHR_materials_clearcoat"); m.clearcoat->clearcoat_roughness_factor = number(); }
-        else if (key == "sheenColorFactor") { need(bool(m.sheen), "KHR_materials_sheen"); m.sheen->sheen_color_factor = rgb(); }
-        else if (key == "sheenRoughnessFactor") { need(bool(m.sheen), "KHR_materials_sheen"); m.sheen->sheen_roughness_factor = number(); }
-        else if (key == "transmissionFactor") { need(bool(m.transmission), "KHR_materials_transmission"); m.transmission->transmission_factor = number(); }
-        else if (key == "specularFactor") { need(bool(m.specular), "KHR_materials_specular"); m.specular->specular_factor = number(); }
-        else if (key == "specularColorFactor") { need(bool(m.specular), "KHR_materials_specular"); m.specular->specular_color_factor = rgb(); }
-        else throw Error("material", "", "unknown material setting '" + key + "'");
+        else material_properties::set(m, key, value, "material " + std::to_string(index));
     }
 
-    // The materials and their editable values, as JSON (the page's editor).
+    // The materials as JSON (the page's editor): the registry's properties of the core and of
+    // the blocks each material has, by name, as numbers, arrays, booleans or words.
     std::string materials_json() const {
+        namespace mp = material_properties;
         nlohmann::json out = nlohmann::json::array();
         if (!scene) return out.dump();
         for (std::size_t i = 0; i < scene->materials.size(); ++i) {
             const Material& m = scene->materials[i];
-            glm::vec4 b = m.base_color_factor;
-            nlohmann::json j = {{"index", i}, {"name", m.name}, {"baseColorFactor", {b.x, b.y, b.z, b.w}},
-                                {"metallicFactor", m.metallic_factor}, {"roughnessFactor", m.roughness_factor},
-                                {"emissiveFactor", vec(m.emissive_factor)}, {"emissiveStrength", m.emissive_strength_value()},
-                                {"normalScale", m.normal_scale}, {"occlusionStrength", m.occlusion_strength},
-                                {"alphaCutoff", m.alpha_cutoff}, {"ior", m.ior_value()},
-                                {"alphaMode", m.alpha_mode == AlphaMode::Opaque ? "OPAQUE" : m.alpha_mode == AlphaMode::Mask ? "MASK" : "BLEND"},
-                                {"hasNormalTexture", m.normal.valid()}, {"hasOcclusionTexture", m.occlusion.valid()}};
-            if (m.clearcoat) j["clearcoat"] = {{"clearcoatFactor", m.clearcoat->clearcoat_factor},
-                                               {"clearcoatRoughnessFactor", m.clearcoat->clearcoat_roughness_factor}};
-            if (m.sheen) j["sheen"] = {{"sheenColorFactor", vec(m.sheen->sheen_color_factor)},
-                                       {"sheenRoughnessFactor", m.sheen->sheen_roughness_factor}};
-            if (m.transmission) j["transmission"] = {{"transmissionFactor", m.transmission->transmission_factor}};
-            if (m.specular) j["specular"] = {{"specularFactor", m.specular->specular_factor},
-                                             {"specularColorFactor", vec(m.specular->specular_color_factor)}};
-            out.push_back(j);
+            nlohmann::json values = nlohmann::json::object(), blocks = nlohmann::json::array();
+            for (const mp::Block& b : mp::blocks())
+                if (b.present(m)) blocks.push_back(b.name);
+            for (const mp::Property& p : mp::all()) {
+                if (!mp::editable(p, m)) continue;
+                const mp::Value v = p.get(m);
+                nlohmann::json& j = values[std::string(p.name)];
+                if (p.type == mp::Type::Bool) j = v[0] != 0.0f;
+                else if (p.type == mp::Type::Choice) j = mp::format(p, v);
+                else if (!std::isfinite(v[0])) j = nullptr;  // attenuationDistance's default: no absorption
+                else if (p.width == 1) j = v[0];
+                else j = std::vector<float>(v.begin(), v.begin() + p.width);
+            }
+            out.push_back({{"index", i}, {"name", m.name}, {"blocks", blocks}, {"values", values},
+                           {"hasNormalTexture", m.normal.valid()}, {"hasOcclusionTexture", m.occlusion.valid()}});
         }
         return out.dump();
     }
@@ -423,6 +386,11 @@ EMSCRIPTEN_KEEPALIVE int fresnel_open_scene(App* app, const char* path) {
 // The material editor (App::set_material), and the materials as JSON.
 EMSCRIPTEN_KEEPALIVE int fresnel_set_material(App* app, int index, const char* key, const char* value) {
     return guarded(app, [&] { app->set_material(index, key, value); });
+}
+// The material property registry (fresnel/material/properties.h) as JSON: what the editor offers.
+EMSCRIPTEN_KEEPALIVE const char* fresnel_material_properties() {
+    static const std::string text = material_properties::describe_json();
+    return text.c_str();
 }
 EMSCRIPTEN_KEEPALIVE const char* fresnel_materials(App* app) {
     if (!app) return "[]";

@@ -9,15 +9,8 @@ namespace fresnel {
 namespace {
 
 void apply_override(Material& m, const Job::Source::MaterialOverride& o) {
-    if (o.base_color_factor) m.base_color_factor = *o.base_color_factor;
-    if (o.metallic_factor) m.metallic_factor = *o.metallic_factor;
-    if (o.roughness_factor) m.roughness_factor = *o.roughness_factor;
-    if (o.emissive_factor) m.emissive_factor = *o.emissive_factor;
-    if (o.emissive_strength) m.emissive_strength = EmissiveStrengthExt{*o.emissive_strength};
-    if (o.alpha_mode) m.alpha_mode = *o.alpha_mode;
-    if (o.alpha_cutoff) m.alpha_cutoff = *o.alpha_cutoff;
-    if (o.double_sided) m.double_sided = *o.double_sided;
-    if (o.ior) m.ior = IorExt{*o.ior};
+    for (const auto& [name, value] : o.values)
+        if (const material_properties::Property* p = material_properties::find(name)) p->put(m, value);
 }
 
 }  // namespace

@@ -235,28 +235,47 @@ glm::mat4 read_transform(const Reader& r, const json& m, const std::string& ptr)
     return out;
 }
 
+// A model's material override: "name" or "index", and properties of the material property
+// registry (fresnel/material/properties.h) by name, each checked against it.
 void read_material_override(const Reader& r, const json& o, const std::string& ptr, Job::Source::MaterialOverride& mo) {
+    namespace mp = material_properties;
     r.object(o, ptr);
-    r.keys(o, ptr, {"name", "index", "baseColorFactor", "metallicFactor", "roughnessFactor", "emissiveFactor",
-                    "emissiveStrength", "alphaMode", "alphaCutoff", "doubleSided", "ior"});
-    if (auto* v = r.find(o, "name")) mo.name = r.string(*v, at(ptr, "name"));
-    if (auto* v = r.find(o, "index")) mo.index = r.integer(*v, at(ptr, "index"), 0, 1 << 30);
-    if (mo.name && mo.index) r.fail(ptr, "has both 'name' and 'index'");
-    if (auto* v = r.find(o, "baseColorFactor")) mo.base_color_factor = r.vec<4>(*v, at(ptr, "baseColorFactor"), 0, 1);
-    if (auto* v = r.find(o, "metallicFactor")) mo.metallic_factor = float(r.number(*v, at(ptr, "metallicFactor"), 0, 1));
-    if (auto* v = r.find(o, "roughnessFactor")) mo.roughness_factor = float(r.number(*v, at(ptr, "roughnessFactor"), 0, 1));
-    if (auto* v = r.find(o, "emissiveFactor")) mo.emissive_factor = r.vec<3>(*v, at(ptr, "emissiveFactor"), 0, 1);
-    if (auto* v = r.find(o, "emissiveStrength")) mo.emissive_strength = float(r.number(*v, at(ptr, "emissiveStrength"), 0, 1e9));
-    if (auto* v = r.find(o, "alphaMode")) {
-        std::string m = r.string(*v, at(ptr, "alphaMode"));
-        if (m == "OPAQUE") mo.alpha_mode = AlphaMode::Opaque;
-        else if (m == "MASK") mo.alpha_mode = AlphaMode::Mask;
-        else if (m == "BLEND") mo.alpha_mode = AlphaMode::Blend;
-        else r.fail(at(ptr, "alphaMode"), "must be OPAQUE, MASK or BLEND, not '" + m + "'");
+    for (const auto& [key, v] : o.items()) {
+        const std::string where = at(ptr, key);
+        if (key == "name") mo.name = r.string(v, where);
+        else if (key == "index") mo.index = r.integer(v, where, 0, 1 << 30);
+        else if (const mp::Property* p = mp::find(key)) {
+            std::string got = "'" + (v.is_string() ? v.get<std::string>() : v.dump()) + "'";
+            auto fail = [&] { r.fail(where, "expected " + mp::expected(*p) + ", got " + got); };
+            mp::Value value{};
+            if (p->type == mp::Type::Bool) {
+                if (!v.is_boolean()) fail();
+                value[0] = v.get<bool>() ? 1.0f : 0.0f;
+            } else if (p->type == mp::Type::Choice) {
+                if (!v.is_string()) fail();
+                try {
+                    value = mp::parse(*p, v.get<std::string>(), where);
+                } catch (const Error&) {
+                    fail();
+                }
+            } else {
+                std::vector<float> numbers;
+                if (v.is_number()) numbers.push_back(v.get<float>());
+                else if (v.is_array())
+                    for (const json& x : v) {
+                        if (!x.is_number()) fail();
+                        numbers.push_back(x.get<float>());
+                    }
+                else fail();
+                if (int(numbers.size()) != p->width || (p->width > 1 && !v.is_array())) fail();
+                for (std::size_t i = 0; i < numbers.size(); ++i) value[i] = numbers[i];
+                if (!mp::check(*p, value).empty()) fail();
+            }
+            mo.values[key] = value;
+        } else
+            r.fail(where, "is not a material property (name, index, or one `fresnel settings` lists under materials)");
     }
-    if (auto* v = r.find(o, "alphaCutoff")) mo.alpha_cutoff = float(r.number(*v, at(ptr, "alphaCutoff"), 0, 1e9));
-    if (auto* v = r.find(o, "doubleSided")) mo.double_sided = r.boolean(*v, at(ptr, "doubleSided"));
-    if (auto* v = r.find(o, "ior")) mo.ior = float(r.number(*v, at(ptr, "ior"), 0, 1e3));
+    if (mo.name && mo.index) r.fail(ptr, "has both 'name' and 'index'");
 }
 
 void read_models(const Reader& r, const json& doc, Job& job) {
@@ -677,19 +696,23 @@ void write_settings(json& doc, const Job& job, std::initializer_list<const char*
 }
 
 json material_override_json(const Job::Source::MaterialOverride& mo) {
+    namespace mp = material_properties;
     json o = json::object();
     if (mo.name) o["name"] = *mo.name;
     if (mo.index) o["index"] = *mo.index;
-    if (mo.base_color_factor) o["baseColorFactor"] = nums<4>(*mo.base_color_factor);
-    if (mo.metallic_factor) o["metallicFactor"] = num(*mo.metallic_factor);
-    if (mo.roughness_factor) o["roughnessFactor"] = num(*mo.roughness_factor);
-    if (mo.emissive_factor) o["emissiveFactor"] = nums<3>(*mo.emissive_factor);
-    if (mo.emissive_strength) o["emissiveStrength"] = num(*mo.emissive_strength);
-    if (mo.alpha_mode)
-        o["alphaMode"] = *mo.alpha_mode == AlphaMode::Mask ? "MASK" : *mo.alpha_mode == AlphaMode::Blend ? "BLEND" : "OPAQUE";
-    if (mo.alpha_cutoff) o["alphaCutoff"] = num(*mo.alpha_cutoff);
-    if (mo.double_sided) o["doubleSided"] = *mo.double_sided;
-    if (mo.ior) o["ior"] = num(*mo.ior);
+    for (const auto& [key, value] : mo.values) {
+        const mp::Property* p = mp::find(key);
+        if (!p) continue;
+        if (p->type == mp::Type::Bool) o[key] = value[0] != 0.0f;
+        else if (p->type == mp::Type::Choice) o[key] = mp::format(*p, value);
+        else if (!std::isfinite(value[0])) continue;  // the default infinity (attenuationDistance) is no key
+        else if (p->width == 1) o[key] = num(value[0]);
+        else {
+            json a = json::array();
+            for (int i = 0; i < p->width; ++i) a.push_back(num(value[std::size_t(i)]));
+            o[key] = a;
+        }
+    }
     return o;
 }
 

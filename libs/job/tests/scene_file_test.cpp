@@ -114,7 +114,8 @@ TEST_F(SceneFileTest, EveryKeyReachesTheJob) {
     EXPECT_FLOAT_EQ(job.source.models[0].transform[0][0], 2.0f);
     ASSERT_EQ(job.source.models[0].materials.size(), 1u);
     EXPECT_EQ(job.source.models[0].materials[0].name, std::optional<std::string>("Red"));
-    EXPECT_EQ(job.source.models[0].materials[0].roughness_factor, std::optional<float>(0.25f));
+    ASSERT_EQ(job.source.models[0].materials[0].values.count("roughnessFactor"), 1u);
+    EXPECT_EQ(job.source.models[0].materials[0].values.at("roughnessFactor")[0], 0.25f);
     EXPECT_FALSE(job.source.models[1].visible);
     ASSERT_TRUE(job.camera.look_at);
     EXPECT_EQ(job.camera.look_at->eye, glm::vec3(0, 1, 5));
@@ -350,15 +351,17 @@ TEST_F(SceneFileTest, SavedJobReadsBackTheSame) {
     a.transform[0][0] = 0.7f;
     Job::Source::MaterialOverride mo;
     mo.index = 0;
-    mo.base_color_factor = glm::vec4(0.1f, 0.2f, 0.3f, 0.9f);
-    mo.roughness_factor = 0.37f;
-    mo.metallic_factor = 0.1f;
-    mo.emissive_factor = glm::vec3(0.5f, 0.25f, 0.125f);
-    mo.emissive_strength = 3.0f;
-    mo.alpha_mode = AlphaMode::Mask;
-    mo.alpha_cutoff = 0.4f;
-    mo.double_sided = true;
-    mo.ior = 1.45f;
+    // Every property of the material property registry, at a value other than its default.
+    for (const auto& p : material_properties::all()) {
+        material_properties::Value v{};
+        for (int k = 0; k < p.width; ++k)
+            v[std::size_t(k)] = p.type == material_properties::Type::Bool     ? 1.0f - p.fallback[0]
+                                : p.type == material_properties::Type::Choice ? 1.0f
+                                                                              : p.slider_min + (0.37f + 0.1f * float(k)) *
+                                                                                                   (p.slider_max - p.slider_min);
+        ASSERT_EQ(material_properties::check(p, v), "") << p.name;
+        mo.values[std::string(p.name)] = v;
+    }
     a.materials.push_back(mo);
     b.path = fs::weakly_canonical(dir_ / "models" / "b.gltf").string();
     b.visible = false;

@@ -11,6 +11,7 @@
 #include <limits>
 #include <vector>
 
+#include "fresnel/material/properties.h"
 #include "fresnel/scene/pose.h"
 
 namespace fresnel {
@@ -77,56 +78,16 @@ std::string join(std::span<const std::string_view> tokens) {
     return s;
 }
 
-template <class Block>
-Block& ensure(std::optional<Block>& b) {
-    if (!b) b.emplace();
-    return *b;
-}
-
-// The material's texture slots by their glTF property path.
-TextureSlot* texture_slot(Material& m, const std::string& path) {
-    if (path == "pbrMetallicRoughness/baseColorTexture") return &m.base_color;
-    if (path == "pbrMetallicRoughness/metallicRoughnessTexture") return &m.metallic_roughness;
-    if (path == "normalTexture") return &m.normal;
-    if (path == "occlusionTexture") return &m.occlusion;
-    if (path == "emissiveTexture") return &m.emissive;
-    const std::string e = "extensions/";
-    if (path.rfind(e, 0) != 0) return nullptr;
-    std::string rest = path.substr(e.size());
-    if (rest == "KHR_materials_clearcoat/clearcoatTexture") return &ensure(m.clearcoat).clearcoat_texture;
-    if (rest == "KHR_materials_clearcoat/clearcoatRoughnessTexture") return &ensure(m.clearcoat).clearcoat_roughness_texture;
-    if (rest == "KHR_materials_clearcoat/clearcoatNormalTexture") return &ensure(m.clearcoat).clearcoat_normal_texture;
-    if (rest == "KHR_materials_specular/specularTexture") return &ensure(m.specular).specular_texture;
-    if (rest == "KHR_materials_specular/specularColorTexture") return &ensure(m.specular).specular_color_texture;
-    if (rest == "KHR_materials_sheen/sheenColorTexture") return &ensure(m.sheen).sheen_color_texture;
-    if (rest == "KHR_materials_sheen/sheenRoughnessTexture") return &ensure(m.sheen).sheen_roughness_texture;
-    if (rest == "KHR_materials_transmission/transmissionTexture") return &ensure(m.transmission).transmission_texture;
-    if (rest == "KHR_materials_volume/thicknessTexture") return &ensure(m.volume).thickness_texture;
-    if (rest == "KHR_materials_iridescence/iridescenceTexture") return &ensure(m.iridescence).iridescence_texture;
-    if (rest == "KHR_materials_iridescence/iridescenceThicknessTexture")
-        return &ensure(m.iridescence).iridescence_thickness_texture;
-    if (rest == "KHR_materials_anisotropy/anisotropyTexture") return &ensure(m.anisotropy).anisotropy_texture;
-    if (rest == "KHR_materials_diffuse_transmission/diffuseTransmissionTexture")
-        return &ensure(m.diffuse_transmission).diffuse_transmission_texture;
-    if (rest == "KHR_materials_diffuse_transmission/diffuseTransmissionColorTexture")
-        return &ensure(m.diffuse_transmission).diffuse_transmission_color_texture;
-    return nullptr;
-}
-
+// A material property by its glTF path: the material property registry
+// (fresnel/material/properties.h) holds every path, range and whether it may be animated.
 Prop material_prop(Material& m, const std::string& path) {
-    // Core.
-    if (path == "pbrMetallicRoughness/baseColorFactor") return prop(&m.base_color_factor.x, 4, 0, 1);
-    if (path == "pbrMetallicRoughness/metallicFactor") return prop(&m.metallic_factor, 1, 0, 1);
-    if (path == "pbrMetallicRoughness/roughnessFactor") return prop(&m.roughness_factor, 1, 0, 1);
-    if (path == "emissiveFactor") return prop(&m.emissive_factor.x, 3, 0);
-    if (path == "alphaCutoff") return prop(&m.alpha_cutoff, 1, 0);
-    if (path == "normalTexture/scale") return prop(&m.normal_scale, 1);
-    if (path == "occlusionTexture/strength") return prop(&m.occlusion_strength, 1, 0, 1);
+    namespace mp = material_properties;
     // KHR_texture_transform of any texture.
     const std::string tt = "/extensions/KHR_texture_transform/";
     if (std::size_t at = path.find(tt); at != std::string::npos) {
-        TextureSlot* slot = texture_slot(m, path.substr(0, at));
-        if (!slot) return none("no texture '" + path.substr(0, at) + "' in a material");
+        const mp::Texture* texture = mp::find_texture_path(path.substr(0, at));
+        if (!texture) return none("no texture '" + path.substr(0, at) + "' in a material");
+        TextureSlot* slot = texture->slot(m);
         std::string what = path.substr(at + tt.size());
         if (!slot->has_transform) slot->set_transform(TextureTransform{});
         Prop p;
@@ -137,45 +98,9 @@ Prop material_prop(Material& m, const std::string& path) {
         p.transform_of = slot;
         return p;
     }
-    // Material extensions.
-    const std::string e = "extensions/";
-    if (path.rfind(e, 0) == 0) {
-        std::string rest = path.substr(e.size());
-        if (rest == "KHR_materials_emissive_strength/emissiveStrength")
-            return prop(&ensure(m.emissive_strength).emissive_strength, 1, 0);
-        if (rest == "KHR_materials_ior/ior") return prop(&ensure(m.ior).ior, 1, 0, 10);
-        if (rest == "KHR_materials_clearcoat/clearcoatFactor") return prop(&ensure(m.clearcoat).clearcoat_factor, 1, 0, 1);
-        if (rest == "KHR_materials_clearcoat/clearcoatRoughnessFactor")
-            return prop(&ensure(m.clearcoat).clearcoat_roughness_factor, 1, 0, 1);
-        if (rest == "KHR_materials_clearcoat/clearcoatNormalTexture/scale")
-            return prop(&ensure(m.clearcoat).clearcoat_normal_scale, 1);
-        if (rest == "KHR_materials_specular/specularFactor") return prop(&ensure(m.specular).specular_factor, 1, 0, 1);
-        if (rest == "KHR_materials_specular/specularColorFactor")
-            return prop(&ensure(m.specular).specular_color_factor.x, 3, 0);
-        if (rest == "KHR_materials_sheen/sheenColorFactor") return prop(&ensure(m.sheen).sheen_color_factor.x, 3, 0, 1);
-        if (rest == "KHR_materials_sheen/sheenRoughnessFactor") return prop(&ensure(m.sheen).sheen_roughness_factor, 1, 0, 1);
-        if (rest == "KHR_materials_transmission/transmissionFactor")
-            return prop(&ensure(m.transmission).transmission_factor, 1, 0, 1);
-        if (rest == "KHR_materials_volume/thicknessFactor") return prop(&ensure(m.volume).thickness_factor, 1, 0);
-        if (rest == "KHR_materials_volume/attenuationDistance") return prop(&ensure(m.volume).attenuation_distance, 1, 1e-6f);
-        if (rest == "KHR_materials_volume/attenuationColor") return prop(&ensure(m.volume).attenuation_color.x, 3, 0, 1);
-        if (rest == "KHR_materials_iridescence/iridescenceFactor")
-            return prop(&ensure(m.iridescence).iridescence_factor, 1, 0, 1);
-        if (rest == "KHR_materials_iridescence/iridescenceIor") return prop(&ensure(m.iridescence).iridescence_ior, 1, 1, 10);
-        if (rest == "KHR_materials_iridescence/iridescenceThicknessMinimum")
-            return prop(&ensure(m.iridescence).iridescence_thickness_minimum, 1, 0);
-        if (rest == "KHR_materials_iridescence/iridescenceThicknessMaximum")
-            return prop(&ensure(m.iridescence).iridescence_thickness_maximum, 1, 0);
-        if (rest == "KHR_materials_anisotropy/anisotropyStrength")
-            return prop(&ensure(m.anisotropy).anisotropy_strength, 1, 0, 1);
-        if (rest == "KHR_materials_anisotropy/anisotropyRotation") return prop(&ensure(m.anisotropy).anisotropy_rotation, 1);
-        if (rest == "KHR_materials_dispersion/dispersion") return prop(&ensure(m.dispersion).dispersion, 1, 0);
-        if (rest == "KHR_materials_diffuse_transmission/diffuseTransmissionFactor")
-            return prop(&ensure(m.diffuse_transmission).diffuse_transmission_factor, 1, 0, 1);
-        if (rest == "KHR_materials_diffuse_transmission/diffuseTransmissionColorFactor")
-            return prop(&ensure(m.diffuse_transmission).diffuse_transmission_color_factor.x, 3, 0, 1);
-    }
-    return none("'" + path + "' is not a material property fresnel animates");
+    const mp::Property* p = mp::find_path(path);
+    if (!p || !p->animatable || !p->data) return none("'" + path + "' is not a material property fresnel animates");
+    return prop(p->data(m), p->width, p->min, p->max);
 }
 
 Prop light_prop(Light& l, const std::string& path) {

@@ -21,6 +21,7 @@
 
 #include "fresnel/core/atomic_file.h"
 #include "fresnel/core/float_text.h"
+#include "fresnel/material/properties.h"
 #include "fresnel/scene/paths.h"
 #include "gltf_codes.h"
 
@@ -670,151 +671,60 @@ class MaterialPatcher {
 public:
     MaterialPatcher(ojson& doc, const std::string& file, Diagnostics& diag) : doc_(doc), file_(file), diag_(diag) {}
 
+    // Every property of the material property registry (fresnel/material/properties.h) whose
+    // value changed, at its glTF path; an extension block the edit added is written whole.
     void patch(std::size_t i, const Material& was, const Material& now) {
+        namespace mp = material_properties;
         ojson& m = doc_["materials"][i];
         const std::string ptr = "/materials/" + std::to_string(i);
-        auto pbr = [&]() -> ojson& { return object(m, "pbrMetallicRoughness"); };
-        if (now.base_color_factor != was.base_color_factor) set(pbr(), "baseColorFactor", numbers_of<4>(now.base_color_factor));
-        if (now.metallic_factor != was.metallic_factor) set(pbr(), "metallicFactor", number_of(now.metallic_factor));
-        if (now.roughness_factor != was.roughness_factor) set(pbr(), "roughnessFactor", number_of(now.roughness_factor));
-        if (was.specular_glossiness &&
-            (now.base_color_factor != was.base_color_factor || now.metallic_factor != was.metallic_factor ||
-             now.roughness_factor != was.roughness_factor))
+        bool pbr_edited = false;
+        for (const mp::Property& p : mp::all()) {
+            const bool had = mp::present(p, was), has = mp::present(p, now);
+            if (!has) continue;
+            const mp::Value v = p.get(now);
+            if (had && mp::same(p, v, p.get(was))) continue;
+            // Walk the path: objects are added, except a texture reference the material lacks
+            // (a normalTexture's scale without a normalTexture means nothing).
+            ojson* parent = &m;
+            std::string_view rest = p.path;
+            bool missing = false;
+            for (std::size_t slash = rest.find('/'); slash != std::string_view::npos; slash = rest.find('/')) {
+                std::string part(rest.substr(0, slash));
+                rest.remove_prefix(slash + 1);
+                if (part.size() > 7 && part.ends_with("Texture") && !(parent->contains(part) && (*parent)[part].is_object())) {
+                    diag_.warn(file_, ptr, "has no " + part + ": its " + std::string(rest) + " is not written");
+                    missing = true;
+                    break;
+                }
+                if (parent == &m && part == "pbrMetallicRoughness") pbr_edited = true;
+                if (part.starts_with("KHR_")) used(part.c_str());
+                parent = &object(*parent, part.c_str());
+            }
+            if (missing) continue;
+            const std::string key(rest);
+            if (p.type == mp::Type::Bool) set(*parent, key.c_str(), v[0] != 0.0f);
+            else if (p.type == mp::Type::Choice) set(*parent, key.c_str(), mp::format(p, v));
+            else if (!std::isfinite(v[0])) {  // the default infinity (attenuationDistance) is written by leaving the key out
+                if (parent->erase(key)) ++changed_;
+            } else if (p.width == 1) set(*parent, key.c_str(), number_of(v[0]));
+            else {
+                ojson a = ojson::array();
+                for (int k = 0; k < p.width; ++k) a.push_back(number_of(v[std::size_t(k)]));
+                set(*parent, key.c_str(), a);
+            }
+        }
+        if (was.specular_glossiness && pbr_edited)
             diag_.warn(file_, ptr, "uses KHR_materials_pbrSpecularGlossiness: the edit is written to "
                                    "pbrMetallicRoughness, which viewers that read the extension ignore");
-        if (now.emissive_factor != was.emissive_factor) set(m, "emissiveFactor", numbers_of<3>(now.emissive_factor));
-        if (now.alpha_mode != was.alpha_mode)
-            set(m, "alphaMode", now.alpha_mode == AlphaMode::Mask ? "MASK" : now.alpha_mode == AlphaMode::Blend ? "BLEND" : "OPAQUE");
-        if (now.alpha_cutoff != was.alpha_cutoff) set(m, "alphaCutoff", number_of(now.alpha_cutoff));
-        if (now.double_sided != was.double_sided) set(m, "doubleSided", now.double_sided);
-        if (now.normal_scale != was.normal_scale) {
-            if (m.contains("normalTexture") && m["normalTexture"].is_object()) set(m["normalTexture"], "scale", number_of(now.normal_scale));
-            else diag_.warn(file_, ptr, "has no normalTexture: its scale is not written");
-        }
-        if (now.occlusion_strength != was.occlusion_strength) {
-            if (m.contains("occlusionTexture") && m["occlusionTexture"].is_object())
-                set(m["occlusionTexture"], "strength", number_of(now.occlusion_strength));
-            else diag_.warn(file_, ptr, "has no occlusionTexture: its strength is not written");
-        }
-        auto ext = [&](const char* name) -> ojson& {
-            used(name);
-            return object(object(m, "extensions"), name);
-        };
-        // An extension value: written when the block is new or the value changed.
-        auto value = [&](const char* name, bool had, bool changed, const char* key, const ojson& v) {
-            if (!had || changed) set(ext(name), key, v);
-        };
-        if (const auto& n = now.emissive_strength; n)
-            value("KHR_materials_emissive_strength", bool(was.emissive_strength),
-                  !was.emissive_strength || n->emissive_strength != was.emissive_strength->emissive_strength,
-                  "emissiveStrength", number_of(n->emissive_strength));
-        if (const auto& n = now.ior; n)
-            value("KHR_materials_ior", bool(was.ior), !was.ior || n->ior != was.ior->ior, "ior", number_of(n->ior));
-        if (const auto& n = now.specular; n) {
-            const SpecularExt o = was.specular.value_or(SpecularExt{});
-            value("KHR_materials_specular", bool(was.specular), n->specular_factor != o.specular_factor, "specularFactor",
-                  number_of(n->specular_factor));
-            value("KHR_materials_specular", bool(was.specular), n->specular_color_factor != o.specular_color_factor,
-                  "specularColorFactor", numbers_of<3>(n->specular_color_factor));
-        }
-        if (const auto& n = now.clearcoat; n) {
-            const ClearcoatExt o = was.clearcoat.value_or(ClearcoatExt{});
-            value("KHR_materials_clearcoat", bool(was.clearcoat), n->clearcoat_factor != o.clearcoat_factor,
-                  "clearcoatFactor", number_of(n->clearcoat_factor));
-            value("KHR_materials_clearcoat", bool(was.clearcoat),
-                  n->clearcoat_roughness_factor != o.clearcoat_roughness_factor, "clearcoatRoughnessFactor",
-                  number_of(n->clearcoat_roughness_factor));
-        }
-        if (const auto& n = now.sheen; n) {
-            const SheenExt o = was.sheen.value_or(SheenExt{});
-            value("KHR_materials_sheen", bool(was.sheen), n->sheen_color_factor != o.sheen_color_factor,
-                  "sheenColorFactor", numbers_of<3>(n->sheen_color_factor));
-            value("KHR_materials_sheen", bool(was.sheen), n->sheen_roughness_factor != o.sheen_roughness_factor,
-                  "sheenRoughnessFactor", number_of(n->sheen_roughness_factor));
-        }
-        if (const auto& n = now.transmission; n) {
-            const TransmissionExt o = was.transmission.value_or(TransmissionExt{});
-            value("KHR_materials_transmission", bool(was.transmission), n->transmission_factor != o.transmission_factor,
-                  "transmissionFactor", number_of(n->transmission_factor));
-        }
-        if (const auto& n = now.volume; n) {
-            const VolumeExt o = was.volume.value_or(VolumeExt{});
-            value("KHR_materials_volume", bool(was.volume), n->thickness_factor != o.thickness_factor,
-                  "thicknessFactor", number_of(n->thickness_factor));
-            // An infinite distance (no attenuation, the default) is written by leaving the key out.
-            if (n->attenuation_distance != o.attenuation_distance || !was.volume) {
-                if (std::isfinite(n->attenuation_distance))
-                    set(ext("KHR_materials_volume"), "attenuationDistance", number_of(n->attenuation_distance));
-                else if (ext("KHR_materials_volume").erase("attenuationDistance"))
-                    ++changed_;
-            }
-            value("KHR_materials_volume", bool(was.volume), n->attenuation_color != o.attenuation_color,
-                  "attenuationColor", numbers_of<3>(n->attenuation_color));
-        }
-        if (const auto& n = now.dispersion; n)
-            value("KHR_materials_dispersion", bool(was.dispersion),
-                  !was.dispersion || n->dispersion != was.dispersion->dispersion, "dispersion", number_of(n->dispersion));
-        if (const auto& n = now.iridescence; n) {
-            const IridescenceExt o = was.iridescence.value_or(IridescenceExt{});
-            const char* x = "KHR_materials_iridescence";
-            value(x, bool(was.iridescence), n->iridescence_factor != o.iridescence_factor, "iridescenceFactor",
-                  number_of(n->iridescence_factor));
-            value(x, bool(was.iridescence), n->iridescence_ior != o.iridescence_ior, "iridescenceIor",
-                  number_of(n->iridescence_ior));
-            value(x, bool(was.iridescence), n->iridescence_thickness_minimum != o.iridescence_thickness_minimum,
-                  "iridescenceThicknessMinimum", number_of(n->iridescence_thickness_minimum));
-            value(x, bool(was.iridescence), n->iridescence_thickness_maximum != o.iridescence_thickness_maximum,
-                  "iridescenceThicknessMaximum", number_of(n->iridescence_thickness_maximum));
-        }
-        if (const auto& n = now.anisotropy; n) {
-            const AnisotropyExt o = was.anisotropy.value_or(AnisotropyExt{});
-            value("KHR_materials_anisotropy", bool(was.anisotropy), n->anisotropy_strength != o.anisotropy_strength,
-                  "anisotropyStrength", number_of(n->anisotropy_strength));
-            value("KHR_materials_anisotropy", bool(was.anisotropy), n->anisotropy_rotation != o.anisotropy_rotation,
-                  "anisotropyRotation", number_of(n->anisotropy_rotation));
-        }
-        if (const auto& n = now.diffuse_transmission; n) {
-            const DiffuseTransmissionExt o = was.diffuse_transmission.value_or(DiffuseTransmissionExt{});
-            const char* x = "KHR_materials_diffuse_transmission";
-            value(x, bool(was.diffuse_transmission), n->diffuse_transmission_factor != o.diffuse_transmission_factor,
-                  "diffuseTransmissionFactor", number_of(n->diffuse_transmission_factor));
-            value(x, bool(was.diffuse_transmission),
-                  n->diffuse_transmission_color_factor != o.diffuse_transmission_color_factor,
-                  "diffuseTransmissionColorFactor", numbers_of<3>(n->diffuse_transmission_color_factor));
-        }
     }
-    // True when any value patch() writes differs between the two.
+    // True when any property patch() writes differs between the two.
     static bool differs(const Material& a, const Material& b) {
-        auto opt = [](const auto& x, const auto& y, auto field) {
-            return bool(x) != bool(y) || (x && field(*x) != field(*y));
-        };
-        return a.base_color_factor != b.base_color_factor || a.metallic_factor != b.metallic_factor ||
-               a.roughness_factor != b.roughness_factor || a.emissive_factor != b.emissive_factor ||
-               a.alpha_mode != b.alpha_mode || a.alpha_cutoff != b.alpha_cutoff || a.double_sided != b.double_sided ||
-               a.normal_scale != b.normal_scale || a.occlusion_strength != b.occlusion_strength ||
-               opt(a.emissive_strength, b.emissive_strength, [](const auto& e) { return e.emissive_strength; }) ||
-               opt(a.ior, b.ior, [](const auto& e) { return e.ior; }) ||
-               opt(a.specular, b.specular, [](const auto& e) { return e.specular_factor; }) ||
-               opt(a.specular, b.specular, [](const auto& e) { return e.specular_color_factor; }) ||
-               opt(a.clearcoat, b.clearcoat, [](const auto& e) { return e.clearcoat_factor; }) ||
-               opt(a.clearcoat, b.clearcoat, [](const auto& e) { return e.clearcoat_roughness_factor; }) ||
-               opt(a.sheen, b.sheen, [](const auto& e) { return e.sheen_color_factor; }) ||
-               opt(a.sheen, b.sheen, [](const auto& e) { return e.sheen_roughness_factor; }) ||
-               opt(a.transmission, b.transmission, [](const auto& e) { return e.transmission_factor; }) ||
-               opt(a.volume, b.volume, [](const auto& e) { return e.thickness_factor; }) ||
-               opt(a.volume, b.volume, [](const auto& e) { return e.attenuation_distance; }) ||
-               opt(a.volume, b.volume, [](const auto& e) { return e.attenuation_color; }) ||
-               opt(a.dispersion, b.dispersion, [](const auto& e) { return e.dispersion; }) ||
-               opt(a.iridescence, b.iridescence, [](const auto& e) { return e.iridescence_factor; }) ||
-               opt(a.iridescence, b.iridescence, [](const auto& e) { return e.iridescence_ior; }) ||
-               opt(a.iridescence, b.iridescence, [](const auto& e) { return e.iridescence_thickness_minimum; }) ||
-               opt(a.iridescence, b.iridescence, [](const auto& e) { return e.iridescence_thickness_maximum; }) ||
-               opt(a.anisotropy, b.anisotropy, [](const auto& e) { return e.anisotropy_strength; }) ||
-               opt(a.anisotropy, b.anisotropy, [](const auto& e) { return e.anisotropy_rotation; }) ||
-               opt(a.diffuse_transmission, b.diffuse_transmission,
-                   [](const auto& e) { return e.diffuse_transmission_factor; }) ||
-               opt(a.diffuse_transmission, b.diffuse_transmission,
-                   [](const auto& e) { return e.diffuse_transmission_color_factor; });
+        namespace mp = material_properties;
+        for (const mp::Property& p : mp::all()) {
+            const bool in_a = mp::present(p, a), in_b = mp::present(p, b);
+            if (in_a != in_b || (in_a && !mp::same(p, p.get(a), p.get(b)))) return true;
+        }
+        return false;
     }
     int changed() const { return changed_; }
 

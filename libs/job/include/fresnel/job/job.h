@@ -14,6 +14,7 @@
 //     has no image-based light) and, when nothing else lights it, the OpenGL 1 reference's
 //     default light instead of the default pair: one white light of colour 1 from
 //     azimuth 30, elevation 45 (../shared/tools/ogl1-ref).
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +31,7 @@
 #include "fresnel/job/camera.h"
 #include "fresnel/job/lights.h"
 #include "fresnel/job/render_settings.h"
+#include "fresnel/material/properties.h"
 #include "fresnel/scene/scene.h"
 
 namespace fresnel {
@@ -48,14 +50,9 @@ struct Job {
         struct MaterialOverride {
             std::optional<std::string> name;  // the material of this name; neither name nor index: all
             std::optional<int> index;         // the model's material N
-            std::optional<glm::vec4> base_color_factor;
-            std::optional<float> metallic_factor, roughness_factor;
-            std::optional<glm::vec3> emissive_factor;
-            std::optional<float> emissive_strength;
-            std::optional<AlphaMode> alpha_mode;
-            std::optional<float> alpha_cutoff;
-            std::optional<bool> double_sided;
-            std::optional<float> ior;
+            // Properties by their name in the material property registry
+            // (fresnel/material/properties.h), each value checked against it.
+            std::map<std::string, material_properties::Value> values;
             bool operator==(const MaterialOverride&) const = default;
         };
         struct Model {

@@ -93,7 +93,7 @@ struct SpecularGlossinessExt {
 };
 
 // Shaded (transmission.h): KHR_materials_transmission, _volume, _dispersion; (evaluate.h)
-// KHR_materials_sheen, _iridescence, _anisotropy, _diffuse_transmission.
+// KHR_materials_sheen, _iridescence, _anisotropy, _diffuse_transmission, _diffuse_roughness.
 struct SheenExt {                          // KHR_materials_sheen (shaded: evaluate.h)
     glm::vec3 sheen_color_factor{0.0f};
     TextureSlot sheen_color_texture;       // RGB, sRGB
@@ -131,6 +131,12 @@ struct DiffuseTransmissionExt {            // KHR_materials_diffuse_transmission
     TextureSlot diffuse_transmission_texture;        // A
     glm::vec3 diffuse_transmission_color_factor{1.0f};
     TextureSlot diffuse_transmission_color_texture;  // RGB, sRGB
+};
+// KHR_materials_diffuse_roughness (shaded: evaluate.h): the roughness of the diffuse lobe,
+// shaded with the energy-preserving Oren-Nayar model (EON, brdf.h); 0 is Lambert.
+struct DiffuseRoughnessExt {
+    float diffuse_roughness_factor = 0.0f;
+    TextureSlot diffuse_roughness_texture;  // R, linear
 };
 
 // Wavefront MTL, as read from the file: the classic (Phong-era) keys and the PBR
@@ -196,6 +202,7 @@ struct Material {
     std::optional<AnisotropyExt> anisotropy;
     std::optional<DispersionExt> dispersion;
     std::optional<DiffuseTransmissionExt> diffuse_transmission;
+    std::optional<DiffuseRoughnessExt> diffuse_roughness;
     std::optional<PhongExt> phong;  // Wavefront MTL source values (OBJ files)
 
     // The values that hold without a block (the extensions' defaults).
@@ -219,6 +226,10 @@ struct Material {
     // share transmitted is factor * texture A; the Khronos viewer's mix(..., 0) is the same).
     bool has_diffuse_transmission() const {
         return diffuse_transmission && diffuse_transmission->diffuse_transmission_factor > 0.0f;
+    }
+    // The diffuse lobe is rough (EON) only with a positive factor (0, the default, is Lambert).
+    bool has_diffuse_roughness() const {
+        return diffuse_roughness && diffuse_roughness->diffuse_roughness_factor > 0.0f;
     }
 };
 
