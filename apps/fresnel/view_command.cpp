@@ -1,6 +1,6 @@
 // `fresnel view [MODEL|FOLDER] ...`: the interactive viewer. It takes `render`'s camera,
 // environment and tone-mapping flags (job_options.h) and opens on the frame `render` would
-// write for them; the window and its loop are in viewer.cpp.
+// write for them; the window and its loop are in viewer/ (over libs/viewer).
 #include "cli_common.h"
 #include "commands.h"
 #include "viewer.h"

@@ -1,5 +1,5 @@
 #pragma once
-// `fresnel view`: the interactive viewer (viewer.cpp, built when libs/gui is).
+// `fresnel view`: the interactive viewer (viewer/, over libs/viewer; built when libs/gui is).
 #include <memory>
 #include <optional>
 #include <string>

@@ -61,9 +61,12 @@ if not {"fresnel_gpu", "PkgConfig::EPOXY"} <= reach("fresnel_render"):
     print(f"FAIL the graph shows fresnel_render without fresnel_gpu and epoxy: {sorted(reach('fresnel_render'))}")
     sys.exit(1)
 # Layers bottom up; a library may depend only on layers below it.
+# fresnel_viewer (the viewer's state, scripts, picking and files) sits above job beside the front ends:
+# it may reach the job layer and what lies under it, and, GL-free, neither render, gpu nor gui.
 layers = ["fresnel_core", "fresnel_material", "fresnel_scene", "fresnel_ibl", "fresnel_job", "fresnel_gpu",
-          "fresnel_render", "fresnel_trace", "fresnel_gui"]
-gl_free = ["fresnel_core", "fresnel_material", "fresnel_scene", "fresnel_ibl", "fresnel_job", "fresnel_trace"]
+          "fresnel_render", "fresnel_trace", "fresnel_viewer", "fresnel_gui"]
+gl_free = ["fresnel_core", "fresnel_material", "fresnel_scene", "fresnel_ibl", "fresnel_job", "fresnel_trace",
+           "fresnel_viewer"]
 for lib in gl_free:
     bad = sorted(n for n in reach(lib) if GL.search(n))
     if bad:
@@ -73,6 +76,9 @@ for lib in gl_free:
         print(f"ok {lib}: no path to OpenGL, EGL, epoxy, GLFW or the GPU library")
 for i, lib in enumerate(layers):
     above = {l for l in layers[i + 1:]} - ({"fresnel_gpu"} if lib == "fresnel_trace" else set())
+    # fresnel_viewer sits beside trace, not above it: it may not reach the tracer.
+    if lib == "fresnel_viewer":
+        above |= {"fresnel_trace"}
     up = sorted(n for n in reach(lib) if n in above or n.replace("::", "_") in above)
     # fresnel_trace sits beside render (not above it): it may not reach render or gpu either.
     if up:

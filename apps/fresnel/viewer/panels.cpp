@@ -1,0 +1,246 @@
+// `fresnel view`: the main panel (file, camera, environment, output, split view, statistics)
+// and the file browser, in Dear ImGui over the viewer's state.
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+
+#include "fresnel/gpu/device.h"
+#include "fresnel/job/orbit_controller.h"
+#include "fresnel/viewer/files.h"
+#include "viewer_app.h"
+
+namespace fresnel::cli::view {
+namespace fs = std::filesystem;
+namespace {
+
+template <class E>
+bool combo(const char* label, E& value, const std::vector<std::pair<E, std::string>>& items) {
+    std::string current;
+    for (const auto& [v, n] : items)
+        if (v == value) current = n;
+    bool changed = false;
+    if (ImGui::BeginCombo(label, current.c_str())) {
+        for (const auto& [v, n] : items) {
+            if (ImGui::Selectable(n.c_str(), v == value)) {
+                changed = v != value;
+                value = v;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    return changed;
+}
+
+const std::vector<std::pair<ToneMapper, std::string>>& tone_mappers() {
+    static const std::vector<std::pair<ToneMapper, std::string>> items{
+        {ToneMapper::Neutral, "neutral"}, {ToneMapper::Aces, "aces"}, {ToneMapper::AcesHill, "aces-hill"},
+        {ToneMapper::Reinhard, "reinhard"}, {ToneMapper::Agx, "agx"}, {ToneMapper::None, "none"}};
+    return items;
+}
+
+std::vector<std::pair<DebugChannel, std::string>> debug_channels() {
+    std::vector<std::pair<DebugChannel, std::string>> channels{{DebugChannel::None, "none (shaded)"}};
+    for (const auto& n : debug_channel_names()) channels.emplace_back(*parse_debug_channel(n), n);
+    return channels;
+}
+
+}  // namespace
+
+void Viewer::draw_gui() {
+    draw_gizmos();
+    if (state_.split) {  // the divider, over the frame and under the panels
+        gui::Size win = window_->window_size();
+        float x = state_.split_pos * float(win.width);
+        ImDrawList* d = ImGui::GetBackgroundDrawList();
+        d->AddLine(ImVec2(x, 0.0f), ImVec2(x, float(win.height)), IM_COL32(255, 255, 255, 200), 2.0f);
+    }
+    if (!state_.gui_visible) return;
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowBgAlpha(0.8f);
+    ImGui::Begin("fresnel view (Tab hides)");
+    if (!state_.error.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.4f, 0.35f, 1.0f));
+        ImGui::TextWrapped("%s", state_.error.c_str());
+        ImGui::PopStyleColor();
+        if (ImGui::SmallButton("dismiss")) state_.error.clear();
+    }
+    if (bake_) {
+        ImGui::Text("baking %s", bake_->resolved.environment ? bake_->resolved.environment->describe().c_str() : "");
+        ImGui::ProgressBar(bake_->progress->load());
+    }
+    if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) draw_file_panel();
+    if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) draw_camera_panel();
+    if (ImGui::CollapsingHeader("Environment")) draw_environment_panel();
+    draw_output_panels();
+    if (state_.scene && ImGui::CollapsingHeader("Scene")) draw_scene_tree();
+    if (ImGui::CollapsingHeader("Lights")) draw_lights_panel();
+    if (state_.scene && !state_.scene->materials.empty() && ImGui::CollapsingHeader("Materials")) draw_material_editor();
+    if (ImGui::CollapsingHeader("Statistics")) {
+        const glm::ivec2 fb = state_.framebuffer;
+        ImGui::Text("%dx%d pixels, frame %.1f ms (CPU, draw + finish)", fb.x, fb.y, frame_ms_);
+        if (gpu_ms_ >= 0.0) ImGui::Text("GPU %.2f ms (timer query)", gpu_ms_);
+        else ImGui::TextDisabled("GPU time: this context has no timer queries (OpenGL ES 3.0)");
+        ImGui::Text("resident memory %.1f MiB, texture memory %.1f MiB", double(resident_kb()) / 1024.0,
+                    double(renderer_->texture_bytes()) / (1024.0 * 1024.0));
+        ImGui::Text("%d draw calls, %zu triangles, %zu programs", stats_.draw_calls, stats_.triangles,
+                    renderer_->program_count());
+        ImGui::TextWrapped("%s", window_->context().renderer().c_str());
+    }
+    if (!state_.status.empty()) ImGui::TextDisabled("%s", state_.status.c_str());
+    ImGui::End();
+    if (state_.browser_open) draw_browser();
+}
+
+void Viewer::draw_file_panel() {
+    const Job& job = state_.job;
+    ImGui::TextWrapped("%s", job.source.model.empty() ? "(built-in demo)" : job.source.model.c_str());
+    if (ImGui::Button("Open... (O)")) state_.browser_open = true;
+    ImGui::SameLine();
+    if (ImGui::Button("< PgUp")) step_folder(-1);
+    ImGui::SameLine();
+    if (ImGui::Button("PgDn >")) step_folder(+1);
+    ImGui::SameLine();
+    if (ImGui::Button("Demo")) open_model("", false);
+    if (!state_.folder_models.empty()) ImGui::Text("%zu models in this folder", state_.folder_models.size());
+    if (!state_.recent.paths().empty() && ImGui::TreeNode("Recent")) {
+        std::string chosen;
+        for (const auto& r : state_.recent.paths())
+            if (ImGui::Selectable(r.c_str())) chosen = r;
+        ImGui::TreePop();
+        if (!chosen.empty()) open_path(chosen);
+    }
+    if (!state_.warnings.empty() && ImGui::TreeNode("warnings", "%zu warnings", state_.warnings.size())) {
+        for (const auto& w : state_.warnings) ImGui::TextWrapped("%s", w.c_str());
+        ImGui::TreePop();
+    }
+    ImGui::TextDisabled("drop a model, a scene file or an environment onto the window");
+    ImGui::InputText("##scene-file", &state_.scene_save_path);
+    ImGui::SameLine();
+    if (ImGui::Button("Save scene (Ctrl+S)")) save_scene(state_.scene_save_path);
+}
+
+void Viewer::draw_camera_panel() {
+    Job::Camera& c = state_.job.camera;
+    const std::optional<CameraSetup>& last = state_.last_camera;
+    if (state_.scene && !state_.scene->cameras.empty()) {
+        std::string current = c.scene_camera ? state_.camera_label(*c.scene_camera) : "orbit";
+        if (ImGui::BeginCombo("view", current.c_str())) {
+            if (ImGui::Selectable("orbit", !c.scene_camera)) {
+                if (c.scene_camera && last) c = orbit_from_setup(*last, state_.bounds, last->yfov_deg);
+            }
+            for (int i = 0; i < int(state_.scene->cameras.size()); ++i)
+                if (ImGui::Selectable(state_.camera_label(i).c_str(), c.scene_camera == i)) c.scene_camera = i;
+            ImGui::EndCombo();
+        }
+    }
+    if (!c.scene_camera) {
+        ImGui::DragFloat("yaw", &c.yaw_deg, 0.5f, -180.0f, 180.0f, "%.2f deg");
+        ImGui::DragFloat("pitch", &c.pitch_deg, 0.5f, -89.9f, 89.9f, "%.2f deg");
+        float k = distance_k(c, std::max(state_.framebuffer.x, 1), std::max(state_.framebuffer.y, 1));
+        if (ImGui::DragFloat("distance K", &k, 0.01f, 0.01f, 1e4f, "%.3f")) c.distance_k = std::max(k, 0.01f);
+        ImGui::DragFloat("fov", &c.yfov_deg, 0.2f, 1.0f, 170.0f, "%.1f deg");
+        if (c.target) ImGui::Text("target %.3f %.3f %.3f (panned)", c.target->x, c.target->y, c.target->z);
+    }
+    if (ImGui::Button("Frame all (F)")) c = frame_all(c);
+    ImGui::SameLine();
+    if (ImGui::Button("Reset (R)")) c = state_.initial_camera;
+    if (ImGui::Checkbox("auto-rotate (A)", &state_.spin_camera) && state_.spin_camera) spin_last_.reset();
+    if (ImGui::Button("Copy as command line (Ctrl+C)")) copy_command_line();
+    if (!state_.command_line.empty()) ImGui::TextWrapped("%s", state_.command_line.c_str());
+    ImGui::TextDisabled("left drag: orbit; right/middle or shift+left: pan; wheel: dolly");
+}
+
+void Viewer::draw_environment_panel() {
+    using Kind = Job::Environment::Kind;
+    Job& job = state_.job;
+    Job::Environment& e = job.environment;
+    combo<Kind>("light", e.kind,
+                {{Kind::Automatic, "automatic"}, {Kind::Studio, "studio"}, {Kind::File, "file"},
+                 {Kind::Color, "colour"}, {Kind::None, "none (no IBL)"}});
+    if (e.kind == Kind::File) ImGui::TextWrapped("%s", e.path.empty() ? "(drop a .hdr/.exr)" : e.path.c_str());
+    if (e.kind == Kind::Color) ImGui::ColorEdit3("colour", &e.color.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+    ImGui::SliderFloat("rotation", &e.rotation_deg, -180.0f, 180.0f, "%.1f deg");
+    ImGui::SameLine();
+    ImGui::Checkbox("spin", &state_.spin_environment);
+    ImGui::DragFloat("intensity", &e.intensity, 0.01f, 0.0f, 100.0f, "%.2f");
+    using Mode = Job::Background::Mode;
+    combo<Mode>("background", job.background.mode,
+                {{Mode::Automatic, "automatic"}, {Mode::Environment, "environment (sharp)"},
+                 {Mode::Blurred, "blurred"}, {Mode::Color, "colour"}, {Mode::Transparent, "transparent"}});
+    if (job.background.mode == Mode::Color) ImGui::ColorEdit3("background colour", &job.background.color.x);
+    ImGui::Checkbox("scene lights", &job.lights.scene_lights);
+}
+
+// "Output" and "Split view".
+void Viewer::draw_output_panels() {
+    if (ImGui::CollapsingHeader("Output")) {
+        Job::Output& o = state_.job.output;
+        combo<ToneMapper>("tone mapper", o.tone_mapper, tone_mappers());
+        ImGui::SliderFloat("exposure", &o.exposure_ev, -8.0f, 8.0f, "%.2f EV");
+        combo<Encoding>("encoding", o.encoding, {{Encoding::Srgb, "srgb"}, {Encoding::Gamma22, "gamma2.2"}});
+        combo<DebugChannel>("debug", o.debug, debug_channels());
+        ImGui::Checkbox("energy compensation", &o.energy_compensation);
+        ImGui::SliderInt("MSAA", &o.msaa, 1, 8);
+        if (ImGui::Button("Screenshot (F12)")) state_.screenshot_requested = true;
+    }
+    if (ImGui::CollapsingHeader("Split view")) {
+        if (ImGui::Checkbox("split (drag the divider)", &state_.split) && state_.split) state_.split_output = state_.job.output;
+        if (state_.split) {
+            Job::Output& right = state_.split_output;
+            ImGui::TextDisabled("right of the divider:");
+            combo<DebugChannel>("debug##right", right.debug, debug_channels());
+            combo<ToneMapper>("tone mapper##right", right.tone_mapper, tone_mappers());
+            ImGui::SliderFloat("exposure##right", &right.exposure_ev, -8.0f, 8.0f, "%.2f EV");
+            ImGui::Checkbox("energy compensation##right", &right.energy_compensation);
+        }
+    }
+}
+
+// A file browser in ImGui: folders, models and environments of one folder at a time.
+void Viewer::draw_browser() {
+    using viewer::is_environment;
+    using viewer::is_folder;
+    using viewer::is_model;
+    fs::path& browser_dir = state_.browser_dir;
+    ImGui::SetNextWindowSize(ImVec2(480, 420), ImGuiCond_FirstUseEver);
+    if (!ImGui::Begin("Open", &state_.browser_open)) {
+        ImGui::End();
+        return;
+    }
+    std::string dir = browser_dir.string();
+    if (ImGui::InputText("folder", &dir, ImGuiInputTextFlags_EnterReturnsTrue)) browser_dir = dir;
+    ImGui::BeginChild("entries");
+    std::error_code ec;
+    std::vector<fs::directory_entry> entries;
+    for (fs::directory_iterator it(browser_dir, ec), end; !ec && it != end; it.increment(ec)) entries.push_back(*it);
+    if (ec) ImGui::TextDisabled("%s", ec.message().c_str());
+    std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
+        bool da = is_folder(a.path()), db = is_folder(b.path());
+        return da != db ? da : a.path().filename() < b.path().filename();
+    });
+    fs::path next_dir;
+    std::string chosen;
+    if (ImGui::Selectable("../")) next_dir = browser_dir.parent_path();
+    for (const auto& e : entries) {
+        const fs::path& p = e.path();
+        if (p.filename().string().starts_with(".")) continue;
+        bool dir_entry = is_folder(p) && !is_environment(p);
+        if (!dir_entry && !is_model(p) && !is_environment(p)) continue;
+        std::string label = p.filename().string() + (dir_entry ? "/" : is_model(p) ? "" : "  (environment)");
+        if (ImGui::Selectable(label.c_str())) {
+            if (dir_entry) next_dir = p;
+            else chosen = p.string();
+        }
+    }
+    ImGui::EndChild();
+    ImGui::End();
+    if (!next_dir.empty()) browser_dir = next_dir;
+    if (!chosen.empty()) {
+        open_path(chosen);
+        state_.browser_open = false;
+    }
+}
+
+}  // namespace fresnel::cli::view

@@ -1,0 +1,111 @@
+#pragma once
+// What the viewer shows and what the user has done to it, without a window or GL (after
+// Filament's viewer Settings): the job, the loaded scene and its resolution for the last frame,
+// the selection, the added lights and their drags, the auto-rotation, the split view, the files
+// (folder, recent list, save paths), the material edits' bookkeeping and the messages shown.
+// The window (apps/fresnel/viewer/) draws it and feeds it input; scripts change it through
+// fresnel/viewer/automation.h; the unit tests drive it directly.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "fresnel/job/job.h"
+#include "fresnel/job/orbit_controller.h"
+#include "fresnel/scene/pick.h"
+#include "fresnel/viewer/files.h"
+
+namespace fresnel::viewer {
+
+struct State {
+    // --- what is shown ---
+    Job job;
+    Job::Camera initial_camera;          // R (and the script's `reset`) return to it
+    Job::Environment good_environment;   // the last environment whose lighting loaded
+    std::unique_ptr<Scene> scene;        // null until a scene loads
+    ResolvedJob resolved;                // the job resolved on the scene for the last frame
+    Bounds bounds;                       // resolved.bounds
+    std::optional<CameraSetup> last_camera;  // the last drawn frame's camera (picking, handles)
+    bool last_transparent = false;
+    glm::ivec2 framebuffer{0};  // pixels
+    glm::ivec2 window{0};       // points (ImGui's coordinates; differs on high-DPI screens)
+
+    // --- files ---
+    std::string opened;            // the model or scene file shown ("" for the demo)
+    std::string first_scene_file;  // a folder opened on the command line whose first model is a scene file
+    std::vector<std::string> folder_models;  // what PageUp/PageDown step through
+    RecentFiles recent;
+    std::filesystem::path recent_file;       // where `recent` is kept (job.environment.use_cache); empty: nowhere
+    std::string scene_save_path = "view.fresnel.json", model_save_path;
+    std::filesystem::path browser_dir;       // the file browser's folder
+    std::vector<std::string> warnings;       // the loaded files'
+
+    // --- selection and edits ---
+    std::optional<PickHit> picked;
+    int edit_material = 0;                     // the material editor's material
+    std::vector<Material> original_materials;  // as loaded: what the edits are diffed against
+    bool materials_edited = false;
+    int selected_light = -1, dragging_light = -1;  // indices into job.lights.extra
+
+    // --- the view ---
+    bool spin_camera = false, spin_environment = false, orbit_lights = false;
+    bool show_gizmos = true, gui_visible = true, browser_open = false, screenshot_requested = false;
+    bool split = false;           // the split view: right of the divider, split_output's settings
+    float split_pos = 0.5f;       // the divider, 0..1 of the width
+    Job::Output split_output;
+
+    // --- messages ---
+    std::string error, status, command_line;
+
+    // The command line's model or folder: a folder shows its first model (a scene file first
+    // opens as one: first_scene_file) and PageUp/PageDown step through the folder; a model
+    // steps through its siblings. Sets the browser's folder.
+    void start_with(const std::string& model_or_folder);
+    // The job as the window shows it: at the framebuffer's size.
+    Job shown_job() const;
+    OrbitViewport viewport() const;
+    // Orbiting, panning or dollying away from a file's camera starts from where it looks.
+    void orbit_camera_now();
+
+    bool spinning() const;
+    // One step of the auto-rotation after `seconds`: the camera about its target, the
+    // environment, the added lights about the model, as switched on.
+    void spin(double seconds);
+
+    // The click selection at a window point (needs last_camera): the nearest visible primitive,
+    // or none; the material editor follows the selection.
+    void pick_at(glm::vec2 point);
+    // Selects the primitive of the first instance of `node`; false when no instance is that node.
+    bool select_primitive(int node, int primitive);
+    // KHR_node_visibility (the renderer must read the instances again); a hidden node's
+    // selection is cleared.
+    void set_node_visible(int node, bool visible);
+
+    // A light added in front of the model (from azimuth 30, elevation 45), selected; its index.
+    int add_light(Light::Type type);
+    void remove_light(int index);
+    // Left-button drags of a handle of an added light (the panel's gizmos). `clicked`: the button
+    // went down this frame (without Shift), `down`: it is held. True while a handle is dragged
+    // (the camera stays).
+    bool drag_lights(glm::vec2 mouse, bool clicked, bool down);
+
+    // An environment file: the job's environment and the recent list.
+    void open_environment(const std::string& path);
+    // Reads recent_file into the list (when the job uses the cache).
+    void load_recent();
+    // `path` at the front of the recent list, written to recent_file when the job uses the cache.
+    void remember(const std::string& path);
+    // The model PageUp (-1) or PageDown (+1) opens; nothing when no folder is being stepped.
+    std::optional<std::string> step_folder(int delta) const;
+
+    // The split view's divider, in framebuffer pixels.
+    int divider_pixels() const;
+    // The scene tree's and the camera menu's names (need a scene).
+    std::string node_label(int node) const;
+    std::string camera_label(int camera) const;
+};
+
+}  // namespace fresnel::viewer

@@ -1,0 +1,155 @@
+#include "fresnel/viewer/state.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/trigonometric.hpp>
+
+#include "fresnel/job/scene_file.h"
+#include "fresnel/viewer/geometry.h"
+
+namespace fresnel::viewer {
+namespace fs = std::filesystem;
+
+void State::start_with(const std::string& model) {
+    opened = model;
+    if (!model.empty() && is_folder(model)) {
+        folder_models = list_models(model);
+        job.source.model = folder_models.empty() ? std::string() : folder_models.front();
+        opened = job.source.model;
+        if (folder_models.empty()) error = model + ": no models (.gltf, .glb, .obj, .fresnel.json) in this folder";
+        if (!opened.empty() && is_scene_file(opened)) {  // a folder that starts with a scene file
+            job.source.model.clear();
+            first_scene_file = opened;
+        }
+    } else if (!model.empty()) {
+        folder_models = sibling_models(model);
+    }
+    browser_dir = job.source.model.empty() ? fs::current_path() : fs::absolute(job.source.model).parent_path();
+}
+
+Job State::shown_job() const {
+    Job j = job;
+    j.output.width = std::max(framebuffer.x, 1);
+    j.output.height = std::max(framebuffer.y, 1);
+    return j;
+}
+
+OrbitViewport State::viewport() const { return OrbitViewport{bounds, std::max(framebuffer.x, 1), std::max(framebuffer.y, 1)}; }
+
+void State::orbit_camera_now() {
+    if (job.camera.scene_camera && last_camera) job.camera = orbit_from_setup(*last_camera, bounds, last_camera->yfov_deg);
+}
+
+bool State::spinning() const { return spin_camera || spin_environment || (orbit_lights && !job.lights.extra.empty()); }
+
+void State::spin(double seconds) {
+    const float step = spin_degrees(seconds);
+    if (spin_camera) {
+        orbit_camera_now();
+        job.camera.yaw_deg = std::remainder(job.camera.yaw_deg + step, 360.0f);
+    }
+    if (spin_environment) job.environment.rotation_deg = std::remainder(job.environment.rotation_deg + step, 360.0f);
+    if (orbit_lights) viewer::orbit_lights(job.lights.extra, bounds, step);
+}
+
+void State::pick_at(glm::vec2 point) {
+    picked.reset();
+    if (!scene || !last_camera) return;
+    picked = viewer::pick_at(*scene, resolved.instances, *last_camera, window, point);
+    if (picked) {
+        const Primitive& p = scene->meshes[std::size_t(picked->mesh)].primitives[std::size_t(picked->primitive)];
+        if (p.material >= 0) edit_material = p.material;
+    }
+}
+
+bool State::select_primitive(int node, int primitive) {
+    for (std::size_t i = 0; i < resolved.instances.size(); ++i)
+        if (resolved.instances[i].node == node) {
+            PickHit h;
+            h.instance = int(i);
+            h.node = node;
+            h.mesh = scene->nodes[std::size_t(node)].mesh;
+            h.primitive = primitive;
+            picked = h;
+            const int mat = scene->meshes[std::size_t(h.mesh)].primitives[std::size_t(primitive)].material;
+            if (mat >= 0) edit_material = mat;
+            return true;
+        }
+    return false;
+}
+
+void State::set_node_visible(int node, bool visible) {
+    scene->nodes[std::size_t(node)].visible = visible;
+    if (picked && !visible) picked.reset();
+}
+
+int State::add_light(Light::Type type) {
+    const glm::vec3 c = handle_centre(bounds);
+    const float r = handle_radius(bounds);
+    LightInstance l;
+    l.type = type;
+    l.direction = direction_from_angles(30.0f, 45.0f);
+    l.position = c - l.direction * r;
+    l.radiance = glm::vec3(type == Light::Type::Directional ? 3.0f : 3.0f * r * r);
+    l.outer_cone = glm::radians(30.0f);
+    l.inner_cone = glm::radians(15.0f);
+    job.lights.extra.push_back(l);
+    selected_light = int(job.lights.extra.size()) - 1;
+    return selected_light;
+}
+
+void State::remove_light(int index) {
+    if (index < 0 || index >= int(job.lights.extra.size())) return;
+    job.lights.extra.erase(job.lights.extra.begin() + index);
+    selected_light = -1;
+    dragging_light = -1;
+}
+
+bool State::drag_lights(glm::vec2 mouse, bool clicked, bool down) {
+    if (!gui_visible || !show_gizmos) return false;
+    if (clicked) {
+        dragging_light = last_camera ? nearest_handle(job.lights.extra, bounds, *last_camera, window, mouse) : -1;
+        if (dragging_light >= 0) selected_light = dragging_light;
+    }
+    if (!down) dragging_light = -1;
+    if (dragging_light < 0 || dragging_light >= int(job.lights.extra.size())) return false;
+    std::optional<Ray> ray = last_camera ? window_ray(*last_camera, window, mouse) : std::nullopt;
+    if (ray) drag_light(job.lights.extra[std::size_t(dragging_light)], *ray, bounds, *last_camera);
+    return true;
+}
+
+void State::open_environment(const std::string& path) {
+    job.environment.kind = Job::Environment::Kind::File;
+    job.environment.path = path;
+    if (!path.empty()) remember(path);
+}
+
+void State::load_recent() {
+    if (job.environment.use_cache && !recent_file.empty()) recent.load(recent_file);
+}
+
+void State::remember(const std::string& path) {
+    recent.add(path);
+    if (job.environment.use_cache && !recent_file.empty()) recent.save(recent_file);
+}
+
+std::optional<std::string> State::step_folder(int delta) const { return viewer::step_folder(folder_models, opened, delta); }
+
+int State::divider_pixels() const { return std::clamp(int(split_pos * float(framebuffer.x) + 0.5f), 0, framebuffer.x); }
+
+std::string State::node_label(int n) const {
+    const Node& node = scene->nodes[std::size_t(n)];
+    std::string s = node.name.empty() ? "node " + std::to_string(n) : node.name;
+    if (node.mesh >= 0) s += "  [mesh " + std::to_string(node.mesh) + "]";
+    if (node.light >= 0) s += "  [light " + std::to_string(node.light) + "]";
+    if (node.camera >= 0) s += "  [camera " + std::to_string(node.camera) + "]";
+    return s;
+}
+
+std::string State::camera_label(int i) const {
+    const std::string& name = scene->cameras[std::size_t(i)].name;
+    return "camera " + std::to_string(i) + (name.empty() ? "" : ": " + name);
+}
+
+}  // namespace fresnel::viewer
