@@ -18,7 +18,7 @@
 #include "fresnel/job/orbit_controller.h"
 #include "fresnel/job/scene_file.h"
 #include "fresnel/job/settings.h"
-#include "view_script.h"
+#include "fresnel/viewer/script.h"
 
 using namespace fresnel;
 using namespace fresnel::cli;
@@ -145,7 +145,7 @@ Job through_scene_file(const Job& job) {
 Job through_view_script(const std::string& key, const std::string& value) {
     fs::path path = fs::temp_directory_path() / ("fresnel-settings-" + std::to_string(::getpid()) + ".txt");
     std::ofstream(path) << "# round trip\nset " << key << " " << value << "\n";
-    std::vector<ScriptCommand> commands = read_view_script(path.string());
+    std::vector<viewer::Command> commands = viewer::read_view_script(path.string());
     fs::remove(path);
     EXPECT_EQ(commands.size(), 1u);
     Job job;
@@ -239,7 +239,7 @@ TEST(SettingsRegistry, BadValuesGetOneMessageEverywhere) {
     fs::path path = fs::temp_directory_path() / ("fresnel-bad-" + std::to_string(::getpid()) + ".txt");
     std::ofstream(path) << "set camera.pitch 100\n";
     try {
-        read_view_script(path.string());
+        viewer::read_view_script(path.string());
         FAIL();
     } catch (const Error& e) {
         EXPECT_EQ(e.where(), "line 1");

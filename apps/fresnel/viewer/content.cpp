@@ -133,10 +133,9 @@ bool Viewer::save_scene(const std::string& path) {
     try {
         if (path.empty()) throw Error("", "", "save scene: no file name");
         Job job = state_.shown_job();
-        std::vector<std::string> lost = material_overrides(job);
+        add_material_overrides(job);
         Diagnostics diag;
         save_scene_file(path, job, diag, image_beside(path));
-        for (const auto& l : lost) diag.warn(path, "", l);
         if (diag.total()) print_warnings(diag);
         state_.status = "saved " + path;
         std::fprintf(stderr, "fresnel: wrote %s\n", path.c_str());
@@ -149,14 +148,11 @@ bool Viewer::save_scene(const std::string& path) {
 }
 
 // The material edits into `job` as material overrides (by index) of the models they belong
-// to; what a scene file cannot hold, as one line each.
-std::vector<std::string> Viewer::material_overrides(Job& job) const {
-    // The body reads the state through the names it had in viewer.cpp (kept as they were).
-    const std::unique_ptr<Scene>& scene_ = state_.scene;
-    const bool& materials_edited_ = state_.materials_edited;
-    const std::vector<Material>& original_materials_ = state_.original_materials;
-    std::vector<std::string> lost;
-    if (!scene_ || !materials_edited_ || scene_->materials.size() != original_materials_.size()) return lost;
+// to: scene files hold every property of the material property registry.
+void Viewer::add_material_overrides(Job& job) const {
+    const std::unique_ptr<Scene>& scene = state_.scene;
+    const std::vector<Material>& original = state_.original_materials;
+    if (!scene || !state_.materials_edited || scene->materials.size() != original.size()) return;
     if (job.source.models.empty()) {
         Job::Source::Model m;
         m.path = job.source.model;
@@ -168,31 +164,28 @@ std::vector<std::string> Viewer::material_overrides(Job& job) const {
     std::vector<std::size_t> visible;  // the scene's parts are the visible models, in order
     for (std::size_t i = 0; i < job.source.models.size(); ++i)
         if (job.source.models[i].visible) visible.push_back(i);
-    for (std::size_t i = 0; i < scene_->materials.size(); ++i) {
-        const Material &now = scene_->materials[i], &was = original_materials_[i];
+    for (std::size_t i = 0; i < scene->materials.size(); ++i) {
+        const Material &now = scene->materials[i], &was = original[i];
         std::size_t model = 0;
         int local = int(i);
-        for (std::size_t k = 0; k < scene_->parts.size() && k < visible.size(); ++k) {
-            const auto& part = scene_->parts[k];
+        for (std::size_t k = 0; k < scene->parts.size() && k < visible.size(); ++k) {
+            const auto& part = scene->parts[k];
             if (int(i) >= part.first_material && int(i) < part.first_material + part.material_count) {
                 model = visible[k];
                 local = int(i) - part.first_material;
             }
         }
-        // Every property of the material property registry that differs from the material as
-        // loaded (fresnel/material/properties.h), kept in its range.
+        // Every property that differs from the material as loaded, kept in its range.
         Job::Source::MaterialOverride mo;
         mo.index = local;
         for (const material_properties::Property& p : material_properties::all()) {
-            if (!material_properties::present(p, now)) continue;
+            if (!material_properties::changed(p, was, now)) continue;
             material_properties::Value v = p.get(now);
-            if (material_properties::present(p, was) && material_properties::same(p, v, p.get(was))) continue;
             for (int k = 0; k < p.width; ++k) v[std::size_t(k)] = std::clamp(v[std::size_t(k)], p.min, p.max);
             mo.values[std::string(p.name)] = v;
         }
         if (!mo.values.empty()) job.source.models[model].materials.push_back(mo);
     }
-    return lost;
 }
 
 // The material edits written back into the model's glTF file (or a copy of it) without

@@ -10,7 +10,6 @@
 
 #include "fresnel/gpu/device.h"
 #include "fresnel/ibl/bake.h"
-#include "view_script.h"
 
 namespace fresnel::cli {
 namespace view {
@@ -259,7 +258,7 @@ void Viewer::screenshot(const std::string& path) {
 }
 
 void Viewer::set_material_field(Material& material, const std::string& field, const std::vector<float>& values) {
-    cli::set_material_field(material, field, values);
+    viewer::set_material_field(material, field, values);
 }
 
 std::string Viewer::stats() {
@@ -303,7 +302,7 @@ int run_viewer(const ViewOptions& options) {
     if (diag.total()) print_warnings(diag);
     std::vector<viewer::Command> script;
     if (!options.script.empty())  // FILE: line N: ... (exit 1)
-        for (ScriptCommand& c : read_view_script(options.script)) script.push_back({c.line, std::move(c.name), std::move(c.args)});
+        script = viewer::read_view_script(options.script);
     view::Viewer viewer(options, *job, *defaults, std::move(script));
     return viewer.run();
 }

@@ -80,7 +80,7 @@ private:
     bool load_job(Job job, const std::string& label);
     void open_path(const std::string& path);
     void step_folder(int delta);
-    std::vector<std::string> material_overrides(Job& job) const;
+    void add_material_overrides(Job& job) const;  // the material edits as scene-file overrides
     bool shaders_changed();
     // input.cpp
     bool handle_input();

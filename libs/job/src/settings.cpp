@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "fresnel/core/float_text.h"
+#include "fresnel/core/json_text.h"
 #include "fresnel/material/brdf_model.h"
 
 namespace fresnel::settings {
@@ -852,18 +853,6 @@ std::string example(const Setting& s) {
 }
 
 namespace {
-std::string json_string(const std::string& t) {
-    std::string out = "\"";
-    for (char c : t) {
-        if (c == '"' || c == '\\') out += '\\', out += c;
-        else if (static_cast<unsigned char>(c) < 0x20) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x", c);
-            out += buf;
-        } else out += c;
-    }
-    return out + "\"";
-}
 std::string json_number(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.17g", v);

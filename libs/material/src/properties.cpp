@@ -10,6 +10,7 @@
 
 #include "fresnel/core/error.h"
 #include "fresnel/core/float_text.h"
+#include "fresnel/core/json_text.h"
 
 // The tables name only the fields that differ from Property's defaults (C++20 designated
 // initializers); GCC would warn about every field left out.
@@ -331,31 +332,29 @@ std::span<const Property> all() { return table(); }
 std::span<const Block> blocks() { return block_table(); }
 std::span<const Texture> textures() { return texture_table(); }
 
-const Property* find(std::string_view name) {
-    for (const Property& p : table())
-        if (p.name == name) return &p;
+namespace {
+// The entry of `table` whose `member` is `key`, or nullptr.
+template <class T>
+const T* lookup(const std::vector<T>& table, std::string_view T::*member, std::string_view key) {
+    for (const T& e : table)
+        if (e.*member == key) return &e;
     return nullptr;
 }
-const Property* find_path(std::string_view path) {
-    for (const Property& p : table())
-        if (p.path == path) return &p;
-    return nullptr;
-}
-const Block* find_block(std::string_view name) {
-    for (const Block& b : block_table())
-        if (b.name == name) return &b;
-    return nullptr;
-}
-const Texture* find_texture_path(std::string_view path) {
-    for (const Texture& t : texture_table())
-        if (t.path == path) return &t;
-    return nullptr;
-}
+}  // namespace
+
+const Property* find(std::string_view name) { return lookup(table(), &Property::name, name); }
+const Property* find_path(std::string_view path) { return lookup(table(), &Property::path, path); }
+const Block* find_block(std::string_view name) { return lookup(block_table(), &Block::name, name); }
+const Texture* find_texture_path(std::string_view path) { return lookup(texture_table(), &Texture::path, path); }
 
 bool present(const Property& p, const Material& m) {
     if (p.block.empty()) return true;
     const Block* b = find_block(p.block);
     return b && b->present(m);
+}
+
+bool changed(const Property& p, const Material& was, const Material& now) {
+    return present(p, now) && (!present(p, was) || !same(p, p.get(now), p.get(was)));
 }
 
 bool editable(const Property& p, const Material& m) {
@@ -469,14 +468,6 @@ void set(Material& m, std::string_view name, std::string_view text, const std::s
 }
 
 namespace {
-std::string json_text(std::string_view s) {
-    std::string out = "\"";
-    for (char c : s) {
-        if (c == '"' || c == '\\') out += '\\';
-        out += c;
-    }
-    return out + "\"";
-}
 std::string json_number(float v) { return std::isfinite(v) ? shortest_text(v) : "null"; }
 const char* type_name(Type t) {
     switch (t) {
@@ -493,19 +484,19 @@ std::string describe_json() {
     std::string out = "{\"properties\":[";
     for (const Property& p : table()) {
         if (&p != &table().front()) out += ",";
-        out += "\n{\"name\":" + json_text(p.name) + ",\"path\":" + json_text(p.path) + ",\"block\":" + json_text(p.block) +
+        out += "\n{\"name\":" + json_string(p.name) + ",\"path\":" + json_string(p.path) + ",\"block\":" + json_string(p.block) +
                ",\"type\":\"" + type_name(p.type) + "\",\"width\":" + std::to_string(p.width) +
                ",\"min\":" + json_number(p.min) + ",\"max\":" + json_number(p.max) +
                ",\"sliderMin\":" + json_number(p.slider_min) + ",\"sliderMax\":" + json_number(p.slider_max) +
-               ",\"default\":" + json_text(format(p, p.fallback)) + ",\"animatable\":" + (p.animatable ? "true" : "false") +
-               ",\"unit\":" + json_text(p.unit) + ",\"choices\":[";
-        for (std::size_t i = 0; i < p.choices.size(); ++i) out += (i ? "," : "") + json_text(p.choices[i]);
-        out += "],\"expected\":" + json_text(expected(p)) + ",\"doc\":" + json_text(p.doc) + "}";
+               ",\"default\":" + json_string(format(p, p.fallback)) + ",\"animatable\":" + (p.animatable ? "true" : "false") +
+               ",\"unit\":" + json_string(p.unit) + ",\"choices\":[";
+        for (std::size_t i = 0; i < p.choices.size(); ++i) out += (i ? "," : "") + json_string(p.choices[i]);
+        out += "],\"expected\":" + json_string(expected(p)) + ",\"doc\":" + json_string(p.doc) + "}";
     }
     out += "\n],\"blocks\":[";
     for (const Block& b : block_table())
-        out += std::string(&b == &block_table().front() ? "" : ",") + "\n{\"name\":" + json_text(b.name) +
-               ",\"doc\":" + json_text(b.doc) + "}";
+        out += std::string(&b == &block_table().front() ? "" : ",") + "\n{\"name\":" + json_string(b.name) +
+               ",\"doc\":" + json_string(b.doc) + "}";
     return out + "\n]}\n";
 }
 

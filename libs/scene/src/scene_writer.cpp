@@ -679,10 +679,8 @@ public:
         const std::string ptr = "/materials/" + std::to_string(i);
         bool pbr_edited = false;
         for (const mp::Property& p : mp::all()) {
-            const bool had = mp::present(p, was), has = mp::present(p, now);
-            if (!has) continue;
+            if (!mp::changed(p, was, now)) continue;
             const mp::Value v = p.get(now);
-            if (had && mp::same(p, v, p.get(was))) continue;
             // Walk the path: objects are added, except a texture reference the material lacks
             // (a normalTexture's scale without a normalTexture means nothing).
             ojson* parent = &m;

@@ -11,15 +11,6 @@
 
 namespace fresnel::viewer {
 
-float Command::number(std::size_t i) const {
-    try {
-        std::size_t used = 0;
-        float v = std::stof(args.at(i), &used);
-        return used == args.at(i).size() ? v : 0.0f;
-    } catch (const std::logic_error&) {
-        return 0.0f;
-    }
-}
 
 Automation::Automation(std::vector<Command> commands, std::string script)
     : commands_(std::move(commands)), script_(std::move(script)) {}

@@ -89,6 +89,10 @@ const Texture* find_texture_path(std::string_view path);
 // Whether the property's block is in the material (always for core properties).
 bool present(const Property& p, const Material& m);
 
+// Whether an edit from `was` to `now` set the property: it is in `now` and was absent from
+// `was` or differs (what savers write and the viewer keeps as overrides).
+bool changed(const Property& p, const Material& was, const Material& now);
+
 // Whether an editor shows it: its block is present and, for a texture's scalar
 // (normalScale), the texture is there.
 bool editable(const Property& p, const Material& m);

@@ -4,25 +4,18 @@
 // selection, split view, auto-rotation) act on fresnel::viewer::State here; what needs the
 // window, the renderer or the loaders (screenshots, opening and saving files, shaders,
 // statistics) goes through AutomationHost, which the window implements and the unit tests fake.
-// The script is read and checked by apps/fresnel/view_script.h (whose list of commands this
-// follows); a command reaches this engine only once its arguments were checked.
+// The script is read and checked by read_view_script (fresnel/viewer/script.h, whose list of
+// commands this follows); a command reaches this engine only once its arguments were checked.
 #include <cstddef>
 #include <string>
 #include <vector>
 
 #include "fresnel/job/job.h"
 #include "fresnel/material/material.h"
+#include "fresnel/viewer/script.h"
 #include "fresnel/viewer/state.h"
 
 namespace fresnel::viewer {
-
-// One checked line of a script.
-struct Command {
-    int line = 0;
-    std::string name;
-    std::vector<std::string> args;
-    float number(std::size_t i) const;  // args[i] as a number (0 when it is none: checked when read)
-};
 
 // What a script does beyond the state: the window's side.
 class AutomationHost {

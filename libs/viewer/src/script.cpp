@@ -1,4 +1,4 @@
-#include "view_script.h"
+#include "fresnel/viewer/script.h"
 
 #include <cmath>
 #include <cstdio>
@@ -12,9 +12,8 @@
 #include "fresnel/material/properties.h"
 #include "fresnel/job/lights.h"
 #include "fresnel/job/settings.h"
-#include "fresnel/render/renderer.h"
 
-namespace fresnel::cli {
+namespace fresnel::viewer {
 namespace {
 
 bool parse_float(const std::string& s, float& out) {
@@ -57,12 +56,6 @@ const char* shorthand_key(const std::string& command) {
     return it == keys.end() ? nullptr : it->second;
 }
 
-// `set material` names a property of the material property registry (fresnel/material/properties.h).
-int material_field_size(const std::string& field) {
-    const material_properties::Property* p = material_properties::find(field);
-    return p ? p->width : 0;
-}
-
 bool set_material_field(Material& m, const std::string& field, const std::vector<float>& v) {
     const material_properties::Property* p = material_properties::find(field);
     if (!p || int(v.size()) != p->width) return false;
@@ -73,20 +66,20 @@ bool set_material_field(Material& m, const std::string& field, const std::vector
     return true;
 }
 
-float ScriptCommand::number(std::size_t i) const {
+float Command::number(std::size_t i) const {
     float v = 0.0f;
     parse_float(args.at(i), v);
     return v;
 }
 
-std::vector<ScriptCommand> read_view_script(const std::string& path) {
+std::vector<Command> read_view_script(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw Error(path, "", "cannot open the script");
-    std::vector<ScriptCommand> out;
+    std::vector<Command> out;
     std::string text;
     for (int n = 1; std::getline(in, text); ++n) {
         std::istringstream words(text);
-        ScriptCommand c;
+        Command c;
         c.line = n;
         if (!(words >> c.name) || c.name[0] == '#') continue;
         auto fail = [&](const std::string& why) { throw Error(path, "line " + std::to_string(n), why); };
@@ -196,4 +189,4 @@ std::vector<ScriptCommand> read_view_script(const std::string& path) {
     return out;
 }
 
-}  // namespace fresnel::cli
+}  // namespace fresnel::viewer

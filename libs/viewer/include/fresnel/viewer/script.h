@@ -40,28 +40,30 @@
 //   quit                   exit: 0, or 1 when an open/env/screenshot of the script failed
 // Paths are relative to the current folder. A malformed line is reported as FILE:LINE and
 // the viewer exits 1 before opening its window.
+#include <cstddef>
 #include <string>
 #include <vector>
 
 #include "fresnel/material/material.h"
 
-namespace fresnel::cli {
+namespace fresnel::viewer {
 
-struct ScriptCommand {
+// One checked line of a script (what Automation runs).
+struct Command {
     int line = 0;
     std::string name;
     std::vector<std::string> args;
-    float number(std::size_t i) const;  // args[i] as a float (checked when parsed)
+    float number(std::size_t i) const;  // args[i] as a number (checked when the script was read)
 };
 
-// The number of values of a material field `set material` knows (0: unknown), and setting it.
-int material_field_size(const std::string& field);
+// Sets a `set material` field (a material property registry name) from the numbers the reader
+// left (a choice as its index, a boolean as 0/1); false when the name or the values are not one.
 bool set_material_field(Material& m, const std::string& field, const std::vector<float>& values);
 
 // The setting an older command of the script stands for (exposure: render.exposure), or null.
 const char* shorthand_key(const std::string& command);
 
 // Reads and checks `path`. Throws fresnel::Error (file: the script, where: "line N").
-std::vector<ScriptCommand> read_view_script(const std::string& path);
+std::vector<Command> read_view_script(const std::string& path);
 
-}  // namespace fresnel::cli
+}  // namespace fresnel::viewer
