@@ -389,7 +389,7 @@ EMSCRIPTEN_KEEPALIVE int fresnel_set_material(App* app, int index, const char* k
 }
 // The material property registry (fresnel/material/properties.h) as JSON: what the editor offers.
 EMSCRIPTEN_KEEPALIVE const char* fresnel_material_properties() {
-    static const std::string text = material_properties::describe_json();
+    static const std::string text = fresnel::material_properties::describe_json();
     return text.c_str();
 }
 EMSCRIPTEN_KEEPALIVE const char* fresnel_materials(App* app) {

@@ -193,6 +193,16 @@ try {
         const reverted = await shot('web_scene_reverted.png');
         const pe = psnr(edited, sceneShot), pr = psnr(reverted, sceneShot);
         check(mats.length >= 1 && pe < 30 && pr >= 50, `material ${mats[0] && mats[0].name}: base colour edit ${pe.toFixed(2)} dB (< 30), revert ${pr.toFixed(2)} dB (>= 50)`);
+        // The editor offers every property of the material property registry: an extension the
+        // material lacks (iridescence) is added by setting one of its properties, and shows.
+        const registry = await scenePage.evaluate(() => window.fresnel.materialProperties());
+        await scenePage.evaluate(() => window.fresnel.setMaterial(0, 'iridescenceFactor', '1'));
+        const added = (await scenePage.evaluate(() => window.fresnel.materials()))[0];
+        await scenePage.evaluate(() => window.fresnel.setMaterial(0, 'reset', ''));
+        check(registry.properties.some(p => p.name === 'diffuseTransmissionFactor') &&
+              added.blocks.includes('KHR_materials_iridescence') && added.values.iridescenceFactor === 1,
+              `material registry: ${registry.properties.length} properties offered; iridescence added by an edit ` +
+              `(${added.blocks.join(', ')})`);
 
         // Lights: adding one changes the frame, removing it restores it.
         await scenePage.evaluate(() => window.fresnel.addLight('point:0,0,2,80,0.3,0.5,1'));

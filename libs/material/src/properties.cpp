@@ -2,7 +2,7 @@
 // material's properties, its extension blocks and its textures.
 #include "fresnel/material/properties.h"
 
-#include <charconv>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <type_traits>
@@ -321,9 +321,11 @@ bool parse_number(std::string_view t, float& out) {
     while (!t.empty() && t.front() == ' ') t.remove_prefix(1);
     while (!t.empty() && t.back() == ' ') t.remove_suffix(1);
     if (t.empty()) return false;
-    if (t.front() == '+') t.remove_prefix(1);
-    auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), out);
-    return ec == std::errc() && end == t.data() + t.size() && !std::isnan(out);
+    // strtof, not std::from_chars: Emscripten's libc++ (the web page's) has no float overload.
+    const std::string text(t);
+    char* end = nullptr;
+    out = std::strtof(text.c_str(), &end);
+    return end == text.c_str() + text.size() && !std::isnan(out);
 }
 
 }  // namespace
