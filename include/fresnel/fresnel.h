@@ -12,6 +12,7 @@
 #include "fresnel/core/error.h"
 #include "fresnel/core/float_text.h"
 #include "fresnel/core/heatmap.h"
+#include "fresnel/core/json_text.h"
 #include "fresnel/core/image.h"
 #include "fresnel/core/metrics.h"
 #include "fresnel/core/mipmap.h"
@@ -38,6 +39,7 @@
 #include "fresnel/material/material.h"
 #include "fresnel/material/legacy_shading.h"
 #include "fresnel/material/phong.h"
+#include "fresnel/material/properties.h"
 #include "fresnel/material/sampling.h"
 #include "fresnel/material/texture.h"
 #include "fresnel/material/transmission.h"
@@ -67,5 +69,11 @@
 #include "fresnel/trace/distribution.h"
 #include "fresnel/trace/environment_light.h"
 #include "fresnel/trace/tracer.h"
+
+#include "fresnel/viewer/automation.h"
+#include "fresnel/viewer/files.h"
+#include "fresnel/viewer/geometry.h"
+#include "fresnel/viewer/script.h"
+#include "fresnel/viewer/state.h"
 
 #include "fresnel/shaders/shaders.h"

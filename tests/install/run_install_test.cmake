@@ -29,7 +29,7 @@ foreach(f lib/cmake/fresnel/fresnelConfig.cmake lib/cmake/fresnel/fresnelConfigV
     message(FATAL_ERROR "not installed: ${f}")
   endif()
 endforeach()
-foreach(l core scene material ibl gpu render trace shaders)
+foreach(l core scene material ibl gpu render trace viewer shaders)
   if(NOT EXISTS "${prefix}/lib/libfresnel_${l}.a")
     message(FATAL_ERROR "not installed: lib/libfresnel_${l}.a")
   endif()
