@@ -51,7 +51,7 @@ $(ASAN_BUILD)/CMakeCache.txt:
 
 # Only what the sanitizer tests need: the loaders' unit tests, the CLI (corpus and hostile-input
 # tests) and the fuzz-regression replayers; no viewer, and -O1 -g1 (CMakeLists.txt) to keep CI short.
-ASAN_TARGETS := core_test scene_test obj_loader_test gltf_compressed_test mesh_ops_test scene_file_test fresnel \
+ASAN_TARGETS := core_test scene_test viewer_test obj_loader_test gltf_compressed_test mesh_ops_test scene_file_test fresnel \
                 replay_gltf replay_obj replay_image replay_hdr replay_exr replay_scene_file replay_meshopt \
                 replay_draco replay_webp
 asan: $(ASAN_BUILD)/CMakeCache.txt
