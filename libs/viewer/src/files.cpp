@@ -1,5 +1,7 @@
 #include "fresnel/viewer/files.h"
 
+#include "fresnel/core/atomic_file.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cstring>
@@ -91,9 +93,14 @@ void RecentFiles::add(const std::string& path) {
 bool RecentFiles::save(const fs::path& file) const {
     std::error_code ec;
     if (file.has_parent_path()) fs::create_directories(file.parent_path(), ec);
-    std::ofstream out(file);
-    for (const auto& p : paths_) out << p << "\n";
-    return bool(out);
+    std::string text;
+    for (const auto& p : paths_) text += p + "\n";
+    try {
+        write_file_atomically(file, text);  // whole or absent, as every writer (fresnel/core/atomic_file.h)
+        return true;
+    } catch (const std::exception&) {
+        return false;
+    }
 }
 
 }  // namespace fresnel::viewer
