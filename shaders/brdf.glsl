@@ -235,6 +235,36 @@ vec3 diffuse_transmission_mix(vec3 reflected_cos, float n_dot_minus_l, float fac
     return mix(reflected_cos, color / PI * n_dot_minus_l, factor);
 }
 
+// brdf::eon_factor (KHR_materials_diffuse_roughness): the energy-preserving Oren-Nayar lobe as
+// a factor of Lambert's, per channel; brdf::eon_albedo_factor its directional albedo's.
+const float EON_C1 = 0.5 - 2.0 / (3.0 * PI);
+const float EON_C2 = 2.0 / 3.0 - 28.0 / (15.0 * PI);
+float eon_single_albedo(float mu, float r) {
+    float c = 1.0 - mu;
+    float g_over_pi = c * (0.0571085289 + c * (0.491881867 + c * (-0.332181442 + c * 0.0714429953)));
+    return (1.0 + r * g_over_pi) / (1.0 + EON_C1 * r);
+}
+vec3 eon_factor(vec3 rho, float r, float n_dot_l, float n_dot_v, float l_dot_v) {
+    if (!(r > 0.0)) return vec3(1.0);
+    float mu_l = max(n_dot_l, 1e-4), mu_v = max(n_dot_v, 1e-4);
+    float s = l_dot_v - mu_l * mu_v;
+    float s_over_t = s > 0.0 ? s / max(mu_l, mu_v) : s;
+    float a = 1.0 / (1.0 + EON_C1 * r);
+    float e_avg = a * (1.0 + EON_C2 * r);
+    float ms = max(1.0 - eon_single_albedo(mu_l, r), 1e-7) * max(1.0 - eon_single_albedo(mu_v, r), 1e-7) /
+               max(1.0 - e_avg, 1e-7);
+    vec3 c = clamp(rho, 0.0, 1.0);
+    vec3 ms_over_rho = c * e_avg / (vec3(1.0) - c * (1.0 - e_avg));
+    return vec3(a * (1.0 + r * s_over_t)) + ms_over_rho * ms;
+}
+vec3 eon_albedo_factor(vec3 rho, float r, float n_dot_v) {
+    if (!(r > 0.0)) return vec3(1.0);
+    float e = eon_single_albedo(max(n_dot_v, 1e-4), r);
+    float e_avg = (1.0 + EON_C2 * r) / (1.0 + EON_C1 * r);
+    vec3 c = clamp(rho, 0.0, 1.0);
+    return vec3(e) + c * e_avg / (vec3(1.0) - c * (1.0 - e_avg)) * (1.0 - e);
+}
+
 // f0_dielectric: the dielectric F0 colour (0.04 by default); specular_weight scales the
 // dielectric lobe's F0 and F90 (KHR_materials_specular; 1 by default). `film`: a thin film
 // over both (brdf::layer): the Fresnel terms become mix(F, F_film, factor), the diffuse keeps

@@ -36,6 +36,7 @@ layout(std140) uniform MaterialBlock {
     float u_iridescence_ior;
     float u_iridescence_thickness_minimum;  // nm
     float u_iridescence_thickness_maximum;
+    float u_diffuse_roughness_factor;  // KHR_materials_diffuse_roughness (0 without)
     // Per map: the KHR_texture_transform matrix, the UV set (0/1), the most probes of
     // sample_detail_map (read for the detail maps only). Spelled out: GLSL ES 3.00 has no
     // token pasting.
@@ -59,4 +60,5 @@ layout(std140) uniform MaterialBlock {
     mat3 u_iridescence_thickness_transform; int u_iridescence_thickness_uv; float u_iridescence_thickness_anisotropy;
     mat3 u_diffuse_transmission_transform; int u_diffuse_transmission_uv; float u_diffuse_transmission_anisotropy;
     mat3 u_diffuse_transmission_color_transform; int u_diffuse_transmission_color_uv; float u_diffuse_transmission_color_anisotropy;
+    mat3 u_diffuse_roughness_transform; int u_diffuse_roughness_uv; float u_diffuse_roughness_anisotropy;
 };

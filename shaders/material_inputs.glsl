@@ -67,6 +67,9 @@ uniform sampler2D u_diffuse_transmission_map;
 #ifdef HAS_DIFFUSE_TRANSMISSION_COLOR_MAP
 uniform sampler2D u_diffuse_transmission_color_map;
 #endif
+#ifdef HAS_DIFFUSE_ROUGHNESS_MAP
+uniform sampler2D u_diffuse_roughness_map;
+#endif
 
 vec2 map_uv(int set, mat3 transform) {
     vec2 uv = set == 1 ? v_uv1 : v_uv0;
@@ -169,6 +172,7 @@ struct MaterialInputs {
     float iridescence_thickness;  // nm
     float diffuse_transmission;        // KHR_materials_diffuse_transmission factor (0 = none)
     vec3 diffuse_transmission_color;
+    float diffuse_roughness;           // KHR_materials_diffuse_roughness (0 = Lambert)
 };
 
 // The base colour, metallic-roughness, occlusion and normal maps through one footprint where the
@@ -337,6 +341,12 @@ MaterialInputs read_material(vec3 t, vec3 b, vec3 ng) {
 #endif
     m.diffuse_transmission_color = max(m.diffuse_transmission_color, vec3(0.0));
 #endif
+    m.diffuse_roughness = 0.0;
+    m.diffuse_roughness = u_diffuse_roughness_factor;  // KHR_materials_diffuse_roughness (0 without)
+#ifdef HAS_DIFFUSE_ROUGHNESS_MAP
+    m.diffuse_roughness *= sample_map(u_diffuse_roughness_map, u_diffuse_roughness_uv, u_diffuse_roughness_transform).r;
+#endif
+    m.diffuse_roughness = clamp(m.diffuse_roughness, 0.0, 1.0);
     m.occlusion = 1.0;
 #if defined(OCCLUSION_IN_METALLIC_ROUGHNESS)
     // The R channel of the metallic-roughness texture (glTF's ORM packing, or the renderer's
@@ -398,6 +408,8 @@ vec3 shade_light(MaterialInputs m, vec3 v, vec3 l, vec3 radiance, vec3 comp_diel
     if (n_dot_l > 0.0 || n_dot_minus_l > 0.0) {
         BrdfTerms t = brdf_terms_film(m.base_color.rgb, m.metallic, m.roughness, m.f0_dielectric, m.specular_weight,
                                       m.normal, v, l, material_film(m, v));
+        if (m.diffuse_roughness > 0.0)  // KHR_materials_diffuse_roughness: the EON lobe
+            t.diffuse *= eon_factor(m.base_color.rgb, m.diffuse_roughness, n_dot_l, clamped_dot(m.normal, v), dot(l, v));
 #ifdef MATERIAL_ANISOTROPY
         if (m.anisotropy_strength > 0.0)
             apply_anisotropy(t, m.metallic, m.roughness, m.normal, v, l, m.anisotropic_t, m.anisotropic_b, m.anisotropy_strength);

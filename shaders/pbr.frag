@@ -110,6 +110,9 @@ void main() {
         // Split-sum image-based light, weighted as the glTF BRDF's dielectric/metal mix.
         vec3 r = reflect(-v, f.n);
         vec3 diffuse = ibl_irradiance(f.n) * m.base_color.rgb;
+        // KHR_materials_diffuse_roughness: the EON lobe's directional albedo at n.v relative to
+        // Lambert's (brdf::eon_albedo_factor; 1 for a white surface and for roughness 0).
+        diffuse *= eon_albedo_factor(m.base_color.rgb, m.diffuse_roughness, clamped_dot(f.n, v));
 #ifdef MATERIAL_DIFFUSE_TRANSMISSION
         // KHR_materials_diffuse_transmission, as the Khronos viewer: the share transmitted sees the
         // irradiance from behind the surface, in its own colour (brdf::diffuse_transmission_mix).
@@ -177,6 +180,7 @@ void main() {
     // Occlusion applies to indirect light only. A uniform ambient lights both sides: with diffuse
     // transmission the diffuse albedo is mix(base, transmission colour, factor).
     vec3 ambient_albedo = m.base_color.rgb;
+    ambient_albedo *= eon_albedo_factor(m.base_color.rgb, m.diffuse_roughness, clamped_dot(f.n, v));
 #ifdef MATERIAL_DIFFUSE_TRANSMISSION
     ambient_albedo = mix(ambient_albedo, m.diffuse_transmission_color, m.diffuse_transmission);
 #endif

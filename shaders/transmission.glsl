@@ -91,7 +91,8 @@ vec3 shade_light_transmission(MaterialInputs m, TransmissionInputs tr, vec3 v, v
     vec3 transmitted = volume_attenuation(radiance * btdf, ray_length, tr.attenuation_color, tr.attenuation_distance);
     // The diffuse it replaces (with diffuse transmission, the mix of both Lambert lobes), under
     // its weight 1 - F (under a thin film brdf's film_diffuse_weight).
-    vec3 diffuse = diffuse_transmission_mix(n_dot_l * (m.base_color.rgb / PI), clamped_dot(-m.normal, l),
+    vec3 lambert = m.base_color.rgb / PI * eon_factor(m.base_color.rgb, m.diffuse_roughness, n_dot_l, clamped_dot(m.normal, v), dot(l, v));
+    vec3 diffuse = diffuse_transmission_mix(n_dot_l * lambert, clamped_dot(-m.normal, l),
                                             m.diffuse_transmission, m.diffuse_transmission_color);
     vec3 term = (1.0 - m.metallic) * film_diffuse_weight(f_dielectric, material_film(m, v)) * tr.factor *
                 (transmitted - radiance * diffuse);

@@ -266,8 +266,11 @@ TEST(ShaderVariants, EveryVariantCompilesAsEs300AndGl330) {
     // cross product would be 2.5x the pbr.frag sources of the set without anisotropy; this is 1.3x.
     using namespace feature;
     constexpr FeatureMask kLow = (FeatureMask(1) << 23) - 1;
+    // The diffuse roughness map (HAS_DIFFUSE_ROUGHNESS_MAP) reads one sampler into one float
+    // and names no other group's identifiers: its variants are compiled on the base sets too.
     const auto crossed = [](FeatureMask m) {
-        return (m & (Anisotropy | AnisotropyMap)) != 0 && (m & (Sheen | Transmission)) != 0;
+        return ((m & (Anisotropy | AnisotropyMap)) != 0 && (m & (Sheen | Transmission)) != 0) ||
+               (m & DiffuseRoughnessMap) != 0;
     };
     std::set<FeatureMask> bases;
     {

@@ -32,6 +32,7 @@ constexpr MaterialMapInfo kMaps[kMaterialMapCount] = {
     {"iridescence_thickness", "HAS_IRIDESCENCE_THICKNESS_MAP", false, false, false},
     {"diffuse_transmission", "HAS_DIFFUSE_TRANSMISSION_MAP", false, false, false},
     {"diffuse_transmission_color", "HAS_DIFFUSE_TRANSMISSION_COLOR_MAP", true, false, false},
+    {"diffuse_roughness", "HAS_DIFFUSE_ROUGHNESS_MAP", false, false, false},
 };
 
 // Reads one map at the point, or nullopt when the map is absent or unreadable.
@@ -93,6 +94,7 @@ const TextureSlot* material_map(const Material& m, MaterialMap map) {
     const auto* an = m.has_anisotropy() ? &*m.anisotropy : nullptr;
     const auto* ir = m.has_iridescence() ? &*m.iridescence : nullptr;
     const auto* dt = m.has_diffuse_transmission() ? &*m.diffuse_transmission : nullptr;
+    const auto* dr = m.has_diffuse_roughness() ? &*m.diffuse_roughness : nullptr;
     const TextureSlot* slot = nullptr;
     switch (map) {
         case MaterialMap::BaseColor: slot = sg ? &sg->diffuse_texture : &m.base_color; break;
@@ -117,6 +119,7 @@ const TextureSlot* material_map(const Material& m, MaterialMap map) {
         case MaterialMap::IridescenceThickness: slot = ir ? &ir->iridescence_thickness_texture : nullptr; break;
         case MaterialMap::DiffuseTransmission: slot = dt ? &dt->diffuse_transmission_texture : nullptr; break;
         case MaterialMap::DiffuseTransmissionColor: slot = dt ? &dt->diffuse_transmission_color_texture : nullptr; break;
+        case MaterialMap::DiffuseRoughness: slot = dr ? &dr->diffuse_roughness_texture : nullptr; break;
     }
     return slot && slot->valid() ? slot : nullptr;
 }
@@ -277,6 +280,11 @@ EvaluatedMaterial evaluate(const Material& material, const TextureSource& textur
         if (auto t = maps.sample(MaterialMap::DiffuseTransmissionColor)) e.diffuse_transmission_color *= glm::vec3(*t);
         e.diffuse_transmission_color = glm::max(e.diffuse_transmission_color, glm::vec3(0.0f));
     }
+    if (m.has_diffuse_roughness()) {
+        e.diffuse_roughness = m.diffuse_roughness->diffuse_roughness_factor;
+        if (auto t = maps.sample(MaterialMap::DiffuseRoughness)) e.diffuse_roughness *= t->x;
+        e.diffuse_roughness = std::clamp(e.diffuse_roughness, 0.0f, 1.0f);
+    }
     if (auto t = maps.sample(MaterialMap::Occlusion)) e.occlusion = 1.0f + m.occlusion_strength * (t->x - 1.0f);
     e.emissive = m.emissive_factor * m.emissive_strength_value();
     if (auto t = maps.sample(MaterialMap::Emissive)) e.emissive *= glm::vec3(*t);
@@ -337,8 +345,11 @@ glm::vec3 shade_light_transmission(const EvaluatedMaterial& m, glm::vec3 v, glm:
     // The diffuse it replaces (with diffuse transmission, the mix of both Lambert lobes), under
     // its weight 1 - F (under a thin film brdf::film_diffuse_weight).
     float n_dot_minus_l = std::clamp(-glm::dot(m.normal, l), 0.0f, 1.0f);
-    glm::vec3 diffuse = brdf::diffuse_transmission_mix(n_dot_l * brdf::lambert(s.base_color), n_dot_minus_l,
-                                                       m.diffuse_transmission, m.diffuse_transmission_color);
+    glm::vec3 lambert = brdf::lambert(s.base_color) *
+                        brdf::eon_factor(s.base_color, m.diffuse_roughness, n_dot_l,
+                                         std::clamp(glm::dot(m.normal, v), 0.0f, 1.0f), glm::dot(l, v));
+    glm::vec3 diffuse = brdf::diffuse_transmission_mix(n_dot_l * lambert, n_dot_minus_l, m.diffuse_transmission,
+                                                       m.diffuse_transmission_color);
     glm::vec3 term = (1.0f - s.metallic) * brdf::film_diffuse_weight(f_dielectric, film_at(m, v)) * tr.factor *
                      (transmitted - radiance * diffuse);
     if (m.clearcoat > 0.0f) term *= 1.0f - brdf::clearcoat_mix(m.clearcoat, m.clearcoat_f0, m.clearcoat_normal, v);
@@ -353,6 +364,9 @@ glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm:
     glm::vec3 lit(0.0f);
     if (n_dot_l > 0.0f || n_dot_minus_l > 0.0f) {
         brdf::Terms t = brdf::evaluate_terms(m.surface, m.normal, v, l, model, film_at(m, v));
+        if (m.diffuse_roughness > 0.0f)  // KHR_materials_diffuse_roughness: the EON lobe
+            t.diffuse *= brdf::eon_factor(m.surface.base_color, m.diffuse_roughness, n_dot_l,
+                                          std::clamp(glm::dot(m.normal, v), 0.0f, 1.0f), glm::dot(l, v));
         if (m.anisotropy_strength > 0.0f)
             brdf::apply_anisotropy(t, m.surface, m.normal, v, l, m.anisotropic_t, m.anisotropic_b, m.anisotropy_strength);
         glm::vec3 specular = t.specular_dielectric * comp_dielectric + t.specular_metal * comp_metal;

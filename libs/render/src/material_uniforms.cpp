@@ -58,6 +58,7 @@ MaterialUniforms material_uniforms(const Material& m) {
         b.diffuse_transmission_factor = m.diffuse_transmission->diffuse_transmission_factor;
         b.diffuse_transmission_color_factor = m.diffuse_transmission->diffuse_transmission_color_factor;
     }
+    if (m.has_diffuse_roughness()) b.diffuse_roughness_factor = m.diffuse_roughness->diffuse_roughness_factor;
     for (std::size_t i = 0; i < std::size_t(kMaterialMapCount); ++i) {
         // A map the variant reads but the material lacks is the 1x1 white texture (identity
         // transform, UV set 0: the block's defaults).
@@ -128,6 +129,7 @@ std::vector<std::pair<std::string, std::size_t>> material_block_members() {
         {"u_attenuation_distance", offsetof(MaterialBlock, attenuation_distance)},
         {"u_diffuse_transmission_color_factor", offsetof(MaterialBlock, diffuse_transmission_color_factor)},
         {"u_diffuse_transmission_factor", offsetof(MaterialBlock, diffuse_transmission_factor)},
+        {"u_diffuse_roughness_factor", offsetof(MaterialBlock, diffuse_roughness_factor)},
         {"u_metallic_factor", offsetof(MaterialBlock, metallic_factor)},
         {"u_roughness_factor", offsetof(MaterialBlock, roughness_factor)},
         {"u_normal_scale", offsetof(MaterialBlock, normal_scale)},

@@ -50,6 +50,7 @@ constexpr FeatureInfo kFeatures[] = {
     {OcclusionInMetallicRoughness, "OCCLUSION_IN_METALLIC_ROUGHNESS"},
     {DetailSharedFootprint, "DETAIL_SHARED_FOOTPRINT"},
     {MetallicRoughnessInAlpha, "METALLIC_ROUGHNESS_IN_ALPHA"},
+    {DiffuseRoughnessMap, "HAS_DIFFUSE_ROUGHNESS_MAP"},
 };
 constexpr bool table_is_kall_in_bit_order() {
     FeatureMask seen = 0;
@@ -70,7 +71,7 @@ FeatureMask allowed_maps(FeatureMask m) {
     if ((m & Unlit) && !(m & DebugView)) return BaseColorMap;
     FeatureMask maps = BaseColorMap | OcclusionMap | EmissiveMap;
     if (m & SpecularGlossiness) maps |= SpecularGlossinessMap;
-    else maps |= MetallicRoughnessMap | SpecularMap | SpecularColorMap;
+    else maps |= MetallicRoughnessMap | SpecularMap | SpecularColorMap | DiffuseRoughnessMap;
     if (m & HasTangent) maps |= NormalMap;
     if (m & Clearcoat) {
         maps |= ClearcoatMap | ClearcoatRoughnessMap;
@@ -143,8 +144,9 @@ std::vector<FeatureMask> all_feature_sets() {
     // Bits 23..38 (the sheen, transmission, anisotropy, iridescence and diffuse transmission maps and model bits,
     // skinning, morphing) come in groups that no rule on bits 0..22 looks at, except that unlit,
     // specular-glossiness and missing tangents drop some and the debug view turns the maps on:
-    // so every valid mask is a valid mask of bits 0..22 plus one choice per group, kept when
-    // canonical. 2^23 masks (eight times: bits 39, 40 and 41, below) instead of 2^42.
+    // so every valid mask is a valid mask of bits 0..22 plus one choice per group (the diffuse
+    // roughness map, bit 42, is one more), kept when canonical. 2^23 masks (eight times: bits
+    // 39, 40 and 41, below) instead of 2^43.
     std::vector<FeatureMask> out;
     constexpr FeatureMask kLow = (FeatureMask(1) << 23) - 1;
     const FeatureMask animation[] = {0, Skinned, MorphTargets, Skinned | MorphTargets};
@@ -154,6 +156,7 @@ std::vector<FeatureMask> all_feature_sets() {
     const FeatureMask iridescence[] = {0, Iridescence, Iridescence | IridescenceMap | IridescenceThicknessMap};
     const FeatureMask diffuse_transmission[] = {0, DiffuseTransmission,
                                                 DiffuseTransmission | DiffuseTransmissionMap | DiffuseTransmissionColorMap};
+    const FeatureMask diffuse_roughness[] = {0, DiffuseRoughnessMap};
     for (FeatureMask low = 0; low <= kLow; ++low) {
         if (canonical_features(low) != low) continue;
         // The occlusion in the metallic-roughness texture (bit 39) replaces the occlusion map:
@@ -172,10 +175,11 @@ std::vector<FeatureMask> all_feature_sets() {
                     for (FeatureMask t : transmission)
                         for (FeatureMask an : anisotropy)
                             for (FeatureMask i : iridescence)
-                                for (FeatureMask dt : diffuse_transmission) {
-                                    const FeatureMask x = m | a | s | t | an | i | dt;
-                                    if (canonical_features(x) == x) out.push_back(x);
-                                }
+                                for (FeatureMask dt : diffuse_transmission)
+                                    for (FeatureMask dr : diffuse_roughness) {
+                                        const FeatureMask x = m | a | s | t | an | i | dt | dr;
+                                        if (canonical_features(x) == x) out.push_back(x);
+                                    }
         }
     }
     std::sort(out.begin(), out.end());

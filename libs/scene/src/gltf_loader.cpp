@@ -37,7 +37,7 @@ const std::vector<std::string>& supported_gltf_extensions() {
         "EXT_meshopt_compression", "KHR_draco_mesh_compression", "EXT_texture_webp", "KHR_materials_variants",
         "KHR_animation_pointer", "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_dispersion",
         "KHR_node_visibility", "KHR_materials_anisotropy", "KHR_materials_iridescence",
-        "KHR_materials_diffuse_transmission",
+        "KHR_materials_diffuse_transmission", "KHR_materials_diffuse_roughness",
     };
     return list;
 }
@@ -570,6 +570,13 @@ private:
                 glm::max(vec3_of(*e, "diffuseTransmissionColorFactor", p, {1, 1, 1}), 0.0f);
             b.diffuse_transmission_color_texture = texture_ref(*e, "diffuseTransmissionColorTexture", p);
             out.diffuse_transmission = b;
+        }
+        if (const json* e = r_.find(ext, "KHR_materials_diffuse_roughness")) {
+            std::string p = at("KHR_materials_diffuse_roughness");
+            DiffuseRoughnessExt b;
+            b.diffuse_roughness_factor = std::clamp(num(*e, "diffuseRoughnessFactor", p, 0.0), 0.0f, 1.0f);
+            b.diffuse_roughness_texture = texture_ref(*e, "diffuseRoughnessTexture", p);
+            out.diffuse_roughness = b;
         }
     }
 

@@ -4,6 +4,7 @@
 #include <iterator>
 
 #include "fresnel/core/error.h"
+#include "fresnel/material/properties.h"
 
 namespace fresnel {
 
@@ -46,35 +47,13 @@ int append_model(Scene& dst, Scene model, const glm::mat4& transform, int scene_
     for (Mesh& m : model.meshes)
         for (Primitive& p : m.primitives) offset(p.material, materials);
     for (Material& m : model.materials) {
-        for (TextureSlot* slot : {&m.base_color, &m.metallic_roughness, &m.normal, &m.occlusion, &m.emissive})
-            offset(*slot, textures);
-        if (m.specular) {
-            offset(m.specular->specular_texture, textures);
-            offset(m.specular->specular_color_texture, textures);
-        }
-        if (m.clearcoat) {
-            offset(m.clearcoat->clearcoat_texture, textures);
-            offset(m.clearcoat->clearcoat_roughness_texture, textures);
-            offset(m.clearcoat->clearcoat_normal_texture, textures);
-        }
+        // Every texture reference of the material property registry (of the blocks the
+        // material has), and the specular-glossiness block's, which converts at load.
+        for (const material_properties::Texture& t : material_properties::textures())
+            if (t.get(m)) offset(*t.slot(m), textures);
         if (m.specular_glossiness) {
             offset(m.specular_glossiness->diffuse_texture, textures);
             offset(m.specular_glossiness->specular_glossiness_texture, textures);
-        }
-        if (m.sheen) {
-            offset(m.sheen->sheen_color_texture, textures);
-            offset(m.sheen->sheen_roughness_texture, textures);
-        }
-        if (m.transmission) offset(m.transmission->transmission_texture, textures);
-        if (m.volume) offset(m.volume->thickness_texture, textures);
-        if (m.iridescence) {
-            offset(m.iridescence->iridescence_texture, textures);
-            offset(m.iridescence->iridescence_thickness_texture, textures);
-        }
-        if (m.anisotropy) offset(m.anisotropy->anisotropy_texture, textures);
-        if (m.diffuse_transmission) {
-            offset(m.diffuse_transmission->diffuse_transmission_texture, textures);
-            offset(m.diffuse_transmission->diffuse_transmission_color_texture, textures);
         }
     }
     for (Texture& t : model.textures) offset(t.image, images);

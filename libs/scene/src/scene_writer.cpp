@@ -272,6 +272,13 @@ json material_json(const Material& m, const Scene& scene, GltfBuilder& b, bool h
         tex(e, "diffuseTransmissionColorTexture", x.diffuse_transmission_color_texture);
         ext("KHR_materials_diffuse_transmission", e);
     }
+    if (m.diffuse_roughness) {
+        const DiffuseRoughnessExt& x = *m.diffuse_roughness;
+        json e = json::object();
+        if (x.diffuse_roughness_factor != 0.0f) e["diffuseRoughnessFactor"] = x.diffuse_roughness_factor;
+        tex(e, "diffuseRoughnessTexture", x.diffuse_roughness_texture);
+        ext("KHR_materials_diffuse_roughness", e);
+    }
     return j;
 }
 

@@ -90,19 +90,22 @@ enum : FeatureMask {
     // material (no alpha mode, not specular-glossiness), no debug view, and with the occlusion
     // the emissive map (METALLIC_ROUGHNESS_IN_ALPHA, material_inputs.glsl).
     MetallicRoughnessInAlpha = FeatureMask(1) << 41,
+    // KHR_materials_diffuse_roughness's map 20 (MaterialMap::DiffuseRoughness). The lobe itself
+    // has no model bit: every lit variant shades it where the factor (a uniform) is positive.
+    DiffuseRoughnessMap = FeatureMask(1) << 42,
 };
-constexpr int kCount = 42;
+constexpr int kCount = 43;
 constexpr int kFirstMap = 12;
-constexpr int kMapCount = 20;
+constexpr int kMapCount = 21;
 // Bit positions below kCount that no feature uses (none now).
 constexpr FeatureMask kReserved = 0;
 constexpr FeatureMask kAll = ((FeatureMask(1) << kCount) - 1) & ~kReserved;
 // The bit position of each map, in fresnel::MaterialMap order: maps 0..12 are bits 12..24,
 // the transmission maps (13, 14) bits 28 and 29, the anisotropy map (15) bit 32, the
 // iridescence maps (16, 17) bits 34 and 35, the diffuse transmission maps (18, 19) bits 37 and
-// 38. A new map appends its position here.
+// 38, the diffuse roughness map (20) bit 42. A new map appends its position here.
 constexpr int kMapBitPositions[kMapCount] = {12, 13, 14, 15, 16, 17, 18, 19, 20, 21,
-                                             22, 23, 24, 28, 29, 32, 34, 35, 37, 38};
+                                             22, 23, 24, 28, 29, 32, 34, 35, 37, 38, 42};
 // The bit of map `i` (fresnel::MaterialMap(i)).
 constexpr FeatureMask map_bit(int i) { return FeatureMask(1) << kMapBitPositions[i]; }
 constexpr FeatureMask all_map_bits() {

@@ -58,7 +58,8 @@ struct MaterialBlock {
     float iridescence_ior = 1.3f;
     float iridescence_thickness_minimum = 100.0f;
     float iridescence_thickness_maximum = 400.0f;
-    float pad0 = 0.0f, pad1 = 0.0f;  // the mat3 below starts on 16 bytes
+    float diffuse_roughness_factor = 0.0f;  // KHR_materials_diffuse_roughness
+    float pad1 = 0.0f;                      // the mat3 below starts on 16 bytes
     struct Map {
         std::array<glm::vec4, 3> transform{glm::vec4(1, 0, 0, 0), glm::vec4(0, 1, 0, 0), glm::vec4(0, 0, 1, 0)};  // mat3 columns
         std::int32_t uv = 0;

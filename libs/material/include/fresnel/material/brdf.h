@@ -148,6 +148,47 @@ inline glm::vec3 diffuse_transmission_mix(glm::vec3 reflected_cos, float n_dot_m
     return glm::mix(reflected_cos, lambert(color) * n_dot_minus_l, factor);
 }
 
+// KHR_materials_diffuse_roughness: the energy-preserving Oren-Nayar lobe (EON: Portsmouth,
+// Kutz and Hill 2025, the diffuse of OpenPBR), written as a factor of Lambert's lobe rho/pi per
+// channel so that the glTF layering around it (1 - F, 1 - metallic) is unchanged. r is the
+// diffuse roughness in [0, 1] (0: Lambert, factor 1).
+//   f = rho/pi [A (1 + r s/t) + rho_ms/rho (1 - E(n.l)) (1 - E(n.v)) / (1 - E_avg)]
+//   A = 1 / (1 + c1 r), s = l.v - n.l n.v, t = max(n.l, n.v) where s > 0 (else 1): Fujii's
+//       Oren-Nayar single scattering; E its directional albedo (the paper's quartic fit),
+//       E_avg = A (1 + c2 r) its average; rho_ms = rho^2 E_avg / (1 - rho (1 - E_avg)) the
+//       multiple scattering that restores the energy the single-scattering lobe loses.
+// With rho = 1 every direction's albedo is 1 (the white furnace). The twin of eon_factor in
+// shaders/brdf.glsl.
+inline constexpr float kEonC1 = 0.5f - 2.0f / (3.0f * kPi);
+inline constexpr float kEonC2 = 2.0f / 3.0f - 28.0f / (15.0f * kPi);
+inline float eon_single_albedo(float mu, float r) {
+    float c = 1.0f - mu;
+    float g_over_pi = c * (0.0571085289f + c * (0.491881867f + c * (-0.332181442f + c * 0.0714429953f)));
+    return (1.0f + r * g_over_pi) / (1.0f + kEonC1 * r);
+}
+inline glm::vec3 eon_factor(glm::vec3 rho, float r, float n_dot_l, float n_dot_v, float l_dot_v) {
+    if (!(r > 0.0f)) return glm::vec3(1.0f);
+    float mu_l = std::max(n_dot_l, 1e-4f), mu_v = std::max(n_dot_v, 1e-4f);
+    float s = l_dot_v - mu_l * mu_v;
+    float s_over_t = s > 0.0f ? s / std::max(mu_l, mu_v) : s;
+    float a = 1.0f / (1.0f + kEonC1 * r);
+    float e_avg = a * (1.0f + kEonC2 * r);
+    float ms = std::max(1.0f - eon_single_albedo(mu_l, r), 1e-7f) * std::max(1.0f - eon_single_albedo(mu_v, r), 1e-7f) /
+               std::max(1.0f - e_avg, 1e-7f);
+    glm::vec3 c = glm::clamp(rho, 0.0f, 1.0f);
+    glm::vec3 ms_over_rho = c * e_avg / (glm::vec3(1.0f) - c * (1.0f - e_avg));
+    return glm::vec3(a * (1.0f + r * s_over_t)) + ms_over_rho * ms;
+}
+// The lobe's directional albedo at n.v relative to Lambert's (rho): E(n.v) + rho_ms/rho (1 - E(n.v)),
+// what image-based light's diffuse term is scaled by (1 for r = 0, and for rho = 1).
+inline glm::vec3 eon_albedo_factor(glm::vec3 rho, float r, float n_dot_v) {
+    if (!(r > 0.0f)) return glm::vec3(1.0f);
+    float e = eon_single_albedo(std::max(n_dot_v, 1e-4f), r);
+    float e_avg = (1.0f + kEonC2 * r) / (1.0f + kEonC1 * r);
+    glm::vec3 c = glm::clamp(rho, 0.0f, 1.0f);
+    return glm::vec3(e) + c * e_avg / (glm::vec3(1.0f) - c * (1.0f - e_avg)) * (1.0f - e);
+}
+
 // Appendix B's layering of the lobes, given t.d and t.v, the two Fresnel terms and the diffuse
 // lobe before its weights: fresnel_mix of the dielectric, conductor_fresnel of the metal.
 // With a thin film (KHR_materials_iridescence, as the Khronos Sample Viewer layers it) both

@@ -22,6 +22,9 @@
 //   diffuse transmission = diffuseTransmissionFactor * diffuseTransmissionTexture A, colour =
 //               diffuseTransmissionColorFactor * diffuseTransmissionColorTexture RGB (sRGB); only
 //               when the factor is positive (KHR_materials_diffuse_transmission)
+//   diffuse roughness = diffuseRoughnessFactor * diffuseRoughnessTexture R, clamped to [0, 1];
+//               only when the factor is positive (KHR_materials_diffuse_roughness; the lobe is
+//               brdf::eon_factor times Lambert's)
 //   occlusion = 1 + strength * (occlusionTexture R - 1)
 //   emissive = emissiveFactor * emissiveStrength * emissiveTexture RGB (sRGB)
 //   alpha: OPAQUE -> 1; MASK -> discard below the cutoff, else 1; BLEND -> as computed
@@ -70,8 +73,9 @@ enum class MaterialMap {
     IridescenceThickness,  // KHR_materials_iridescence iridescenceThicknessTexture (G)
     DiffuseTransmission,       // KHR_materials_diffuse_transmission diffuseTransmissionTexture (A)
     DiffuseTransmissionColor,  // KHR_materials_diffuse_transmission diffuseTransmissionColorTexture (RGB, sRGB)
+    DiffuseRoughness,          // KHR_materials_diffuse_roughness diffuseRoughnessTexture (R)
 };
-inline constexpr int kMaterialMapCount = 20;
+inline constexpr int kMaterialMapCount = 21;
 
 struct MaterialMapInfo {
     const char* name;    // GLSL: u_<name>_map, u_<name>_uv, u_<name>_transform
@@ -140,6 +144,9 @@ struct EvaluatedMaterial {
     // transmitted through the surface as a Lambert lobe of this colour (brdf::diffuse_transmission_mix).
     float diffuse_transmission = 0.0f;
     glm::vec3 diffuse_transmission_color{1.0f};
+    // KHR_materials_diffuse_roughness (0 = Lambert): the diffuse lobe is the energy-preserving
+    // Oren-Nayar one, brdf::eon_factor times Lambert's.
+    float diffuse_roughness = 0.0f;
     bool unlit = false;
     TransmissionInputs transmission;      // factor 0 without KHR_materials_transmission
 };
@@ -193,6 +200,8 @@ brdf::IridescenceFresnel film_at(const EvaluatedMaterial& m, glm::vec3 v);
 //   with diffuse transmission (KHR_materials_diffuse_transmission), as the Khronos viewer: the
 //               diffuse lobe times its cosine is mix(f_diffuse n.l, w lambert(colour) n.(-l), factor)
 //               (w: the diffuse's weight 1 - F, (1 - metallic)), so lights behind the surface light it
+//   with diffuse roughness (KHR_materials_diffuse_roughness) f_diffuse is times
+//               brdf::eon_factor(base colour, roughness, n.l, n.v, l.v)
 //   with sheen: base = f_sheen n.l + base * sheen_albedo_scaling(colour, E(n.v), E(n.l)),
 //               E from brdf::SheenAlbedoTable::standard() (the shader: the table's A channel)
 //   result = radiance * mix(base, clearcoat_specular, clearcoat_mix)
@@ -212,7 +221,8 @@ bool is_transmissive(const Material& material);
 // proportion to the transmission factor, under the dielectric Fresnel (and a thin film's:
 // brdf::film_diffuse_weight) and the coat:
 //   (1 - cc_mix) (1 - metallic) (1 - F_d) T [attenuate(radiance btdf_punctual(l_transmitted)) - radiance diffuse]
-// diffuse = n.l lambert, or with diffuse transmission brdf::diffuse_transmission_mix of it.
+// diffuse = n.l lambert (times brdf::eon_factor with diffuse roughness), or with diffuse
+// transmission brdf::diffuse_transmission_mix of it.
 // l: the direction to the light; l_transmitted: to the light from the point where the
 // transmission ray leaves (ray_length = the ray's length, for the volume's attenuation).
 glm::vec3 shade_light_transmission(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 l_transmitted,

@@ -26,12 +26,11 @@ void animate(Scene& scene, int index, float t);
 
 // KHR_animation_pointer targets fresnel animates (JSON pointers into the glTF document; N is
 // an index into the scene's arrays, which follow the file's):
-//  - /materials/N/ + pbrMetallicRoughness/baseColorFactor | metallicFactor | roughnessFactor,
-//    emissiveFactor, alphaCutoff, normalTexture/scale, occlusionTexture/strength, the factors of
-//    KHR_materials_emissive_strength, _ior, _clearcoat (and clearcoatNormalTexture/scale),
-//    _specular, _sheen, _transmission, _volume, _iridescence, _anisotropy, _dispersion and
-//    _diffuse_transmission (a block the material lacks is added with the extension's defaults),
-//    and TEXTURE/extensions/KHR_texture_transform/offset | rotation | scale of each texture;
+//  - /materials/N/ + the path of every property the material property registry marks
+//    animatable (fresnel/material/properties.h; `fresnel settings --materials` lists them:
+//    the core factors, normalTexture/scale, occlusionTexture/strength and every extension's
+//    factors; a block the material lacks is added with the extension's defaults), and
+//    TEXTURE/extensions/KHR_texture_transform/offset | rotation | scale of each texture;
 //  - /extensions/KHR_lights_punctual/lights/N/ + color | intensity | range |
 //    spot/innerConeAngle | spot/outerConeAngle;
 //  - /cameras/N/ + perspective/yfov | znear | zfar | aspectRatio, orthographic/xmag | ymag | znear | zfar.
