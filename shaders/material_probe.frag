@@ -56,7 +56,7 @@ void main() {
     else if (u_output == 7) frag_color = vec4(m.sheen_color, m.sheen_roughness);
     else if (u_output == 8) frag_color = vec4(m.anisotropic_t, m.anisotropy_strength);
     else if (u_output == 9) frag_color = vec4(m.anisotropic_b, m.anisotropy_direction.x);
-    else if (u_output == 10) frag_color = vec4(m.iridescence, m.iridescence_thickness, m.iridescence_ior, 0.0);
+    else if (u_output == 10) frag_color = vec4(m.iridescence, m.iridescence_thickness, m.iridescence_ior, m.diffuse_roughness);
     else if (u_output == 11) frag_color = vec4(m.diffuse_transmission_color, m.diffuse_transmission);
     else {
         vec3 radiance = vec3(1.0, 0.8, 0.6);

@@ -5,6 +5,7 @@
 // slot with small random textures on both UV sets, KHR_texture_transform, all wrap modes
 // and filters, sRGB and linear slots, specular-glossiness and metallic-roughness,
 // KHR_materials_ior / _specular / _clearcoat / _sheen / _anisotropy / _iridescence / _diffuse_transmission
+// / _diffuse_roughness
 // (with lights behind the surface) / _emissive_strength, alpha modes, vertex
 // colour, missing second UV sets and tangents. Uniforms are packed by the renderer's own
 // material_uniforms / set_material_uniforms (the material block); the probe binds map i to
@@ -136,7 +137,7 @@ class Gen {
 public:
     explicit Gen(unsigned seed)
         : rng_(seed), side_(seed ^ 0x5eedu), aniso_(seed ^ 0xa2150u), film_(seed ^ 0xf11du), dt_(seed ^ 0xd1f7u),
-          deriv_(seed ^ 0xd0d0u) {}
+          deriv_(seed ^ 0xd0d0u), dr_(seed ^ 0xd12au) {}
     float u() { return u01_(*cur_); }
     float range(float a, float b) { return a + (b - a) * u(); }
     int pick(int n) { return int(u() * float(n)) % n; }
@@ -271,6 +272,13 @@ public:
             dt.diffuse_transmission_color_texture = slot();
             m.diffuse_transmission = dt;
         }
+        cur_ = &dr_;
+        if (chance(0.5f)) {
+            DiffuseRoughnessExt dr;
+            dr.diffuse_roughness_factor = chance(0.15f) ? 0.0f : (chance(0.2f) ? 1.0f : range(0.0f, 1.5f));
+            dr.diffuse_roughness_texture = slot();
+            m.diffuse_roughness = dr;
+        }
         cur_ = &rng_;
         if (chance(0.3f)) {
             SpecularGlossinessExt sg;
@@ -359,7 +367,8 @@ public:
     }
 
 private:
-    std::mt19937 rng_, side_, aniso_, film_, dt_, deriv_;  // aniso_, film_, dt_: KHR_materials_anisotropy's, _iridescence's, _diffuse_transmission's own streams; deriv_: the footprint regime's
+    std::mt19937 rng_, side_, aniso_, film_, dt_, deriv_, dr_;  // aniso_, film_, dt_, dr_: KHR_materials_anisotropy's, _iridescence's,
+    // _diffuse_transmission's, _diffuse_roughness's own streams; deriv_: the footprint regime's
     std::mt19937* cur_ = &rng_;
     std::uniform_real_distribution<float> u01_{0.0f, 1.0f};
 };
@@ -397,7 +406,7 @@ std::array<glm::vec4, kOutputs> cpu_outputs(const Case& c, const TextureSource& 
     o[7] = glm::vec4(e.sheen_color, e.sheen_roughness);
     o[8] = glm::vec4(e.anisotropic_t, e.anisotropy_strength);
     o[9] = glm::vec4(e.anisotropic_b, e.anisotropy_direction.x);
-    o[10] = glm::vec4(e.iridescence, e.iridescence_thickness, e.iridescence_ior, 0.0f);
+    o[10] = glm::vec4(e.iridescence, e.iridescence_thickness, e.iridescence_ior, e.diffuse_roughness);
     o[11] = glm::vec4(e.diffuse_transmission_color, e.diffuse_transmission);
     return o;
 }
@@ -460,7 +469,7 @@ const char* kOutputNames[kOutputs][4] = {
     {"sheen.r", "sheen.g", "sheen.b", "sheen_roughness"},
     {"aniso_t.x", "aniso_t.y", "aniso_t.z", "anisotropy_strength"},
     {"aniso_b.x", "aniso_b.y", "aniso_b.z", "aniso_direction.x"},
-    {"iridescence", "iridescence_thickness", "iridescence_ior", "zero"},
+    {"iridescence", "iridescence_thickness", "iridescence_ior", "diffuse_roughness"},
     {"dt_color.r", "dt_color.g", "dt_color.b", "diffuse_transmission"},
 };
 

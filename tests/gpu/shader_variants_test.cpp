@@ -11,8 +11,8 @@
 // is compiled once per distinct set of the bits it reads (the bits it never names
 // cannot change its text after preprocessing); the test finds those bits by scanning
 // the assembled source, so a shader that starts reading a new bit is covered at once.
-// (The anisotropy group together with the sheen or transmission group is compiled on a few
-// base sets only; EveryVariantCompilesAsEs300AndGl330 says why.)
+// (The anisotropy group together with the sheen or transmission group, and the diffuse
+// roughness map, are compiled on a few base sets only; EveryVariantCompilesAsEs300AndGl330 says why.)
 //
 // Three groups are sampled instead of enumerated: the KHR_materials_iridescence bits (the film
 // and its two maps), the KHR_materials_diffuse_transmission bits (the model and its two
@@ -294,7 +294,7 @@ TEST(ShaderVariants, EveryVariantCompilesAsEs300AndGl330) {
         }
         const std::vector<FeatureMask> sources = sources_to_compile(distinct, read);
         std::printf("%s: %zu distinct sources over %zu feature sets (%zu of them with anisotropy and sheen or "
-                    "transmission, on %zu base sets), %zu compiled (the film and diffuse transmission groups sampled)\n",
+                    "transmission or the diffuse roughness map, on %zu base sets), %zu compiled (the film and diffuse transmission groups sampled)\n",
                     file, distinct.size(), all.size(), crossed_kept, bases.size(), sources.size());
         per_target += sources.size();
         // GLSL ES 3.00 is the stricter dialect and the two sources differ only in the header

@@ -94,7 +94,7 @@ const TextureSlot* material_map(const Material& m, MaterialMap map) {
     const auto* an = m.has_anisotropy() ? &*m.anisotropy : nullptr;
     const auto* ir = m.has_iridescence() ? &*m.iridescence : nullptr;
     const auto* dt = m.has_diffuse_transmission() ? &*m.diffuse_transmission : nullptr;
-    const auto* dr = m.has_diffuse_roughness() ? &*m.diffuse_roughness : nullptr;
+    const auto* dr = m.has_diffuse_roughness() && !sg ? &*m.diffuse_roughness : nullptr;  // not under specular-glossiness
     const TextureSlot* slot = nullptr;
     switch (map) {
         case MaterialMap::BaseColor: slot = sg ? &sg->diffuse_texture : &m.base_color; break;
@@ -280,7 +280,7 @@ EvaluatedMaterial evaluate(const Material& material, const TextureSource& textur
         if (auto t = maps.sample(MaterialMap::DiffuseTransmissionColor)) e.diffuse_transmission_color *= glm::vec3(*t);
         e.diffuse_transmission_color = glm::max(e.diffuse_transmission_color, glm::vec3(0.0f));
     }
-    if (m.has_diffuse_roughness()) {
+    if (m.has_diffuse_roughness() && !m.specular_glossiness) {
         e.diffuse_roughness = m.diffuse_roughness->diffuse_roughness_factor;
         if (auto t = maps.sample(MaterialMap::DiffuseRoughness)) e.diffuse_roughness *= t->x;
         e.diffuse_roughness = std::clamp(e.diffuse_roughness, 0.0f, 1.0f);

@@ -574,3 +574,86 @@ TEST(Iridescence, NoFilmAtZeroThicknessAndTheFactorMixes) {
         }
     }
 }
+
+// KHR_materials_diffuse_roughness: the energy-preserving Oren-Nayar lobe (EON). Integrals by a
+// midpoint grid in cos(theta) and phi over the hemisphere (the lobe is smooth).
+namespace {
+// The cosine-weighted average over l of g(l), i.e. the integral of g(l) n.l / pi.
+template <class G>
+glm::dvec3 cosine_average(G&& g, int n = 400) {
+    glm::dvec3 sum(0.0);
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < 2 * n; ++j) {
+            const double mu = (i + 0.5) / n, phi = (j + 0.5) * kPiD / n;
+            sum += glm::dvec3(g(direction(mu, phi))) * mu;
+        }
+    return sum * (1.0 / n) * (kPiD / n) / kPiD;
+}
+}  // namespace
+
+TEST(DiffuseRoughness, ZeroRoughnessIsLambert) {
+    for (float mu : {0.05f, 0.5f, 1.0f}) {
+        glm::vec3 v = direction(mu, 0.0), l = direction(0.7, 2.0);
+        EXPECT_EQ(eon_factor(glm::vec3(0.3f, 0.6f, 0.9f), 0.0f, l.z, v.z, glm::dot(l, v)), glm::vec3(1.0f));
+        EXPECT_EQ(eon_albedo_factor(glm::vec3(0.3f), 0.0f, mu), glm::vec3(1.0f));
+    }
+}
+
+TEST(DiffuseRoughness, Reciprocity) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int i = 0; i < 500; ++i) {
+        glm::vec3 l = random_upper(rng), v = random_upper(rng), rho(u(rng), u(rng), u(rng));
+        float r = u(rng);
+        glm::vec3 a = eon_factor(rho, r, l.z, v.z, glm::dot(l, v)), b = eon_factor(rho, r, v.z, l.z, glm::dot(l, v));
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_GE(a[c], 0.0f);
+            EXPECT_NEAR(a[c], b[c], 1e-5f * (1.0f + a[c]));
+        }
+    }
+}
+
+// The single-scattering albedo's fit (Portsmouth et al.'s quartic) against the integral of
+// Fujii's Oren-Nayar lobe A (1 + r s/t) itself.
+TEST(DiffuseRoughness, SingleScatteringAlbedoFitMatchesItsIntegral) {
+    for (float r : {0.25f, 0.5f, 1.0f})
+        for (float mu : {0.05f, 0.2f, 0.5f, 0.8f, 1.0f}) {
+            const glm::vec3 v = direction(mu, 0.0);
+            const glm::dvec3 e = cosine_average([&](glm::vec3 l) {
+                float s = glm::dot(l, v) - l.z * v.z;
+                float s_over_t = s > 0.0f ? s / std::max(l.z, v.z) : s;
+                return glm::vec3((1.0f + r * s_over_t) / (1.0f + kEonC1 * r));
+            });
+            EXPECT_NEAR(e.x, eon_single_albedo(mu, r), 3e-3) << "r " << r << " mu " << mu;
+        }
+}
+
+// The white furnace: with rho = 1 every view's albedo is 1 (the multiple-scattering lobe
+// restores what the single-scattering one loses), and for any rho the albedo is
+// eon_albedo_factor (what image-based light's diffuse is scaled by) times Lambert's.
+TEST(DiffuseRoughness, WhiteFurnaceAndAlbedoFactor) {
+    for (float r : {0.25f, 0.5f, 1.0f})
+        for (float mu : {0.05f, 0.3f, 0.7f, 1.0f})
+            for (glm::vec3 rho : {glm::vec3(1.0f), glm::vec3(0.8f, 0.4f, 0.1f)}) {
+                const glm::vec3 v = direction(mu, 0.0);
+                const glm::dvec3 a = cosine_average(
+                    [&](glm::vec3 l) { return rho * eon_factor(rho, r, l.z, v.z, glm::dot(l, v)); });
+                const glm::vec3 want = rho * eon_albedo_factor(rho, r, mu);
+                for (int c = 0; c < 3; ++c) {
+                    EXPECT_NEAR(a[c], want[c], 4e-3) << "r " << r << " mu " << mu << " rho " << rho[c];
+                    if (rho[c] == 1.0f) {
+                        EXPECT_NEAR(a[c], 1.0, 4e-3) << "r " << r << " mu " << mu;
+                    }
+                }
+            }
+}
+
+// Roughness flattens the look: back-scattering (l near v) brighter than Lambert's, forward
+// scattering at grazing angles darker (Oren and Nayar's observation), for a dark albedo where
+// the multiple-scattering lobe is small.
+TEST(DiffuseRoughness, RetroReflectionRisesAndForwardScatteringFalls) {
+    const glm::vec3 rho(0.2f), v = direction(0.3, 0.0);
+    const glm::vec3 back = v, forward = direction(0.3, kPiD);
+    EXPECT_GT(eon_factor(rho, 1.0f, back.z, v.z, glm::dot(back, v)).x, 1.2f);
+    EXPECT_LT(eon_factor(rho, 1.0f, forward.z, v.z, glm::dot(forward, v)).x, 0.8f);
+}

@@ -58,7 +58,7 @@ MaterialUniforms material_uniforms(const Material& m) {
         b.diffuse_transmission_factor = m.diffuse_transmission->diffuse_transmission_factor;
         b.diffuse_transmission_color_factor = m.diffuse_transmission->diffuse_transmission_color_factor;
     }
-    if (m.has_diffuse_roughness()) b.diffuse_roughness_factor = m.diffuse_roughness->diffuse_roughness_factor;
+    if (m.has_diffuse_roughness() && !m.specular_glossiness) b.diffuse_roughness_factor = m.diffuse_roughness->diffuse_roughness_factor;
     for (std::size_t i = 0; i < std::size_t(kMaterialMapCount); ++i) {
         // A map the variant reads but the material lacks is the 1x1 white texture (identity
         // transform, UV set 0: the block's defaults).

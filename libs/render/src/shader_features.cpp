@@ -157,8 +157,11 @@ std::vector<FeatureMask> all_feature_sets() {
     const FeatureMask diffuse_transmission[] = {0, DiffuseTransmission,
                                                 DiffuseTransmission | DiffuseTransmissionMap | DiffuseTransmissionColorMap};
     const FeatureMask diffuse_roughness[] = {0, DiffuseRoughnessMap};
+    // The debug view turns the diffuse roughness map on (bit 42, outside the low bits): the low
+    // bits' own rules are checked without it, the whole mask's below.
+    const auto canonical_low = [](FeatureMask m) { return canonical_features(m) & ~DiffuseRoughnessMap; };
     for (FeatureMask low = 0; low <= kLow; ++low) {
-        if (canonical_features(low) != low) continue;
+        if (canonical_low(low) != low) continue;
         // The occlusion in the metallic-roughness texture (bit 39) replaces the occlusion map:
         // the low bits of a valid mask with it are canonical alone, or with the occlusion map
         // added (the debug view adds it where allowed). Both ways can give one mask: deduplicated.
@@ -169,7 +172,7 @@ std::vector<FeatureMask> all_feature_sets() {
                               low | MetallicRoughnessInAlpha, occlusion_in_mr | MetallicRoughnessInAlpha,
                               low | DetailSharedFootprint | MetallicRoughnessInAlpha,
                               occlusion_in_mr | DetailSharedFootprint | MetallicRoughnessInAlpha}) {
-            if (m != low && canonical_features(m) != m) continue;
+            if (m != low && canonical_low(m) != m) continue;
             for (FeatureMask a : animation)
                 for (FeatureMask s : sheen)
                     for (FeatureMask t : transmission)

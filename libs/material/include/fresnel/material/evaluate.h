@@ -23,8 +23,9 @@
 //               diffuseTransmissionColorFactor * diffuseTransmissionColorTexture RGB (sRGB); only
 //               when the factor is positive (KHR_materials_diffuse_transmission)
 //   diffuse roughness = diffuseRoughnessFactor * diffuseRoughnessTexture R, clamped to [0, 1];
-//               only when the factor is positive (KHR_materials_diffuse_roughness; the lobe is
-//               brdf::eon_factor times Lambert's)
+//               only when the factor is positive and not under specular-glossiness (as
+//               KHR_materials_specular; KHR_materials_diffuse_roughness: the lobe is brdf::eon_factor
+//               times Lambert's)
 //   occlusion = 1 + strength * (occlusionTexture R - 1)
 //   emissive = emissiveFactor * emissiveStrength * emissiveTexture RGB (sRGB)
 //   alpha: OPAQUE -> 1; MASK -> discard below the cutoff, else 1; BLEND -> as computed
