@@ -34,6 +34,7 @@
 
 #include "fresnel/material/brdf.h"
 #include "fresnel/material/brdf_model.h"
+#include "fresnel/material/bsdf.h"
 #include "fresnel/material/evaluate.h"
 #include "fresnel/material/fit.h"
 #include "fresnel/material/material.h"
@@ -65,7 +66,6 @@
 #include "fresnel/job/scene_file.h"
 #include "fresnel/job/settings.h"
 
-#include "fresnel/trace/bsdf.h"
 #include "fresnel/trace/distribution.h"
 #include "fresnel/trace/environment_light.h"
 #include "fresnel/trace/tracer.h"

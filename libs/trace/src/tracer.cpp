@@ -16,7 +16,7 @@
 #include "fresnel/core/error.h"
 #include "fresnel/core/parallel.h"
 #include "fresnel/material/evaluate.h"
-#include "fresnel/trace/bsdf.h"
+#include "fresnel/material/bsdf.h"
 
 namespace fresnel::trace {
 
@@ -499,8 +499,8 @@ struct Integrator {
             };
             m.normal = face_viewer(m.normal);
             m.clearcoat_normal = face_viewer(m.clearcoat_normal);
-            m.surface.perceptual_roughness = std::max(m.surface.perceptual_roughness, kMinTraceRoughness);
-            m.clearcoat_roughness = std::max(m.clearcoat_roughness, kMinTraceRoughness);
+            m.surface.perceptual_roughness = std::max(m.surface.perceptual_roughness, kMinSampledRoughness);
+            m.clearcoat_roughness = std::max(m.clearcoat_roughness, kMinSampledRoughness);
 
             const Bsdf bsdf(m, wo, settings.brdf);
             // Next-event estimation: every punctual light, then one sample of the environment.
@@ -512,7 +512,7 @@ struct Integrator {
                 // KHR_materials_diffuse_transmission: lights behind the surface light its transmitted lobe.
                 const bool behind = glm::dot(l, ng) <= 0.0f;
                 if (li.x + li.y + li.z <= 0.0f || (behind && !(m.diffuse_transmission > 0.0f))) continue;
-                glm::vec3 f = behind ? bsdf.eval(l) * li : shade_light(m, wo, l, li, glm::vec3(1.0f), glm::vec3(1.0f), settings.brdf);
+                glm::vec3 f = bsdf.eval(l) * li;  // the BSDF the path samples (with transmission, less its share of the diffuse)
                 if (f.x + f.y + f.z <= 0.0f) continue;
                 ++rays;
                 float tmax = std::isfinite(dist) ? dist * (1.0f - 1e-4f) : INFINITY;

@@ -6,7 +6,7 @@
 //     whose samples below the horizon are lost: they fall in one extra cell that expects
 //     1 - (the pdf's integral);
 //   - cosine-weighted directions (sampling::sample_cosine);
-//   - the BSDF mixture of the tracer (trace::sample_bsdf / pdf_bsdf) for dielectrics,
+//   - the BSDF mixture of the tracer (sample_bsdf / pdf_bsdf) for dielectrics,
 //     metals and a clearcoat with a tilted coat normal;
 //   - the environment's 2-D piecewise-constant distribution (EnvironmentLight::sample / pdf),
 //     in cells of the panorama's own pixels (where its density is constant).
@@ -24,7 +24,7 @@
 
 #include "chi2.h"
 #include "fresnel/material/sampling.h"
-#include "fresnel/trace/bsdf.h"
+#include "fresnel/material/bsdf.h"
 #include "fresnel/trace/distribution.h"
 #include "fresnel/trace/environment_light.h"
 
@@ -135,9 +135,9 @@ EvaluatedMaterial material(float metallic, float roughness, float clearcoat = 0.
 SphereDistribution bsdf(const std::string& name, const EvaluatedMaterial& m, double view_deg) {
     glm::vec3 v = view(view_deg);
     return {"bsdf " + name + " view " + std::to_string(view_deg),
-            [=](glm::vec3 l) { return double(trace::pdf_bsdf(m, v, l)); },
+            [=](glm::vec3 l) { return double(pdf_bsdf(m, v, l)); },
             [=](glm::vec3 u, glm::vec3& l) {
-                trace::BsdfSample s = trace::sample_bsdf(m, v, u);
+                BsdfSample s = sample_bsdf(m, v, u);
                 l = s.l;
                 return s.pdf > 0.0f;
             }};

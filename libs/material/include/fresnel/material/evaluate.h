@@ -229,4 +229,22 @@ bool is_transmissive(const Material& material);
 glm::vec3 shade_light_transmission(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 l_transmitted,
                                    float ray_length, glm::vec3 radiance);
 
+// The diffuse lobe the transmission takes its share of, times its cosine, at l (either side):
+//   (1 - cc_mix) (1 - metallic) w_film(F_d(v.h)) T diffuse
+// with `diffuse` as in shade_light_transmission (which subtracts radiance times this); 0 without
+// transmission.
+glm::vec3 transmission_replaced_diffuse(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l);
+
+// The whole BSDF times |n.l| at l on either side of the surface, as the path tracer shades
+// with it (fresnel/material/bsdf.h samples it): shade_light with unit radiance, less
+// transmission_replaced_diffuse, plus below the surface the thin-walled transmission lobe:
+//   (1 - cc_mix) (1 - metallic) w_film(F_d(v.h')) T base_colour D(n.h') V(n.l', n.v) n.l'
+// (l' = l mirrored above the surface, h' = normalize(l' + v), D and V at
+// transmission::apply_ior_to_roughness(alpha, ior), kept at least kMinSampledAlpha). Without
+// transmission it is shade_light's value, so a tracer and a rasteriser shade one material.
+// (The rasteriser's punctual transmission follows the Khronos viewer, with no cosine and a
+// second 1 - F; the tracer keeps the BSDF reciprocal and energy-bounded.)
+inline constexpr float kMinSampledAlpha = 9e-4f;  // perceptual roughness 0.03
+glm::vec3 shade_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, const brdf::BrdfModel& model = {});
+
 }  // namespace fresnel

@@ -11,7 +11,7 @@
 //   - materials through fresnel::evaluate (textures read at level 0, bilinear as the
 //     sampler says: the samples of a pixel integrate over its footprint); the occlusion
 //     texture is not used (the tracer computes occlusion); unlit materials emit their base
-//     colour; roughness below kMinTraceRoughness is raised to it;
+//     colour; roughness below kMinSampledRoughness is raised to it;
 //   - single-sided materials: back faces are invisible to every ray (as the rasteriser culls
 //     them); double-sided ones shade their back faces with the normal flipped;
 //   - alpha: MASK below the cutoff is invisible, BLEND is stochastic opacity (a ray passes
