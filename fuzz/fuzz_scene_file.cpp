@@ -3,7 +3,6 @@
 // resolve under a folder that does not exist, so no file is ever found.
 #include <cstddef>
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <string_view>
 
 #include "fresnel/job/scene_file.h"
@@ -12,8 +11,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     fresnel::Diagnostics diag;
     try {
         std::string_view text(reinterpret_cast<const char*>(data), size);
-        nlohmann::json doc = fresnel::parse_json_limited(text, "fuzz.fresnel.json");
-        (void)fresnel::parse_scene_document(doc, "fuzz.fresnel.json", "/nonexistent-fresnel-fuzz", fresnel::Job{}, diag);
+        (void)fresnel::parse_scene_text(text, "fuzz.fresnel.json", "/nonexistent-fresnel-fuzz", fresnel::Job{}, diag);
     } catch (const fresnel::Error&) {
     }
     return 0;

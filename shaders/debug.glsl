@@ -32,6 +32,7 @@ vec3 debug_value(int channel, MaterialInputs m, vec3 n, vec3 ng, vec3 t, vec3 b,
     if (channel == 29) return vec3(clamp(m.iridescence_thickness / 1000.0, 0.0, 1.0));  // micrometres
     if (channel == 30) return vec3(m.diffuse_transmission);  // KHR_materials_diffuse_transmission (0 without)
     if (channel == 31) return m.diffuse_transmission > 0.0 ? linear_to_srgb(clamp(m.diffuse_transmission_color, 0.0, 1.0)) : vec3(0.0);
+    if (channel == 32) return vec3(m.diffuse_roughness);  // KHR_materials_diffuse_roughness (0 without: Lambert)
     vec3 l = v;
     if (u_light_count > 0) light_incident(0, v_position, l);
     // With the thin film where there is one (F shows the film's colours).

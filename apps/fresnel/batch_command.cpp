@@ -10,6 +10,8 @@
 // last models. A job that fails is reported and the batch goes on; the exit code says whether
 // any failed. Outputs are written atomically (temporary file, then rename), so an output that
 // exists is complete, which is what --resume relies on.
+// Long (~730 lines): the job list reader, the sharding, the workers and the report are one
+// command's parts, kept in one file as every other command is.
 #include <unistd.h>
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -40,7 +42,7 @@
 #include "fresnel/ibl/environment.h"
 #include "fresnel/job/job.h"
 #include "fresnel/render/renderer.h"
-#include "fresnel/job/scene_file.h"
+#include "fresnel/job/scene_document.h"
 #include "fresnel/job/settings.h"
 #include "fresnel/scene/paths.h"
 #include "command_line.h"

@@ -2,21 +2,21 @@
 // WebGL 2 canvas. Files (picked, dropped, or named by URL parameters from the same origin)
 // are written into Emscripten's in-memory file system and loaded by the same loaders as
 // `fresnel render`. URL parameters use the CLI's names and meanings:
-//   ?model=URL&env=URL&yaw=DEG&pitch=DEG&size=WxH&tonemap=NAME&debug=CHANNEL&exposure=EV
-//   &env-intensity=X&env-rotation=DEG&background=env|blur|transparent|R,G,B&distance=K&fov=DEG&msaa=N
-//   &brdf=D=..,G=..,F=..,diffuse=..&light=SPEC (repeatable, as --light)&no-scene-lights&no-ibl
+//   ?model=URL&env=URL&light=SPEC (repeatable, as --light)&no-ibl, and every setting the
+//   registry offers the page by its flag's name or its key (urlSettings: ?yaw=DEG&size=WxH&tonemap=NAME
+//   &env-rotation=DEG&no-scene-lights&render.exposure=EV ...; `fresnel settings` lists them)
 //   ?scene=URL: a *.fresnel.json scene file (same origin; the files it names are fetched beside it),
 //   read as `fresnel render SCENE.fresnel.json` reads it; the other parameters then override it as flags do.
 // window.fresnelReady becomes true once the first complete frame of what was asked is on the
 // canvas; window.fresnelError holds the message when loading failed. window.fresnel is the
 // page's interface for scripts and tests (set, openFiles, openUrl, draw, screenshot).
+// Long (~700 lines): the page's whole behaviour (files, URL parameters, panel, editor, input) in
+// one script with no build step, as the page is served as plain files.
 'use strict';
 (() => {
 const $ = id => document.getElementById(id);
 const canvas = $('canvas');
 const params = new URLSearchParams(location.search);
-const SETTINGS = ['size', 'yaw', 'pitch', 'distance', 'fov', 'msaa', 'anisotropy', 'tonemap', 'encoding', 'exposure',
-                  'debug', 'env-intensity', 'env-rotation', 'background', 'brdf'];
 const DEFAULT_MODEL = 'models/DamagedHelmet.glb';  // copied here by `make web` when ../shared has it
 
 let M = null, app = 0, frames = 0, drawPending = false;
@@ -34,6 +34,22 @@ function fail(message) {
     window.fresnelError = message;
     status('failed');
     throw new Error(message);
+}
+// The URL parameters that are settings, as [key, value] in the registry's order: every setting
+// the registry offers the page, named by its flag without dashes (?env-rotation=30, and for a
+// negated boolean flag its presence: ?no-energy-compensation) or by its key
+// (?environment.rotation=30). The page reads ?env= (a file to fetch), ?scene= (a scene file)
+// and ?light= (repeated) itself.
+function urlSettings() {
+    const out = [];
+    for (const s of JSON.parse(M.ccall('fresnel_settings', 'string', [], []))) {
+        if (!s.frontEnds.includes('web') || s.key === 'environment' || s.key === 'scene') continue;
+        const flag = s.flag.replace(/^--/, '');
+        if (params.has(s.key)) out.push([s.key, params.get(s.key)]);
+        else if (flag && params.has(flag))
+            out.push([s.key, s.type === 'bool' && params.get(flag) === '' ? String(!flag.startsWith('no-')) : params.get(flag)]);
+    }
+    return out;
 }
 function set(key, value) {
     if (!M.ccall('fresnel_set', 'number', ['number', 'string', 'string'], [app, key, String(value)]))
@@ -506,8 +522,20 @@ function syncPanel() {
 }
 
 function bindPanel() {
+    // The panel's sliders take their range, and its empty drop-downs their choices, from the
+    // settings registry (the setting named by its flag or key).
+    const registry = JSON.parse(M.ccall('fresnel_settings', 'string', [], []));
+    const setting = name => registry.find(s => s.key === name || s.flag === `--${name}`);
     const control = (id, key, format) => {
-        const el = $(id), out = el.parentElement.querySelector('output');
+        const el = $(id), out = el.parentElement.querySelector('output'), s = setting(key);
+        if (s && el.type === 'range') {
+            el.min = s.sliderMin;
+            el.max = s.sliderMax;
+            el.step = s.type === 'int' ? 1 : (s.sliderMax - s.sliderMin) / 160;
+            el.value = Number(s.default);
+        }
+        if (s && el.tagName === 'SELECT' && !el.options.length)
+            for (const c of s.choices) el.add(new Option(c, c, c === s.default, c === s.default));
         const show = () => { if (out) out.textContent = format ? format(el.value) : el.value; };
         show();
         el.addEventListener('input', () => {
@@ -516,9 +544,6 @@ function bindPanel() {
             if (key === 'background') draw(); else scheduleDraw();
         });
     };
-    const debug = $('debug');
-    debug.add(new Option('none', 'none'));
-    for (const n of M.UTF8ToString(M._fresnel_debug_channels(app)).split(' ')) debug.add(new Option(n, n));
     control('env-intensity', 'env-intensity');
     control('env-rotation', 'env-rotation', v => `${v}°`);
     control('background', 'background');
@@ -613,14 +638,13 @@ async function main() {
     if (dbg) $('gl-info').textContent += ` | ${gl.getParameter(dbg.UNMASKED_RENDERER_WEBGL)}`;
     if (err) fail(err);
     try {
-        for (const key of SETTINGS) if (params.has(key)) set(key, params.get(key));
+        for (const [key, value] of urlSettings()) set(key, value);
     } catch (e) { fail(e.message); }
     // The CLI's light flags (--light replaces a scene file's lights, as on the command line).
     const lightParams = () => {
         const lights = params.getAll('light');
         if (lights.length) set('lights-clear', '');
         lights.forEach((spec, i) => set(`light:${i}`, spec));
-        if (params.has('no-scene-lights')) set('sceneLights', 0);
         if (params.has('no-ibl')) set('no-ibl', 1);
     };
     try { lightParams(); } catch (e) { fail(e.message); }
@@ -643,7 +667,7 @@ async function main() {
             if (params.has('env')) env = /^(studio|none|auto)$|^color:/.test(params.get('env')) ? params.get('env') : await fetchEnvironment(params.get('env'));
             await openScenePath(path, () => {
                 if (env) set('env', env);
-                for (const key of SETTINGS) if (params.has(key)) set(key, params.get(key));
+                for (const [key, value] of urlSettings()) set(key, value);
                 lightParams();
             });
         } catch (e) {

@@ -463,14 +463,6 @@ EMSCRIPTEN_KEEPALIVE const char* fresnel_camera(App* app) {
     app->text = std::to_string(app->job.camera.yaw_deg) + " " + std::to_string(app->job.camera.pitch_deg);
     return app->text.c_str();
 }
-// The debug channels' names (--debug), separated by spaces.
-EMSCRIPTEN_KEEPALIVE const char* fresnel_debug_channels(App* app) {
-    if (!app) return "";
-    app->text.clear();
-    for (const std::string& n : fresnel::debug_channel_names()) app->text += (app->text.empty() ? "" : " ") + n;
-    return app->text.c_str();
-}
-
 }  // extern "C"
 
 int main() { return 0; }

@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fresnel/job/orbit_controller.h"
-#include "fresnel/job/scene_file.h"
+#include "fresnel/job/scene_document.h"
 #include "fresnel/job/settings.h"
 #include "fresnel/viewer/script.h"
 

@@ -170,7 +170,11 @@ try {
     const scenePage = await browser.newPage({ viewport: { width: 1000, height: 700 }, deviceScaleFactor: 1 });
     scenePage.on('console', m => log.push(`[scene ${m.type()}] ${m.text()}`));
     scenePage.on('pageerror', e => log.push(`[scene exception] ${e.message}`));
-    const sceneOpen = await openPage(scenePage, base, '?scene=/test/scene/helmet.fresnel.json');
+    // URL parameters are the settings registry's: by key (render.anisotropy), by flag name, and a
+    // negated boolean flag by its presence (no-energy-compensation); both are set back to their
+    // defaults (the scene file sets neither) before the comparison with fresnel render.
+    const sceneOpen = await openPage(scenePage, base,
+                                     '?scene=/test/scene/helmet.fresnel.json&render.anisotropy=4&no-energy-compensation');
     check(!sceneOpen.error, `?scene=helmet.fresnel.json loads (${sceneOpen.ms} ms to the first frame)${sceneOpen.error ? ': ' + sceneOpen.error : ''}`);
     const shot = async file => {
         const url = await scenePage.evaluate(() => document.getElementById('canvas').toDataURL('image/png'));
@@ -179,6 +183,10 @@ try {
     };
     if (!sceneOpen.error) {
         const st = await scenePage.evaluate(() => window.fresnel.state());
+        check(st.settings['render.anisotropy'] === '4' && st.settings['render.energyCompensation'] === 'false',
+              `URL parameters by registry key and negated flag (render.anisotropy ${st.settings['render.anisotropy']}, ` +
+              `energy compensation ${st.settings['render.energyCompensation']})`);
+        await scenePage.evaluate(() => { window.fresnel.setOnly('render.anisotropy', '6'); return window.fresnel.set('render.energyCompensation', 'true'); });
         const sceneShot = await shot('web_scene.png');
         const ps = psnr(sceneShot, path.join(outDir, 'cli_scene.png'));
         check(ps >= 30 && st.tonemap === 'aces' && st.size[0] === 320 && st.lights.some(l => l.origin === 'extra'),

@@ -8,6 +8,7 @@
 #include "fresnel/gpu/device.h"
 #include "fresnel/job/orbit_controller.h"
 #include "fresnel/viewer/files.h"
+#include "setting_widgets.h"
 #include "viewer_app.h"
 
 namespace fresnel::cli::view {
@@ -30,19 +31,6 @@ bool combo(const char* label, E& value, const std::vector<std::pair<E, std::stri
         ImGui::EndCombo();
     }
     return changed;
-}
-
-const std::vector<std::pair<ToneMapper, std::string>>& tone_mappers() {
-    static const std::vector<std::pair<ToneMapper, std::string>> items{
-        {ToneMapper::Neutral, "neutral"}, {ToneMapper::Aces, "aces"}, {ToneMapper::AcesHill, "aces-hill"},
-        {ToneMapper::Reinhard, "reinhard"}, {ToneMapper::Agx, "agx"}, {ToneMapper::None, "none"}};
-    return items;
-}
-
-std::vector<std::pair<DebugChannel, std::string>> debug_channels() {
-    std::vector<std::pair<DebugChannel, std::string>> channels{{DebugChannel::None, "none (shaded)"}};
-    for (const auto& n : debug_channel_names()) channels.emplace_back(*parse_debug_channel(n), n);
-    return channels;
 }
 
 }  // namespace
@@ -136,11 +124,11 @@ void Viewer::draw_camera_panel() {
         }
     }
     if (!c.scene_camera) {
-        ImGui::DragFloat("yaw", &c.yaw_deg, 0.5f, -180.0f, 180.0f, "%.2f deg");
-        ImGui::DragFloat("pitch", &c.pitch_deg, 0.5f, -89.9f, 89.9f, "%.2f deg");
+        setting_widget(state_.job, "camera.yaw");
+        setting_widget(state_.job, "camera.pitch");
         float k = distance_k(c, std::max(state_.framebuffer.x, 1), std::max(state_.framebuffer.y, 1));
         if (ImGui::DragFloat("distance K", &k, 0.01f, 0.01f, 1e4f, "%.3f")) c.distance_k = std::max(k, 0.01f);
-        ImGui::DragFloat("fov", &c.yfov_deg, 0.2f, 1.0f, 170.0f, "%.1f deg");
+        setting_widget(state_.job, "camera.fov");
         if (c.target) ImGui::Text("target %.3f %.3f %.3f (panned)", c.target->x, c.target->y, c.target->z);
     }
     if (ImGui::Button("Frame all (F)")) c = frame_all(c);
@@ -161,39 +149,39 @@ void Viewer::draw_environment_panel() {
                  {Kind::Color, "colour"}, {Kind::None, "none (no IBL)"}});
     if (e.kind == Kind::File) ImGui::TextWrapped("%s", e.path.empty() ? "(drop a .hdr/.exr)" : e.path.c_str());
     if (e.kind == Kind::Color) ImGui::ColorEdit3("colour", &e.color.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
-    ImGui::SliderFloat("rotation", &e.rotation_deg, -180.0f, 180.0f, "%.1f deg");
+    setting_widget(job, "environment.rotation");
     ImGui::SameLine();
     ImGui::Checkbox("spin", &state_.spin_environment);
-    ImGui::DragFloat("intensity", &e.intensity, 0.01f, 0.0f, 100.0f, "%.2f");
+    setting_widget(job, "environment.intensity");
     using Mode = Job::Background::Mode;
     combo<Mode>("background", job.background.mode,
                 {{Mode::Automatic, "automatic"}, {Mode::Environment, "environment (sharp)"},
                  {Mode::Blurred, "blurred"}, {Mode::Color, "colour"}, {Mode::Transparent, "transparent"}});
     if (job.background.mode == Mode::Color) ImGui::ColorEdit3("background colour", &job.background.color.x);
-    ImGui::Checkbox("scene lights", &job.lights.scene_lights);
+    setting_widget(job, "sceneLights");
 }
 
 // "Output" and "Split view".
 void Viewer::draw_output_panels() {
     if (ImGui::CollapsingHeader("Output")) {
-        Job::Output& o = state_.job.output;
-        combo<ToneMapper>("tone mapper", o.tone_mapper, tone_mappers());
-        ImGui::SliderFloat("exposure", &o.exposure_ev, -8.0f, 8.0f, "%.2f EV");
-        combo<Encoding>("encoding", o.encoding, {{Encoding::Srgb, "srgb"}, {Encoding::Gamma22, "gamma2.2"}});
-        combo<DebugChannel>("debug", o.debug, debug_channels());
-        ImGui::Checkbox("energy compensation", &o.energy_compensation);
-        ImGui::SliderInt("MSAA", &o.msaa, 1, 8);
+        for (const char* key : {"render.toneMapping", "render.exposure", "render.encoding", "render.debug",
+                                "render.energyCompensation"})
+            setting_widget(state_.job, key);
+        setting_widget(state_.job, "render.msaa", "MSAA");
         if (ImGui::Button("Screenshot (F12)")) state_.screenshot_requested = true;
     }
     if (ImGui::CollapsingHeader("Split view")) {
         if (ImGui::Checkbox("split (drag the divider)", &state_.split) && state_.split) state_.split_output = state_.job.output;
         if (state_.split) {
-            Job::Output& right = state_.split_output;
+            // The right half's output settings, through the registry on a job holding them.
+            Job right = state_.job;
+            right.output = state_.split_output;
             ImGui::TextDisabled("right of the divider:");
-            combo<DebugChannel>("debug##right", right.debug, debug_channels());
-            combo<ToneMapper>("tone mapper##right", right.tone_mapper, tone_mappers());
-            ImGui::SliderFloat("exposure##right", &right.exposure_ev, -8.0f, 8.0f, "%.2f EV");
-            ImGui::Checkbox("energy compensation##right", &right.energy_compensation);
+            ImGui::PushID("right");
+            for (const char* key : {"render.debug", "render.toneMapping", "render.exposure", "render.energyCompensation"})
+                setting_widget(right, key);
+            ImGui::PopID();
+            state_.split_output = right.output;
         }
     }
 }

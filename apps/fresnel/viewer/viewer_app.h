@@ -7,6 +7,7 @@
 //   input.cpp       mouse and keys, the command line copy
 //   panels.cpp      the main panel (file, camera, environment, output, split view, statistics), the file browser
 //   scene_panels.cpp  the gizmos, the lights panel, the scene tree, the material editor
+//   setting_widgets.cpp  a setting's widget from the settings registry (the panels' controls)
 //
 // The frame is the renderer's, for the Job the state describes at the window's framebuffer
 // size (resolve(), the same Renderer, RenderTarget::default_framebuffer); the GUI is drawn

@@ -1,3 +1,6 @@
+// Image-based-light precomputation (fresnel/ibl/precompute.h). Long (~600 lines) because the
+// specular prefilter, the irradiance (SH and cube), the BRDF table and their parallel, vectorised
+// loops share one set of cube-face and sampling helpers that no other file needs.
 #include "fresnel/ibl/precompute.h"
 
 #include <algorithm>

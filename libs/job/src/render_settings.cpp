@@ -25,6 +25,7 @@ constexpr NamedChannel kChannels[] = {
     {"iridescence", DebugChannel::Iridescence}, {"iridescence-thickness", DebugChannel::IridescenceThickness},
     {"diffuse-transmission", DebugChannel::DiffuseTransmission},
     {"diffuse-transmission-color", DebugChannel::DiffuseTransmissionColor},
+    {"diffuse-roughness", DebugChannel::DiffuseRoughness},
 };
 }  // namespace
 

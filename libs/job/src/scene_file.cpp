@@ -2,7 +2,9 @@
 // range and names the JSON pointer of the value; every object's keys are checked against
 // the keys it may hold, and the others reported as warnings (a misspelt key should not
 // silently do nothing). Paths go through the models' URI policy (fresnel/scene/paths.h).
-#include "fresnel/job/scene_file.h"
+// Long (~850 lines): the reader and the writer of one format, kept side by side so that
+// what is read and what is written stay the same fields.
+#include "fresnel/job/scene_document.h"
 
 #include <unistd.h>
 
@@ -608,9 +610,13 @@ SceneFile load_scene_file(const fs::path& path, const Job& defaults, Diagnostics
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(name, "", "cannot open the scene file");
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    json doc = parse_json_limited(text, name, options);
     fs::path base = path.parent_path();
-    return parse_scene_document(doc, name, base.empty() ? fs::path(".") : base, defaults, diag, options);
+    return parse_scene_text(text, name, base.empty() ? fs::path(".") : base, defaults, diag, options);
+}
+
+SceneFile parse_scene_text(std::string_view text, const std::string& name, const fs::path& base_dir, const Job& defaults,
+                           Diagnostics& diag, const SceneFileOptions& options, const std::vector<std::string>& ignore) {
+    return parse_scene_document(parse_json_limited(text, name, options), name, base_dir, defaults, diag, options, ignore);
 }
 
 
@@ -827,12 +833,16 @@ json scene_document(const Job& job, const fs::path& base_dir, const std::optiona
     return doc;
 }
 
+std::string scene_text(const Job& job, const fs::path& base_dir, const std::optional<fs::path>& output,
+                       SceneDocumentReport* report) {
+    return scene_document(job, base_dir, output, report).dump(2) + "\n";
+}
+
 void save_scene_file(const fs::path& path, const Job& job, Diagnostics& diag, const std::optional<fs::path>& output) {
     const std::string name = path.string();
     SceneDocumentReport report;
     fs::path base = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-    json doc = scene_document(job, base, output, &report);
-    std::string text = doc.dump(2) + "\n";
+    std::string text = scene_text(job, base, output, &report);
     for (const auto& p : report.outside)
         diag.warn(name, "", "names '" + p + "', outside the file's folder: read it with --allow-external-files");
     for (const auto& d : report.dropped) diag.warn(name, "", "a scene file holds no " + d + " (not written)");

@@ -1,5 +1,6 @@
 // The settings registry (fresnel/job/settings.h): the table of every Job setting, and the one
 // parser and printer of their text syntax.
+// Long (~910 lines) by design: the table declares every setting once, in one place.
 #include "fresnel/job/settings.h"
 
 #include <algorithm>
@@ -227,6 +228,7 @@ std::vector<Setting> make_registry() {
     {
         Setting s = number("camera.yaw", "--yaw", "degrees", -1e6, 1e6, "Orbit yaw (0: from +Z, 90: from +X)",
                            all | kSweep, [](Job& j) -> float& { return j.camera.yaw_deg; });
+        s.slider_min = -180, s.slider_max = 180;
         s.periodic = true;
         s.applies = orbit_camera;
         s.print_always = true;
@@ -263,6 +265,7 @@ std::vector<Setting> make_registry() {
     {
         Setting s = number("camera.fov", "--fov", "degrees", 0.01, 179, "Vertical field of view", all | kSweep,
                            [](Job& j) -> float& { return j.camera.yfov_deg; });
+        s.slider_min = 1, s.slider_max = 170;
         s.applies = [](const Job& j) { return !j.camera.scene_camera; };
         s.put = [](Job& j, const Value& v) {
             if (j.camera.scene_camera) j.camera = Job::Camera{};  // a lookAt camera keeps its place
@@ -409,8 +412,10 @@ std::vector<Setting> make_registry() {
                        "Turn the environment about +Y", all | kSweep,
                        [](Job& j) -> float& { return j.environment.rotation_deg; }));
     r.back().periodic = true;
+    r.back().slider_min = -180, r.back().slider_max = 180;
     r.push_back(number("environment.intensity", "--env-intensity", "", 0, 1e9, "Scale the environment's radiance",
                        all | kSweep, [](Job& j) -> float& { return j.environment.intensity; }));
+    r.back().slider_min = 0, r.back().slider_max = 4;
     {
         Setting s;
         s.key = "environment.bakeSamples";
@@ -556,6 +561,7 @@ std::vector<Setting> make_registry() {
     }
     r.push_back(number("render.exposure", "--exposure", "EV", -64, 64, "Exposure (radiance x 2^EV)", all | kSweep,
                        [](Job& j) -> float& { return j.output.exposure_ev; }));
+    r.back().slider_min = -8, r.back().slider_max = 8;
     r.push_back(choice(
         "render.encoding", "--encoding", {"srgb", "gamma2.2"},
         "Display encoding: srgb (the exact curve) or gamma2.2 (pow 1/2.2)", all,
@@ -879,7 +885,8 @@ std::string describe_json() {
         out += "\n{\"key\":" + json_string(s.key) + ",\"flag\":" + json_string(s.flag) + ",\"type\":\"" +
                type_name(s.type) + "\",\"unit\":" + json_string(s.unit);
         if (s.type == Type::Int || s.type == Type::Number || s.type == Type::Vec3 || s.type == Type::Size)
-            out += ",\"min\":" + json_number(s.min) + ",\"max\":" + json_number(s.max);
+            out += ",\"min\":" + json_number(s.min) + ",\"max\":" + json_number(s.max) +
+                   ",\"sliderMin\":" + json_number(s.slider_lo()) + ",\"sliderMax\":" + json_number(s.slider_hi());
         out += ",\"choices\":[";
         for (std::size_t i = 0; i < s.choices.size(); ++i) out += (i ? "," : "") + json_string(s.choices[i]);
         out += "],\"none\":" + json_string(s.none) + ",\"default\":" + json_string(default_text(s)) +

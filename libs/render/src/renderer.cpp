@@ -1,3 +1,7 @@
+// The rasteriser (fresnel/render/renderer.h). Long (~1250 lines) because the frame's passes
+// (shadow-free opaque, transmission's opaque copy, transparent, background, resolve) share the
+// per-frame state and draw lists; the parts with a concern of their own are already apart
+// (shader_features, material_uniforms, uniform_blocks, gpu_scene, environment).
 #include "fresnel/render/renderer.h"
 
 #include <algorithm>

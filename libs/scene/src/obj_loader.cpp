@@ -10,6 +10,8 @@
 // normals, faces as corner lists with their object, material and smoothing group), checking
 // every index as it is read; build() then makes one primitive per (object, material, kind),
 // triangulating polygons and generating missing normals.
+// Long (~950 lines): one format's whole reader (statements, polygons, smoothing groups,
+// limits and error places) kept together; MTL is mtl_parser.cpp.
 #include "fresnel/scene/obj_loader.h"
 
 #include <algorithm>

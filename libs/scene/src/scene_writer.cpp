@@ -1,4 +1,6 @@
 // glTF and OBJ/MTL writers (scene_writer.h). JSON through nlohmann::json, as the loader.
+// Long (~860 lines) because the glTF writer, its patcher of an original file and the OBJ/MTL
+// writer share the mesh, texture and whole-or-absent file-set helpers here.
 #include "fresnel/scene/scene_writer.h"
 
 #include "fresnel/scene/mesh_ops.h"

@@ -1,3 +1,6 @@
+// The path tracer (fresnel/trace/tracer.h). Long (~720 lines) because the Embree scene (geometry,
+// instancing of the flattened meshes, alpha filters), the path loop with its next-event estimation
+// and the tiled, progressive image loop are one concern: a path and the scene it is traced in.
 #include "fresnel/trace/tracer.h"
 
 #include <embree3/rtcore.h>

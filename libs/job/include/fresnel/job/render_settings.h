@@ -29,6 +29,7 @@ enum class DebugChannel {
     IridescenceThickness,  // the film's thickness in micrometres (grey, 1 = 1000 nm and above)
     DiffuseTransmission = 30,  // KHR_materials_diffuse_transmission factor (grey)
     DiffuseTransmissionColor,  // its colour (sRGB)
+    DiffuseRoughness = 32,     // KHR_materials_diffuse_roughness (grey; 0: Lambert)
 };
 std::optional<DebugChannel> parse_debug_channel(const std::string& name);
 std::vector<std::string> debug_channel_names();

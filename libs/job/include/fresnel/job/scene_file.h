@@ -14,7 +14,6 @@
 // Unknown keys are warnings naming their pointer. Settings (camera.yaw, render.exposure, ...)
 // are read through the settings registry, with its ranges and its one error message.
 #include <filesystem>
-#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -50,17 +49,15 @@ bool is_scene_file(const std::filesystem::path& path);
 SceneFile load_scene_file(const std::filesystem::path& path, const Job& defaults, Diagnostics& diag,
                           const SceneFileOptions& options = {});
 
-// The same for a document already parsed: `name` appears in messages, relative paths resolve
-// against `base_dir`. `ignore` lists top-level keys the caller handles (no unknown-key warning).
-SceneFile parse_scene_document(const nlohmann::json& doc, const std::string& name,
-                               const std::filesystem::path& base_dir, const Job& defaults, Diagnostics& diag,
-                               const SceneFileOptions& options = {}, const std::vector<std::string>& ignore = {});
+// The same for scene-file text already read: `name` appears in messages, relative paths
+// resolve against `base_dir`. `ignore` lists top-level keys the caller handles (no
+// unknown-key warning). (fresnel/job/scene_document.h, target fresnel::job_json, has the
+// same on parsed nlohmann::json documents, for callers that build documents.)
+SceneFile parse_scene_text(std::string_view text, const std::string& name, const std::filesystem::path& base_dir,
+                           const Job& defaults, Diagnostics& diag, const SceneFileOptions& options = {},
+                           const std::vector<std::string>& ignore = {});
 
-// Parses JSON text with the options' size and depth limits; throws fresnel::Error (name,
-// "byte N" or "line L", reason). For job lists and other JSON the scene-file rules apply to.
-nlohmann::json parse_json_limited(std::string_view text, const std::string& name, const SceneFileOptions& options = {});
-
-// The other way: `job` as a scene file document, every field a scene file holds (the reader
+// The other way: `job` as a scene file, every field a scene file holds (the reader
 // gives the same job back, floats exactly). Paths are written relative to `base_dir` (the
 // folder the file will be in); those outside it are written with "..", or absolute when no
 // relative path exists, and listed in `outside` (the reader then needs allow_external_files).
@@ -71,11 +68,11 @@ nlohmann::json parse_json_limited(std::string_view text, const std::string& name
 struct SceneDocumentReport {
     std::vector<std::string> outside, dropped;
 };
-nlohmann::json scene_document(const Job& job, const std::filesystem::path& base_dir,
-                              const std::optional<std::filesystem::path>& output = {},
-                              SceneDocumentReport* report = nullptr);
+// The document as save_scene_file writes it (two-space indents, a final newline).
+std::string scene_text(const Job& job, const std::filesystem::path& base_dir,
+                       const std::optional<std::filesystem::path>& output = {}, SceneDocumentReport* report = nullptr);
 
-// Writes scene_document(job, the file's folder) to `path` atomically (a temporary file in the
+// Writes scene_text(job, the file's folder) to `path` atomically (a temporary file in the
 // same folder, flushed, renamed over `path`; a failed write leaves `path` as it was). Files
 // outside the folder and dropped fields are warnings in `diag`. Throws fresnel::Error.
 void save_scene_file(const std::filesystem::path& path, const Job& job, Diagnostics& diag,

@@ -65,6 +65,9 @@ struct Setting {
     Type type = Type::Number;
     std::string unit;  // "degrees", "EV", ""
     double min = 0.0, max = 0.0;
+    // The range a slider offers (the viewer's panels, the web page); both 0: [min, max]. Soft:
+    // values outside it within [min, max] stay valid (a yaw of 720, an intensity of 50).
+    double slider_min = 0.0, slider_max = 0.0;
     std::vector<std::string> choices;  // Choice
     std::string none;                  // optional settings: the word for unset ("fit", "center", "auto")
     std::string doc;                   // one line
@@ -94,6 +97,8 @@ struct Setting {
     std::function<std::string(const std::string& text)> canonical;
 
     bool offered(unsigned front_end) const { return (front_ends & front_end) != 0; }
+    double slider_lo() const { return slider_min == slider_max ? min : slider_min; }
+    double slider_hi() const { return slider_min == slider_max ? max : slider_max; }
     // What the setting takes, for messages and --help: "a number in [-90, 90] (degrees)".
     std::string expected() const;
 };
@@ -137,7 +142,7 @@ std::string default_text(const Setting& setting);
 // the type (the other boolean, another choice, a number in range).
 std::string example(const Setting& setting);
 
-// The registry as JSON text (an array of {key, flag, type, unit, min, max, choices, none,
+// The registry as JSON text (an array of {key, flag, type, unit, min, max, sliderMin, sliderMax, choices, none,
 // default, example, doc, frontEnds, oldNames, periodic}): `fresnel settings --json`, the web
 // page's fresnel_settings(), and the scripts that generate docs/scene.schema.json from it.
 std::string describe_json();
