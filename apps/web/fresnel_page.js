@@ -389,7 +389,6 @@ function field(parent, label, attrs, change) {
 function buildLights(st) {
     const box = $('lights');
     box.textContent = '';
-    $('scene-lights').checked = st.sceneLights;
     $('ibl').checked = st.ibl;
     const describe = l => l.type === 'directional' ? `from azimuth ${num(l.azimuth)}, elevation ${num(l.elevation)}, ${num(l.intensity)} lux`
                                                    : `at ${l.position.map(num).join(', ')}, ${num(l.intensity)} cd`;
@@ -496,60 +495,57 @@ function buildMaterial(list) {
     }
 }
 
-// The panel's controls from the job (after a scene file, a model, URL parameters).
+// The panel's controls from the job (after a scene file, a model, URL parameters): each
+// control names its setting (data-setting, a key of the settings registry) and shows the
+// job's value in the registry's text.
+function showSetting(el, value) {
+    if (el.type === 'checkbox') {
+        el.checked = value === 'true';
+        return;
+    }
+    if (el.tagName === 'SELECT' && ![...el.options].some(o => o.value === value)) el.add(new Option(value, value));
+    el.value = value;
+    const out = el.parentElement.querySelector('output');
+    if (out) out.textContent = el.dataset.unit ? `${el.value} ${el.dataset.unit}` : el.value;
+}
 function syncPanel() {
     const st = state();
-    const pick = (id, value) => {
-        const el = $(id);
-        if (el.tagName === 'SELECT' && ![...el.options].some(o => o.value === String(value))) el.add(new Option(String(value), String(value)));
-        el.value = String(value);
-        const out = el.parentElement.querySelector('output');
-        if (out) out.textContent = id === 'env-rotation' ? `${el.value}°` : el.value;
-    };
-    pick('tonemap', st.tonemap);
-    pick('exposure', num(st.exposure));
-    pick('env-intensity', num(st.envIntensity));
-    pick('env-rotation', num(st.envRotation));
-    pick('background', st.background);
-    pick('debug', st.debug);
-    for (const term of st.brdf.split(',')) {
+    for (const el of document.querySelectorAll('#panel [data-setting]')) showSetting(el, st.settings[el.dataset.setting]);
+    for (const term of st.settings['render.brdf'].split(',')) {
         const [key, value] = term.split('=');
-        if ($(`brdf-${key}`)) pick(`brdf-${key}`, value);
+        if ($(`brdf-${key}`)) showSetting($(`brdf-${key}`), value);
     }
-    $('energy-compensation').checked = st.energyCompensation;
     buildLights(st);
     buildMaterial(materials());
 }
 
 function bindPanel() {
-    // The panel's sliders take their range, and its empty drop-downs their choices, from the
-    // settings registry (the setting named by its flag or key).
+    // Every control that names a setting takes its range (sliders), its choices (empty
+    // drop-downs) and its doc (tooltip) from the settings registry, and sets it by its key.
     const registry = JSON.parse(M.ccall('fresnel_settings', 'string', [], []));
-    const setting = name => registry.find(s => s.key === name || s.flag === `--${name}`);
-    const control = (id, key, format) => {
-        const el = $(id), out = el.parentElement.querySelector('output'), s = setting(key);
-        if (s && el.type === 'range') {
+    for (const el of document.querySelectorAll('#panel [data-setting]')) {
+        const s = registry.find(r => r.key === el.dataset.setting);
+        if (!s) continue;
+        el.title = s.doc;
+        if (el.type === 'range') {
             el.min = s.sliderMin;
             el.max = s.sliderMax;
             el.step = s.type === 'int' ? 1 : (s.sliderMax - s.sliderMin) / 160;
-            el.value = Number(s.default);
+            el.dataset.unit = s.unit === 'degrees' ? '°' : s.unit;
         }
-        if (s && el.tagName === 'SELECT' && !el.options.length)
-            for (const c of s.choices) el.add(new Option(c, c, c === s.default, c === s.default));
-        const show = () => { if (out) out.textContent = format ? format(el.value) : el.value; };
-        show();
-        el.addEventListener('input', () => {
-            show();
-            try { set(key, el.value); } catch (e) { showError(e.message); return; }
-            if (key === 'background') draw(); else scheduleDraw();
+        if (el.tagName === 'SELECT' && !el.options.length) for (const c of s.choices) el.add(new Option(c, c));
+        showSetting(el, s.default);
+        el.addEventListener('input', async () => {
+            if (el.type !== 'checkbox') showSetting(el, el.value);
+            try { set(s.key, el.type === 'checkbox' ? String(el.checked) : el.value); } catch (e) { showError(e.message); return; }
+            if (el.type === 'checkbox' || s.key === 'background') {
+                await draw();
+                syncPanel();
+            } else {
+                scheduleDraw();
+            }
         });
-    };
-    control('env-intensity', 'env-intensity');
-    control('env-rotation', 'env-rotation', v => `${v}°`);
-    control('background', 'background');
-    control('tonemap', 'tonemap');
-    control('exposure', 'exposure');
-    control('debug', 'debug');
+    }
     for (const key of ['D', 'G', 'F', 'diffuse']) {
         const el = $(`brdf-${key}`);
         for (const n of M.UTF8ToString(M.ccall('fresnel_brdf_names', 'number', ['number', 'string'], [app, key])).split(' ')) el.add(new Option(n, n));
@@ -564,9 +560,7 @@ function bindPanel() {
         await draw();
         syncPanel();
     });
-    toggle('scene-lights', on => set('sceneLights', on ? 1 : 0));
     toggle('ibl', on => set('no-ibl', on ? 0 : 1));
-    toggle('energy-compensation', on => set('render.energyCompensation', on ? 1 : 0));
     const add = spec => async () => {
         try { set(`light:${$('add-dir').dataset.next || 0}`, spec); } catch (e) { showError(e.message); }
         await draw();
@@ -582,10 +576,6 @@ function bindPanel() {
     });
     const pickFiles = id => $(id).addEventListener('change', async e => { try { await openFiles(await readPicked(e.target.files)); } catch (err) { showError(err.message); } });
     for (const id of ['scene-file', 'scene-folder', 'bake-folder', 'bake-files']) pickFiles(id);
-    for (const [key, id] of [['tonemap', 'tonemap'], ['debug', 'debug'], ['exposure', 'exposure'],
-                             ['env-intensity', 'env-intensity'], ['env-rotation', 'env-rotation'], ['background', 'background']])
-        if (params.has(key)) $(id).value = params.get(key);
-    for (const el of document.querySelectorAll('#panel input[type=range]')) el.dispatchEvent(new Event('show'));
     $('model-file').addEventListener('change', async e => { try { await openFiles(await readPicked(e.target.files)); } catch (err) { showError(err.message); } });
     $('env-file').addEventListener('change', async e => { try { await openFiles(await readPicked(e.target.files)); } catch (err) { showError(err.message); } });
     $('screenshot').addEventListener('click', screenshot);

@@ -13,7 +13,6 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -34,12 +33,6 @@ bool parse_float(const std::string& s, float& out) {
     char* end = nullptr;
     out = std::strtof(s.c_str(), &end);
     return !s.empty() && end && *end == '\0';
-}
-
-std::string debug_name(DebugChannel c) {
-    for (const std::string& n : debug_channel_names())
-        if (parse_debug_channel(n) == c) return n;
-    return "none";
 }
 
 // A light as the page edits it: the CLI's --light terms (arriving from azimuth/elevation, or
@@ -222,29 +215,13 @@ struct App {
         }
         using Kind = Job::Environment::Kind;
         const Job::Environment& e = job.environment;
-        std::string background = "auto";
-        switch (job.background.mode) {
-            case Job::Background::Mode::Automatic: background = "auto"; break;
-            case Job::Background::Mode::Environment: background = "env"; break;
-            case Job::Background::Mode::Blurred: background = "blur"; break;
-            case Job::Background::Mode::Transparent: background = "transparent"; break;
-            case Job::Background::Mode::Color: {
-                std::ostringstream c;
-                c << job.background.color.x << "," << job.background.color.y << "," << job.background.color.z;
-                background = c.str();
-            }
-        }
         nlohmann::json out = {
             {"lights", lights}, {"hiddenSceneLights", hidden}, {"defaultLights", defaults},
-            {"sceneLights", job.lights.scene_lights}, {"ibl", e.kind != Kind::None},
+            {"ibl", e.kind != Kind::None},
             {"environment", e.kind == Kind::File ? e.path : e.kind == Kind::Studio ? "studio" : e.kind == Kind::None ? "none"
-                                                        : e.kind == Kind::Color ? "color" : "auto"},
-            {"envIntensity", e.intensity}, {"envRotation", e.rotation_deg}, {"background", background},
-            {"tonemap", std::string(tone_mapper_name(job.output.tone_mapper))}, {"exposure", job.output.exposure_ev},
-            {"debug", debug_name(job.output.debug)}, {"brdf", brdf::to_string(job.output.brdf)},
-            {"energyCompensation", job.output.energy_compensation},
-            {"size", {job.output.width, job.output.height}}, {"yaw", job.camera.yaw_deg}, {"pitch", job.camera.pitch_deg}};
-        // Every setting the page offers, by its registry key, in the registry's text.
+                                                        : e.kind == Kind::Color ? "color" : "auto"}};
+        // Every setting the page offers, by its registry key, in the registry's text (the
+        // panel shows these; nothing here restates a setting).
         nlohmann::json values = nlohmann::json::object();
         for (const settings::Setting* s : settings::offered_by(settings::kWeb)) values[s->key] = settings::get(job, *s);
         out["settings"] = values;

@@ -165,6 +165,19 @@ try {
     check(debugNames.length >= 20 && !missing.length, `the debug list holds all ${debugNames.length} render --debug channels${missing.length ? ' (missing: ' + missing.join(' ') + ')' : ''}`);
     check(lists['brdf-D'].includes('beckmann') && lists['brdf-G'].includes('kelemen') && lists['brdf-F'].includes('schlick') &&
           lists['brdf-diffuse'].includes('burley'), `the --brdf terms are listed (D: ${lists['brdf-D'].join(' ')})`);
+    // The panel's controls are the registry's: the exposure slider's range and tooltip, and the
+    // value a set() gives it.
+    const panel = await page.evaluate(async () => {
+        const el = document.getElementById('exposure');
+        const s = window.fresnel.settings().find(r => r.key === 'render.exposure');
+        const before = [Number(el.min), Number(el.max), s.sliderMin, s.sliderMax, el.title === s.doc];
+        await window.fresnel.set('render.exposure', '1.5');
+        const shown = el.value;
+        await window.fresnel.set('render.exposure', '0');
+        return [...before, shown];
+    });
+    check(panel[0] === panel[2] && panel[1] === panel[3] && panel[4] && panel[5] === '1.5',
+          `the exposure slider is the registry's (range ${panel[0]}..${panel[1]}, tooltip ${panel[4]}, shows ${panel[5]} after set 1.5)`);
 
     // A scene file by URL: read by the library's parser as `fresnel render SCENE.fresnel.json` reads it.
     const scenePage = await browser.newPage({ viewport: { width: 1000, height: 700 }, deviceScaleFactor: 1 });
@@ -189,8 +202,8 @@ try {
         await scenePage.evaluate(() => { window.fresnel.setOnly('render.anisotropy', '6'); return window.fresnel.set('render.energyCompensation', 'true'); });
         const sceneShot = await shot('web_scene.png');
         const ps = psnr(sceneShot, path.join(outDir, 'cli_scene.png'));
-        check(ps >= 30 && st.tonemap === 'aces' && st.size[0] === 320 && st.lights.some(l => l.origin === 'extra'),
-              `scene file vs fresnel render SCENE.fresnel.json: ${ps.toFixed(2)} dB (>= 30; tone mapping ${st.tonemap}, ${st.size.join('x')}, ` +
+        check(ps >= 30 && st.settings['render.toneMapping'] === 'aces' && st.settings['render.size'].startsWith('320x') && st.lights.some(l => l.origin === 'extra'),
+              `scene file vs fresnel render SCENE.fresnel.json: ${ps.toFixed(2)} dB (>= 30; tone mapping ${st.settings['render.toneMapping']}, ${st.settings['render.size']}, ` +
               `${st.lights.length} light(s), environment ${st.environment.replace(/\/files\/\d+\//, '')})`);
 
         // The material editor: an edit changes the frame, revert restores it.
@@ -224,7 +237,7 @@ try {
         // The scene file picked with the files it names (without their folder): found by name.
         await scenePage.evaluate(() => window.fresnel.set('yaw', 120));
         const pickError = await pick(scenePage, '#scene-file', [path.join(sceneDir, 'helmet.fresnel.json'), path.join(sceneDir, 'DamagedHelmet.glb'), ...bakedFiles],
-                                     'return s.yaw === -35');
+                                     'return s.settings["camera.yaw"] === "-35"');
         const pp = psnr(await shot('web_scene_picked.png'), path.join(outDir, 'cli_scene.png'));
         check(!pickError && pp >= 30, `the scene file picked with its files: ${pp.toFixed(2)} dB against fresnel render SCENE.fresnel.json${pickError ? ': ' + pickError : ''}`);
         const err = await scenePage.evaluate(() => window.fresnel.error());
