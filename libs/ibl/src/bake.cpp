@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <glm/common.hpp>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -111,7 +110,9 @@ BakedIbl bake(const ImageF& panorama, const BakeOptions& o, const Progress& prog
     return out;
 }
 
-void save_baked(const BakedIbl& ibl, const fs::path& dir, const BakeOptions& o, bool previews) {
+namespace {
+// The folder's files, into `dir` (a temporary folder: save_baked makes the set whole or absent).
+void write_baked_files(const BakedIbl& ibl, const fs::path& dir, const BakeOptions& o, bool previews) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw Error(dir.string(), "", "cannot create folder: " + ec.message());
@@ -123,12 +124,11 @@ void save_baked(const BakedIbl& ibl, const fs::path& dir, const BakeOptions& o, 
     if (!ibl.charlie_lut.pixels.empty()) write_ktx2_2d(dir / "charlie_lut.ktx2", ibl.charlie_lut);
     json sh = json::array();
     for (const auto& c : ibl.irradiance.c) sh.push_back({c.x, c.y, c.z});
-    {
-        std::ofstream f(dir / "irradiance_sh.json");
-        f << json{{"description", "irradiance / pi as real SH, bands 0-2, order (0,0) (1,-1) (1,0) (1,1) (2,-2) (2,-1) (2,0) (2,1) (2,2)"},
-                  {"coefficients", sh}}
-                 .dump(2);
-    }
+    write_file_atomically(dir / "irradiance_sh.json",
+                          json{{"description", "irradiance / pi as real SH, bands 0-2, order (0,0) (1,-1) (1,0) (1,1) "
+                                               "(2,-2) (2,-1) (2,0) (2,1) (2,2)"},
+                               {"coefficients", sh}}
+                              .dump(2));
     json files = {"specular.ktx2", "irradiance.ktx2", "irradiance_sh.json", "brdf_lut.ktx2", "sheen.ktx2"};
     if (!ibl.charlie_lut.pixels.empty()) files.push_back("charlie_lut.ktx2");
     if (previews) {
@@ -159,9 +159,52 @@ void save_baked(const BakedIbl& ibl, const fs::path& dir, const BakeOptions& o, 
         {"bake_breakdown_ms", {{"cube", ibl.cube_ms}, {"specular", ibl.specular_ms}, {"irradiance", ibl.irradiance_ms}, {"lut", ibl.lut_ms}}},
         {"files", files},
     };
-    std::ofstream f(dir / "manifest.json");
-    f << manifest.dump(2);
-    if (!f) throw Error((dir / "manifest.json").string(), "", "cannot write");
+    write_file_atomically(dir / "manifest.json", manifest.dump(2));
+}
+}  // namespace
+
+void save_baked(const BakedIbl& ibl, const fs::path& dir, const BakeOptions& o, bool previews) {
+    // Whole or absent as a set: the files go to a temporary folder beside `dir`, which then takes
+    // its place (an existing folder moved aside first and removed once the new one is in place,
+    // or put back when that fails). A reader never sees half a bake; a failure leaves `dir` as it was.
+    // A folder holding anything but a bake is refused, not replaced: its files are the user's.
+    std::error_code ec;
+    if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec) && !is_baked_dir(dir))
+        throw Error(dir.string(), "", "is a folder holding other files; bake writes a folder of its own (a new or empty "
+                                      "one, or an earlier bake, which it replaces)");
+    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw Error(dir.string(), "", "is a file, not a folder");
+    const fs::path tmp = temporary_path_beside(dir);
+    fs::remove_all(tmp, ec);
+    try {
+        write_baked_files(ibl, tmp, o, previews);
+    } catch (const Error& e) {
+        fs::remove_all(tmp, ec);
+        // Named by the destination (and the file within it), never by the temporary folder.
+        std::string file = e.file();
+        if (file.rfind(tmp.string(), 0) == 0) file = (dir / fs::path(file).lexically_relative(tmp)).lexically_normal().string();
+        throw Error(file, e.where(), e.reason());
+    } catch (...) {
+        fs::remove_all(tmp, ec);
+        throw;
+    }
+    const fs::path old = temporary_path_beside(dir.string() + "-previous");
+    const bool existed = fs::exists(dir, ec);
+    if (existed) {
+        fs::remove_all(old, ec);
+        fs::rename(dir, old, ec);
+        if (ec) {
+            fs::remove_all(tmp, ec);
+            throw Error(dir.string(), "", "cannot replace the folder: " + ec.message());
+        }
+    }
+    fs::rename(tmp, dir, ec);
+    if (ec) {
+        const std::string why = ec.message();
+        fs::remove_all(tmp, ec);
+        if (existed) fs::rename(old, dir, ec);
+        throw Error(dir.string(), "", "cannot write the folder: " + why);
+    }
+    if (existed) fs::remove_all(old, ec);
 }
 
 bool is_baked_dir(const fs::path& dir) {
@@ -313,17 +356,11 @@ BakedIbl load_or_bake(const EnvironmentSource& source, const BakeOptions& option
     BakedIbl ibl = bake(load_panorama(source), o, progress);
     ibl.source = source.describe();
     if (use_cache) {
-        // Write to a temporary folder and rename, so a concurrent reader never sees half a bake.
-        const fs::path tmp = temporary_path_beside(dir);
+        // save_baked writes the set whole or not at all, so a concurrent reader never sees half a bake.
         try {
-            save_baked(ibl, tmp, options, false);
-            std::error_code ec;
-            fs::remove_all(dir, ec);
-            fs::rename(tmp, dir, ec);
-            if (ec) fs::remove_all(tmp, ec);
+            save_baked(ibl, dir, options, false);
         } catch (const Error&) {
-            std::error_code ec;
-            fs::remove_all(tmp, ec);  // caching is best effort; the render goes on
+            // caching is best effort; the render goes on
         }
     }
     return ibl;

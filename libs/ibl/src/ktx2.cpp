@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "fresnel/core/atomic_file.h"
 #include "fresnel/core/error.h"
 #include "fresnel/core/version.h"
 
@@ -111,9 +112,7 @@ void write_ktx2(const fs::path& path, int width, int height, int faces,
         w.put_u64(entry + 8, len);
         w.put_u64(entry + 16, len);
     }
-    std::ofstream out(path, std::ios::binary);
-    if (!out || !out.write(reinterpret_cast<const char*>(w.out.data()), std::streamsize(w.out.size())))
-        throw Error(path.string(), "", "cannot write KTX2 file");
+    write_file_atomically(path, std::span<const std::uint8_t>(w.out));  // whole or absent; throws naming `path`
 }
 
 struct Reader {

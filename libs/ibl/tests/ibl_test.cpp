@@ -428,6 +428,46 @@ TEST(Bake, ContentHashIdentifiesTheBakedData) {
     std::filesystem::remove_all(dir);
 }
 
+// save_baked writes the folder whole or not at all: an earlier bake is replaced as a set (no
+// file of it stays), a folder holding other files is refused and left as it was, a failure
+// names the destination, and no temporary folder is left beside it.
+TEST(Bake, SaveBakedIsWholeOrAbsent) {
+    namespace fs = std::filesystem;
+    BakeOptions o;
+    o.size = 8, o.levels = 2, o.samples = 8, o.lut_size = 8, o.lut_samples = 8, o.irradiance_size = 4;
+    o.use_lut_cache = false;
+    const BakedIbl a = bake(make_uniform_panorama(glm::vec3(1.0f)), o);
+    const fs::path root = fs::temp_directory_path() / "fresnel-save-baked-test";
+    fs::remove_all(root);
+    fs::create_directories(root / "theirs");
+    { std::ofstream(root / "theirs" / "notes.txt") << "mine"; }
+    save_baked(a, root / "bake", o, false);
+    { std::ofstream(root / "bake" / "stale.ktx2") << "old"; }
+    save_baked(a, root / "bake", o, false);  // replaces the earlier bake as a whole
+    EXPECT_TRUE(is_baked_dir(root / "bake"));
+    EXPECT_FALSE(fs::exists(root / "bake" / "stale.ktx2"));
+    try {
+        save_baked(a, root / "theirs", o, false);
+        ADD_FAILURE() << "a folder of other files was replaced";
+    } catch (const fresnel::Error& e) {
+        EXPECT_EQ(e.file(), (root / "theirs").string());
+    }
+    EXPECT_TRUE(fs::exists(root / "theirs" / "notes.txt"));
+    EXPECT_FALSE(fs::exists(root / "theirs" / "manifest.json"));
+    { std::ofstream(root / "file") << "x"; }
+    try {
+        save_baked(a, root / "file" / "bake", o, false);  // under a file: cannot be created
+        ADD_FAILURE() << "wrote under a file";
+    } catch (const fresnel::Error& e) {
+        EXPECT_EQ(e.file().find(".partial"), std::string::npos) << e.file();
+        EXPECT_EQ(e.file().rfind((root / "file" / "bake").string(), 0), 0u) << e.file();
+    }
+    int left = 0;
+    for (const auto& entry : fs::directory_iterator(root)) left += entry.path().filename().string().find(".partial") != std::string::npos;
+    EXPECT_EQ(left, 0);
+    fs::remove_all(root);
+}
+
 // KHR_materials_sheen's image-based light. The Charlie table against figures from an
 // independent NumPy transcription of the Khronos viewer's estimator (512 Hammersley samples).
 TEST(Sheen, CharlieLutMatchesTheViewersEstimator) {
