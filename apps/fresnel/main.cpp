@@ -2,12 +2,14 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "fresnel/core/version.h"
 
 #include "cli_common.h"
 #include "commands.h"
 #include "huge_pages.h"
+#include "usage_errors.h"
 
 int main(int argc, char** argv) {
     fresnel::cli::restart_with_huge_pages_if_useful(argc, argv);
@@ -29,7 +31,8 @@ int main(int argc, char** argv) {
     } catch (const CLI::Success& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        app.exit(e);
+        // Errors of the program's own checks (a bad --size) already read "--flag: expected ...".
+        fresnel::cli::print_error(fresnel::cli::usage_message(app, std::vector<std::string>(argv + 1, argv + argc), e));
         return fresnel::cli::kExitUsage;
     }
     try {

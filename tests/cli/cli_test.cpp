@@ -140,6 +140,20 @@ TEST_F(Cli, OtherUsageErrorsExitTwo) {
     EXPECT_EQ(r.err.rfind("fresnel: error:", 0), 0u) << show(r);
 }
 
+// Mistyped commands and options: the program's error prefix, the nearest name, how to get help.
+TEST_F(Cli, MistypedNamesSuggestTheNearest) {
+    Result r = run({"rendr", "x.glb"});
+    EXPECT_EQ(r.exit_code, 2) << show(r);
+    EXPECT_EQ(r.err.rfind("fresnel: error: 'rendr' is not a fresnel command; did you mean 'render'?", 0), 0u) << show(r);
+    r = run({"render", "--szie", "10x10", "-o", (dir_ / "x.png").string()});
+    EXPECT_EQ(r.exit_code, 2) << show(r);
+    EXPECT_EQ(r.err.rfind("fresnel: error: unknown option --szie; did you mean --size?", 0), 0u) << show(r);
+    EXPECT_NE(r.err.find("fresnel render --help"), std::string::npos) << show(r);
+    r = run({"render", "--qqqqqqqqqq", "-o", (dir_ / "x.png").string()});
+    EXPECT_EQ(r.err.rfind("fresnel: error: unknown option --qqqqqqqqqq\n", 0), 0u) << show(r);  // nothing near
+    EXPECT_FALSE(fs::exists(dir_ / "x.png"));
+}
+
 // The legacy shading flags: malformed values are usage errors naming the flag.
 TEST_F(Cli, LegacyShadingFlagsAreChecked) {
     const std::string out = (dir_ / "x.png").string();
