@@ -1,16 +1,12 @@
 #pragma once
 // Command-line mistakes said in the program's own voice: "fresnel: error: ..." with the nearest
-// command or option ("did you mean --size?") where CLI11 only says what it did not expect.
+// command or option (fresnel/core/spelling.h: "did you mean --size?") where CLI11 only says what it did not expect.
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 namespace fresnel::cli {
-
-// The nearest of `names` to `word` by edit distance (case-insensitive), or "" when none is
-// within max(2, |word| / 3) edits.
-std::string nearest_name(const std::string& word, const std::vector<std::string>& names);
 
 // The message for a parse error of `app` on `args` (argv without the program): an unknown
 // command or option with the nearest one, else CLI11's own message; and how to get help.

@@ -3,6 +3,8 @@
 // Long (~910 lines) by design: the table declares every setting once, in one place.
 #include "fresnel/job/settings.h"
 
+#include "fresnel/core/spelling.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -780,7 +782,8 @@ Value parse(const Setting& s, const std::string& text, const std::string& where)
             return v;
         }
         case Type::Choice:
-            if (std::find(s.choices.begin(), s.choices.end(), text) == s.choices.end()) return fail();
+            if (std::find(s.choices.begin(), s.choices.end(), text) == s.choices.end())
+                throw Error(where, "", "expected " + s.expected() + ", got '" + text + "'" + did_you_mean(text, s.choices));
             v.text = text;
             return v;
         case Type::Text:
@@ -819,7 +822,11 @@ void set(Job& job, const Setting& s, const std::string& text, const std::string&
 void set(Job& job, std::string_view name, const std::string& text, const std::string& where, Diagnostics* diag) {
     std::string renamed;
     const Setting* s = find(name, &renamed);
-    if (!s) throw Error(where, "", "unknown setting '" + std::string(name) + "'");
+    if (!s) {
+        std::vector<std::string> keys;
+        for (const Setting& k : all()) keys.push_back(k.key);
+        throw Error(where, "", "unknown setting '" + std::string(name) + "'" + did_you_mean(std::string(name), keys));
+    }
     if (!renamed.empty() && diag) diag->warn(where, "", renamed + " (the old spelling still works)");
     set(job, *s, text, where);
 }
