@@ -18,6 +18,7 @@
 #include "fresnel/core/mipmap.h"
 #include "fresnel/core/parallel.h"
 #include "fresnel/core/sampler.h"
+#include "fresnel/core/spelling.h"
 
 #include "fresnel/scene/animation.h"
 #include "fresnel/scene/gltf_loader.h"
