@@ -7,15 +7,16 @@
 namespace fresnel::cli {
 
 std::string usage_message(const CLI::App& app, const std::vector<std::string>& args, const CLI::ParseError& error) {
+    const std::vector<const CLI::App*> subs = app.get_subcommands([](const CLI::App*) { return true; });
     std::vector<std::string> commands;
-    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) commands.push_back(sub->get_name());
+    for (const CLI::App* sub : subs) commands.push_back(sub->get_name());
     std::string all;
     for (const auto& c : commands) all += (all.empty() ? "" : ", ") + c;
     // The command: the first word that is not an option.
     const auto first = std::find_if(args.begin(), args.end(), [](const std::string& a) { return a.empty() || a[0] != '-'; });
     if (first == args.end()) return "no command given (one of " + all + ")\nRun 'fresnel --help' for more.";
     const CLI::App* sub = nullptr;
-    for (const CLI::App* s : app.get_subcommands([](const CLI::App*) { return true; }))
+    for (const CLI::App* s : subs)
         if (s->check_name(*first)) sub = s;
     if (!sub) {
         const std::string near = nearest_name(*first, commands);

@@ -40,9 +40,11 @@ function fail(message) {
 // negated boolean flag its presence: ?no-energy-compensation) or by its key
 // (?environment.rotation=30). The page reads ?env= (a file to fetch), ?scene= (a scene file)
 // and ?light= (repeated) itself.
+let registryCache = null;
+const registry = () => registryCache || (registryCache = JSON.parse(M.ccall('fresnel_settings', 'string', [], [])));
 function urlSettings() {
     const out = [];
-    for (const s of JSON.parse(M.ccall('fresnel_settings', 'string', [], []))) {
+    for (const s of registry()) {
         if (!s.frontEnds.includes('web') || s.key === 'environment' || s.key === 'scene') continue;
         const flag = s.flag.replace(/^--/, '');
         if (params.has(s.key)) out.push([s.key, params.get(s.key)]);
@@ -522,9 +524,8 @@ function syncPanel() {
 function bindPanel() {
     // Every control that names a setting takes its range (sliders), its choices (empty
     // drop-downs) and its doc (tooltip) from the settings registry, and sets it by its key.
-    const registry = JSON.parse(M.ccall('fresnel_settings', 'string', [], []));
     for (const el of document.querySelectorAll('#panel [data-setting]')) {
-        const s = registry.find(r => r.key === el.dataset.setting);
+        const s = registry().find(r => r.key === el.dataset.setting);
         if (!s) continue;
         el.title = s.doc;
         if (el.type === 'range') {
@@ -647,7 +648,7 @@ async function main() {
                        frames: () => frames, error: () => ($('error').hidden ? '' : $('error').textContent),
                        // The settings registry (key, flag, type, default, example, doc, ...), and a
                        // setting changed without drawing (tests set many at once).
-                       settings: () => JSON.parse(M.ccall('fresnel_settings', 'string', [], [])),
+                       settings: registry,
                        setOnly: (k, v) => set(k, v) };
     if (params.has('scene')) {  // a scene file: read as `fresnel render SCENE` reads it, then the other parameters as flags
         try {

@@ -32,12 +32,7 @@ std::string words(std::string_view key) {
 bool setting_widget(Job& job, std::string_view key, const char* label) {
     using settings::Type;
     const settings::Setting& s = settings::at(key);
-    settings::Value v;
-    try {
-        v = settings::parse(s, settings::get(job, s), s.key);
-    } catch (const Error&) {
-        return false;
-    }
+    settings::Value v = s.get(job);  // the value itself, not its text: this runs every frame
     const std::string name = label ? std::string(label) : words(s.key);
     const std::string id = "##" + s.key + (label ? std::string(label) : "");
     const double lo = s.slider_lo(), hi = s.slider_hi();
@@ -54,7 +49,7 @@ bool setting_widget(Job& job, std::string_view key, const char* label) {
         ImGui::SameLine();
         if (v.unset) {
             ImGui::TextUnformatted(name.c_str());
-            if (changed) settings::set(job, s, settings::format(s, v), "view");
+            if (changed) s.put(job, v);
             return changed;
         }
     }
@@ -104,13 +99,8 @@ bool setting_widget(Job& job, std::string_view key, const char* label) {
             break;
     }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (%s)", s.doc.c_str(), s.expected().c_str());
-    if (changed) {
-        try {
-            settings::set(job, s, settings::format(s, v), "view");
-        } catch (const Error&) {
-            return false;  // a value the widget clamps cannot be refused; kept as it was otherwise
-        }
-    }
+    // Every value the widgets give is within the setting's range (clamped) or one of its choices.
+    if (changed) s.put(job, v);
     return changed;
 }
 

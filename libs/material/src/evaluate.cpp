@@ -328,27 +328,31 @@ brdf::IridescenceFresnel film_at(const EvaluatedMaterial& m, glm::vec3 v) {
 }
 
 namespace {
-// The Lambert (or EON) lobe times its cosine, mixed with the diffuse transmission's, under the
-// dielectric Fresnel's weight (a thin film's: brdf::film_diffuse_weight) and the coat: what
-// the transmission replaces in proportion to its factor.
-glm::vec3 replaced_diffuse(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l) {
+// What the transmission's two parts share at l: the dielectric Fresnel's weight (a thin film's:
+// brdf::film_diffuse_weight) times 1 - metallic and 1 - the coat's mix.
+glm::vec3 transmission_weight(const EvaluatedMaterial& m, glm::vec3 v, const brdf::Cosines& c) {
     const brdf::Surface& s = m.surface;
-    const brdf::Cosines c = brdf::cosines(m.normal, v, l);
     glm::vec3 f_dielectric = brdf::f_schlick(s.dielectric_f0() * s.specular_weight, glm::vec3(s.specular_weight), c.v_dot_h);
+    glm::vec3 w = (1.0f - s.metallic) * brdf::film_diffuse_weight(f_dielectric, film_at(m, v));
+    if (m.clearcoat > 0.0f) w *= 1.0f - brdf::clearcoat_mix(m.clearcoat, m.clearcoat_f0, m.clearcoat_normal, v);
+    return w;
+}
+// The Lambert (or EON) lobe times its cosine, mixed with the diffuse transmission's: what the
+// transmission replaces in proportion to its factor.
+glm::vec3 diffuse_cos(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, const brdf::Cosines& c) {
+    const brdf::Surface& s = m.surface;
     float n_dot_minus_l = std::clamp(-glm::dot(m.normal, l), 0.0f, 1.0f);
     glm::vec3 lambert = brdf::lambert(s.base_color) *
                         brdf::eon_factor(s.base_color, m.diffuse_roughness, c.n_dot_l, c.n_dot_v, glm::dot(l, v));
-    glm::vec3 diffuse = brdf::diffuse_transmission_mix(c.n_dot_l * lambert, n_dot_minus_l, m.diffuse_transmission,
-                                                       m.diffuse_transmission_color);
-    glm::vec3 w = (1.0f - s.metallic) * brdf::film_diffuse_weight(f_dielectric, film_at(m, v)) * diffuse;
-    if (m.clearcoat > 0.0f) w *= 1.0f - brdf::clearcoat_mix(m.clearcoat, m.clearcoat_f0, m.clearcoat_normal, v);
-    return w;
+    return brdf::diffuse_transmission_mix(c.n_dot_l * lambert, n_dot_minus_l, m.diffuse_transmission,
+                                          m.diffuse_transmission_color);
 }
 }  // namespace
 
 glm::vec3 transmission_replaced_diffuse(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l) {
     if (!(m.transmission.factor > 0.0f)) return glm::vec3(0.0f);
-    return m.transmission.factor * replaced_diffuse(m, v, l);
+    const brdf::Cosines c = brdf::cosines(m.normal, v, l);
+    return m.transmission.factor * transmission_weight(m, v, c) * diffuse_cos(m, v, l, c);
 }
 
 glm::vec3 shade_light_transmission(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 l_transmitted,
@@ -356,15 +360,12 @@ glm::vec3 shade_light_transmission(const EvaluatedMaterial& m, glm::vec3 v, glm:
     const TransmissionInputs& tr = m.transmission;
     const brdf::Surface& s = m.surface;
     const brdf::Cosines c = brdf::cosines(m.normal, v, l);
-    glm::vec3 f_dielectric = brdf::f_schlick(s.dielectric_f0() * s.specular_weight, glm::vec3(s.specular_weight), c.v_dot_h);
     glm::vec3 btdf = transmission::btdf_punctual(m.normal, v, l_transmitted,
                                                  brdf::alpha_from_roughness(s.perceptual_roughness), s.dielectric_f0(),
                                                  glm::vec3(1.0f), s.base_color, tr.ior);
     glm::vec3 transmitted = transmission::volume_attenuation(radiance * btdf, ray_length, tr.attenuation_color,
                                                              tr.attenuation_distance);
-    glm::vec3 term = (1.0f - s.metallic) * brdf::film_diffuse_weight(f_dielectric, film_at(m, v)) * tr.factor * transmitted;
-    if (m.clearcoat > 0.0f) term *= 1.0f - brdf::clearcoat_mix(m.clearcoat, m.clearcoat_f0, m.clearcoat_normal, v);
-    return term - radiance * (tr.factor * replaced_diffuse(m, v, l));
+    return transmission_weight(m, v, c) * tr.factor * (transmitted - radiance * diffuse_cos(m, v, l, c));
 }
 
 glm::vec3 shade_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, const brdf::BrdfModel& model) {
@@ -380,17 +381,12 @@ glm::vec3 shade_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, const
     const brdf::Surface& s = m.surface;
     const glm::vec3 n = m.normal;
     const glm::vec3 lm = l - 2.0f * n_dot_l * n;
-    const glm::vec3 h = glm::normalize(lm + v);
-    const float n_dot_v = std::clamp(glm::dot(n, v), 0.0f, 1.0f), n_dot_lm = -n_dot_l;
+    const brdf::Cosines c = brdf::cosines(n, v, lm);  // h' = normalize(l' + v)
+    const float n_dot_lm = -n_dot_l;
     const float a = std::max(transmission::apply_ior_to_roughness(brdf::alpha_from_roughness(s.perceptual_roughness), tr.ior),
                              kMinSampledAlpha);
-    const float dv = brdf::d_ggx(std::clamp(glm::dot(n, h), 0.0f, 1.0f), a) * brdf::v_smith_ggx_correlated(n_dot_lm, n_dot_v, a);
-    const glm::vec3 f_dielectric = brdf::f_schlick(s.dielectric_f0() * s.specular_weight, glm::vec3(s.specular_weight),
-                                                   std::clamp(glm::dot(v, h), 0.0f, 1.0f));
-    glm::vec3 t = (1.0f - s.metallic) * brdf::film_diffuse_weight(f_dielectric, film_at(m, v)) * tr.factor * s.base_color *
-                  dv * n_dot_lm;
-    if (m.clearcoat > 0.0f) t *= 1.0f - brdf::clearcoat_mix(m.clearcoat, m.clearcoat_f0, m.clearcoat_normal, v);
-    return f + t;
+    const float dv = brdf::d_ggx(c.n_dot_h, a) * brdf::v_smith_ggx_correlated(n_dot_lm, c.n_dot_v, a);
+    return f + transmission_weight(m, v, c) * tr.factor * s.base_color * dv * n_dot_lm;
 }
 
 glm::vec3 shade_light(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, glm::vec3 radiance,
