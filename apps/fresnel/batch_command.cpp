@@ -8,8 +8,9 @@
 // context and renderer (programs compiled once, the environment uploaded once: the renderer
 // keys it by BakedIbl::content_hash), and the workers share the loaded environments and the
 // last models. A job that fails is reported and the batch goes on; the exit code says whether
-// any failed. Outputs are written atomically (temporary file, then rename), so an output that
-// exists is complete, which is what --resume relies on.
+// any failed. Outputs are whole or absent (fresnel/core/atomic_file.h), and each is recorded,
+// with its size and checksum, in a log in --out once it is in place (batch_outputs.h): --resume
+// skips an output only when the log vouches for it as it is on the disk.
 // Long (~730 lines): the job list reader, the sharding, the workers and the report are one
 // command's parts, kept in one file as every other command is.
 #include <unistd.h>
@@ -47,6 +48,8 @@
 #include "fresnel/scene/paths.h"
 #include "command_line.h"
 #include "job_options.h"
+#include "batch_outputs.h"
+#include "fresnel/core/atomic_file.h"
 
 namespace fresnel::cli {
 namespace {
@@ -172,7 +175,8 @@ bool is_model_file(const fs::path& p) {
 }
 
 // The whole job list (every shard reads the same list, so indices and names agree).
-std::vector<BatchJob> read_job_list(const BatchOptions& o) {
+// `ignores_case`: --out's file system folds case (two names differing in case are one file).
+std::vector<BatchJob> read_job_list(const BatchOptions& o, bool ignores_case) {
     std::vector<BatchJob> jobs;
     const fs::path src(o.jobs);
     std::error_code ec;
@@ -283,16 +287,18 @@ std::vector<BatchJob> read_job_list(const BatchOptions& o) {
             }
         }
     }
-    // Deterministic, unique names: a name taken by an earlier job gets the job's index.
+    // Deterministic, unique names: a name taken by an earlier job gets the job's index. Names are
+    // compared canonical ("./a.png", "sub/../a.png" and, where the file system folds case,
+    // "A.png" are all "a.png"), so no two jobs write one file.
     std::set<std::string> taken;
     for (std::size_t i = 0; i < jobs.size(); ++i) {
         jobs[i].index = i;
-        std::string name = jobs[i].output;
-        while (taken.count(name)) {
+        std::string name = canonical_output_name(jobs[i].output);
+        while (taken.count(output_key(name, ignores_case))) {
             fs::path p(name);
-            name = (p.parent_path() / (p.stem().string() + "-" + std::to_string(i) + p.extension().string())).string();
+            name = (p.parent_path() / (p.stem().string() + "-" + std::to_string(i) + p.extension().string())).generic_string();
         }
-        taken.insert(name);
+        taken.insert(output_key(name, ignores_case));
         jobs[i].output = name;
     }
     return jobs;
@@ -511,15 +517,20 @@ int run_batch(const BatchOptions& o, const CLI::App* cmd) {
         print_error("--format: png, exr or hdr");
         return kExitUsage;
     }
-    std::vector<BatchJob> all = read_job_list(o);
-    std::vector<const BatchJob*> mine;
-    for (const auto& j : all)
-        if (long(j.index % std::size_t(shards)) == shard) mine.push_back(&j);
-
     const fs::path out_dir(o.out);
     std::error_code ec;
     fs::create_directories(out_dir, ec);
     if (ec) throw Error(o.out, "", "cannot create the output folder: " + ec.message());
+    std::vector<BatchJob> all = read_job_list(o, folder_ignores_case(out_dir));
+    std::vector<const BatchJob*> mine;
+    for (const auto& j : all)
+        if (long(j.index % std::size_t(shards)) == shard) mine.push_back(&j);
+    // Temporaries a killed run of this machine left (fresnel/core/atomic_file.h); the log of
+    // committed outputs, which --resume trusts (batch_outputs.h).
+    remove_stale_temporaries_in(out_dir);
+    const std::map<std::string, OutputLog::Entry> committed =
+        o.resume ? OutputLog::read(out_dir) : std::map<std::string, OutputLog::Entry>{};
+    OutputLog output_log(OutputLog::file_for(out_dir, shard, shards));
 
     Caches caches(std::max<std::size_t>(o.cache_models, std::size_t(o.workers)));
     BatchProgress progress(mine.size());
@@ -567,9 +578,14 @@ int run_batch(const BatchOptions& o, const CLI::App* cmd) {
         try {
             if (!b->error.empty()) throw std::runtime_error(b->error);
             std::error_code e;
-            if (o.resume && fs::is_regular_file(t->output, e) && fs::file_size(t->output, e) > 0) {
-                t->skip = true;
-                return t;
+            if (o.resume && fs::is_regular_file(t->output, e)) {
+                if (OutputLog::verified(committed, b->output, t->output)) {
+                    t->skip = true;
+                    return t;
+                }
+                t->diag.warn(t->output.string(), "",
+                             "is not the output the batch log recorded (written by another run, changed or cut "
+                             "short): rendered again");
             }
             t->job = read_job(*b, *defaults, o.render.allow_external(), t->diag);
             std::string ext = lower_extension(t->output.string());
@@ -600,7 +616,8 @@ int run_batch(const BatchOptions& o, const CLI::App* cmd) {
             try {
                 std::error_code e;
                 fs::create_directories(t->output.parent_path().empty() ? fs::path(".") : t->output.parent_path(), e);
-                write_image_atomically(t->output.string(), t->image, t->resolved.transparent());
+                write_image(t->output.string(), t->image, t->resolved.transparent());
+                output_log.record(t->b->output, t->output);  // done only once recorded: --resume trusts it
             } catch (const Error& e) {
                 t->error = e.what();
             } catch (const std::exception& e) {
@@ -720,7 +737,9 @@ Runner add_batch_command(CLI::App& app) {
     cmd->add_option("--jobs,-j", o->workers, "Workers, each with its own GL context")
         ->capture_default_str()
         ->check(CLI::Range(1, 64));
-    cmd->add_flag("--resume", o->resume, "Skip jobs whose output exists (outputs are written atomically: complete)");
+    cmd->add_flag("--resume", o->resume,
+                  "Skip jobs whose output exists as the batch log in --out recorded it (size and checksum; "
+                  "other files are rendered again)");
     cmd->add_option("--format", o->format, "Output format of jobs that name no output: png, exr or hdr")
         ->capture_default_str();
     cmd->add_option("--cache-models", o->cache_models, "Loaded models kept between jobs")->capture_default_str();

@@ -1,10 +1,43 @@
 #include "cli_common.h"
 
+#include <signal.h>
+#include <unistd.h>
+
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
 
 namespace fresnel::cli {
+
+namespace {
+// The flag a signal handler sets: process-wide by nature (InterruptGuard owns its use).
+std::atomic<bool> g_interrupt_requested{false};
+struct sigaction g_previous_sigint {};
+
+void on_sigint(int) {
+    if (g_interrupt_requested.exchange(true)) {
+        ::signal(SIGINT, SIG_DFL);
+        ::raise(SIGINT);
+        return;
+    }
+    static const char message[] = "\nfresnel: interrupted: finishing the pass in progress and writing what is done "
+                                  "(Ctrl+C again to quit now)\n";
+    (void)!::write(2, message, sizeof message - 1);
+}
+}  // namespace
+
+InterruptGuard::InterruptGuard() {
+    g_interrupt_requested = false;
+    struct sigaction sa {};
+    sa.sa_handler = on_sigint;
+    sigemptyset(&sa.sa_mask);
+    ::sigaction(SIGINT, &sa, &g_previous_sigint);
+}
+
+InterruptGuard::~InterruptGuard() { ::sigaction(SIGINT, &g_previous_sigint, nullptr); }
+
+const std::atomic<bool>& InterruptGuard::requested() const { return g_interrupt_requested; }
+
 
 void print_error(const Error& e) { std::fprintf(stderr, "fresnel: error: %s\n", e.what()); }
 void print_error(const std::string& m) { std::fprintf(stderr, "fresnel: error: %s\n", m.c_str()); }

@@ -13,7 +13,6 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "fresnel/core/atomic_file.h"
 #include "fresnel/core/heatmap.h"
 #include "fresnel/core/image.h"
 #include "fresnel/core/metrics.h"
@@ -57,11 +56,6 @@ Loaded load(const std::string& path) {
 }
 
 std::string size_text(const ImageF& i) { return std::to_string(i.width) + "x" + std::to_string(i.height); }
-
-// Whole or absent (fresnel/core/atomic_file.h).
-void write_png_atomically(const fs::path& path, const Image8& image) {
-    write_file_atomically(path, [&](const fs::path& tmp) { write_png(tmp, image); });
-}
 
 // compare.py's conventions for identical images (PSNR 99 dB, RMS -99 dB); NaN -> null.
 nlohmann::json number(double v) {
@@ -124,7 +118,7 @@ int run_compare(const CompareOptions& o) {
     if (!o.heatmap.empty()) {
         char caption[64];
         std::snprintf(caption, sizeof caption, "%s-FLIP MEAN %.4f", hdr ? "HDR" : "LDR", hdr ? hdr_mean : flip_mean);
-        write_png_atomically(o.heatmap, error_heatmap(hdr ? hdr_map : ldr, w, h, caption));
+        write_png(o.heatmap, error_heatmap(hdr ? hdr_map : ldr, w, h, caption));
     }
 
     if (o.json) {

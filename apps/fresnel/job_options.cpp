@@ -13,7 +13,6 @@
 #include <thread>
 
 #include "cli_common.h"
-#include "fresnel/core/atomic_file.h"
 #include "fresnel/ibl/environment.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/job/scene_file.h"
@@ -110,17 +109,11 @@ ContextFlags context_flags(const RenderOptions& o) {
     return f;
 }
 
-void write_image_atomically(const std::string& path, const ImageF& image, bool transparent) {
+void write_image(const std::string& path, const ImageF& image, bool transparent) {
     const std::string ext = lower_extension(path);
-    write_file_atomically(path, [&](const std::filesystem::path& tmp) {
-        if (ext == ".png") write_png(tmp, to_image8(image, transparent));
-        else if (ext == ".exr") write_exr(tmp, image);
-        else write_hdr(tmp, image);
-    });
-}
-
-void write_png_atomically(const std::string& path, const Image8& image) {
-    write_file_atomically(path, [&](const std::filesystem::path& tmp) { write_png(tmp, image); });
+    if (ext == ".png") write_png(path, to_image8(image, transparent));
+    else if (ext == ".exr") write_exr(path, image);
+    else write_hdr(path, image);
 }
 
 void add_model_and_output(CLI::App* cmd, RenderOptions& o) {

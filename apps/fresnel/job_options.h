@@ -93,11 +93,9 @@ std::optional<Job> job_from_sources(const RenderOptions& o, const CLI::App* cmd,
 std::optional<Job> job_from_command(const RenderOptions& o, const CLI::App* cmd, Diagnostics& diag,
                                     std::string& output);
 
-// Writes a rendered frame to `path` (.png 8-bit, .exr, .hdr) atomically: into a temporary
-// file in the same folder, renamed over `path` when complete. Throws fresnel::Error.
-void write_image_atomically(const std::string& path, const ImageF& image, bool transparent);
-// The same for an 8-bit image already quantised (Renderer::render8), to a .png path.
-void write_png_atomically(const std::string& path, const Image8& image);
+// Writes a rendered frame to `path` (.png 8-bit, .exr, .hdr), whole or absent as every image
+// writer (fresnel/core/image.h). Throws fresnel::Error naming `path` and the reason.
+void write_image(const std::string& path, const ImageF& image, bool transparent);
 
 
 }  // namespace fresnel::cli

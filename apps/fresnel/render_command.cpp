@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "fresnel/core/atomic_file.h"
 #include "cli_common.h"
 #include "commands.h"
 #include "fresnel/gpu/context.h"
@@ -114,6 +115,7 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
         print_error("-o: output must end in .png, .exr or .hdr: '" + output + "'");
         return kExitUsage;
     }
+    check_writable(output);  // before loading and rendering
     if (!o.video.empty() && (o.turntable < 1 || ext != ".png")) {
         print_error("--video: needs --turntable N and PNG frames");
         return kExitUsage;
@@ -233,8 +235,8 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
         else image = renderer.render(frame_job.camera, frame_job.lights, rs, &stats);
         draw_ms += ms_since(t_draw);
         if (!stats.gl_errors.empty()) throw Error("OpenGL", "", "the frame raised " + stats.gl_errors);
-        if (png) write_png_atomically(outputs.back(), *image8);
-        else write_image_atomically(outputs.back(), image, resolved.transparent());
+        if (png) write_png(outputs.back(), *image8);
+        else write_image(outputs.back(), image, resolved.transparent());
     }
     double frame_ms = draw_ms / frames;
     if (!o.video.empty()) encode_video(ffmpeg, output, frames, o.fps, o.video);

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "fresnel/core/atomic_file.h"
 #include "cli_common.h"
 #include "commands.h"
 #include "fresnel/ibl/bake.h"
@@ -33,6 +34,9 @@ struct TraceOptions : RenderOptions {
 
 int run_trace(const TraceOptions& o, const CLI::App* cmd) {
     auto t_start = Clock::now();
+    // Ctrl+C ends the trace after the pass in progress (at least one) and writes what was traced;
+    // a second Ctrl+C quits at once.
+    InterruptGuard interrupt;
     Diagnostics diag;
     std::string output;
     std::optional<Job> parsed = job_from_command(o, cmd, diag, output);  // usage checks first (exit 2)
@@ -44,6 +48,7 @@ int run_trace(const TraceOptions& o, const CLI::App* cmd) {
     }
     parsed->output.float_output = ext == ".exr" || ext == ".hdr";
     const Job& job = *parsed;
+    check_writable(output);  // before the trace, whose result would be lost
 
     auto t_load = Clock::now();
     Scene scene = load_scene(job, diag);
@@ -81,6 +86,8 @@ int run_trace(const TraceOptions& o, const CLI::App* cmd) {
     // env and blur backgrounds both show the environment (sharp: the tracer has no blurred copy).
     ts.env_background = rs.background_mode != RenderSettings::Background::Color;
 
+    ts.stop = &interrupt.requested();
+
     trace::TraceStats stats;
     ImageF radiance;
     {
@@ -89,7 +96,10 @@ int run_trace(const TraceOptions& o, const CLI::App* cmd) {
                                       &stats, [&](double f) { bar.update(f); });
     }
     ImageF image = trace::to_output(radiance, rs);
-    write_image_atomically(output, image, resolved.transparent());
+    write_image(output, image, resolved.transparent());
+    if (stats.stopped)
+        std::fprintf(stderr, "fresnel: trace: interrupted: %s has %d of %d samples per pixel\n", output.c_str(),
+                     stats.samples, o.spp);
 
     if (o.json) {
         const CameraSetup& camera = resolved.camera;
@@ -106,6 +116,7 @@ int run_trace(const TraceOptions& o, const CLI::App* cmd) {
         j["spp"] = stats.samples;
         j["spp_requested"] = o.spp;
         j["time_limited"] = stats.time_limited;
+        j["interrupted"] = stats.stopped;
         j["max_bounces"] = o.max_bounces;
         j["env_visibility"] = !o.no_env_visibility;
         j["seed"] = o.seed;
@@ -127,7 +138,7 @@ int run_trace(const TraceOptions& o, const CLI::App* cmd) {
         j["warnings"] = diag.lines();
         std::printf("%s\n", j.dump().c_str());
     }
-    return kExitOk;
+    return stats.stopped ? kExitInterrupted : kExitOk;
 }
 
 }  // namespace

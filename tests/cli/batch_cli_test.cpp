@@ -324,6 +324,47 @@ TEST_F(BatchCli, ResumeRendersOnlyWhatIsMissing) {
     EXPECT_EQ(status["f2.png"], "ok");
     EXPECT_EQ(status["f3.png"], "skipped");
     EXPECT_GT(fs::file_size(dir_ / "out" / "f2.png"), 0u);
+
+    // --resume trusts the log of committed outputs, not a file's existence: an output cut short
+    // and one written by something else are rendered again, with a warning.
+    const auto f1 = fs::file_size(dir_ / "out" / "f1.png");
+    fs::resize_file(dir_ / "out" / "f1.png", f1 / 2);
+    std::ofstream(dir_ / "out" / "f3.png") << "not a png";
+    r = run(args);
+    ASSERT_EQ(r.exit_code, 0) << show(r);
+    status.clear();
+    for (const auto& j : lines(r)) {
+        const std::string name = fs::path(j.at("output").get<std::string>()).filename().string();
+        status[name] = j.at("status");
+        if (name == "f1.png" || name == "f3.png") {
+            EXPECT_NE(j.at("warnings").dump().find("rendered again"), std::string::npos) << j.dump();
+        }
+    }
+    EXPECT_EQ(status["f0.png"], "skipped");
+    EXPECT_EQ(status["f1.png"], "ok");
+    EXPECT_EQ(status["f2.png"], "skipped");
+    EXPECT_EQ(status["f3.png"], "ok");
+    EXPECT_EQ(fs::file_size(dir_ / "out" / "f1.png"), f1);
+    EXPECT_EQ(fresnel::read_image8(dir_ / "out" / "f3.png").width, 16);
+}
+
+// Two spellings of one file are one output: the later job gets its own name.
+TEST_F(BatchCli, OutputNamesAreComparedCanonical) {
+    write("jobs.jsonl",
+          "{\"model\": \"demo\", \"output\": \"a.png\"}\n"
+          "{\"model\": \"demo\", \"output\": \"./a.png\"}\n"
+          "{\"model\": \"demo\", \"output\": \"sub/../a.png\"}\n"
+          "{\"model\": \"demo\", \"output\": \"sub/x.png\"}\n"
+          "{\"model\": \"demo\", \"output\": \"sub//x.png\"}\n");
+    Result r = run({"batch", "jobs.jsonl", "--out", "out", "--size", "16x16", "--msaa", "1", "--no-ibl", "--json"});
+    ASSERT_EQ(r.exit_code, 0) << show(r);
+    std::vector<std::string> outputs;
+    for (const auto& j : lines(r)) {
+        EXPECT_EQ(j.at("status"), "ok") << j.dump();
+        outputs.push_back(fs::path(j.at("output").get<std::string>()).lexically_relative("out").generic_string());
+    }
+    EXPECT_EQ(outputs, (std::vector<std::string>{"a.png", "a-1.png", "a-2.png", "sub/x.png", "sub/x-4.png"}));
+    for (const auto& o : outputs) EXPECT_TRUE(fs::is_regular_file(dir_ / "out" / o)) << o;
 }
 
 TEST_F(BatchCli, FolderOfModelsGivesAThumbnailEach) {

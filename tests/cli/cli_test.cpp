@@ -121,6 +121,36 @@ TEST_F(Cli, MissingModelIsBadInput) {
     EXPECT_EQ(r.err.rfind("fresnel: error:", 0), 0u) << show(r);
 }
 
+// An output that cannot be written is found before the work whose result it would hold: the
+// missing folder is named, though the model (missing too) would have failed later.
+TEST_F(Cli, AnUnwritableOutputIsFoundFirst) {
+    for (const char* command : {"render", "trace"}) {
+        Result r = run({command, (dir_ / "no_such_model.glb").string(), "-o", (dir_ / "nofolder" / "x.png").string()});
+        EXPECT_EQ(r.exit_code, 1) << show(r);
+        EXPECT_NE(r.err.find("nofolder does not exist"), std::string::npos) << show(r);
+        EXPECT_EQ(r.err.find("no_such_model"), std::string::npos) << show(r);
+    }
+}
+
+// Ctrl+C during a trace ends it after the pass in progress and writes what was traced (exit 130,
+// "interrupted" in --json), instead of losing every sample.
+TEST_F(Cli, InterruptedTraceWritesWhatItTraced) {
+    const fs::path png = dir_ / "partial.png";
+    const std::string program = "sh -c " + quote(quote(FRESNEL_EXE) + " trace -o " + quote(png.string()) +
+                                                 " --size 48x32 --spp 1000000 --json & p=$!; sleep 3; kill -INT $p; "
+                                                 "wait $p");
+    Result r = run_captured(program, dir_);
+    EXPECT_EQ(r.exit_code, 130) << show(r);
+    ASSERT_TRUE(fs::exists(png)) << show(r);
+    EXPECT_EQ(fresnel::read_image8(png).width, 48);
+    nlohmann::json j;
+    ASSERT_NO_THROW(j = nlohmann::json::parse(r.out)) << show(r);
+    EXPECT_TRUE(j.at("interrupted").get<bool>());
+    EXPECT_GE(j.at("spp").get<int>(), 1);
+    EXPECT_LT(j.at("spp").get<int>(), 1000000);
+    EXPECT_NE(r.err.find("interrupted"), std::string::npos) << show(r);
+}
+
 TEST_F(Cli, BadSizeIsUsageError) {
     fs::path png = dir_ / "out.png";
     for (const char* size : {"0x10", "10x0", "abc", "10x", "x10", "10x10x10", "10*10", "20000x10"}) {

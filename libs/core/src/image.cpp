@@ -23,6 +23,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "fresnel/core/atomic_file.h"
 #include "fresnel/core/error.h"
 #include "radiance_hdr.h"
 
@@ -358,16 +359,55 @@ ImageF read_image_float(const fs::path& path, const ImageLimits& limits) {
     return decode_image_float(bytes, path.string(), limits);
 }
 
+namespace {
+// stb's writers append to a growing buffer through this callback; nothing reaches a file until
+// the bytes are whole, so a short write cannot pass unnoticed (stb ignores fwrite's result).
+void append_bytes(void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<std::uint8_t>*>(context);
+    const auto* b = static_cast<const std::uint8_t*>(data);
+    out->insert(out->end(), b, b + size);
+}
+}  // namespace
+
+std::vector<std::uint8_t> encode_png(const Image8& image) {
+    std::vector<std::uint8_t> out;
+    if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4 ||
+        image.pixels.size() != std::size_t(image.width) * image.height * image.channels ||
+        !stbi_write_png_to_func(append_bytes, &out, image.width, image.height, image.channels, image.pixels.data(),
+                                image.width * image.channels))
+        throw Error("", "", "cannot encode a " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                " image as PNG");
+    return out;
+}
+
+std::vector<std::uint8_t> encode_hdr(const ImageF& image) {
+    // stb writes RGB(A) floats; alpha is dropped by the RGBE format.
+    std::vector<std::uint8_t> out;
+    if (image.width <= 0 || image.height <= 0 || image.pixels.size() != std::size_t(image.width) * image.height * 4 ||
+        !stbi_write_hdr_to_func(append_bytes, &out, image.width, image.height, 4, image.pixels.data()))
+        throw Error("", "", "cannot encode a " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                " image as Radiance HDR");
+    return out;
+}
+
 void write_png(const fs::path& path, const Image8& image) {
-    if (!stbi_write_png(path.string().c_str(), image.width, image.height, image.channels, image.pixels.data(),
-                        image.width * image.channels))
-        throw Error(path.string(), "", "cannot write PNG");
+    std::vector<std::uint8_t> bytes;
+    try {
+        bytes = encode_png(image);
+    } catch (const Error& e) {
+        throw Error(path.string(), "", e.reason());
+    }
+    write_file_atomically(path, std::span<const std::uint8_t>(bytes));
 }
 
 void write_hdr(const fs::path& path, const ImageF& image) {
-    // stb writes RGB(A) floats; alpha is dropped by the RGBE format.
-    if (!stbi_write_hdr(path.string().c_str(), image.width, image.height, 4, image.pixels.data()))
-        throw Error(path.string(), "", "cannot write Radiance HDR");
+    std::vector<std::uint8_t> bytes;
+    try {
+        bytes = encode_hdr(image);
+    } catch (const Error& e) {
+        throw Error(path.string(), "", e.reason());
+    }
+    write_file_atomically(path, std::span<const std::uint8_t>(bytes));
 }
 
 void write_exr(const fs::path& path, const ImageF& image) {
@@ -375,18 +415,23 @@ void write_exr(const fs::path& path, const ImageF& image) {
     (void)image;
     throw Error(path.string(), "", kNoOpenExr);
 #else
-    try {
-        Imf::Header header(image.width, image.height);
-        header.compression() = Imf::ZIP_COMPRESSION;
-        Imf::RgbaOutputFile file(path.string().c_str(), header, Imf::WRITE_RGBA);
-        std::vector<Imf::Rgba> px(std::size_t(image.width) * image.height);
-        for (std::size_t i = 0; i < px.size(); ++i)
-            px[i] = Imf::Rgba(image.pixels[i * 4], image.pixels[i * 4 + 1], image.pixels[i * 4 + 2], image.pixels[i * 4 + 3]);
-        file.setFrameBuffer(px.data(), 1, std::size_t(image.width));
-        file.writePixels(image.height);
-    } catch (const std::exception& e) {
-        throw Error(path.string(), "", std::string("cannot write OpenEXR: ") + e.what());
-    }
+    // OpenEXR checks its own writes (a full disk throws); the temporary and the rename make the
+    // file whole or absent as every other writer's.
+    write_file_atomically(path, [&](const fs::path& tmp) {
+        try {
+            Imf::Header header(image.width, image.height);
+            header.compression() = Imf::ZIP_COMPRESSION;
+            Imf::RgbaOutputFile file(tmp.string().c_str(), header, Imf::WRITE_RGBA);
+            std::vector<Imf::Rgba> px(std::size_t(image.width) * image.height);
+            for (std::size_t i = 0; i < px.size(); ++i)
+                px[i] = Imf::Rgba(image.pixels[i * 4], image.pixels[i * 4 + 1], image.pixels[i * 4 + 2],
+                                  image.pixels[i * 4 + 3]);
+            file.setFrameBuffer(px.data(), 1, std::size_t(image.width));
+            file.writePixels(image.height);
+        } catch (const std::exception& e) {
+            throw Error(path.string(), "", std::string("cannot write OpenEXR: ") + e.what());
+        }
+    });
 #endif
 }
 

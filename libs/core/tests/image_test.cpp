@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -16,6 +17,7 @@
 #include "fresnel/core/error.h"
 #include "fresnel/core/image.h"
 #include "fresnel/core/metrics.h"
+#include "file_size_limit.h"
 #include "temp_dir.h"
 
 using namespace fresnel;
@@ -24,6 +26,7 @@ namespace fs = std::filesystem;
 namespace {
 
 using fresnel::test::TempDir;  // tests/support/temp_dir.h
+using fresnel::test::FileSizeLimit;  // tests/support/file_size_limit.h
 
 void write_bytes(const fs::path& p, const std::vector<std::uint8_t>& bytes) {
     std::ofstream out(p, std::ios::binary);
@@ -115,6 +118,43 @@ TEST(ImageIo, PngRoundTripRgba) {
     ASSERT_EQ(back.height, img.height);
     ASSERT_EQ(back.channels, 4);
     EXPECT_EQ(back.pixels, img.pixels);
+}
+
+// A disk that fills mid-file: every image writer fails naming the file and the reason, and the
+// old file is left as it was, with no temporary beside it (stb's writers ignore fwrite's result:
+// the bytes are encoded in memory and written with every write checked).
+TEST(ImageIo, WritersAreWholeOrAbsentOnAFullDisk) {
+    TempDir dir;
+    std::mt19937 rng(3);
+    Image8 noise8(256, 256, 4);
+    for (auto& v : noise8.pixels) v = std::uint8_t(rng());
+    ImageF noise(256, 256);
+    for (auto& v : noise.pixels) v = float(rng() % 1000) / 100.0f;
+    const fs::path png = dir / "frame.png", hdr = dir / "frame.hdr", exr = dir / "frame.exr";
+    write_png(png, pattern8(8, 8, 4));
+    write_hdr(hdr, ImageF(8, 8));
+    write_exr(exr, ImageF(8, 8));
+    const auto before = [&](const fs::path& p) { return read_file_bytes(p, 1 << 20); };
+    const auto png0 = before(png), hdr0 = before(hdr), exr0 = before(exr);
+    auto expect_fails = [&](const fs::path& p, auto&& write, bool system_reason) {
+        try {
+            FileSizeLimit limit(4096);
+            write();
+            ADD_FAILURE() << p << ": a write past the disk's end passed";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.file(), p.string());
+            if (system_reason) {
+                EXPECT_NE(e.reason().find(std::strerror(EFBIG)), std::string::npos) << e.reason();
+            }
+        }
+    };
+    expect_fails(png, [&] { write_png(png, noise8); }, true);
+    expect_fails(hdr, [&] { write_hdr(hdr, noise); }, true);
+    expect_fails(exr, [&] { write_exr(exr, noise); }, false);  // OpenEXR words its own reason
+    EXPECT_EQ(before(png), png0);
+    EXPECT_EQ(before(hdr), hdr0);
+    EXPECT_EQ(before(exr), exr0);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 3);
 }
 
 // Large images are deflated in parts on several threads (stb_impl.cpp); the parts make one

@@ -34,33 +34,20 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-// Whole or absent (fresnel/core/atomic_file.h).
-void write_atomically(const fs::path& path, const void* data, std::size_t size) {
-    write_file_atomically(path, std::span<const std::uint8_t>(static_cast<const std::uint8_t*>(data), size));
+// Every writer here stages its files into one fresnel::FileSet (fresnel/core/atomic_file.h),
+// committed after the last is written: a .gltf with its .bin and images, an OBJ with its MTL
+// and textures, appear together or not at all, the file naming the others moved last.
+void stage_bytes(FileSet& files, const fs::path& path, const std::vector<std::uint8_t>& bytes) {
+    files.stage(path, std::span<const std::uint8_t>(bytes));
 }
-void write_atomically(const fs::path& path, const std::string& text) { write_file_atomically(path, std::string_view(text)); }
-
-// PNG bytes of an image (write_png writes files only: through a temporary file beside `beside`,
-// named as every temporary of fresnel is, so threads and processes never share one).
-std::vector<std::uint8_t> png_bytes(const Image8& image, const fs::path& beside) {
-    fs::path tmp = beside;
-    tmp += ".png";
-    tmp = temporary_path_beside(tmp);
+void stage_png(FileSet& files, const fs::path& path, const Image8& image) {
     std::vector<std::uint8_t> bytes;
     try {
-        write_png(tmp, image);
-        bytes = read_file_bytes(tmp, std::size_t(1) << 31);
-    } catch (...) {
-        std::error_code ec;
-        fs::remove(tmp, ec);
-        throw;
+        bytes = encode_png(image);
+    } catch (const Error& e) {
+        throw Error(path.string(), "", e.reason());
     }
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    return bytes;
-}
-void write_png_atomically(const fs::path& path, const Image8& image) {
-    write_file_atomically(path, [&](const fs::path& tmp) { write_png(tmp, image); });
+    stage_bytes(files, path, bytes);
 }
 
 json vec_json(const float* v, int n) {
@@ -336,7 +323,7 @@ void write_gltf(const Scene& in, const fs::path& path, Diagnostics& diagnostics)
         if (!scene.images[i].valid()) continue;
         json img;
         if (glb) {
-            auto bytes = png_bytes(scene.images[i].pixels, path);
+            auto bytes = encode_png(scene.images[i].pixels);
             img = {{"bufferView", b.buffer_view(bytes.data(), bytes.size(), 0)}, {"mimeType", "image/png"}};
         } else {
             std::string name = stem + "_image" + std::to_string(i) + ".png";
@@ -502,7 +489,8 @@ void write_gltf(const Scene& in, const fs::path& path, Diagnostics& diagnostics)
         doc["buffers"].push_back({{"byteLength", b.bin.size()}, {"uri", stem + ".bin"}});
     }
 
-    for (const auto& [file, image] : image_files) write_png_atomically(file, *image);
+    FileSet files;
+    for (const auto& [file, image] : image_files) stage_png(files, file, *image);
     if (glb) {
         std::string text = doc.dump();
         while (text.size() % 4) text.push_back(' ');
@@ -522,11 +510,12 @@ void write_gltf(const Scene& in, const fs::path& path, Diagnostics& diagnostics)
             u32(0x004E4942);  // BIN
             out.insert(out.end(), b.bin.begin(), b.bin.end());
         }
-        write_atomically(path, out.data(), out.size());
+        stage_bytes(files, path, out);
     } else {
-        if (!b.bin.empty()) write_atomically(folder / (stem + ".bin"), b.bin.data(), b.bin.size());
-        write_atomically(path, doc.dump(2) + "\n");
+        if (!b.bin.empty()) stage_bytes(files, folder / (stem + ".bin"), b.bin);
+        files.stage(path, doc.dump(2) + "\n");
     }
+    files.commit();
 }
 
 // ---- OBJ/MTL -------------------------------------------------------------------------------
@@ -563,6 +552,7 @@ void write_obj(const Scene& scene, const fs::path& path, Diagnostics& diagnostic
     const std::string stem = path.stem().string();
     const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     std::string mtl, obj = "# written by fresnel convert\nmtllib " + stem + ".mtl\n";
+    FileSet files;
     std::map<int, std::string> image_file;  // scene image -> file name
     auto map_line = [&](const char* key, const TextureSlot& s) {
         if (!slot_ok(s, scene)) return;
@@ -570,7 +560,7 @@ void write_obj(const Scene& scene, const fs::path& path, Diagnostics& diagnostic
         auto it = image_file.find(image);
         if (it == image_file.end()) {
             std::string name = stem + "_image" + std::to_string(image) + ".png";
-            write_png_atomically(folder / name, scene.images[std::size_t(image)].pixels);
+            stage_png(files, folder / name, scene.images[std::size_t(image)].pixels);
             it = image_file.emplace(image, name).first;
         }
         mtl += std::string(key) + " " + it->second + "\n";
@@ -642,8 +632,9 @@ void write_obj(const Scene& scene, const fs::path& path, Diagnostics& diagnostic
             base_v += p.positions.size();
         }
     }
-    write_atomically(folder / (stem + ".mtl"), mtl);
-    write_atomically(path, obj);
+    files.stage(folder / (stem + ".mtl"), mtl);
+    files.stage(path, obj);
+    files.commit();
 }
 
 
@@ -824,8 +815,9 @@ int save_gltf_material_edits(const fs::path& source, const fs::path& dest, const
         out.insert(out.end(), bytes.begin() + std::ptrdiff_t(rest_at), bytes.end());  // BIN and any other chunk, as they were
         std::uint32_t total = std::uint32_t(out.size());
         for (int i = 0; i < 4; ++i) out[8 + std::size_t(i)] = std::uint8_t(total >> (8 * i));
-        write_atomically(dest, out.data(), out.size());
+        write_file_atomically(dest, std::span<const std::uint8_t>(out));
     } else {
+        FileSet files;
         // The files the JSON names (buffers, images), beside the new file when it is elsewhere.
         std::error_code ec;
         if (!fs::equivalent(fs::absolute(dest_dir), fs::absolute(src_dir), ec)) {
@@ -846,11 +838,12 @@ int save_gltf_material_edits(const fs::path& source, const fs::path& dest, const
                     }
                     fs::create_directories(to->parent_path(), ec);
                     auto data = read_file_bytes(*from, std::size_t(2) << 30);
-                    write_atomically(*to, data.data(), data.size());
+                    if (!files.staged(*to)) stage_bytes(files, *to, data);
                 }
             }
         }
-        write_atomically(dest, text + (indented ? "\n" : ""));
+        files.stage(dest, text + (indented ? "\n" : ""));
+        files.commit();
     }
     return patcher.changed();
 }

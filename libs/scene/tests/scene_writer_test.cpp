@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <cstring>
+#include <map>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -15,6 +17,7 @@
 #include "fresnel/scene/gltf_loader.h"
 #include "fresnel/scene/obj_loader.h"
 #include "fresnel/scene/scene_writer.h"
+#include "file_size_limit.h"
 
 using namespace fresnel;
 namespace fs = std::filesystem;
@@ -110,6 +113,47 @@ TEST(SceneWriter, ObjToGltfToObjKeepsGeometry) {
 
 // The OBJ's own digits come back: v values as exporters write them (up to 7 decimal places in
 // [0, 1], 6 for tiling coordinates), through glTF's 1 - v and back.
+// A .gltf with its .bin and images, and an OBJ with its MTL and textures, are one set: a disk
+// that fills while writing it leaves every file of the old set as it was and no temporary.
+TEST(SceneWriter, FileSetsAreWholeOrAbsentOnAFullDisk) {
+    fs::path dir = temp_dir("full");
+    Scene src = write_source(dir);
+    // A big noisy texture: its PNG cannot fit under the limit below.
+    Image8& img = src.images[0].pixels;
+    img = Image8(256, 256, 4);
+    std::uint32_t x = 12345;
+    for (auto& v : img.pixels) v = std::uint8_t((x = x * 1664525u + 1013904223u) >> 24);
+    for (const char* name : {"out.gltf", "out.obj"}) {
+        const fs::path out = dir / name;
+        Diagnostics d;
+        Scene small = write_source(dir);  // the old set: a 2x2 texture
+        if (out.extension() == ".gltf") write_gltf(small, out, d);
+        else write_obj(small, out, d);
+        std::map<std::string, std::vector<std::uint8_t>> before;
+        for (const auto& e : fs::directory_iterator(dir)) before[e.path().filename().string()] = read_file_bytes(e.path(), 1 << 24);
+        try {
+            fresnel::test::FileSizeLimit limit(64 * 1024);
+            if (out.extension() == ".gltf") write_gltf(src, out, d);
+            else write_obj(src, out, d);
+            ADD_FAILURE() << name << ": a write past the disk's end passed";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(std::strerror(EFBIG)), std::string::npos) << e.what();
+            EXPECT_EQ(std::string(e.what()).find("partial"), std::string::npos) << "names a temporary: " << e.what();
+        }
+        std::map<std::string, std::vector<std::uint8_t>> after;
+        for (const auto& e : fs::directory_iterator(dir)) after[e.path().filename().string()] = read_file_bytes(e.path(), 1 << 24);
+        EXPECT_EQ(after.size(), before.size()) << name;
+        EXPECT_TRUE(after == before) << name << ": a file of the old set changed";
+        // Without the limit the new set is written whole.
+        if (out.extension() == ".gltf") write_gltf(src, out, d);
+        else write_obj(src, out, d);
+        Diagnostics d2;
+        Scene back = out.extension() == ".gltf" ? load_gltf(out, d2) : load_obj(out, d2);
+        ASSERT_FALSE(back.images.empty());
+        EXPECT_EQ(back.images[0].pixels.width, 256) << name;
+    }
+}
+
 TEST(SceneWriter, ObjTextureCoordinatesComeBackAsWritten) {
     const std::vector<std::string> vs = {"0",        "1",         "0.5",      "0.000123", "0.333333", "0.1234567",
                                          "0.9999999", "0.0000001", "0.01",     "-0.25",    "2.5",      "-3.141593",

@@ -672,6 +672,10 @@ ImageF trace_image(const TraceScene& tscene, const CameraSetup& camera, const st
             st.time_limited = true;
             break;
         }
+        if (settings.stop && done < total && settings.stop->load()) {
+            st.stopped = true;
+            break;
+        }
     }
     if (progress) progress(1.0);
 

@@ -53,6 +53,14 @@ ImageF read_image_float(const std::filesystem::path& path, const ImageLimits& li
 // formats as decode_image8, values / 255.
 ImageF decode_image_float(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits = {});
 
+// The encoded bytes of a file (PNG through zlib, Radiance RGBE); throw fresnel::Error.
+std::vector<std::uint8_t> encode_png(const Image8& image);
+std::vector<std::uint8_t> encode_hdr(const ImageF& image);
+
+// Image files written whole or absent (fresnel/core/atomic_file.h): encoded in memory, written
+// to a temporary beside `path` with every write checked, flushed to the disk, then renamed over
+// `path`. On any failure (a full disk, a read-only folder) `path` keeps what it held, no
+// temporary stays, and the fresnel::Error names `path` and the system's reason.
 void write_png(const std::filesystem::path& path, const Image8& image);
 void write_hdr(const std::filesystem::path& path, const ImageF& image);
 void write_exr(const std::filesystem::path& path, const ImageF& image);  // half-float RGBA, ZIP

@@ -41,6 +41,9 @@ struct TraceSettings {
     int samples = 64;         // per pixel
     int max_bounces = 16;     // scattering events per path (1 = direct light only)
     double time_limit_s = 0;  // > 0: stop after the pass during which this much time has passed
+    // Set (by another thread or a signal handler): stop after the pass in progress (passes are
+    // 1, 2, 4, then 8 samples per pixel), keeping every sample done (Ctrl+C in `fresnel trace`).
+    const std::atomic<bool>* stop = nullptr;
     std::uint64_t seed = 0;
     unsigned threads = 0;          // 0 = all cores
     bool env_visibility = true;    // false: environment light is never shadowed (real-time IBL)
@@ -55,6 +58,7 @@ struct TraceStats {
     std::uint64_t rays = 0;           // every ray query (camera, continuation, shadow)
     double trace_ms = 0;
     bool time_limited = false;        // stopped by time_limit_s before `samples`
+    bool stopped = false;             // stopped by TraceSettings::stop before `samples`
 };
 
 // Called after every tile with the fraction of the work done (from worker threads).
