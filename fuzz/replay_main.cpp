@@ -1,5 +1,10 @@
 // Replays fuzzer inputs (files or folders of files) through a fuzz target without
-// libFuzzer, so the regression corpus runs in every normal and sanitizer build.
+// libFuzzer, so the regression corpus runs in every normal and sanitizer build. Memory is
+// part of the check: the process's peak resident size must stay under 1 GiB (2 GiB in
+// sanitizer builds, whose shadow memory and quarantine count too), so an input that makes a
+// decoder reserve gigabytes fails here, not only under a fuzzer's -rss_limit_mb.
+#include <sys/resource.h>
+
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -28,6 +33,14 @@ int main(int argc, char** argv) {
             run(p);
         }
     }
-    std::printf("replayed %zu inputs\n", count);
-    return 0;
+    rusage usage{};
+    ::getrusage(RUSAGE_SELF, &usage);
+    const double peak_mib = double(usage.ru_maxrss) / 1024.0;  // ru_maxrss: KiB on Linux
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+    const double limit_mib = 2048;
+#else
+    const double limit_mib = 1024;
+#endif
+    std::printf("replayed %zu inputs, peak resident memory %.0f MiB (limit %.0f MiB)\n", count, peak_mib, limit_mib);
+    return peak_mib <= limit_mib ? 0 : 1;
 }

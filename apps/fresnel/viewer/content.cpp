@@ -166,25 +166,28 @@ void Viewer::add_material_overrides(Job& job) const {
         if (job.source.models[i].visible) visible.push_back(i);
     for (std::size_t i = 0; i < scene->materials.size(); ++i) {
         const Material &now = scene->materials[i], &was = original[i];
-        std::size_t model = 0;
-        int local = int(i);
+        // The models whose material this is: one, or every copy of a model the scene file names
+        // several times with the same overrides (they share their materials: Scene::Part).
+        std::vector<std::pair<std::size_t, int>> owners;  // model, its material index
         for (std::size_t k = 0; k < scene->parts.size() && k < visible.size(); ++k) {
             const auto& part = scene->parts[k];
-            if (int(i) >= part.first_material && int(i) < part.first_material + part.material_count) {
-                model = visible[k];
-                local = int(i) - part.first_material;
-            }
+            if (int(i) >= part.first_material && int(i) < part.first_material + part.material_count)
+                owners.emplace_back(visible[k], int(i) - part.first_material);
         }
+        if (owners.empty()) owners.emplace_back(0, int(i));
         // Every property that differs from the material as loaded, kept in its range.
         Job::Source::MaterialOverride mo;
-        mo.index = local;
         for (const material_properties::Property& p : material_properties::all()) {
             if (!material_properties::changed(p, was, now)) continue;
             material_properties::Value v = p.get(now);
             for (int k = 0; k < p.width; ++k) v[std::size_t(k)] = std::clamp(v[std::size_t(k)], p.min, p.max);
             mo.values[std::string(p.name)] = v;
         }
-        if (!mo.values.empty()) job.source.models[model].materials.push_back(mo);
+        if (mo.values.empty()) continue;
+        for (const auto& [model, local] : owners) {
+            mo.index = local;
+            job.source.models[model].materials.push_back(mo);
+        }
     }
 }
 

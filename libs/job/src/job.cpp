@@ -14,6 +14,10 @@ std::string model_name(const Job& job) {
     if (!job.source.models.empty()) return job.source.models.front().path.empty() ? "demo" : job.source.models.front().path;
     return job.source.model.empty() ? std::string("demo") : job.source.model;
 }
+// --max-memory's MiB as bytes (at least 1 MiB).
+std::size_t mib_bytes(float mib) {
+    return std::size_t(std::min<double>(std::max<double>(mib, 1.0) * 1048576.0, double(SIZE_MAX / 2)));
+}
 }  // namespace
 
 Scene load_scene(const Job& job, Diagnostics& diag) {
@@ -22,6 +26,7 @@ Scene load_scene(const Job& job, Diagnostics& diag) {
     if (is_obj_path(job.source.model)) {
         ObjLoadOptions oo;
         oo.allow_external_files = job.source.allow_external_files;
+        if (job.source.max_memory_mib > 0) oo.max_total_bytes = mib_bytes(job.source.max_memory_mib);
         using N = Job::Source::ObjNormals;
         const bool ogl1 = job.output.shading == ShadingModel::Ogl1 || job.output.shading == ShadingModel::Ogl1Pixel;
         oo.smooth_without_groups = job.source.obj_normals == N::Smooth || (job.source.obj_normals == N::Auto && ogl1);
@@ -29,6 +34,7 @@ Scene load_scene(const Job& job, Diagnostics& diag) {
     }
     GltfLoadOptions lo;
     lo.allow_external_files = job.source.allow_external_files;
+    if (job.source.max_memory_mib > 0) lo.max_total_bytes = lo.max_geometry_bytes = mib_bytes(job.source.max_memory_mib);
     lo.pose_skins = job.source.pose_skins;
     Scene scene = load_gltf(job.source.model, diag, lo);
     if (!job.source.variant.empty()) apply_material_variant(scene, find_material_variant(scene, job.source.variant));

@@ -4,6 +4,8 @@
 #include "fresnel/job/job.h"
 #include "fresnel/scene/merge.h"
 
+#include <algorithm>
+
 namespace fresnel {
 
 namespace {
@@ -17,14 +19,25 @@ void apply_override(Material& m, const Job::Source::MaterialOverride& o) {
 
 Scene load_models(const Job& job, Diagnostics& diag) {
     Scene merged = make_composite_scene(job.source.models.front().path);
+    // A model named again (the same file, scene and material overrides) is loaded once and
+    // placed again (append_instance): its data is held and uploaded once.
+    std::vector<std::pair<const Job::Source::Model*, int>> placed;  // model, its part
     for (std::size_t i = 0; i < job.source.models.size(); ++i) {
         const Job::Source::Model& m = job.source.models[i];
         if (!m.visible) continue;
+        const auto same = std::find_if(placed.begin(), placed.end(), [&](const auto& p) {
+            return p.first->path == m.path && p.first->scene == m.scene && p.first->materials == m.materials;
+        });
+        if (same != placed.end()) {
+            append_instance(merged, same->second, m.transform);
+            continue;
+        }
         Job one;
         one.source.model = m.path;
         one.source.scene = m.scene;
         one.source.allow_external_files = job.source.allow_external_files;
         one.source.pose_skins = job.source.pose_skins;
+        one.source.max_memory_mib = job.source.max_memory_mib;
         Scene scene = load_scene(one, diag);
         const std::string name = m.path.empty() ? std::string("demo") : m.path;
         for (const auto& o : m.materials) {
@@ -43,7 +56,7 @@ Scene load_models(const Job& job, Diagnostics& diag) {
                 if (o.name && !found) diag.warn(name, "material '" + *o.name + "'", "no material of this name; override ignored");
             }
         }
-        append_model(merged, std::move(scene), m.transform, m.scene);
+        placed.emplace_back(&m, append_model(merged, std::move(scene), m.transform, m.scene));
     }
     return merged;
 }

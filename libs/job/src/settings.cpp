@@ -384,6 +384,11 @@ std::vector<Setting> make_registry() {
     r.push_back(boolean("allowExternalFiles", "--allow-external-files", false,
                         "Let URIs point outside the model's folder (absolute paths, ..); never the network",
                         kCli | kTrace, [](Job& j) -> bool& { return j.source.allow_external_files; }));
+    r.push_back(number("maxMemory", "--max-memory", "MiB", 0, 1 << 24,
+                       "Memory budget of a model's load (buffers, images, decoded geometry); 0: automatic (8 GiB, "
+                       "and geometry at most 256 MiB + 64 bytes per byte of the file and its buffers); a file over "
+                       "it is refused naming what exceeded it",
+                       kCli | kTrace, [](Job& j) -> float& { return j.source.max_memory_mib; }));
 
     // --- light ---
     {

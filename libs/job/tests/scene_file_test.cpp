@@ -308,6 +308,34 @@ TEST_F(SceneFileTest, ModelsMergeUnderTheirTransforms) {
     EXPECT_THROW(resolve(sf.job, scene), Error);
 }
 
+// A model named several times with the same overrides is loaded once and placed again: its
+// meshes, materials and images are held once, each placement is its own part and node tree.
+TEST_F(SceneFileTest, RepeatedModelsAreLoadedOnce) {
+    SceneFile sf = load(json{
+        {"fresnel", 1},
+        {"models",
+         {{{"path", "models/a.gltf"}},
+          {{"path", "models/a.gltf"}, {"translation", {3, 0, 0}}},
+          {{"path", "models/a.gltf"}, {"translation", {6, 0, 0}}},
+          {{"path", "models/a.gltf"}, {"translation", {9, 0, 0}},
+           {"materials", {{{"index", 0}, {"baseColorFactor", {0, 0, 1, 1}}}}}}}},
+    });
+    Diagnostics d;
+    Scene scene = load_scene(sf.job, d);
+    ASSERT_EQ(scene.parts.size(), 4u);
+    EXPECT_EQ(scene.meshes.size(), 2u) << "the three equal placements share one copy; the overridden one has its own";
+    EXPECT_EQ(scene.materials.size(), 2u);
+    EXPECT_EQ(scene.parts[1].first_material, scene.parts[0].first_material);
+    EXPECT_EQ(scene.parts[3].first_material, 1);
+    EXPECT_EQ(scene.materials[1].base_color_factor, glm::vec4(0, 0, 1, 1));
+    const ResolvedJob r = resolve(sf.job, scene);
+    int drawn = 0;
+    for (const NodeInstance& n : r.instances) drawn += scene.nodes[std::size_t(n.node)].mesh >= 0;
+    EXPECT_EQ(drawn, 4);
+    EXPECT_NEAR(r.bounds.min.x, 0.0f, 1e-6f);
+    EXPECT_NEAR(r.bounds.max.x, 10.0f, 1e-6f) << "every placement at its own translation";
+}
+
 TEST_F(SceneFileTest, OverrideOfAMissingMaterialWarnsAndIndexOutOfRangeFails) {
     SceneFile sf = load(json{{"fresnel", 1},
                              {"models", {{{"path", "models/a.gltf"}, {"materials", {{{"name", "Green"}, {"metallicFactor", 1}}}}}}}});

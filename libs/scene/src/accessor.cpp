@@ -46,8 +46,9 @@ double decode_component(const std::uint8_t* p, int ctype, bool normalized) {
 }  // namespace
 
 AccessorDecoder::AccessorDecoder(const JsonReader& reader, const json& doc,
-                                 const std::vector<std::vector<std::uint8_t>>& buffers, std::size_t max_elements)
-    : r_(reader), buffers_(buffers), max_elements_(max_elements) {
+                                 const std::vector<std::vector<std::uint8_t>>& buffers, std::size_t max_elements,
+                                 BudgetCheck check)
+    : r_(reader), buffers_(buffers), max_elements_(max_elements), check_(std::move(check)) {
     accessors_ = &r_.array(doc, "accessors", "");
     const json& views = r_.array(doc, "bufferViews", "");
     views_.resize(views.size());
@@ -159,6 +160,7 @@ AccessorData AccessorDecoder::read(int index) const {
     std::size_t elem = element_size(d.components, csize, matrix);
     if ((unsigned __int128)d.count * d.components > max_elements_)
         r_.fail(ptr + "/count", "accessor has more than the limit of " + std::to_string(max_elements_) + " values");
+    check_budget(d.count * std::size_t(d.components) * sizeof(double), ptr);
     d.values.assign(d.count * std::size_t(d.components), 0.0);
 
     int view = r_.index(a, "bufferView", ptr, views_.size(), "bufferView");

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <functional>
 #include <vector>
 
 #include "json_reader.h"
@@ -27,8 +28,15 @@ struct AccessorData {
 
 class AccessorDecoder {
 public:
+    // `check(bytes, ptr)` is called before `bytes` of decoded values are allocated (it fails
+    // the load when they do not fit the memory budget).
+    using BudgetCheck = std::function<void(std::size_t bytes, const std::string& ptr)>;
     AccessorDecoder(const JsonReader& reader, const json& doc, const std::vector<std::vector<std::uint8_t>>& buffers,
-                    std::size_t max_elements);
+                    std::size_t max_elements, BudgetCheck check = {});
+    // The budget check, for decoders that produce accessor data of their own (Draco).
+    void check_budget(std::size_t bytes, const std::string& ptr) const {
+        if (check_) check_(bytes, ptr);
+    }
     std::size_t accessor_count() const { return accessors_->size(); }
     // False when the accessor's data lives in a placeholder buffer (no uri, no data):
     // such primitives are skipped with a warning rather than failing the file.
@@ -46,6 +54,7 @@ private:
     std::vector<BufferViewInfo> views_;
     const std::vector<std::vector<std::uint8_t>>& buffers_;
     std::size_t max_elements_;
+    BudgetCheck check_;
     void read_elements(std::span<const std::uint8_t> bytes, std::size_t stride, std::size_t count, int comps,
                        int ctype, bool normalized, bool matrix_padding, double* out, std::size_t out_stride) const;
     std::span<const std::uint8_t> view_range(int view, std::size_t offset, std::size_t count, std::size_t elem_size,

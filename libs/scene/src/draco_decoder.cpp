@@ -150,6 +150,14 @@ std::map<int, AccessorData> decode_draco_primitive(const JsonReader& r, const js
     if (counts.points > points + counts.faces * 3 || counts.points > dense)
         fail(ptr, "the Draco stream declares " + std::to_string(counts.points) + " vertices, the accessors " +
                       std::to_string(points) + " points");
+    // What the decoded mesh and its accessors will hold, within the load's memory budget before
+    // Draco allocates (its attributes as the accessors describe them, our doubles, the faces).
+    {
+        std::uint64_t per_point = 0;
+        for (const Want& w : wants) per_point += std::uint64_t(w.shape.components) * (sizeof(double) + 4);
+        const std::uint64_t need = std::max<std::uint64_t>(counts.points, points) * per_point + counts.faces * 3 * 16;
+        accessors.check_budget(std::size_t(std::min<std::uint64_t>(need, SIZE_MAX)), ptr);
+    }
     draco::DecoderBuffer buffer;
     buffer.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     auto type = draco::Decoder::GetEncodedGeometryType(&buffer);

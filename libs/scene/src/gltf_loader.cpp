@@ -141,7 +141,14 @@ public:
         gltf::decode_meshopt_views(r_, doc_, buffers_, opt_.max_file_bytes,
                                    [this](std::size_t n, const std::string& ptr) { account(n, ptr); });
         load_variants();
-        gltf::AccessorDecoder accessors(r_, doc_, buffers_, opt_.max_vertices * 16);
+        std::size_t input_bytes = bytes.size();
+        for (const auto& b : buffers_) input_bytes += b.size();
+        geometry_budget_ = opt_.max_geometry_bytes
+                               ? opt_.max_geometry_bytes
+                               : std::size_t(std::min<std::uint64_t>(
+                                     (std::uint64_t(256) << 20) + 64 * std::uint64_t(input_bytes), SIZE_MAX));
+        gltf::AccessorDecoder accessors(r_, doc_, buffers_, opt_.max_vertices * 16,
+                                        [this](std::size_t n, const std::string& ptr) { check_geometry(n, ptr); });
         load_images(accessors);
         load_samplers_and_textures();
         load_materials();
@@ -176,6 +183,31 @@ private:
         total_bytes_ += bytes;
         if (total_bytes_ > opt_.max_total_bytes)
             r_.fail(ptr, "buffers and images exceed the limit of " + std::to_string(opt_.max_total_bytes) + " bytes");
+    }
+
+    // The geometry budget (GltfLoadOptions::max_geometry_bytes): what the scene keeps, plus what
+    // is about to be decoded.
+    std::size_t geometry_budget_ = 0, geometry_bytes_ = 0;
+    [[noreturn]] void geometry_over(std::size_t more, const std::string& ptr) {
+        const auto mib = [](std::size_t b) { return std::to_string((b + (1 << 20) - 1) >> 20) + " MiB"; };
+        r_.fail(ptr, "decoding it would take the file's geometry to " + mib(geometry_bytes_ + more) +
+                         ", over its memory budget of " + mib(geometry_budget_) +
+                         (opt_.max_geometry_bytes ? std::string(" (--max-memory)")
+                                                  : std::string(" (256 MiB + 64 bytes per byte of the file and its "
+                                                                "buffers; --max-memory raises it)")));
+    }
+    void check_geometry(std::size_t more, const std::string& ptr) {
+        if (more > geometry_budget_ || geometry_bytes_ > geometry_budget_ - more) geometry_over(more, ptr);
+    }
+    void keep_geometry(const Primitive& p, const std::string& ptr) {
+        std::size_t n = p.positions.size() * sizeof(glm::vec3) + p.normals.size() * sizeof(glm::vec3) +
+                        p.tangents.size() * sizeof(glm::vec4) + (p.uv0.size() + p.uv1.size()) * sizeof(glm::vec2) +
+                        p.colors.size() * sizeof(glm::vec4) + p.indices.size() * sizeof(std::uint32_t) +
+                        p.joints.size() * sizeof(glm::uvec4) + p.weights.size() * sizeof(glm::vec4);
+        for (const MorphTarget& t : p.targets)
+            n += (t.positions.size() + t.normals.size() + t.tangents.size()) * sizeof(glm::vec3);
+        check_geometry(n, ptr);
+        geometry_bytes_ += n;
     }
 
     void check_asset() {
@@ -638,6 +670,7 @@ private:
                 auto prim = gltf::build_primitive(r_, prims[p], pptr, accessors, scene_.materials, opt_.max_vertices,
                                                   uses("KHR_mesh_quantization"), weights, diag_);
                 if (prim) {
+                    keep_geometry(*prim, pptr);
                     load_variant_mappings(prims[p], pptr, *prim);
                     mesh.primitives.push_back(std::move(*prim));
                 }

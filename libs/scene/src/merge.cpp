@@ -90,4 +90,34 @@ int append_model(Scene& dst, Scene model, const glm::mat4& transform, int scene_
     return int(dst.parts.size()) - 1;
 }
 
+int append_instance(Scene& dst, int part, const glm::mat4& transform) {
+    if (part < 0 || part >= int(dst.parts.size())) throw Error(dst.source, "model " + std::to_string(part), "no such model");
+    Scene::Part copy = dst.parts[std::size_t(part)];
+    // The subtree under the part's root, copied depth first (iteratively: a deep graph must not
+    // exhaust the stack); children renumbered to the copies.
+    std::vector<int> old_of;  // copy k is a copy of node old_of[k]
+    std::vector<std::pair<int, int>> stack{{copy.root, -1}};  // node, its copy's parent copy
+    const std::size_t base = dst.nodes.size();
+    std::vector<Node> added;
+    while (!stack.empty()) {
+        auto [node, parent] = stack.back();
+        stack.pop_back();
+        if (node < 0 || node >= int(dst.nodes.size())) continue;
+        const int k = int(added.size());
+        added.push_back(dst.nodes[std::size_t(node)]);
+        added.back().children.clear();
+        if (parent >= 0) added[std::size_t(parent)].children.push_back(int(base) + k);
+        const auto& children = dst.nodes[std::size_t(node)].children;
+        for (auto it = children.rbegin(); it != children.rend(); ++it) stack.emplace_back(*it, k);
+    }
+    if (added.empty()) throw Error(dst.source, "model " + std::to_string(part), "has no root node");
+    added.front().local = transform;
+    added.front().name = "model " + std::to_string(dst.parts.size());
+    for (Node& n : added) dst.nodes.push_back(std::move(n));
+    copy.root = int(base);
+    dst.scenes[0].push_back(copy.root);
+    dst.parts.push_back(std::move(copy));
+    return int(dst.parts.size()) - 1;
+}
+
 }  // namespace fresnel

@@ -364,6 +364,43 @@ TEST(GltfAccessors, SparseWithoutBufferViewStartsFromZeros) {
     EXPECT_FLOAT_EQ(p.uv0[2].y, 0.2f);
 }
 
+// Zero-filled accessors (no bufferView) are legal and cost nothing in the file: the geometry a
+// load decodes and keeps is bounded by the input (256 MiB + 64 bytes per byte by default), so a
+// few hundred bytes cannot take gigabytes, whether one accessor is huge or a big one is shared
+// by many primitives; the error names the accessor and the budget; --max-memory (the
+// budget itself) lets a file that needs more through.
+TEST(GltfAccessors, ZeroFilledAccessorsStayWithinTheMemoryBudget) {
+    auto bomb = [](long long count, int primitives) {
+        json j = {{"asset", {{"version", "2.0"}}},
+                  {"accessors", {{{"componentType", FLOAT}, {"count", count}, {"type", "VEC3"},
+                                  {"min", {0, 0, 0}}, {"max", {0, 0, 0}}}}},
+                  {"meshes", {{{"primitives", json::array()}}}},
+                  {"nodes", {{{"mesh", 0}}}},
+                  {"scenes", {{{"nodes", {0}}}}}};
+        for (int i = 0; i < primitives; ++i) j["meshes"][0]["primitives"].push_back({{"attributes", {{"POSITION", 0}}}});
+        const std::string text = j.dump();
+        return std::vector<std::uint8_t>(text.begin(), text.end());
+    };
+    for (const auto& [count, primitives] : {std::pair{150'000'000LL, 1}, std::pair{5'000'000LL, 64}}) {
+        Diagnostics diag;
+        try {
+            load(bomb(count, primitives), diag);
+            ADD_FAILURE() << count << " x " << primitives << " loaded";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("memory budget of 257 MiB"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("/accessors/0"), std::string::npos) << e.what();
+        }
+    }
+    // The same shape within the budget loads; a budget of its own lets a bigger one through.
+    Diagnostics diag;
+    EXPECT_EQ(load(bomb(1000, 64), diag).meshes.at(0).primitives.size(), 64u);
+    GltfLoadOptions opt;
+    opt.max_geometry_bytes = std::size_t(1) << 20;
+    EXPECT_THROW(load(bomb(100'000, 1), diag, opt), Error);  // 2.4 MB of doubles over a 1 MiB budget
+    opt.max_geometry_bytes = std::size_t(64) << 20;
+    EXPECT_EQ(load(bomb(100'000, 2), diag, opt).meshes.at(0).primitives.size(), 2u);
+}
+
 // =============================================================================================
 // Primitives: indexing, topology, generated normals
 

@@ -18,6 +18,12 @@ struct GltfLoadOptions {
     std::size_t max_file_bytes = std::size_t(2) << 30;     // the .gltf/.glb and each external file
     // all buffers and images together: 8 GiB, or all of a 32-bit address space (the web build)
     std::size_t max_total_bytes = std::size_t(std::min<std::uint64_t>(std::uint64_t(8) << 30, SIZE_MAX));
+    // The geometry a load decodes and keeps (every primitive's vertices, indices and morph
+    // targets, each accessor while it is decoded, Draco's output) is bounded by the input:
+    // 0 (the default) allows 256 MiB plus 64 bytes per byte of the file's buffers, so a few
+    // hundred bytes of JSON naming huge zero-filled accessors cannot take gigabytes; a value
+    // sets the budget itself (`--max-memory`). Over it, the load fails naming the accessor.
+    std::size_t max_geometry_bytes = 0;
     std::size_t max_data_uri_bytes = std::size_t(512) << 20;
     std::size_t max_vertices = std::size_t(200) << 20;     // per primitive, after expansion
     int max_node_depth = 1024;

@@ -17,4 +17,11 @@ Scene make_composite_scene(std::string source);
 // index in `dst.parts`. Throws fresnel::Error when `scene_index` does not exist.
 int append_model(Scene& dst, Scene model, const glm::mat4& transform, int scene_index = -1);
 
+// Places part `part` of `dst` again, at `transform`: its nodes are copied under a new root
+// node and refer to the same meshes, materials, textures, images, cameras and lights, so a
+// model placed N times costs its nodes N times and its data once (and the renderer uploads
+// its meshes and textures once). The new part's entry names the same materials and cameras.
+// Returns its index in `dst.parts`.
+int append_instance(Scene& dst, int part, const glm::mat4& transform);
+
 }  // namespace fresnel
