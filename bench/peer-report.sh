@@ -35,7 +35,7 @@ psnr() { "$fresnel" compare "$1" "$2" --mask auto --json | python3 -c 'import js
 } > "$out/peer-report.md"
 for obj in "$out"/scenes/*.obj; do
   name=$(basename "$obj" .obj)
-  "$fresnel" convert "$obj" "$out/$name.ours.glb" --quiet
+  "$fresnel" convert "$obj" "$out/$name.ours.glb" --quiet --match opengl1
   (cd "$(dirname "$obj")" && "$obj2gltf" -i "$obj" -o "$out/$name.peer.glb" > /dev/null)
   for view in "${views[@]}"; do
     read -r yaw pitch <<< "$view"

@@ -595,7 +595,7 @@ int run_batch(const BatchOptions& o, const CLI::App* cmd) {
             t->scene = caches.scene(t->job, t->diag, loaded);
             t->r["load_ms"] = ms_since(t_load);
             t->r["model_cached"] = !loaded;
-            t->resolved = resolve(t->job, *t->scene);
+            t->resolved = resolve(t->job, *t->scene, &t->diag);
             auto t_env = Clock::now();
             if (t->resolved.environment) t->env = caches.environment(t->resolved);
             if (t->resolved.needs_brdf_lut) t->lut = caches.brdf_lut(t->resolved);

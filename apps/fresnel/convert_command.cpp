@@ -32,6 +32,7 @@ struct ConvertOptions {
     bool allow_external_files = false;
     bool quiet = false;
     bool no_diffuse_bake = false;
+    std::string match = "albedo";  // Phong -> PBR intent (fit::Match)
 };
 
 std::string lower_ext(const fs::path& p) {
@@ -40,17 +41,28 @@ std::string lower_ext(const fs::path& p) {
     return e;
 }
 
-// Phong (MTL) materials -> fitted metallic-roughness, in place.
-void fit_phong_materials(Scene& scene, bool quiet) {
+// Phong (MTL) materials -> fitted metallic-roughness, in place, for `match`'s intent. Values
+// outside OpenGL 1's ranges (Kd, Ks above 1, Ns above 128) are clamped with a warning.
+void fit_phong_materials(Scene& scene, bool quiet, fit::Match match, Diagnostics& d, const std::string& file) {
     std::map<std::tuple<float, float, float, float, float, float, float>, fit::PhongToPbr> cache;
     for (Material& m : scene.materials) {
         if (!m.phong || m.phong->has_pbr() || m.unlit) continue;
         const PhongExt& p = *m.phong;
         bool highlight = p.illum != 0 && p.illum != 1;
         fit::Phong ph{p.diffuse, highlight ? p.specular : glm::vec3(0.0f), p.shininess};
+        const std::string where = "material '" + m.name + "'";
+        auto clamp_colour = [&](const char* key, glm::vec3& c) {
+            if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) || glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
+                d.warn(file, where, std::string(key) + " outside [0, 1] is clamped (OpenGL 1 clamps it)");
+            c = glm::clamp(c, 0.0f, 1.0f);
+        };
+        clamp_colour("Kd", ph.kd);
+        clamp_colour("Ks", ph.ks);
+        if (ph.ns < 0.0f || ph.ns > 128.0f) d.warn(file, where, "Ns outside [0, 128] is clamped (OpenGL 1's range)");
+        ph.ns = std::clamp(ph.ns, 0.0f, 128.0f);
         auto key = std::make_tuple(ph.kd.x, ph.kd.y, ph.kd.z, ph.ks.x, ph.ks.y, ph.ks.z, ph.ns);
         auto it = cache.find(key);
-        if (it == cache.end()) it = cache.emplace(key, fit::fit_phong_to_pbr(ph)).first;
+        if (it == cache.end()) it = cache.emplace(key, fit::fit_phong_to_pbr(ph, match)).first;
         const fit::PhongToPbr& f = it->second;
         // The formula conversion's textures stay (map_Kd, map_Ks as specular colour, ...); the
         // factors become the fitted ones.
@@ -220,10 +232,22 @@ int run_convert(const ConvertOptions& o) {
         fit_pbr_materials(scene, o.quiet, !o.no_diffuse_bake);
         write_obj(scene, o.output, diagnostics);
     } else {
-        if (in_obj) fit_phong_materials(scene, o.quiet);
+        if (in_obj) fit_phong_materials(scene, o.quiet, *fit::parse_match(o.match), diagnostics, o.input);
         write_gltf(scene, o.output, diagnostics);
     }
     print_warnings(diagnostics);
+    // What was written, whole (the set is committed together: fresnel/core/atomic_file.h).
+    std::size_t primitives = 0, triangles = 0, images = 0;
+    for (const Mesh& m : scene.meshes)
+        for (const Primitive& p : m.primitives) {
+            ++primitives;
+            triangles += (p.indices.empty() ? p.positions.size() : p.indices.size()) / 3;
+        }
+    for (const SceneImage& i : scene.images) images += i.valid();
+    if (!o.quiet)
+        std::fprintf(stderr, "fresnel: convert: wrote %s: %zu meshes (%zu primitives, %zu triangles), %zu materials, %zu images%s\n",
+                     o.output.c_str(), scene.meshes.size(), primitives, triangles, scene.materials.size(), images,
+                     out_obj ? " (+ .mtl)" : out_ext == ".gltf" ? " (+ .bin and image files beside it)" : "");
     return kExitOk;
 }
 
@@ -237,6 +261,12 @@ Runner add_convert_command(CLI::App& app) {
     cmd->add_flag("--allow-external-files", opts->allow_external_files,
                   "Allow URIs and MTL/texture paths outside the model's folder");
     cmd->add_flag("--quiet", opts->quiet, "Do not print each material's fit residual");
+    cmd->add_option("--match", opts->match,
+                    "OBJ -> glTF: what the fitted materials are for: albedo (Kd is the albedo, as Blender and obj2gltf "
+                    "read it; roughness and specular fitted from Ks and Ns) or opengl1 (look like the OpenGL 1 render "
+                    "under one light in a glTF viewer); Ks 0 gives no specular lobe either way")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"opengl1", "albedo"}));
     cmd->add_flag("--no-diffuse-bake", opts->no_diffuse_bake,
                   "glTF -> OBJ: keep the base colour texture as map_Kd with one fitted Kd per material, instead of "
                   "baking the fitted diffuse per texel (metallic-roughness textures) into a new map_Kd");

@@ -22,8 +22,22 @@ namespace {
 
 struct FitOptions {
     std::string phong, pbr, specgloss;
+    std::string match = "albedo";
     bool json = false;
 };
+
+// Values outside what OpenGL 1 shades (Kd, Ks in [0, 1], Ns in [0, 128]) are clamped by the
+// fit; said once per value, on stderr.
+void warn_out_of_range(const fit::Phong& p) {
+    auto colour = [](const char* name, const glm::vec3& c) {
+        if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) || glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
+            std::fprintf(stderr, "fresnel: warning: --phong: %s outside [0, 1] is clamped (OpenGL 1 clamps it)\n", name);
+    };
+    colour("KD", p.kd);
+    colour("KS", p.ks);
+    if (p.ns < 0.0f || p.ns > 128.0f)
+        std::fprintf(stderr, "fresnel: warning: --phong: NS outside [0, 128] is clamped (OpenGL 1's range)\n");
+}
 
 // "a,b,c" where each item is a number or R:G:B.
 std::vector<glm::vec3> parse_items(const std::string& text, size_t count, const char* flag) {
@@ -101,11 +115,14 @@ int run_fit(const FitOptions& o) {
     if (!o.phong.empty()) {
         auto v = parse_items(o.phong, 3, "--phong");
         fit::Phong p{v[0], v[1], v[2].x};
-        fit::PhongToPbr f = fit::fit_phong_to_pbr(p);
+        warn_out_of_range(p);
+        const fit::Match match = *fit::parse_match(o.match);
+        fit::PhongToPbr f = fit::fit_phong_to_pbr(p, match);
         fit::PbrToPhong back = fit::fit_pbr_to_phong(f.pbr);
         fit::Residual trip = fit::residual(p, back.phong);
         if (o.json) {
             j = {{"phong", json_of(p)},
+                 {"match", fit::match_name(match)},
                  {"fitted", json_of(f.pbr)},
                  {"residual", json_of(f.residual)},
                  {"formula", json_of(f.formula)},
@@ -114,7 +131,8 @@ int run_fit(const FitOptions& o) {
                  {"round_trip_residual", json_of(trip)}};
         } else {
             std::printf("Phong            %s\n", text(p).c_str());
-            std::printf("fitted PBR       %s\n  residual       %s\n", text(f.pbr).c_str(), text(f.residual).c_str());
+            std::printf("fitted PBR       %s\n  residual       %s%s\n", text(f.pbr).c_str(), text(f.residual).c_str(),
+                        match == fit::Match::Albedo ? " (to the OpenGL 1 look; --match albedo keeps Kd)" : "");
             std::printf("formula PBR      %s\n  residual       %s\n", text(f.formula).c_str(),
                         text(f.formula_residual).c_str());
             std::printf("round trip       %s\n  vs the Phong   %s\n", text(back.phong).c_str(), text(trip).c_str());
@@ -171,6 +189,12 @@ Runner add_fit_command(CLI::App& app) {
     cmd->add_option("--pbr", opts->pbr, "BASE,METALLIC,ROUGHNESS: a glTF material to fit in Phong");
     cmd->add_option("--specgloss", opts->specgloss,
                     "DIFFUSE,SPECULAR,GLOSSINESS: a KHR_materials_pbrSpecularGlossiness material to convert");
+    cmd->add_option("--match", opts->match,
+                    "--phong's intent: albedo (KD is the albedo, as Blender and obj2gltf read it; roughness and "
+                    "specular fitted from KS and NS) or opengl1 (look like the OpenGL 1 render under one light in a "
+                    "glTF viewer); KS 0 gives no specular lobe either way")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"opengl1", "albedo"}));
     cmd->add_flag("--json", opts->json, "Print JSON instead of text");
     cmd->footer("Colours are one grey value or R:G:B. Residual: RMS of the display-value difference over light and\n"
                 "view directions (cosine-weighted, six view elevations), with its PSNR.");

@@ -149,8 +149,8 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
     auto t_load = Clock::now();
     Scene scene = load_scene(job, diag);
     double load_ms = ms_since(t_load);
+    ResolvedJob resolved = resolve(job, scene, &diag);
     print_warnings(diag);
-    ResolvedJob resolved = resolve(job, scene);
     const std::string model_name = o.models.empty() ? std::string("demo") : o.models[0];
     if (animated) {
         if (scene.animations.empty()) {

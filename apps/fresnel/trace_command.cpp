@@ -53,9 +53,9 @@ int run_trace(const TraceOptions& o, const CLI::App* cmd) {
     auto t_load = Clock::now();
     Scene scene = load_scene(job, diag);
     double load_ms = ms_since(t_load);
-    print_warnings(diag);
     // The same rules as render: camera, lights, environment, background (libs/render/job.h).
-    ResolvedJob resolved = resolve(job, scene);
+    ResolvedJob resolved = resolve(job, scene, &diag);
+    print_warnings(diag);
     const RenderSettings& rs = resolved.settings;
 
     auto t_env = Clock::now();

@@ -151,6 +151,38 @@ TEST_F(Cli, InterruptedTraceWritesWhatItTraced) {
     EXPECT_NE(r.err.find("interrupted"), std::string::npos) << show(r);
 }
 
+// OBJ -> glTF: a material without specular stays matte (no specular lobe, roughness 1) under
+// both intents; the default (albedo) keeps Kd as the base colour; Kd above 1 is clamped with a
+// warning naming the material; convert says what it wrote.
+TEST_F(Cli, ConvertKeepsMatteMaterialsMatte) {
+    std::ofstream(dir_ / "m.obj") << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\n"
+                                     "usemtl matte\nf 1//1 2//1 3//1\nusemtl hot\nf 1//1 3//1 2//1\n";
+    std::ofstream(dir_ / "m.mtl") << "newmtl matte\nKd 0.8 0 0\nKs 0 0 0\nNs 10\nillum 2\n"
+                                     "newmtl hot\nKd 2 0.5 0.5\nKs 0.5 0.5 0.5\nNs 32\nillum 2\n";
+    auto material = [&](const fs::path& gltf, int i) {
+        return nlohmann::json::parse(slurp(gltf)).at("materials").at(i);
+    };
+    Result r = run({"convert", (dir_ / "m.obj").string(), (dir_ / "a.gltf").string()});
+    ASSERT_EQ(r.exit_code, 0) << show(r);
+    EXPECT_NE(r.err.find("Kd outside [0, 1] is clamped"), std::string::npos) << show(r);
+    EXPECT_NE(r.err.find("'hot'"), std::string::npos) << show(r);
+    EXPECT_NE(r.err.find("wrote " + (dir_ / "a.gltf").string() + ": 1 meshes (2 primitives, 2 triangles), 2 materials"),
+              std::string::npos)
+        << show(r);
+    nlohmann::json m = material(dir_ / "a.gltf", 0);
+    EXPECT_NEAR(m["pbrMetallicRoughness"]["baseColorFactor"][0].get<double>(), 0.8, 1e-6) << m.dump();
+    EXPECT_EQ(m["pbrMetallicRoughness"].value("roughnessFactor", 1.0), 1.0) << m.dump();
+    EXPECT_EQ(m["extensions"]["KHR_materials_specular"]["specularFactor"].get<double>(), 0.0) << m.dump();
+    EXPECT_NEAR(material(dir_ / "a.gltf", 1)["pbrMetallicRoughness"]["baseColorFactor"][0].get<double>(), 1.0, 1e-6);
+
+    r = run({"convert", (dir_ / "m.obj").string(), (dir_ / "b.gltf").string(), "--match", "opengl1", "--quiet"});
+    ASSERT_EQ(r.exit_code, 0) << show(r);
+    m = material(dir_ / "b.gltf", 0);
+    EXPECT_EQ(m["pbrMetallicRoughness"].value("roughnessFactor", 1.0), 1.0) << m.dump();
+    EXPECT_EQ(m["extensions"]["KHR_materials_specular"]["specularFactor"].get<double>(), 0.0) << m.dump();
+    EXPECT_EQ(run({"convert", (dir_ / "m.obj").string(), (dir_ / "c.gltf").string(), "--match", "blender"}).exit_code, 2);
+}
+
 TEST_F(Cli, BadSizeIsUsageError) {
     fs::path png = dir_ / "out.png";
     for (const char* size : {"0x10", "10x0", "abc", "10x", "x10", "10x10x10", "10*10", "20000x10"}) {

@@ -1,6 +1,8 @@
 #include "fresnel/job/job.h"
 
 #include <algorithm>
+#include <cctype>
+#include <filesystem>
 #include <chrono>
 
 #include "fresnel/scene/gltf_loader.h"
@@ -41,7 +43,7 @@ Scene load_scene(const Job& job, Diagnostics& diag) {
     return scene;
 }
 
-ResolvedJob resolve(const Job& job, const Scene& scene) {
+ResolvedJob resolve(const Job& job, const Scene& scene, Diagnostics* diag) {
     ResolvedJob r;
     const Job::Output& out = job.output;
     if (job.source.scene >= int(scene.scenes.size()))
@@ -100,6 +102,12 @@ ResolvedJob resolve(const Job& job, const Scene& scene) {
         r.environment = ibl::EnvironmentSource{};
         r.environment->kind = ibl::EnvironmentSource::Kind::File;
         r.environment->path = env.path;
+        std::string ext = std::filesystem::path(env.path).extension().string();
+        for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+        if (diag && (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".tga" || ext == ".webp"))
+            diag->warn(env.path, "--env",
+                       "an 8-bit image as the environment: its values are display values / 255, not radiance, so "
+                       "the light is dim and clipped (an .hdr or .exr panorama holds radiance)");
     } else if (env.kind == Kind::Color) {
         r.environment = ibl::EnvironmentSource{};
         r.environment->kind = ibl::EnvironmentSource::Kind::Uniform;

@@ -268,6 +268,22 @@ PbrSolution solve_pbr_colours(const Targets& t, const PbrGeometry& g, float roug
 PhongToPbr fit_phong(const Phong& phong, bool use_table) {
     Targets t = phong_targets(phong);
     glm::vec3 kd = glm::clamp(phong.kd, 0.0f, 1.0f), ks = glm::clamp(phong.ks, 0.0f, 1.0f);
+    PhongExt ext;
+    ext.diffuse = phong.kd;
+    ext.specular = phong.ks;
+    ext.shininess = phong.ns;
+    if (ks == glm::vec3(0.0f)) {
+        // No highlight: no specular lobe at all (specularFactor 0), so the material stays matte
+        // under any light. A fit over one light would otherwise choose a near-mirror (roughness
+        // 0.02), whose reflection the samples almost never see, and which image-based light
+        // shows everywhere. Only the base colour is fitted.
+        PhongToPbr out;
+        out.pbr = solve_pbr_colours(t, pbr_geometry(1.0f), 1.0f, 0.0f, 0.0f, false, kd, glm::vec3(0.04f)).pbr;
+        out.residual = residual(phong, out.pbr);
+        out.formula = from_material(phong_to_metallic_roughness(ext));
+        out.formula_residual = residual(phong, out.formula);
+        return out;
+    }
     // The table's roughness joins a coarse scan of the whole range as one more candidate.
     float r_table = use_table ? table_roughness(phong.ns) : std::numeric_limits<float>::quiet_NaN();
     const float r_lo = 0.02f, r_hi = 1.0f;
@@ -307,11 +323,6 @@ PhongToPbr fit_phong(const Phong& phong, bool use_table) {
     out.pbr = with.error < 0.98f * without.error ? with.pbr : without.pbr;
     if (!out.pbr.uses_specular()) out.pbr.specular_f0 = glm::vec3(0.04f);
     out.residual = residual(phong, out.pbr);
-
-    PhongExt ext;
-    ext.diffuse = phong.kd;
-    ext.specular = phong.ks;
-    ext.shininess = phong.ns;
     out.formula = from_material(phong_to_metallic_roughness(ext));
     out.formula_residual = residual(phong, out.formula);
     return out;
@@ -453,6 +464,37 @@ Residual residual(const Phong& a, const Phong& b) { return residual_of(a, b); }
 Residual residual(const Pbr& a, const Pbr& b) { return residual_of(a, b); }
 
 PhongToPbr fit_phong_to_pbr(const Phong& phong) { return fit_phong(phong, true); }
+
+PhongToPbr fit_phong_to_pbr(const Phong& phong, Match match) {
+    if (match == Match::OpenGl1) return fit_phong_to_pbr(phong);
+    // Kd is the albedo; the highlight alone (Kd 0) is fitted for roughness and F0, whether the
+    // fit reads it as a metal's tint or a dielectric's specular colour.
+    PhongToPbr out = fit_phong_to_pbr(phong);
+    const glm::vec3 kd = glm::clamp(phong.kd, 0.0f, 1.0f), ks = glm::clamp(phong.ks, 0.0f, 1.0f);
+    Pbr p;
+    p.base_color = kd;
+    p.metallic = 0.0f;
+    if (ks == glm::vec3(0.0f)) {
+        p.roughness = 1.0f;
+        p.specular_weight = 0.0f;
+    } else {
+        const Pbr h = fit_phong_to_pbr(Phong{glm::vec3(0.0f), ks, phong.ns}).pbr;
+        p.roughness = h.roughness;
+        const glm::vec3 dielectric = h.uses_specular() ? h.specular_f0 * h.specular_weight : glm::vec3(0.04f);
+        p.specular_f0 = glm::clamp(glm::mix(dielectric, h.base_color, h.metallic), 0.0f, 1.0f);
+        p.specular_weight = 1.0f;
+    }
+    out.pbr = p;
+    out.residual = residual(phong, p);
+    return out;
+}
+
+const char* match_name(Match m) { return m == Match::Albedo ? "albedo" : "opengl1"; }
+std::optional<Match> parse_match(const std::string& name) {
+    if (name == "opengl1") return Match::OpenGl1;
+    if (name == "albedo") return Match::Albedo;
+    return std::nullopt;
+}
 PhongToPbr fit_phong_to_pbr_full(const Phong& phong) { return fit_phong(phong, false); }
 PbrToPhong fit_pbr_to_phong(const Pbr& pbr) { return fit_pbr(pbr, true); }
 PbrToPhong fit_pbr_to_phong_full(const Pbr& pbr) { return fit_pbr(pbr, false); }

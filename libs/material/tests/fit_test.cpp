@@ -77,6 +77,40 @@ TEST(Fit, PhongToPbrBeatsTheFormula) {
     }
 }
 
+// A material without a highlight never becomes a mirror: it gets no specular lobe at all, so
+// it stays matte under any light (image-based light included). Its base colour is Kd under the
+// albedo intent (the default of fit and convert); the OpenGL 1 look under one light, whose
+// output is not sRGB-encoded, fits a darker one.
+TEST(Fit, MatteStaysMatte) {
+    for (Match match : {Match::OpenGl1, Match::Albedo}) {
+        const PhongToPbr f = fit_phong_to_pbr(Phong{glm::vec3(0.8f, 0.0f, 0.0f), glm::vec3(0.0f), 0.0f}, match);
+        EXPECT_EQ(f.pbr.specular_weight, 0.0f) << match_name(match);
+        EXPECT_EQ(f.pbr.roughness, 1.0f) << match_name(match);
+        EXPECT_EQ(f.pbr.metallic, 0.0f) << match_name(match);
+        EXPECT_GT(f.pbr.base_color.x, match == Match::Albedo ? 0.79f : 0.35f) << match_name(match);
+        EXPECT_LT(f.pbr.base_color.y, 0.01f) << match_name(match);
+    }
+    EXPECT_FLOAT_EQ(fit_phong_to_pbr(Phong{glm::vec3(0.8f), glm::vec3(0.0f), 0.0f}, Match::Albedo).pbr.base_color.x, 0.8f);
+}
+
+// --match albedo: Kd is the base colour as given; the highlight (Ks, Ns) sets roughness and the
+// specular F0, sharper for a higher Ns.
+TEST(Fit, AlbedoIntentKeepsKd) {
+    const Phong plastic{glm::vec3(0.5f, 0.1f, 0.1f), glm::vec3(0.5f), 32.0f};
+    const Phong sharp{glm::vec3(0.5f, 0.1f, 0.1f), glm::vec3(0.5f), 128.0f};
+    const PhongToPbr a = fit_phong_to_pbr(plastic, Match::Albedo), b = fit_phong_to_pbr(sharp, Match::Albedo);
+    EXPECT_EQ(a.pbr.base_color, plastic.kd);
+    EXPECT_EQ(a.pbr.metallic, 0.0f);
+    EXPECT_GT(a.pbr.roughness, 0.05f);
+    EXPECT_LT(a.pbr.roughness, 0.9f);
+    EXPECT_LT(b.pbr.roughness, a.pbr.roughness);
+    EXPECT_GT(a.pbr.specular_f0.x, 0.0f);
+    EXPECT_LE(a.pbr.specular_f0.x, 1.0f);
+    EXPECT_EQ(parse_match("albedo"), Match::Albedo);
+    EXPECT_EQ(parse_match("opengl1"), Match::OpenGl1);
+    EXPECT_FALSE(parse_match("blender"));
+}
+
 TEST(Fit, RoundTripsPrintAndBoundTheirResiduals) {
     const Phong phongs[] = {{glm::vec3(0.5f, 0.1f, 0.1f), glm::vec3(0.5f), 32.0f},
                             {glm::vec3(0.05f), glm::vec3(0.9f, 0.6f, 0.2f), 64.0f}};

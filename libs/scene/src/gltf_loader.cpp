@@ -7,6 +7,7 @@
 #include "fresnel/scene/gltf_loader.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -128,10 +129,15 @@ public:
         } else {
             text = std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
         }
+        if (!glb) refuse_what_is_not_gltf(bytes);
         try {
             doc_ = json::parse(text.begin(), text.end());
         } catch (const json::parse_error& e) {
-            throw Error(r_.file(), "byte " + std::to_string(e.byte), std::string("invalid JSON: ") + e.what());
+            // nlohmann's text without its "[json.exception.parse_error.101] " prefix.
+            std::string what = e.what();
+            if (what.rfind("[json.exception.", 0) == 0 && what.find("] ") != std::string::npos)
+                what = what.substr(what.find("] ") + 2);
+            throw Error(r_.file(), "byte " + std::to_string(e.byte), "invalid JSON: " + what);
         }
         if (!doc_.is_object()) r_.fail("", "the glTF document must be a JSON object");
         scene_.source = r_.file();
@@ -208,6 +214,39 @@ private:
             n += (t.positions.size() + t.normals.size() + t.tangents.size()) * sizeof(glm::vec3);
         check_geometry(n, ptr);
         geometry_bytes_ += n;
+    }
+
+    // A file that is no glTF at all (an image, an OBJ, binary junk) is named for what it is,
+    // instead of a JSON parser's complaint about its first byte.
+    void refuse_what_is_not_gltf(std::span<const std::uint8_t> b) {
+        auto starts = [&](std::initializer_list<std::uint8_t> magic) {
+            return b.size() >= magic.size() && std::equal(magic.begin(), magic.end(), b.begin());
+        };
+        const char* kind = nullptr;
+        if (starts({0x89, 'P', 'N', 'G'})) kind = "a PNG image";
+        else if (starts({0xFF, 0xD8, 0xFF})) kind = "a JPEG image";
+        else if (starts({0xAB, 'K', 'T', 'X'})) kind = "a KTX texture";
+        else if (starts({'R', 'I', 'F', 'F'})) kind = "a RIFF file (a WebP image?)";
+        else if (starts({0x76, 0x2F, 0x31, 0x01})) kind = "an OpenEXR image";
+        else if (starts({'#', '?'})) kind = "a Radiance HDR image";
+        else if (starts({'P', 'K', 0x03, 0x04})) kind = "a ZIP archive";
+        else if (starts({'g', 'l', 'T', 'F'})) kind = nullptr;  // a GLB: split_glb's checks
+        if (kind) r_.fail("", std::string("not a glTF file: it is ") + kind + " (a model is a .gltf, .glb or .obj file)");
+        std::size_t i = 0;
+        if (starts({0xEF, 0xBB, 0xBF})) i = 3;  // a UTF-8 byte order mark
+        while (i < b.size() && (b[i] == ' ' || b[i] == '\t' || b[i] == '\r' || b[i] == '\n')) ++i;
+        if (i < b.size() && b[i] != '{') {
+            char first[8];
+            std::snprintf(first, sizeof first, "0x%02X", unsigned(b[i]));
+            const bool printable = b[i] >= 0x20 && b[i] < 0x7F;
+            r_.fail("byte " + std::to_string(i),
+                    std::string("not a glTF file: a .gltf is a JSON object (starts with '{') and a .glb starts with "
+                                "'glTF'; this starts with ") +
+                        (printable ? "'" + std::string(1, char(b[i])) + "'" : std::string(first)) +
+                        (starts({'v', ' '}) || starts({'#', ' '}) || starts({'o', ' '}) || starts({'m', 't', 'l'})
+                             ? " (an OBJ file? name it .obj)"
+                             : ""));
+        }
     }
 
     void check_asset() {

@@ -180,7 +180,9 @@ struct ResolvedJob {
 // Applies the lighting, background and camera rules to `job` on `scene` (loaded from
 // job.source). Throws fresnel::Error (file: the model, or "demo") when the scene index
 // is out of range or no node uses the requested camera.
-ResolvedJob resolve(const Job& job, const Scene& scene);
+// `diag`, when given, gets what the job asks that will not do what its user likely meant (an
+// 8-bit image as the environment's radiance).
+ResolvedJob resolve(const Job& job, const Scene& scene, Diagnostics* diag = nullptr);
 
 // The image-based light and BRDF table a resolved job asks for; owns what the render
 // settings point to, so it must outlive the frames rendered with them.

@@ -34,6 +34,8 @@
 // Specular-glossiness -> metallic-roughness (fit_specular_glossiness) is exact (evaluate.h:
 // the specular-glossiness BRDF is the dielectric branch with F0 = specular); its residual
 // is measured by the same machinery and is 0 up to float rounding.
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -97,6 +99,20 @@ Residual residual(const Pbr& a, const Pbr& b);
 
 PhongToPbr fit_phong_to_pbr(const Phong& phong);
 PbrToPhong fit_pbr_to_phong(const Pbr& pbr);
+
+// What a Phong -> PBR conversion is for (`--match` of fit and convert):
+//   OpenGl1: look like the OpenGL 1 render of the MTL in a glTF viewer (fit_phong_to_pbr: the
+//            least-squares fit above, one light). A material without specular (Ks 0) gets no
+//            specular lobe (specularFactor 0, roughness 1): matte under any light, never a
+//            mirror.
+//   Albedo:  Kd is the albedo, as Blender and obj2gltf read it: base colour Kd, dielectric;
+//            the highlight alone (Ks, Ns with Kd 0) fitted for roughness and the specular F0
+//            colour (KHR_materials_specular); Ks 0: no specular lobe.
+// Inputs are clamped to [0, 1] (Kd, Ks) and [0, 128] (Ns) as OpenGL 1 does; callers warn.
+enum class Match { OpenGl1, Albedo };
+PhongToPbr fit_phong_to_pbr(const Phong& phong, Match match);
+const char* match_name(Match m);
+std::optional<Match> parse_match(const std::string& name);  // "opengl1", "albedo"
 
 struct SpecularGlossinessToPbr {
     Pbr pbr;
