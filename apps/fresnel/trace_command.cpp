@@ -83,6 +83,12 @@ int run_trace(const TraceOptions& o, const CLI::App* cmd) {
     ts.threads = o.threads;
     ts.env_visibility = !o.no_env_visibility;
     ts.brdf = rs.brdf;
+    // The rasteriser's energy model: its BRDF table (cached as render caches it).
+    ImageF lut;
+    if (rs.energy_compensation) {
+        lut = ibl::load_or_bake_lut(resolved.bake_options, resolved.use_cache);
+        ts.brdf_lut = &lut;
+    }
     // env and blur backgrounds both show the environment (sharp: the tracer has no blurred copy).
     ts.env_background = rs.background_mode != RenderSettings::Background::Color;
 
@@ -118,6 +124,7 @@ int run_trace(const TraceOptions& o, const CLI::App* cmd) {
         j["time_limited"] = stats.time_limited;
         j["interrupted"] = stats.stopped;
         j["max_bounces"] = o.max_bounces;
+        j["energy_compensation"] = rs.energy_compensation;
         j["env_visibility"] = !o.no_env_visibility;
         j["seed"] = o.seed;
         j["camera_paths"] = stats.camera_paths;

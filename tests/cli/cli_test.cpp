@@ -411,7 +411,15 @@ TEST_F(Cli, TraceAgreesWithRenderInTheFurnace) {
         float base, metallic, roughness;
         bool lambert;
     };
-    const Case cases[] = {{1, 1, 0, false}, {1, 1, 0.15f, false}, {1, 0, 1, true}, {0.5f, 0, 1, true}};
+    // Every roughness of metals and dielectrics: the tracer applies the rasteriser's multiple-
+    // scattering compensation at every bounce (fresnel::EnergyCompensation), so a rough metal is
+    // 0.98-1.0 in the tracer, not 0.36. What remains: the table's E read at its last texel centre
+    // (roughness and n.v 0.996) is 1.6 % above the lobe's E at roughness 1, and a rough
+    // dielectric's diffuse is weighted per direction by the Fresnel of the BRDF in the tracer
+    // (as punctual lights are in the rasteriser), by the split sum's 1 - (F0 A + B) under the
+    // rasteriser's image-based light (0.970 against 1.000 at roughness 1).
+    const Case cases[] = {{1, 1, 0, false},    {1, 1, 0.15f, false}, {1, 1, 0.5f, false}, {1, 1, 1, false},
+                          {1, 0, 0.5f, false}, {1, 0, 1, false},     {1, 0, 1, true},     {0.5f, 0, 1, true}};
     for (const Case& c : cases) {
         fs::path model = dir_ / "sphere.gltf", raster = dir_ / "raster.hdr", traced = dir_ / "traced.hdr";
         if (c.lambert) write_lambert_sphere(model, c.base);
@@ -428,9 +436,12 @@ TEST_F(Cli, TraceAgreesWithRenderInTheFurnace) {
         auto [mt, nt] = interior_mean(fresnel::read_image_float(traced));
         ASSERT_GT(nr, 500);
         ASSERT_GT(nt, 500);
-        EXPECT_NEAR(mt, mr, 0.01 * mr) << "base " << c.base << " metallic " << c.metallic << " roughness " << c.roughness
-                                       << (c.lambert ? " (Lambertian)" : "");
-        EXPECT_NEAR(mt, c.base, 0.01 * c.base);
+        std::printf("furnace: base %.1f metallic %.0f roughness %.2f%s: render %.4f, trace %.4f\n", c.base, c.metallic,
+                    c.roughness, c.lambert ? " (Lambertian)" : "", mr, mt);
+        const double tol = c.lambert || c.roughness < 0.6f ? 0.01 : c.metallic > 0 ? 0.02 : 0.035;
+        EXPECT_NEAR(mt, mr, tol * mr) << "base " << c.base << " metallic " << c.metallic << " roughness " << c.roughness
+                                      << (c.lambert ? " (Lambertian)" : "");
+        EXPECT_NEAR(mt, c.base, tol * c.base);
     }
 }
 

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "fresnel/core/parallel.h"
@@ -458,6 +459,19 @@ glm::vec2 integrate_split_sum(float n_dot_v, float roughness, int samples) {
 
 float brdf_lut_n_dot_v(int column, int size) {
     return column == 0 ? kBrdfLutGrazingNdotV : (float(column) + 0.5f) / float(size);
+}
+
+glm::vec4 sample_brdf_lut(const ImageF& lut, float n_dot_v, float roughness) {
+    if (lut.width <= 0 || lut.height <= 0) return glm::vec4(1.0f);
+    const float x = std::clamp(n_dot_v, 0.0f, 1.0f) * float(lut.width) - 0.5f;
+    const float y = std::clamp(roughness, 0.0f, 1.0f) * float(lut.height) - 0.5f;
+    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+    const float fx = x - float(x0), fy = y - float(y0);
+    auto at = [&](int i, int j) {
+        const float* p = lut.at(std::clamp(i, 0, lut.width - 1), std::clamp(j, 0, lut.height - 1));
+        return glm::vec4(p[0], p[1], p[2], p[3]);
+    };
+    return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx), glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
 }
 
 ImageF compute_brdf_lut(int size, int samples, unsigned threads) {

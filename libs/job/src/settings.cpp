@@ -585,7 +585,9 @@ std::vector<Setting> make_registry() {
     }
     {
         Setting s = boolean("render.energyCompensation", "--no-energy-compensation", true,
-                            "Multiple-scattering compensation of the specular lobe (false: single scattering)", raster,
+                            "Multiple-scattering compensation of the specular lobes, for every light (render) and "
+                            "every bounce (trace), so the two agree in the white furnace (false: single scattering)",
+                            raster | kTrace,
                             [](Job& j) -> bool& { return j.output.energy_compensation; });
         s.old_names = {"energy-compensation"};
         r.push_back(s);

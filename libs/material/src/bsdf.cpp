@@ -82,8 +82,8 @@ BsdfLobes lobe_probabilities(const EvaluatedMaterial& m, glm::vec3 v) {
     return p;
 }
 
-Bsdf::Bsdf(const EvaluatedMaterial& m, glm::vec3 v, const brdf::BrdfModel& model)
-    : m_(m), v_(v), model_(model), lobes_(lobe_probabilities(m, v)) {
+Bsdf::Bsdf(const EvaluatedMaterial& m, glm::vec3 v, const brdf::BrdfModel& model, const EnergyCompensation& comp)
+    : m_(m), v_(v), model_(model), comp_(comp), lobes_(lobe_probabilities(m, v)) {
     const bxdf::Frame base(m.normal);
     const glm::vec3 v_base = base.to_local(v);
     const float alpha = brdf::alpha_from_roughness(m.surface.perceptual_roughness);

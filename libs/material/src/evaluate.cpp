@@ -368,9 +368,19 @@ glm::vec3 shade_light_transmission(const EvaluatedMaterial& m, glm::vec3 v, glm:
     return transmission_weight(m, v, c) * tr.factor * (transmitted - radiance * diffuse_cos(m, v, l, c));
 }
 
-glm::vec3 shade_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, const brdf::BrdfModel& model) {
+glm::vec3 energy_compensation(glm::vec3 f0, float e) { return 1.0f + f0 * (1.0f / std::max(e, 1e-4f) - 1.0f); }
+
+EnergyCompensation energy_compensation(const EvaluatedMaterial& m, float e) {
+    EnergyCompensation c;
+    c.dielectric = energy_compensation(m.surface.dielectric_f0() * m.surface.specular_weight, e);
+    c.metal = energy_compensation(m.surface.base_color, e);
+    return c;
+}
+
+glm::vec3 shade_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, const brdf::BrdfModel& model,
+                     const EnergyCompensation& comp) {
     // With KHR_materials_diffuse_transmission, shade_light has the transmitted Lambert lobe below.
-    glm::vec3 f = shade_light(m, v, l, glm::vec3(1.0f), glm::vec3(1.0f), glm::vec3(1.0f), model);
+    glm::vec3 f = shade_light(m, v, l, glm::vec3(1.0f), comp.dielectric, comp.metal, model);
     const TransmissionInputs& tr = m.transmission;
     if (!(tr.factor > 0.0f)) return f;
     const float n_dot_l = glm::dot(m.normal, l);

@@ -19,6 +19,7 @@
 #include "fresnel/core/error.h"
 #include "fresnel/core/parallel.h"
 #include "fresnel/material/evaluate.h"
+#include "fresnel/ibl/precompute.h"
 #include "fresnel/material/bsdf.h"
 
 namespace fresnel::trace {
@@ -505,7 +506,13 @@ struct Integrator {
             m.surface.perceptual_roughness = std::max(m.surface.perceptual_roughness, kMinSampledRoughness);
             m.clearcoat_roughness = std::max(m.clearcoat_roughness, kMinSampledRoughness);
 
-            const Bsdf bsdf(m, wo, settings.brdf);
+            EnergyCompensation comp;
+            if (settings.brdf_lut) {
+                const float e = ibl::sample_brdf_lut(*settings.brdf_lut, std::max(glm::dot(m.normal, wo), 0.0f),
+                                                     m.surface.perceptual_roughness).z;
+                comp = energy_compensation(m, e);
+            }
+            const Bsdf bsdf(m, wo, settings.brdf, comp);
             // Next-event estimation: every punctual light, then one sample of the environment.
             glm::vec3 p_out = offset_ray(p, ng);
             for (const LightInstance& light : lights) {

@@ -15,6 +15,7 @@
 #include <array>
 #include <functional>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "fresnel/core/image.h"
 #include "fresnel/ibl/cubemap.h"
@@ -85,6 +86,9 @@ inline constexpr float kBrdfLutGrazingNdotV = 0.5f / 1024.0f;
 // sheen's albedo scaling; brdf::SheenAlbedoTable is the same on the CPU).
 inline constexpr int kSheenAlbedoSamplesPerAxis = 32;
 ImageF compute_brdf_lut(int size = 128, int samples = 1024, unsigned threads = 0);
+// The table read as the shader reads it (ibl.glsl's brdf_lut: bilinear, clamped to its edges,
+// at u = n.v, v = roughness): A, B, E = A + B, sheen albedo.
+glm::vec4 sample_brdf_lut(const ImageF& lut, float n_dot_v, float roughness);
 
 // KHR_materials_sheen's image-based light, as the Khronos Sample Viewer bakes it (its
 // ibl_filtering.frag, cCharlie): level k of `levels` filtered at sheen roughness k/(levels-1)

@@ -84,17 +84,19 @@ struct BsdfSample {
 // the several queries a path vertex makes. `m` must outlive it.
 class Bsdf {
 public:
-    // `model`: the BRDF's terms (brdf_model.h) that eval() uses; sampling stays GGX's.
-    Bsdf(const EvaluatedMaterial& m, glm::vec3 v, const brdf::BrdfModel& model = {});
+    // `model`: the BRDF's terms (brdf_model.h) that eval() uses; sampling stays GGX's. `comp`:
+    // the specular lobes' energy compensation (evaluate.h) that eval() applies.
+    Bsdf(const EvaluatedMaterial& m, glm::vec3 v, const brdf::BrdfModel& model = {}, const EnergyCompensation& comp = {});
     BsdfSample sample(glm::vec3 u) const;  // u uniform in [0,1)^3: lobe, then direction
     float pdf(glm::vec3 l) const;
-    glm::vec3 eval(glm::vec3 l) const { return shade_bsdf(m_, v_, l, model_); }  // f |cos|
+    glm::vec3 eval(glm::vec3 l) const { return shade_bsdf(m_, v_, l, model_, comp_); }  // f |cos|
     const BsdfLobes& lobes() const { return lobes_; }
 
 private:
     const EvaluatedMaterial& m_;
     glm::vec3 v_;
     brdf::BrdfModel model_;
+    EnergyCompensation comp_;
     BsdfLobes lobes_;
     bxdf::CosineLobe diffuse_, diffuse_transmission_;
     bxdf::GgxLobe specular_, clearcoat_, transmission_;

@@ -245,6 +245,20 @@ glm::vec3 transmission_replaced_diffuse(const EvaluatedMaterial& m, glm::vec3 v,
 // (The rasteriser's punctual transmission follows the Khronos viewer, with no cosine and a
 // second 1 - F; the tracer keeps the BSDF reciprocal and energy-bounded.)
 inline constexpr float kMinSampledAlpha = 9e-4f;  // perceptual roughness 0.03
-glm::vec3 shade_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, const brdf::BrdfModel& model = {});
+
+// Multiple-scattering energy compensation of the specular lobes (Fdez-Aguera 2019, as Filament
+// applies it; shaders/ibl.glsl's energy_compensation and pbr.frag's use of it): each lobe times
+// 1 + F0 (1/E - 1), E the GGX lobe's directional albedo at (n.v, roughness) from the BRDF
+// table's third channel, F0 the dielectric lobe's F0 colour times its weight and the metal's
+// base colour. The rasteriser applies it to every light and the tracer to every bounce, so the
+// two agree in the white furnace.
+struct EnergyCompensation {
+    glm::vec3 dielectric{1.0f}, metal{1.0f};
+};
+glm::vec3 energy_compensation(glm::vec3 f0, float e);
+EnergyCompensation energy_compensation(const EvaluatedMaterial& m, float e);
+
+glm::vec3 shade_bsdf(const EvaluatedMaterial& m, glm::vec3 v, glm::vec3 l, const brdf::BrdfModel& model = {},
+                     const EnergyCompensation& comp = {});
 
 }  // namespace fresnel

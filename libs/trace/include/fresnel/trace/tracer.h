@@ -50,6 +50,11 @@ struct TraceSettings {
     bool env_background = true;    // camera rays that miss see the environment (else coverage 0)
     int russian_roulette_start = 3;  // bounces before Russian roulette may end a path
     brdf::BrdfModel brdf;            // the BRDF's terms (`--brdf`), for every light and bounce
+    // The BRDF table (ibl::compute_brdf_lut, the rasteriser's): set, every bounce applies the
+    // multiple-scattering energy compensation the rasteriser applies (fresnel::EnergyCompensation,
+    // E from the table at n.v and roughness), so the two agree in the white furnace; null: the
+    // single-scattering GGX, which loses energy on rough metals (0.36 of it at roughness 1).
+    const ImageF* brdf_lut = nullptr;
 };
 
 struct TraceStats {
