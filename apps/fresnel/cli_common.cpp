@@ -46,7 +46,8 @@ void print_warnings(const Diagnostics& d) {
     auto lines = d.lines();
     for (const auto& l : lines) std::fprintf(stderr, "fresnel: warning: %s\n", l.c_str());
     if (!lines.empty())
-        std::fprintf(stderr, "fresnel: %zu warning%s (%zu unique)\n", d.total(), d.total() == 1 ? "" : "s", lines.size());
+        std::fprintf(stderr, "fresnel: %zu warning%s (%zu unique%s)\n", d.total(), d.total() == 1 ? "" : "s",
+                     d.warnings().size(), d.suppressed() > 0 ? " shown" : "");
 }
 
 std::string lower_extension(const std::string& path) {

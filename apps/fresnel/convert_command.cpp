@@ -33,6 +33,7 @@ struct ConvertOptions {
     bool quiet = false;
     bool no_diffuse_bake = false;
     std::string match = "albedo";  // Phong -> PBR intent (fit::Match)
+    bool rewrite = false;          // glTF -> glTF through the scene model instead of copy_gltf
 };
 
 std::string lower_ext(const fs::path& p) {
@@ -217,6 +218,13 @@ int run_convert(const ConvertOptions& o) {
         return kExitUsage;
     }
     Diagnostics diagnostics;
+    if (!in_obj && !out_obj && !o.rewrite) {
+        // glTF -> glTF: the file as it is, in the other container (scene_writer.h's copy_gltf).
+        copy_gltf(o.input, o.output, diagnostics, o.allow_external_files);
+        print_warnings(diagnostics);
+        if (!o.quiet) std::fprintf(stderr, "fresnel: convert: wrote %s: %s as it is, in a new container\n", o.output.c_str(), o.input.c_str());
+        return kExitOk;
+    }
     Scene scene;
     if (in_obj) {
         ObjLoadOptions opts;
@@ -247,7 +255,9 @@ int run_convert(const ConvertOptions& o) {
     if (!o.quiet)
         std::fprintf(stderr, "fresnel: convert: wrote %s: %zu meshes (%zu primitives, %zu triangles), %zu materials, %zu images%s\n",
                      o.output.c_str(), scene.meshes.size(), primitives, triangles, scene.materials.size(), images,
-                     out_obj ? " (+ .mtl)" : out_ext == ".gltf" ? " (+ .bin and image files beside it)" : "");
+                     out_obj                                    ? " (+ .mtl and the image files beside it)"
+                     : out_ext == ".gltf" && primitives + images ? " (+ .bin and the image files beside it)"
+                                                                  : "");
     return kExitOk;
 }
 
@@ -261,6 +271,11 @@ Runner add_convert_command(CLI::App& app) {
     cmd->add_flag("--allow-external-files", opts->allow_external_files,
                   "Allow URIs and MTL/texture paths outside the model's folder");
     cmd->add_flag("--quiet", opts->quiet, "Do not print each material's fit residual");
+    cmd->add_flag("--rewrite", opts->rewrite,
+                  "glTF -> glTF: write the file anew from fresnel's scene model (specular-glossiness becomes "
+                  "metallic-roughness, tangents generated, images re-encoded as PNG), dropping what the model does "
+                  "not hold (animations, skins, morph targets, extras, unknown extensions); without it the file is "
+                  "kept as it is, only its container changes");
     cmd->add_option("--match", opts->match,
                     "OBJ -> glTF: what the fitted materials are for: albedo (Kd is the albedo, as Blender and obj2gltf "
                     "read it; roughness and specular fitted from Ks and Ns) or opengl1 (look like the OpenGL 1 render "

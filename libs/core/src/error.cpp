@@ -24,13 +24,17 @@ void Diagnostics::warn(const std::string& file, const std::string& where, const 
         ++counts_[it->second];
         return;
     }
+    if (warnings_.size() >= kMaxUnique) {
+        ++suppressed_;
+        return;
+    }
     index_.emplace(key, warnings_.size());
     warnings_.push_back(std::move(w));
     counts_.push_back(1);
 }
 
 std::size_t Diagnostics::total() const {
-    std::size_t n = 0;
+    std::size_t n = suppressed_;
     for (auto c : counts_) n += c;
     return n;
 }
@@ -42,6 +46,9 @@ std::vector<std::string> Diagnostics::lines() const {
         if (counts_[i] > 1) s += " (x" + std::to_string(counts_[i]) + ")";
         out.push_back(std::move(s));
     }
+    if (suppressed_ > 0)
+        out.push_back(std::to_string(suppressed_) + " more warnings not shown (past " + std::to_string(kMaxUnique) +
+                      " different ones)");
     return out;
 }
 

@@ -455,7 +455,9 @@ void write_gltf(const Scene& in, const fs::path& path, Diagnostics& diagnostics)
         doc["extensions"]["KHR_materials_variants"] = {{"variants", variants}};
     }
     json scenes = json::array();
-    for (const auto& roots : scene.scenes) scenes.push_back({{"nodes", roots}});
+    // A scene without roots is an empty object: "nodes": [] is an empty array, which the Khronos
+    // validator rejects (EMPTY_ENTITY).
+    for (const auto& roots : scene.scenes) scenes.push_back(roots.empty() ? json::object() : json{{"nodes", roots}});
     if (scenes.empty() && !nodes.empty()) {
         json roots = json::array();
         std::vector<bool> child(nodes.size(), false);

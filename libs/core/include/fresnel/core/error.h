@@ -47,15 +47,22 @@ struct Warning {
 // so a model with a million bad normals prints one line, not a million.
 class Diagnostics {
 public:
+    // At most this many unique warnings are kept (each with its count); past them a warning is
+    // only counted (suppressed()), so a hostile file with a million bad keys costs a counter,
+    // not a million strings.
+    static constexpr std::size_t kMaxUnique = 200;
     void warn(const std::string& file, const std::string& where, const std::string& message);
     // Unique warnings in the order they were first seen.
     const std::vector<Warning>& warnings() const { return warnings_; }
     std::size_t count(std::size_t index) const { return counts_[index]; }
-    std::size_t total() const;
-    // "text (xN)" lines, one per unique warning.
+    std::size_t total() const;  // every warning given, the suppressed ones included
+    std::size_t suppressed() const { return suppressed_; }
+    // "text (xN)" lines, one per unique warning kept, then "N more warnings not shown" when any
+    // were suppressed.
     std::vector<std::string> lines() const;
 
 private:
+    std::size_t suppressed_ = 0;
     std::vector<Warning> warnings_;
     std::vector<std::size_t> counts_;
     std::map<std::string, std::size_t> index_;

@@ -31,6 +31,18 @@ namespace fresnel {
 // `<stem>_imageN.png` beside it.
 void write_gltf(const Scene& scene, const std::filesystem::path& path, Diagnostics& diagnostics);
 
+// glTF -> glTF as the file is, in the container `dest` names (.gltf or .glb): the JSON key by
+// key (animations, skins, morph targets, cameras, lights, extras, every name, unknown
+// extensions with a warning that they are carried blind, asset with its copyright; a
+// generator added when there is none) and the binary data and images byte for byte (their
+// original encoding and MIME type). Only the container changes: the buffers are merged into
+// one (inside a .glb, or `<stem>.bin` beside a .gltf), images go into a .glb's buffer or stay
+// files beside a .gltf (copied when the folder changes). Converting the result again gives
+// the same JSON and bytes. The source is loaded first (what the loader refuses is refused);
+// the new files are one set, committed together. Throws fresnel::Error.
+void copy_gltf(const std::filesystem::path& source, const std::filesystem::path& dest, Diagnostics& diagnostics,
+               bool allow_external_files = false);
+
 struct ObjWriteOptions {
     bool pbr_keys = true;  // Pr/Pm from the metallic-roughness factors, beside the Phong keys
 };
