@@ -185,12 +185,18 @@ TEST_F(Cli, ConvertKeepsMatteMaterialsMatte) {
 
 TEST_F(Cli, BadSizeIsUsageError) {
     fs::path png = dir_ / "out.png";
-    for (const char* size : {"0x10", "10x0", "abc", "10x", "x10", "10x10x10", "10*10", "20000x10"}) {
+    for (const char* size : {"0x10", "10x0", "abc", "10x", "x10", "10x10x10", "10*10", "20000x10", "0", "-5", "2.5", "20000"}) {
         Result r = run({"render", "-o", png.string(), "--size", size});
         EXPECT_EQ(r.exit_code, 2) << "--size " << size << "\n" << show(r);
         EXPECT_EQ(r.err.rfind("fresnel: error: --size", 0), 0u) << "--size " << size << "\n" << show(r);
     }
     EXPECT_FALSE(fs::exists(png));
+    // One number is a square.
+    Result r = run({"render", "-o", png.string(), "--size", "24"});
+    ASSERT_EQ(r.exit_code, 0) << show(r);
+    const fresnel::Image8 img = fresnel::read_image8(png);
+    EXPECT_EQ(img.width, 24);
+    EXPECT_EQ(img.height, 24);
 }
 
 TEST_F(Cli, OtherUsageErrorsExitTwo) {

@@ -516,7 +516,7 @@ std::vector<Setting> make_registry() {
         s.min = 1;
         s.max = 16384;
         s.unit = "pixels";
-        s.doc = "Image size WxH";
+        s.doc = "Image size WxH, or N for N x N";
         s.example = "320x200";
         s.front_ends = all;
         s.get = [](const Job& j) {
@@ -710,7 +710,7 @@ std::string Setting::expected() const {
         case Type::Int: e = "a whole number in " + range_text(min, max) + u; break;
         case Type::Number: e = "a number in " + range_text(min, max) + u; break;
         case Type::Vec3: e = "X,Y,Z, each in " + range_text(min, max); break;
-        case Type::Size: e = "WxH with " + num(min) + ".." + num(max) + " pixels per side"; break;
+        case Type::Size: e = "WxH (or N for N x N) with " + num(min) + ".." + num(max) + " pixels per side"; break;
         case Type::Choice: {
             for (std::size_t i = 0; i < choices.size(); ++i)
                 e += (i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ") + choices[i];
@@ -779,10 +779,13 @@ Value parse(const Setting& s, const std::string& text, const std::string& where)
                 if (v.vec[i] < s.min || v.vec[i] > s.max) return fail();
             return v;
         case Type::Size: {
+            // WxH, or one number N for a square N x N (--size 512).
             auto x = text.find('x');
             double w = 0, h = 0;
-            if (x == std::string::npos || !read_number(text.substr(0, x), w) || !read_number(text.substr(x + 1), h) ||
-                w != std::floor(w) || h != std::floor(h) || w < s.min || h < s.min || w > s.max || h > s.max)
+            const bool read = x == std::string::npos
+                                  ? read_number(text, w) && (h = w, true)
+                                  : read_number(text.substr(0, x), w) && read_number(text.substr(x + 1), h);
+            if (!read || w != std::floor(w) || h != std::floor(h) || w < s.min || h < s.min || w > s.max || h > s.max)
                 return fail();
             v.width = int(w);
             v.height = int(h);
