@@ -48,7 +48,6 @@ nlohmann::json light_json(const LightInstance& l, const std::string& origin, int
             {"position", {l.position.x, l.position.y, l.position.z}}, {"color", {color.x, color.y, color.z}},
             {"intensity", intensity}};
 }
-nlohmann::json vec(glm::vec3 v) { return {v.x, v.y, v.z}; }
 
 struct App {
     std::string canvas;
