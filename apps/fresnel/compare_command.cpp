@@ -166,6 +166,9 @@ Runner add_compare_command(CLI::App& app) {
     auto o = std::make_shared<CompareOptions>();
     CLI::App* cmd = app.add_subcommand(
         "compare", "Measure how far image A is from reference B: PSNR, SSIM, FLIP, model-viewer's RMS");
+    cmd->footer("Examples:\n"
+                "  fresnel compare test.png ref.png                           # PSNR, SSIM, FLIP\n"
+                "  fresnel compare test.exr ref.exr --heatmap diff.png --json\n");
     cmd->add_option("a", o->test, "Image under test: .png (display-encoded), .exr/.hdr (linear)")->required();
     cmd->add_option("b", o->reference, "Reference image, the same size")->required();
     cmd->add_option("--mask", o->mask,

@@ -285,8 +285,14 @@ Runner add_convert_command(CLI::App& app) {
     cmd->add_flag("--no-diffuse-bake", opts->no_diffuse_bake,
                   "glTF -> OBJ: keep the base colour texture as map_Kd with one fitted Kd per material, instead of "
                   "baking the fitted diffuse per texel (metallic-roughness textures) into a new map_Kd");
-    cmd->footer("Phong materials are fitted to metallic-roughness (and back) by fresnel/material/fit.h;\n"
-                "specular-glossiness becomes metallic-roughness + KHR_materials_specular.");
+    cmd->footer("Examples:\n"
+                "  fresnel convert model.obj model.glb                      # Kd as the albedo (--match albedo)\n"
+                "  fresnel convert model.obj model.glb --match opengl1      # look like the OpenGL 1 render\n"
+                "  fresnel convert model.gltf model.glb                     # glTF -> glTF as it is, one file\n"
+                "  fresnel convert model.glb model.obj                      # fitted Kd/Ks/Ns\n"
+                "\nPhong materials are fitted to metallic-roughness (and back) by fresnel/material/fit.h; glTF -> glTF\n"
+                "keeps the file as it is (--rewrite: through the scene model, specular-glossiness becoming\n"
+                "metallic-roughness + KHR_materials_specular).");
     return [opts]() { return run_convert(*opts); };
 }
 

@@ -196,7 +196,10 @@ Runner add_fit_command(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::IsMember({"opengl1", "albedo"}));
     cmd->add_flag("--json", opts->json, "Print JSON instead of text");
-    cmd->footer("Colours are one grey value or R:G:B. Residual: RMS of the display-value difference over light and\n"
+    cmd->footer("Examples:\n"
+                "  fresnel fit --phong 0.5:0.1:0.1,0.5,32                   # Kd, Ks, Ns -> metallic-roughness\n"
+                "  fresnel fit --pbr 0.8,1,0.3 --json                       # base, metallic, roughness -> Phong\n"
+                "\nColours are one grey value or R:G:B. Residual: RMS of the display-value difference over light and\n"
                 "view directions (cosine-weighted, six view elevations), with its PSNR.");
     return [opts]() { return run_fit(*opts); };
 }

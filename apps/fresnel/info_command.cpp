@@ -170,6 +170,9 @@ int run_info(const InfoOptions& o) {
 Runner add_info_command(CLI::App& app) {
     auto o = std::make_shared<InfoOptions>();
     CLI::App* cmd = app.add_subcommand("info", "Print counts, bounds and extensions of a glTF or OBJ model, or a scene file");
+    cmd->footer("Examples:\n"
+                "  fresnel info model.glb                                     # counts, bounds, extensions\n"
+                "  fresnel info scene.fresnel.json --json\n");
     cmd->add_option("model", o->model, "glTF 2.0 file (.gltf or .glb), Wavefront OBJ (.obj) or a scene file (.fresnel.json)")->required();
     cmd->add_flag("--json", o->json, "Print a JSON object instead of text");
     cmd->add_flag("--allow-external-files", o->allow_external,

@@ -281,6 +281,12 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
 Runner add_render_command(CLI::App& app) {
     auto o = std::make_shared<RenderOptions>();
     CLI::App* cmd = app.add_subcommand("render", "Render a glTF model (or the built-in demo) to an image, headless");
+    cmd->footer("Examples:\n"
+                "  fresnel render model.glb -o out.png                       # the camera convention, studio light\n"
+                "  fresnel render model.glb -o out.exr --env sky.hdr --size 1920x1080\n"
+                "  fresnel render model.glb -o f%03d.png --turntable 36 --video spin.mp4\n"
+                "  fresnel render scene.fresnel.json --yaw 30                 # a scene file, a flag overriding it\n"
+                "  fresnel render model.glb -o n.png --debug normal           # one channel; --debug lists them all\n");
     add_model_and_output(cmd, *o);
     cmd->add_option("--turntable", o->turntable,
                     "Render N frames around the model (yaw advances 360/N degrees), numbered OUT-000.png ... (or a "
