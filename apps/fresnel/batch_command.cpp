@@ -11,7 +11,7 @@
 // any failed. Outputs are whole or absent (fresnel/core/atomic_file.h), and each is recorded,
 // with its size and checksum, in a log in --out once it is in place (batch_outputs.h): --resume
 // skips an output only when the log vouches for it as it is on the disk.
-// Long (~730 lines): the job list reader, the sharding, the workers and the report are one
+// Long (~760 lines): the job list reader, the sharding, the workers and the report are one
 // command's parts, kept in one file as every other command is.
 #include <unistd.h>
 #ifdef __GLIBC__

@@ -2,7 +2,7 @@
 // through tinygltf 2.7 (Debian's): we need JSON-pointer locations in every
 // error, exact control of file access (URI policy), buffers larger than their
 // byteLength (valid glTF, rejected by tinygltf 2.7) and parallel image decoding.
-// Long (~1100 lines): the core format's reader with every extension's block; the parts with
+// Long (~1190 lines): the core format's reader with every extension's block; the parts with
 // a concern of their own are apart (accessors, compression, animation, variants, paths).
 #include "fresnel/scene/gltf_loader.h"
 

@@ -1,5 +1,5 @@
 // glTF and OBJ/MTL writers (scene_writer.h). JSON through nlohmann::json, as the loader.
-// Long (~860 lines) because the glTF writer, its patcher of an original file and the OBJ/MTL
+// Long (~850 lines) because the glTF writer, its patcher of an original file and the OBJ/MTL
 // writer share the mesh, texture and whole-or-absent file-set helpers here.
 #include "fresnel/scene/scene_writer.h"
 
