@@ -739,7 +739,7 @@ TEST_F(View, FolderOpensItsFirstModel) {
 }
 
 TEST_F(View, UsageErrorsExitTwoBeforeOpeningAWindow) {
-    Result r = run({"view", "--size", "12", "--frames", "1"}, false);  // no display needed
+    Result r = run({"view", "--size", "12x", "--frames", "1"}, false);  // no display needed
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
 }
