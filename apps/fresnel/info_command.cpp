@@ -1,11 +1,13 @@
 // `fresnel info MODEL [--json]`: what a model holds, without rendering it.
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.h"
 #include "commands.h"
 #include "fresnel/job/job.h"
+#include "fresnel/material/properties.h"
 #include "fresnel/job/scene_file.h"
 #include "fresnel/scene/gltf_loader.h"
 #include "fresnel/scene/obj_loader.h"
@@ -129,6 +131,39 @@ int run_info(const InfoOptions& o) {
                                                                                           : "not supported"}});
     }
     j["variants"] = scene.material_variants;
+    // Each material: its extension blocks and texture slots (by the material property registry,
+    // fresnel/material/properties.h), alpha mode, sidedness; the file's size and what its
+    // geometry takes decoded (the loader's memory budget counts the same).
+    j["material_list"] = nlohmann::json::array();
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        const Material& m = scene.materials[i];
+        nlohmann::json e = {{"index", i}, {"name", m.name}};
+        e["alpha_mode"] = m.alpha_mode == AlphaMode::Blend ? "BLEND" : m.alpha_mode == AlphaMode::Mask ? "MASK" : "OPAQUE";
+        e["double_sided"] = m.double_sided;
+        e["unlit"] = m.unlit.has_value();
+        e["extensions"] = nlohmann::json::array();
+        for (const material_properties::Block& bl : material_properties::blocks())
+            if (bl.present && bl.present(m)) e["extensions"].push_back(std::string(bl.name));
+        if (m.specular_glossiness) e["extensions"].push_back("KHR_materials_pbrSpecularGlossiness");
+        e["textures"] = nlohmann::json::array();
+        for (const material_properties::Texture& t : material_properties::textures()) {
+            const TextureSlot* slot = t.get(m);
+            if (slot && slot->texture >= 0) e["textures"].push_back(std::string(t.name));
+        }
+        j["material_list"].push_back(e);
+    }
+    j["image_list"] = nlohmann::json::array();
+    for (const SceneImage& im : scene.images) j["image_list"].push_back(im.name);
+    std::size_t geometry_bytes = 0;
+    for (const auto& m : scene.meshes)
+        for (const auto& p : m.primitives)
+            geometry_bytes += p.positions.size() * 12 + p.normals.size() * 12 + p.tangents.size() * 16 +
+                              (p.uv0.size() + p.uv1.size()) * 8 + p.colors.size() * 16 + p.indices.size() * 4 +
+                              (p.joints.size() + p.weights.size()) * 16;
+    j["geometry_bytes"] = geometry_bytes;
+    std::error_code ec;
+    const auto file_bytes = std::filesystem::file_size(o.model, ec);
+    if (!ec) j["file_bytes"] = file_bytes;
     j["warnings"] = diag.lines();
     if (o.json) {
         std::printf("%s\n", j.dump(2).c_str());
@@ -163,6 +198,22 @@ int run_info(const InfoOptions& o) {
                     support.c_str());
     }
     if (!scene.material_variants.empty()) std::printf("  %-11s %s\n", "variants", list(scene.material_variants).c_str());
+    auto mib = [](std::size_t b) { return double(b) / (1024.0 * 1024.0); };
+    if (j.contains("file_bytes")) std::printf("  %-11s %.2f MiB\n", "file", mib(j["file_bytes"].get<std::size_t>()));
+    std::printf("  %-11s %.2f MiB decoded\n", "geometry", mib(geometry_bytes));
+    for (const auto& m : j["material_list"]) {
+        std::vector<std::string> parts;
+        for (const auto& e : m["extensions"]) parts.push_back(e.get<std::string>());
+        std::string textures;
+        for (const auto& t : m["textures"]) textures += (textures.empty() ? "" : ", ") + t.get<std::string>();
+        std::string name = m["name"].get<std::string>();
+        std::printf("  %-11s %zu %s: %s%s%s; textures: %s; extensions: %s\n", "material", m["index"].get<std::size_t>(),
+                    name.empty() ? "(unnamed)" : name.c_str(), m["alpha_mode"].get<std::string>().c_str(),
+                    m["double_sided"].get<bool>() ? ", double-sided" : "", m["unlit"].get<bool>() ? ", unlit" : "",
+                    textures.empty() ? "none" : textures.c_str(), list(parts).c_str());
+    }
+    for (std::size_t k = 0; k < scene.images.size(); ++k)
+        std::printf("  %-11s %zu %s\n", "image", k, scene.images[k].name.c_str());
     return kExitOk;
 }
 }  // namespace

@@ -84,6 +84,14 @@ TEST_F(Cli, InfoJsonCountsDamagedHelmet) {
     EXPECT_EQ(j.at("meshes").get<long>(), 1);
     EXPECT_EQ(j.at("primitives").get<long>(), 1);
     EXPECT_TRUE(j.contains("bounds")) << show(r);
+    // Each material with its texture slots, the file's size and its decoded geometry.
+    const auto& m = j.at("material_list").at(0);
+    EXPECT_EQ(m.at("name"), "Material_MR");
+    EXPECT_EQ(m.at("alpha_mode"), "OPAQUE");
+    EXPECT_EQ(m.at("textures").size(), 5u) << m.dump();
+    EXPECT_EQ(j.at("image_list").size(), 5u);
+    EXPECT_EQ(j.at("file_bytes").get<std::size_t>(), fs::file_size(model));
+    EXPECT_GT(j.at("geometry_bytes").get<std::size_t>(), std::size_t(14556) * 12);
 }
 
 TEST_F(Cli, RenderDemoWritesPng) {
