@@ -97,19 +97,24 @@ void write_file_atomically(const fs::path& path, const std::function<void(const 
     sync_folder(path);
 }
 
+namespace {
+// Writes `bytes` to `file` with every write, flush and close checked; errors name `name`.
+void write_checked(const fs::path& file, std::span<const std::uint8_t> bytes, const std::string& name) {
+    std::FILE* f = std::fopen(file.c_str(), "wb");
+    if (!f) throw Error(name, "", std::string("cannot write: ") + std::strerror(errno));
+    const std::size_t n = bytes.empty() ? 0 : std::fwrite(bytes.data(), 1, bytes.size(), f);
+    const int write_errno = errno;
+    const bool flushed = std::fflush(f) == 0;
+    const int flush_errno = errno;
+    const bool closed = std::fclose(f) == 0;
+    if (n != bytes.size()) throw Error(name, "", std::string("cannot write: ") + std::strerror(write_errno));
+    if (!flushed || !closed)
+        throw Error(name, "", std::string("cannot write: ") + std::strerror(flushed ? errno : flush_errno));
+}
+}  // namespace
+
 void write_file_atomically(const fs::path& path, std::span<const std::uint8_t> bytes) {
-    write_file_atomically(path, [&](const fs::path& tmp) {
-        std::FILE* f = std::fopen(tmp.c_str(), "wb");
-        if (!f) throw Error(tmp.string(), "", std::string("cannot write: ") + std::strerror(errno));
-        const std::size_t n = bytes.empty() ? 0 : std::fwrite(bytes.data(), 1, bytes.size(), f);
-        const int write_errno = errno;
-        const bool flushed = std::fflush(f) == 0;
-        const int flush_errno = errno;
-        const bool closed = std::fclose(f) == 0;
-        if (n != bytes.size()) throw Error(tmp.string(), "", std::string("cannot write: ") + std::strerror(write_errno));
-        if (!flushed || !closed)
-            throw Error(tmp.string(), "", std::string("cannot write: ") + std::strerror(flushed ? errno : flush_errno));
-    });
+    write_file_atomically(path, [&](const fs::path& tmp) { write_checked(tmp, bytes, tmp.string()); });
 }
 
 void write_file_atomically(const fs::path& path, std::string_view text) {
@@ -181,18 +186,7 @@ void FileSet::stage(const fs::path& path, const std::function<void(const fs::pat
 }
 
 void FileSet::stage(const fs::path& path, std::span<const std::uint8_t> bytes) {
-    stage(path, [&](const fs::path& tmp) {
-        std::FILE* f = std::fopen(tmp.c_str(), "wb");
-        if (!f) throw Error(path.string(), "", std::string("cannot write: ") + std::strerror(errno));
-        const std::size_t n = bytes.empty() ? 0 : std::fwrite(bytes.data(), 1, bytes.size(), f);
-        const int write_errno = errno;
-        const bool flushed = std::fflush(f) == 0;
-        const int flush_errno = errno;
-        const bool closed = std::fclose(f) == 0;
-        if (n != bytes.size()) throw Error(path.string(), "", std::string("cannot write: ") + std::strerror(write_errno));
-        if (!flushed || !closed)
-            throw Error(path.string(), "", std::string("cannot write: ") + std::strerror(flushed ? errno : flush_errno));
-    });
+    stage(path, [&](const fs::path& tmp) { write_checked(tmp, bytes, path.string()); });
 }
 
 void FileSet::stage(const fs::path& path, std::string_view text) {

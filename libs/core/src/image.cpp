@@ -390,24 +390,26 @@ std::vector<std::uint8_t> encode_hdr(const ImageF& image) {
     return out;
 }
 
-void write_png(const fs::path& path, const Image8& image) {
+namespace {
+// `encode`'s bytes written whole or absent; an encoding error names `path`.
+template <class Encode>
+void write_encoded(const fs::path& path, Encode&& encode) {
     std::vector<std::uint8_t> bytes;
     try {
-        bytes = encode_png(image);
+        bytes = encode();
     } catch (const Error& e) {
         throw Error(path.string(), "", e.reason());
     }
     write_file_atomically(path, std::span<const std::uint8_t>(bytes));
 }
+}  // namespace
+
+void write_png(const fs::path& path, const Image8& image) {
+    write_encoded(path, [&] { return encode_png(image); });
+}
 
 void write_hdr(const fs::path& path, const ImageF& image) {
-    std::vector<std::uint8_t> bytes;
-    try {
-        bytes = encode_hdr(image);
-    } catch (const Error& e) {
-        throw Error(path.string(), "", e.reason());
-    }
-    write_file_atomically(path, std::span<const std::uint8_t>(bytes));
+    write_encoded(path, [&] { return encode_hdr(image); });
 }
 
 void write_exr(const fs::path& path, const ImageF& image) {

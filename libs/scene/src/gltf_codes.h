@@ -4,7 +4,14 @@
 // here they are file-format vocabulary, read by the glTF loader and written by the scene
 // writer, and nothing else sees them: the scene model uses typed enums (scene.h's topology,
 // core/sampler.h's filters and wraps).
+#include <cstdint>
+
 namespace fresnel::gltf_code {
+
+// The GLB container: its magic ("glTF") and chunk types, little-endian u32s.
+constexpr std::uint32_t kGlbMagic = 0x46546C67;
+constexpr std::uint32_t kChunkJson = 0x4E4F534A;
+constexpr std::uint32_t kChunkBin = 0x004E4942;
 
 // accessor.componentType
 constexpr int kByte = 5120;

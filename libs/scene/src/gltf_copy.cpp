@@ -13,6 +13,7 @@
 #include "fresnel/core/image.h"
 #include "fresnel/scene/gltf_loader.h"
 #include "fresnel/scene/scene_writer.h"
+#include "gltf_codes.h"
 #include "uri_policy.h"
 
 namespace fresnel {
@@ -22,7 +23,9 @@ namespace {
 namespace fs = std::filesystem;
 using ojson = nlohmann::ordered_json;
 
-constexpr std::uint32_t kGlbMagic = 0x46546C67, kChunkJson = 0x4E4F534A, kChunkBin = 0x004E4942;
+using gltf_code::kChunkBin;
+using gltf_code::kChunkJson;
+using gltf_code::kGlbMagic;
 constexpr std::size_t kMaxBytes = std::size_t(2) << 30;  // one file or buffer, as the loader
 
 std::uint32_t u32(const std::vector<std::uint8_t>& b, std::size_t at) {

@@ -60,9 +60,9 @@ GltfExtensionSupport gltf_extension_support(const std::string& name) {
 
 namespace {
 
-constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
-constexpr std::uint32_t kChunkJson = 0x4E4F534A;
-constexpr std::uint32_t kChunkBin = 0x004E4942;
+using gltf_code::kChunkBin;
+using gltf_code::kChunkJson;
+using gltf_code::kGlbMagic;
 
 std::uint32_t read_u32(const std::uint8_t* p) {
     std::uint32_t v;

@@ -650,7 +650,8 @@ void write_obj(const Scene& scene, const fs::path& path, Diagnostics& diagnostic
 namespace {
 
 using ojson = nlohmann::ordered_json;
-constexpr std::uint32_t kGlbMagic = 0x46546C67, kChunkJson = 0x4E4F534A;
+using gltf_code::kChunkJson;
+using gltf_code::kGlbMagic;
 
 std::uint32_t u32_at(const std::vector<std::uint8_t>& b, std::size_t at) {
     return std::uint32_t(b[at]) | std::uint32_t(b[at + 1]) << 8 | std::uint32_t(b[at + 2]) << 16 |
