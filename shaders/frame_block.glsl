@@ -7,6 +7,7 @@
 #ifndef MAX_LIGHTS
 #define MAX_LIGHTS 16
 #endif
+#define MAX_SHADOW_TILES 24  // fresnel::kMaxShadowTiles
 layout(std140) uniform FrameBlock {
     mat4 u_view_projection;
     mat4 u_view;
@@ -25,4 +26,10 @@ layout(std140) uniform FrameBlock {
     vec4 u_light_direction_range[MAX_LIGHTS];
     vec4 u_light_color[MAX_LIGHTS];
     vec4 u_light_cone[MAX_LIGHTS];
+    // Shadows (shadows.glsl; fresnel::FrameBlock says what each holds).
+    vec4 u_shadow_atlas_info;
+    vec4 u_light_shadow[MAX_LIGHTS];
+    mat4 u_shadow_matrix[MAX_SHADOW_TILES];
+    vec4 u_shadow_rect[MAX_SHADOW_TILES];
+    vec4 u_shadow_params[MAX_SHADOW_TILES];
 };

@@ -19,6 +19,7 @@ uniform int u_encoding;    // -1 = none (linear output), 0 = sRGB, 1 = gamma 2.2
 #include "tonemap.glsl"
 #include "brdf.glsl"
 #include "lights.glsl"
+#include "shadows.glsl"
 #include "ibl.glsl"
 #include "material_inputs.glsl"
 #include "transmission.glsl"
@@ -97,6 +98,7 @@ void main() {
     if (u_light_count > 0) do {
         vec3 l;
         vec3 radiance = light_incident(i, v_position, l);
+        radiance *= shadow_visibility(i, v_position, f.ng, l);
         vec3 lit = shade_light(m, v, l, radiance, comp_dielectric, comp_metal);  // fresnel::shade_light
 #ifdef MATERIAL_TRANSMISSION
         vec3 lt = normalize(point_to_light(i, v_position) - tr_ray);

@@ -31,6 +31,9 @@ uniform mat4 u_model;
 uniform mat3 u_normal_matrix;   // inverse transpose of the model's upper 3x3
 uniform float u_handedness;     // sign of det(model): mirrors flip the bitangent
 uniform float u_point_size;
+#ifdef SHADOW_PASS
+uniform mat4 u_light_view_projection;  // a shadow map's tile (shadow.frag)
+#endif
 
 out vec3 v_position;
 out vec3 v_normal;
@@ -108,5 +111,9 @@ void main() {
     v_color = vec4(1.0);
 #endif
     gl_PointSize = u_point_size;
+#ifdef SHADOW_PASS
+    gl_Position = u_light_view_projection * world;
+#else
     gl_Position = u_view_projection * world;
+#endif
 }

@@ -81,6 +81,9 @@ void Context::init_context(const ContextOptions& options) {
     GLint n = 0;
     glGetIntegerv(GL_MAX_SAMPLES, &n);
     c.max_samples = n;
+    n = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &n);
+    if (n > 0) c.max_texture_size = n;
     c.max_samples_float = max_samples_of(c.half_float_color_targets ? GL_RGBA16F : GL_RGBA8, es);
     if (c.multisample_textures) {
         n = 0;

@@ -49,6 +49,12 @@ void Device::apply(const PipelineState& s) {
             glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
             break;
     }
+    if (s.offset_factor != 0.0f || s.offset_units != 0.0f) {
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(s.offset_factor, s.offset_units);
+    } else {
+        glDisable(GL_POLYGON_OFFSET_FILL);
+    }
     if (s.sample_alpha_to_coverage) glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     else glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
 }

@@ -146,6 +146,27 @@ Texture Texture::create_2d(int width, int height, TextureFormat format, const vo
     return t;
 }
 
+Texture Texture::create_depth_2d(int width, int height) {
+    Texture t;
+    t.width_ = width;
+    t.height_ = height;
+    t.format_ = TextureFormat::R8;  // not a colour format: bytes() below is what counts
+    glGenTextures(1, &t.id_);
+    glBindTexture(GL_TEXTURE_2D, t.id_);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, width, height, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT,
+                 nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    t.bytes_ = std::size_t(width) * std::size_t(height) * 4;
+    t.linear_ = true;
+    glBindTexture(GL_TEXTURE_2D, 0);
+    return t;
+}
+
 void Texture::generate_mipmaps() {
     glBindTexture(GL_TEXTURE_2D, id_);
     glGenerateMipmap(GL_TEXTURE_2D);
@@ -306,6 +327,13 @@ void Framebuffer::attach_color(const Renderbuffer& rb) {
 void Framebuffer::attach_depth(const Renderbuffer& rb) {
     glBindFramebuffer(GL_FRAMEBUFFER, id_);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb.id());
+}
+void Framebuffer::attach_depth(const Texture& depth) {
+    glBindFramebuffer(GL_FRAMEBUFFER, id_);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth.id(), 0);
+    const GLenum none = GL_NONE;
+    glDrawBuffers(1, &none);
+    glReadBuffer(GL_NONE);
 }
 void Framebuffer::check() const {
     glBindFramebuffer(GL_FRAMEBUFFER, id_);

@@ -1,5 +1,7 @@
 #include "fresnel/job/render_settings.h"
 
+#include <utility>
+
 #include "fresnel/material/phong.h"
 
 namespace fresnel {
@@ -56,6 +58,21 @@ const char* shading_model_name(ShadingModel model) {
         if (model == m.model) return m.name;
     return "auto";
 }
+namespace {
+constexpr std::pair<const char*, Shadows> kShadows[] = {
+    {"off", Shadows::Off}, {"hard", Shadows::Hard}, {"soft", Shadows::Soft}};
+}
+std::optional<Shadows> parse_shadows(const std::string& name) {
+    for (const auto& [n, s] : kShadows)
+        if (name == n) return s;
+    return std::nullopt;
+}
+const char* shadows_name(Shadows shadows) {
+    for (const auto& [n, s] : kShadows)
+        if (shadows == s) return n;
+    return "soft";
+}
+
 ShadingModel material_shading(ShadingModel frame, const Material& material) {
     if (frame != ShadingModel::Auto) return frame;
     return is_classic_phong(material) ? ShadingModel::Ogl1 : ShadingModel::Gltf;

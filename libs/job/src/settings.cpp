@@ -593,6 +593,50 @@ std::vector<Setting> make_registry() {
         r.push_back(s);
     }
     r.push_back(choice(
+        "render.shadows", "--shadows", {"off", "hard", "soft"},
+        "Shadows of punctual lights: soft (a filtered edge, the default), hard (one filtered comparison) or off "
+        "(as the Khronos Sample Viewer, which has none). trace always shadows",
+        raster, [](const Job& j) { return std::string(shadows_name(j.output.shadows)); },
+        [](Job& j, const std::string& t) { j.output.shadows = *parse_shadows(t); }));
+    {
+        Setting s;
+        s.key = "render.shadowMapSize";
+        s.flag = "--shadow-map-size";
+        s.type = Type::Int;
+        s.min = 64;
+        s.max = 8192;
+        s.unit = "texels";
+        s.doc = "Texels a side of each shadow map (a cascade, a spot light's map, a cube face); smaller where the "
+                "atlas of every light's maps would exceed the GPU's texture size";
+        s.example = "1024";
+        s.front_ends = raster;
+        s.get = [](const Job& j) {
+            Value v;
+            v.number = j.output.shadow_map_size;
+            return v;
+        };
+        s.put = [](Job& j, const Value& v) { j.output.shadow_map_size = int(v.number); };
+        r.push_back(s);
+    }
+    {
+        Setting s;
+        s.key = "render.shadowCascades";
+        s.flag = "--shadow-cascades";
+        s.type = Type::Int;
+        s.min = 1;
+        s.max = 4;
+        s.doc = "Shadow maps of a directional light, each fitted to a slice of the view's depth";
+        s.example = "3";
+        s.front_ends = raster;
+        s.get = [](const Job& j) {
+            Value v;
+            v.number = j.output.shadow_cascades;
+            return v;
+        };
+        s.put = [](Job& j, const Value& v) { j.output.shadow_cascades = int(v.number); };
+        r.push_back(s);
+    }
+    r.push_back(choice(
         "render.shading", "--shading", {"auto", "gltf", "ogl1", "ogl1-pixel", "blinn-phong-normalized"},
         "Shading model: auto (OpenGL 1 for OBJ/MTL Phong materials, glTF for the rest), gltf, ogl1 (OpenGL 1 per "
         "vertex), ogl1-pixel (per fragment) or blinn-phong-normalized",

@@ -26,6 +26,7 @@
 #include "details/material_uniforms.h"
 #include "details/shader_features.h"
 #include "details/shader_library.h"
+#include "details/shadow_maps.h"
 #include "fresnel/scene/mesh_ops.h"
 
 namespace fresnel {
@@ -62,6 +63,7 @@ struct GpuPrimitive {
     int material = -1;
     bool has_normal = false, has_tangent = false, has_uv0 = false, has_uv1 = false, has_color = false;
     glm::vec3 center{0.0f};
+    glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  // the POSITION box (shadow maps' fit)
     std::size_t triangles = 0;
     // GPU animation inputs (used with RenderSettings::gpu_animation): JOINTS_0/WEIGHTS_0, and
     // the displacements of up to kMaxShaderMorphTargets targets with the weights they hold.
@@ -98,7 +100,7 @@ struct Renderer::Impl {
     ShaderLibrary shaders;
     // The families of defines the renderer looks programs up by (ShaderLibrary::get_keyed),
     // besides the mesh variants: no strings are built per draw.
-    enum ProgramFamily { kLegacyPrograms = 1, kBrdfPrograms, kOutputPrograms };
+    enum ProgramFamily { kLegacyPrograms = 1, kBrdfPrograms, kOutputPrograms, kShadowPrograms };
     std::vector<Draw> opaque_draws, blended_draws, transmissive_draws;  // a frame's, storage kept
     SkinMatrices skin_pose;  // GPU animation's joint matrices, storage kept
     const Scene* scene = nullptr;
@@ -285,6 +287,8 @@ struct Renderer::Impl {
                 g.material = p.material;
                 g.triangles = p.triangle_count();
                 g.center = (p.bounds_min + p.bounds_max) * 0.5f;
+                g.bounds_min = p.bounds_min;
+                g.bounds_max = p.bounds_max;
                 auto add = [&](Attr slot, const void* data, std::size_t count, int comps) {
                     g.buffers.emplace_back(gpu::BufferKind::Vertex, data, count * std::size_t(comps) * sizeof(float));
                     g.vao.set_attribute(slot, g.buffers.back(), comps);
@@ -656,7 +660,7 @@ struct Renderer::Impl {
     int fixed_units(FeatureMask features, const RenderSettings& settings) const {
         const bool env = settings.environment != nullptr;
         return ((features & feature::Transmission) ? 1 : 0) + 1 + (env ? 2 : 0) +
-               ((features & feature::Sheen) && env && env_sheen && charlie_lut ? 2 : 0);
+               ((features & feature::Sheen) && env && env_sheen && charlie_lut ? 2 : 0) + (frame_shadows > 0 ? 1 : 0);
     }
 
     // Adds the GL errors raised since the last look to `stats` (if given).
@@ -724,9 +728,127 @@ struct Renderer::Impl {
         for (int i = p.light_count; i < kMaxLights; ++i)
             p.light_position_type[std::size_t(i)] = p.light_direction_range[std::size_t(i)] =
                 p.light_color[std::size_t(i)] = p.light_cone[std::size_t(i)] = glm::vec4(0.0f);
+        p.shadow_atlas = glm::vec4(0.0f);
+        for (auto& v : p.light_shadow) v = glm::vec4(-1.0f, 0.0f, 0.0f, 0.0f);
+        if (frame_shadows > 0) {
+            const ShadowPlan& plan = shadow_plan;
+            p.shadow_atlas = glm::vec4(1.0f / float(plan.atlas_width), 1.0f / float(plan.atlas_height),
+                                       kSoftShadowRadius, 0.0f);
+            for (std::size_t i = 0; i < plan.lights.size() && i < p.light_shadow.size(); ++i)
+                p.light_shadow[i] = glm::vec4(float(plan.lights[i].first_tile), float(plan.lights[i].tiles), 0, 0);
+            for (std::size_t t = 0; t < plan.tiles.size(); ++t) {
+                const ShadowTile& tile = plan.tiles[t];
+                p.shadow_matrix[t] = tile_lookup_matrix(tile);
+                p.shadow_rect[t] = glm::vec4(float(tile.rect.x) / float(plan.atlas_width),
+                                             float(tile.rect.y) / float(plan.atlas_height),
+                                             float(tile.rect.z) / float(plan.atlas_width),
+                                             float(tile.rect.w) / float(plan.atlas_height));
+                p.shadow_params[t] = glm::vec4(tile.texel_world, float(ShadowPlan::kMarginTexels) / float(tile.rect.z), 0, 0);
+            }
+        }
         if (!frame_buffer) frame_buffer = gpu::UniformBuffer(sizeof(FrameBlock));
         frame_buffer.update(&p, sizeof p);
         frame_buffer.bind(kFrameBlockBinding);
+    }
+
+    // ---- Shadows (details/shadow_maps.h, shaders/shadows.glsl) ----
+    static constexpr float kSoftShadowRadius = 1.5f;  // the soft filter's disk, in texels
+    ShadowPlan shadow_plan;  // this frame's
+    int frame_shadows = 0;   // this frame's FRAME_SHADOWS: int(Shadows) when its maps are drawn, else 0
+    gpu::Texture shadow_atlas;
+    gpu::Framebuffer shadow_fb;
+    int shadow_atlas_w = 0, shadow_atlas_h = 0;
+
+    // Plans this frame's maps around the boxes of its draws (plan_shadows); frame_shadows
+    // says whether there are any. Debug views show no shadows (they show a channel).
+    void plan_frame_shadows(const CameraSetup& cam, const std::vector<LightInstance>& lights, const RenderSettings& s) {
+        frame_shadows = 0;
+        shadow_plan.tiles.clear();
+        shadow_plan.lights.clear();
+        if (s.shadows == Shadows::Off || lights.empty() || s.debug != DebugChannel::None) return;
+        Bounds scene_box;
+        for (const std::vector<Draw>* list : {&opaque_draws, &blended_draws, &transmissive_draws})
+            for (const Draw& d : *list) scene_box.extend(d.model, d.prim->bounds_min, d.prim->bounds_max);
+        if (scene_box.empty) return;
+        // Skinned and morphed draws move off their boxes: a margin keeps their casters inside.
+        const glm::vec3 pad(0.05f * glm::length(scene_box.max - scene_box.min) + 1e-4f);
+        scene_box.min -= pad;
+        scene_box.max += pad;
+        shadow_plan = plan_shadows(lights, std::min<int>(int(lights.size()), kMaxLights), cam, scene_box,
+                                   s.shadow_map_size, s.shadow_cascades, context.capabilities().max_texture_size);
+        if (!shadow_plan.empty()) frame_shadows = int(s.shadows);
+    }
+
+    // Draws the planned maps: every opaque and alpha-masked draw's depth into each tile
+    // (blended and transmissive ones cast none, as they let light through), both faces, with a
+    // slope-scaled bias. After pack_frame: pbr.vert's frame block must be bound.
+    void draw_shadow_maps(FrameStats& stats) {
+        const ShadowPlan& plan = shadow_plan;
+        if (plan.atlas_width != shadow_atlas_w || plan.atlas_height != shadow_atlas_h) {
+            shadow_atlas = gpu::Texture::create_depth_2d(plan.atlas_width, plan.atlas_height);
+            shadow_fb = gpu::Framebuffer();
+            shadow_fb.attach_depth(shadow_atlas);
+            shadow_fb.check();
+            shadow_atlas_w = plan.atlas_width;
+            shadow_atlas_h = plan.atlas_height;
+        }
+        device.bind_framebuffer(&shadow_fb);
+        device.no_scissor();
+        device.viewport(0, 0, plan.atlas_width, plan.atlas_height);
+        gpu::PipelineState clear_state;  // depth writes on for the clear
+        device.apply(clear_state);
+        device.clear(glm::vec4(0.0f), true);
+        gpu::PipelineState state;
+        state.cull = gpu::Cull::None;
+        state.offset_factor = 1.5f;
+        state.offset_units = 2.0f;
+        device.apply(state);
+        static const Material kDefaultMaterial{};
+        for (const ShadowTile& tile : plan.tiles) {
+            device.viewport(tile.rect.x, tile.rect.y, tile.rect.z, tile.rect.w);
+            for (const Draw& d : opaque_draws) {
+                const GpuPrimitive& p = *d.prim;
+                if (p.topology != Topology::Triangles) continue;
+                const Material& m = p.material >= 0 ? scene->materials[std::size_t(p.material)] : kDefaultMaterial;
+                FeatureMask features = 0;
+                const gpu::Texture* base = nullptr;
+                if (m.alpha_mode == AlphaMode::Mask) {
+                    features |= feature::AlphaMask;
+                    if (p.has_color) features |= feature::HasColor;
+                    const TextureSlot& slot = m.base_color;
+                    if (p.has_uv0 && slot.tex_coord == 0 && slot.texture >= 0)
+                        base = texture_for(slot, true, Anisotropic::Off, 1.0f);
+                    if (base) features |= feature::HasUv0 | feature::BaseColorMap;
+                }
+                if (d.joints) features |= feature::Skinned;
+                if (d.morph) features |= feature::MorphTargets;
+                const gpu::Program& prog =
+                    shaders.get_keyed("pbr.vert", "shadow.frag", {kShadowPrograms, features, -1, 0}, [&] {
+                        std::vector<std::string> defines = feature_defines(features);
+                        defines.emplace_back("SHADOW_PASS");
+                        return defines;
+                    });
+                prog.use();
+                prog.set("u_light_view_projection", tile.view_projection);
+                prog.set("u_model", d.model);
+                prog.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(d.model)));
+                prog.set("u_handedness", 1.0f);
+                prog.set("u_point_size", 1.0f);
+                if (d.joints) prog.set("u_joints", std::span<const glm::mat4>(*d.joints));
+                if (d.morph) prog.set("u_morph_weights", std::span<const float>(d.morph_weights));
+                if (features & feature::AlphaMask) {
+                    prog.set("u_base_color_factor", m.base_color_factor);
+                    prog.set("u_alpha_cutoff", m.alpha_cutoff);
+                    if (base) {
+                        device.bind_texture(0, *base);
+                        prog.set("u_base_color_map", 0);
+                        prog.set("u_base_color_transform", m.base_color.transform);
+                    }
+                }
+                device.draw(p.vao, gpu::Primitive::Triangles, p.count, p.indexed);
+                ++stats.draw_calls;
+            }
+        }
     }
 
     // One uniform buffer per material (index + 1; 0: the glTF default material), refilled
@@ -940,7 +1062,8 @@ struct Renderer::Impl {
 
         // Alternative BRDF terms are defines on top of the feature set (rare: a string-keyed variant).
         const gpu::Program& prog = [&]() -> const gpu::Program& {
-            const FrameVariant output = frame_variant(settings, linear_pass, !lights.empty());
+            FrameVariant output = frame_variant(settings, linear_pass, !lights.empty());
+            if (output.lights) output.shadows = frame_shadows;
             if (settings.brdf.is_default()) return shaders.get("pbr.vert", "pbr.frag", features, output);
             const brdf::BrdfModel& b = settings.brdf;
             const std::uint32_t terms = std::uint32_t(b.d) | std::uint32_t(b.g) << 6 | std::uint32_t(b.f) << 12 |
@@ -996,6 +1119,11 @@ struct Renderer::Impl {
                 device.bind_texture(kCharlieUnit, charlie_lut);
                 prog.set("u_charlie_lut", kCharlieUnit);
             }
+        }
+        if (frame_shadows > 0) {
+            const int kShadowUnit = next_unit++;
+            device.bind_texture(kShadowUnit, shadow_atlas);
+            prog.set("u_shadow_atlas", kShadowUnit);
         }
         assert(next_unit <= unit_limit(settings));  // fixed_units counts what this packs
         bind_material_block(p.material, mu);
@@ -1169,7 +1297,13 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
         };
         std::sort(blended.begin(), blended.end(), far_to_near);
         std::sort(transmissive.begin(), transmissive.end(), far_to_near);
+        r.plan_frame_shadows(cam, lights, settings);
         r.pack_frame(cam, lights, settings);
+        if (r.frame_shadows > 0) {
+            r.draw_shadow_maps(stats);
+            r.device.bind_framebuffer(&r.targets->msaa_fb);
+            r.device.viewport(0, 0, w, h);
+        }
         r.transmission_ready = false;
         if (!transmissive.empty() && settings.debug == DebugChannel::None) {
             // The transmission pass: what the transmissive primitives refract (everything else,

@@ -92,6 +92,7 @@ std::vector<std::string> frame_defines(FrameVariant frame) {
     std::vector<std::string> out{"FRAME_TONEMAP " + std::to_string(frame.tone_mapper),
                                  "FRAME_ENCODING " + std::to_string(frame.encoding)};
     if (!frame.lights) out.emplace_back("FRAME_NO_LIGHTS");
+    else if (frame.shadows > 0) out.push_back("FRAME_SHADOWS " + std::to_string(frame.shadows));
     return out;
 }
 

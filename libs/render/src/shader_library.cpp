@@ -53,7 +53,8 @@ std::string assemble_shader(const std::string& file, const std::vector<std::stri
     std::string out = target == GlslTarget::Gl33 ? "#version 330 core\n"
                                                  : "#version 300 es\n"
                                                    "precision highp float;\nprecision highp int;\n"
-                                                   "precision highp sampler2D;\nprecision highp samplerCube;\n";
+                                                   "precision highp sampler2D;\nprecision highp samplerCube;\n"
+                                                   "precision highp sampler2DShadow;\n";
     for (const auto& d : defines) out += "#define " + d + "\n";
     std::set<std::string> included;
     std::vector<std::string> stack;

@@ -215,10 +215,12 @@ struct FrameVariant {
     int tone_mapper = 0;  // int(fresnel::ToneMapper)
     int encoding = 0;     // int(fresnel::Encoding); -1: none (linear radiance, the transmission pass)
     bool lights = true;   // punctual lights are bound (false: FRAME_NO_LIGHTS)
+    int shadows = 0;      // int(fresnel::Shadows) with lights and a shadow atlas bound (FRAME_SHADOWS), else 0
     // A small integer naming the variant (the shader caches' key).
-    int key() const { return (tone_mapper * 4 + encoding + 1) * 2 + (lights ? 1 : 0); }
+    int key() const { return ((tone_mapper * 4 + encoding + 1) * 2 + (lights ? 1 : 0)) * 3 + shadows; }
 };
-// "FRAME_TONEMAP n", "FRAME_ENCODING n" and, without lights, "FRAME_NO_LIGHTS".
+// "FRAME_TONEMAP n", "FRAME_ENCODING n", without lights "FRAME_NO_LIGHTS", with shadows
+// "FRAME_SHADOWS n".
 std::vector<std::string> frame_defines(FrameVariant frame);
 
 }  // namespace fresnel

@@ -16,6 +16,7 @@
 
 #include "fresnel/material/evaluate.h"
 #include "details/shader_features.h"
+#include "details/shadow_maps.h"
 
 namespace fresnel {
 
@@ -88,9 +89,18 @@ struct FrameBlock {
     // Per light: position.xyz + type (0 directional, 1 point, 2 spot); direction the light
     // travels + range (0 = infinite); colour * intensity; spot cone scale and offset.
     std::array<glm::vec4, kMaxShaderLights> light_position_type{}, light_direction_range{}, light_color{}, light_cone{};
+    // Shadows (details/shadow_maps.h, shaders/shadows.glsl): the atlas (1/width, 1/height, the
+    // soft filter's radius in texels, 0); per light its first tile (-1: none) and tile count;
+    // per tile world -> tile (u, v, depth) in [0, 1], where the tile lies in the atlas (offset,
+    // size in atlas uv), and (world texel size, filter margin in tile uv, 0, 0).
+    glm::vec4 shadow_atlas{0.0f};
+    std::array<glm::vec4, kMaxShaderLights> light_shadow{};
+    std::array<glm::mat4, kMaxShadowTiles> shadow_matrix{};
+    std::array<glm::vec4, kMaxShadowTiles> shadow_rect{}, shadow_params{};
 };
 static_assert(offsetof(FrameBlock, light_position_type) == 224);
-static_assert(sizeof(FrameBlock) == 224 + 64 * kMaxShaderLights);
+static_assert(offsetof(FrameBlock, shadow_atlas) == 224 + 64 * kMaxShaderLights);
+static_assert(sizeof(FrameBlock) == 224 + 80 * kMaxShaderLights + 16 + 96 * kMaxShadowTiles);
 
 // Each member's GLSL name and byte offset in the C++ mirror (the layout test's table).
 std::vector<std::pair<std::string, std::size_t>> material_block_members();

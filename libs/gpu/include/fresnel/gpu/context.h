@@ -41,6 +41,7 @@ struct Capabilities {
     bool seamless_cube_maps = true;  // desktop: enabled once at creation; ES 3.0 filters seamlessly always
     bool debug_output = false;       // KHR_debug
     int max_texture_units = 16;      // GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS
+    int max_texture_size = 2048;     // GL_MAX_TEXTURE_SIZE (OpenGL ES 3.0 guarantees 2048)
     // Units a fragment shader can sample (GL_MAX_TEXTURE_IMAGE_UNITS; OpenGL 3.3 and ES 3.0
     // guarantee 16).
     int max_fragment_texture_units = 16;

@@ -20,6 +20,8 @@ struct PipelineState {
     Blend blend = Blend::None;
     bool sample_alpha_to_coverage = false;
     bool front_ccw = true;  // false for nodes whose world matrix mirrors (negative determinant)
+    // glPolygonOffset(factor, units) when either is non-zero (shadow maps' slope-scaled bias).
+    float offset_factor = 0.0f, offset_units = 0.0f;
 };
 
 // The GL objects alive in the current context, as the driver reports them (glIs* over the

@@ -126,6 +126,10 @@ public:
     // A cube map with `levels` mip levels (data uploaded later with upload_cube_face).
     // `immutable_storage` (Capabilities::texture_storage): glTexStorage2D, allocated once.
     static Texture create_cube(int size, TextureFormat format, int levels, bool immutable_storage = false);
+    // A 24-bit depth texture to render into (Framebuffer::attach_depth) and read with a
+    // sampler2DShadow: comparison mode LEQUAL, linear filtering (the 2x2 percentage-closer
+    // filter of OpenGL 3.3 and ES 3.0), clamped to the edge.
+    static Texture create_depth_2d(int width, int height);
     void upload_cube_face(int face, int level, int size, const float* rgba);
     // Where the format cannot filter linearly (RGBA32F on OpenGL ES 3.0 without
     // OES_texture_float_linear, where a LINEAR float texture is incomplete and samples as zero),
@@ -194,6 +198,9 @@ public:
     void attach_color(const Texture& texture);
     void attach_color(const Renderbuffer& rb);
     void attach_depth(const Renderbuffer& rb);
+    // A depth texture (Texture::create_depth_2d) as the only attachment: no colour is drawn
+    // or read (draw and read buffers NONE).
+    void attach_depth(const Texture& depth);
     // Throws fresnel::Error when the framebuffer is incomplete.
     void check() const;
     // True when the colour attachment is fixed-point (RGBA8, sRGB, R8): read back as bytes.

@@ -130,6 +130,9 @@ struct Job {
         bool float_output = false;
         DebugChannel debug = DebugChannel::None;
         bool energy_compensation = true;  // multiple-scattering compensation of the specular lobe
+        Shadows shadows = Shadows::Soft;  // punctual lights' shadows in the rasteriser (RenderSettings)
+        int shadow_map_size = 2048;
+        int shadow_cascades = 2;
         // The shading model for the frame, or Auto: per material (RenderSettings::shading).
         ShadingModel shading = ShadingModel::Auto;
         brdf::BrdfModel brdf;  // the glTF BRDF's terms for punctual lights (RenderSettings::brdf)

@@ -69,6 +69,15 @@ struct Fog {
 // (docs/performance.md).
 inline constexpr float kDefaultAnisotropy = 6.0f;
 
+// Shadows of punctual lights in the rasteriser (`--shadows`): none, hard (one bilinear
+// depth comparison per light, the hardware's 2x2 filter) or soft (a rotated disk of
+// comparisons, a few texels wide: the edge of a point light's shadow anti-aliased, not
+// widened). Directional lights use cascaded maps fitted to the view, spot lights a
+// perspective map, point lights six (a cube), all tiles of one depth atlas (shadows.h).
+enum class Shadows { Off = 0, Hard, Soft };
+std::optional<Shadows> parse_shadows(const std::string& name);
+const char* shadows_name(Shadows s);
+
 struct RenderSettings {
     int width = 1024, height = 768;
     int msaa = 4;
@@ -110,6 +119,11 @@ struct RenderSettings {
     // environment's table is used, else compensation is off.
     const ImageF* brdf_lut = nullptr;
     bool energy_compensation = true;
+    // Shadows of punctual lights: the filter, each map's size (texels a side; the atlas shrinks
+    // tiles that would not fit the GPU's texture size) and a directional light's cascades.
+    Shadows shadows = Shadows::Soft;
+    int shadow_map_size = 2048;
+    int shadow_cascades = 2;
     // Skin and morph on the GPU, from the scene's current nodes (fresnel::animate, then
     // Renderer::update_transforms): skinned meshes by their joints' world matrices times the
     // inverse bind matrices (skins of at most kMaxShaderJoints joints), morph targets (at most

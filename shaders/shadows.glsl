@@ -1,0 +1,77 @@
+// Shadows of punctual lights (fresnel::plan_shadows, libs/render/src/details/shadow_maps.h):
+// every shadowed light's maps are square tiles of one depth atlas, read with comparison
+// (sampler2DShadow: each probe is the hardware's 2x2 percentage-closer filter). A directional
+// light's point is looked up in its first cascade that holds it, a point light's in the cube
+// face of the direction's major axis, a spot light's in its one map. The lookup point moves
+// off the surface along the geometric normal by about a texel of the map there (normal offset),
+// the depth pass adds a slope-scaled bias: neither acne nor shadows detached from their casters.
+// FRAME_SHADOWS 1: one probe (hard); 2: a disk of probes rotated per pixel (soft edges a few
+// texels wide). Without FRAME_SHADOWS every light is unshadowed.
+#include "frame_block.glsl"
+
+#if defined(FRAME_SHADOWS) && FRAME_SHADOWS > 0
+uniform highp sampler2DShadow u_shadow_atlas;
+
+// The tile of light i whose map holds `p`, or -1.
+int shadow_tile(int i, vec3 p) {
+    int first = int(u_light_shadow[i].x);
+    if (first < 0) return -1;
+    float type = u_light_position_type[i].w;
+    if (type > 0.5 && type < 1.5) {  // point: the cube face of the major axis
+        vec3 d = p - u_light_position_type[i].xyz;
+        vec3 a = abs(d);
+        int face = a.x >= a.y && a.x >= a.z ? (d.x < 0.0 ? 1 : 0) : (a.y >= a.z ? (d.y < 0.0 ? 3 : 2) : (d.z < 0.0 ? 5 : 4));
+        return first + face;
+    }
+    int count = int(u_light_shadow[i].y);
+    for (int c = 0; c < count; ++c) {
+        vec4 q = u_shadow_matrix[first + c] * vec4(p, 1.0);
+        vec3 t = q.xyz / q.w;
+        float m = u_shadow_params[first + c].y;
+        if (t.x >= m && t.y >= m && t.x <= 1.0 - m && t.y <= 1.0 - m && t.z <= 1.0) return first + c;
+    }
+    return -1;
+}
+
+// Interleaved gradient noise (Jimenez 2014): a per-pixel angle for the soft filter's disk.
+float shadow_noise(vec2 pixel) { return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715)))); }
+
+// The fraction of light i that reaches `p` (1: lit), `ng` the geometric normal, `l` the
+// direction to the light.
+float shadow_visibility(int i, vec3 p, vec3 ng, vec3 l) {
+    int t = shadow_tile(i, p);
+    if (t < 0) return 1.0;
+    vec4 params = u_shadow_params[t];
+    float texel = params.x;
+    if (u_light_position_type[i].w > 0.5) texel *= length(u_light_position_type[i].xyz - p);  // perspective
+    vec3 n = dot(ng, l) < 0.0 ? -ng : ng;
+    float n_dot_l = clamp(dot(n, l), 0.0, 1.0);
+    // About a texel and a half off the surface, more where the light grazes it.
+    vec3 q = p + n * texel * (1.5 + 2.0 * (1.0 - n_dot_l));
+    vec4 c = u_shadow_matrix[t] * vec4(q, 1.0);
+    vec3 s = c.xyz / c.w;
+    if (s.z >= 1.0) return 1.0;  // beyond the map's depth range: nothing behind casts
+    vec4 rect = u_shadow_rect[t];
+    vec2 half_texel = 0.5 * u_shadow_atlas_info.xy;
+    vec2 lo = rect.xy + half_texel, hi = rect.xy + rect.zw - half_texel;
+    vec2 uv = rect.xy + clamp(s.xy, 0.0, 1.0) * rect.zw;
+#if FRAME_SHADOWS == 1
+    return texture(u_shadow_atlas, vec3(clamp(uv, lo, hi), s.z));
+#else
+    // A Poisson disk of 12 probes, turned per pixel.
+    const vec2 kDisk[12] = vec2[12](vec2(-0.326, -0.406), vec2(-0.840, -0.074), vec2(-0.696, 0.457),
+                                    vec2(-0.203, 0.621), vec2(0.962, -0.195), vec2(0.473, -0.480),
+                                    vec2(0.519, 0.767), vec2(0.185, -0.893), vec2(0.507, 0.064),
+                                    vec2(0.896, 0.412), vec2(-0.322, -0.933), vec2(-0.792, -0.598));
+    float angle = 6.2831853 * shadow_noise(gl_FragCoord.xy);
+    float cs = cos(angle), sn = sin(angle);
+    mat2 turn = mat2(cs, sn, -sn, cs);
+    vec2 radius = u_shadow_atlas_info.xy * u_shadow_atlas_info.z;
+    float sum = 0.0;
+    for (int k = 0; k < 12; ++k) sum += texture(u_shadow_atlas, vec3(clamp(uv + turn * kDisk[k] * radius, lo, hi), s.z));
+    return sum * (1.0 / 12.0);
+#endif
+}
+#else
+float shadow_visibility(int i, vec3 p, vec3 ng, vec3 l) { return 1.0; }
+#endif
