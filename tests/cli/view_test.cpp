@@ -383,6 +383,38 @@ TEST_F(View, ScriptedSessionKeepsTheSceneOnBadFiles) {
     EXPECT_LT(psnr("a.png", "c.png"), 30.0);   // and the channel did change the picture
 }
 
+// Shadows toggled live by a script (`set render.shadows ...`, the settings registry's key): each
+// screenshot equals `fresnel render` with the same --shadows, and turning them off changes the
+// picture (the shadows on the ground go).
+TEST_F(View, ShadowsToggleLive) {
+    const fs::path model = fs::path(FRESNEL_SOURCE_DIR) / "tests/data/shadows/shadow-directional.gltf";
+    std::ofstream(dir_ / "s.txt") << "orbit 20 30\n"
+                                     "screenshot " << (dir_ / "soft.png").string() << "\n"
+                                     "set render.shadows off\n"
+                                     "wait 1\n"
+                                     "screenshot " << (dir_ / "off.png").string() << "\n"
+                                     "set render.shadows hard\n"
+                                     "wait 1\n"
+                                     "screenshot " << (dir_ / "hard.png").string() << "\n"
+                                     "quit\n";
+    Result r = run({"view", model.string(), "--size", "200x150", "--env", "none", "--script", (dir_ / "s.txt").string()},
+                   true);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto psnr = [&](const char* x, const char* y) {
+        return fresnel::compare_images(fresnel::read_image8(dir_ / x), fresnel::read_image8(dir_ / y), false).psnr_db;
+    };
+    for (const char* mode : {"soft", "off", "hard"}) {
+        const std::string rendered = std::string("r-") + mode + ".png";
+        Result rr = run({"render", model.string(), "--size", "200x150", "--env", "none", "--yaw", "20", "--pitch", "30",
+                         "--shadows", mode, "-o", (dir_ / rendered).string()},
+                        false);
+        ASSERT_EQ(rr.exit_code, 0) << rr.err;
+        EXPECT_GE(psnr((std::string(mode) + ".png").c_str(), rendered.c_str()), 40.0) << mode;
+    }
+    EXPECT_LT(psnr("soft.png", "off.png"), 30.0);  // the shadows went
+    EXPECT_GE(psnr("soft.png", "hard.png"), 30.0);  // and hard ones fall where soft ones do
+}
+
 // A soak: 100 models opened in a row in one session; resident memory after the 100th is
 // within 10 % (+ 8 MiB) of what it was after the 20th, and every open worked.
 TEST_F(View, HundredOpensKeepResidentMemoryFlat) {

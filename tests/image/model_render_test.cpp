@@ -628,6 +628,7 @@ RenderSettings khronos_reference_settings() {
     s.tone_mapper = ToneMapper::Neutral;
     s.encoding = Encoding::Gamma22;
     s.background = glm::vec4(0, 0, 0, 1);
+    s.shadows = Shadows::Off;  // the Khronos Sample Viewer has none
     return s;
 }
 

@@ -159,6 +159,7 @@ void Viewer::draw_environment_panel() {
                  {Mode::Blurred, "blurred"}, {Mode::Color, "colour"}, {Mode::Transparent, "transparent"}});
     if (job.background.mode == Mode::Color) ImGui::ColorEdit3("background colour", &job.background.color.x);
     setting_widget(job, "sceneLights");
+    setting_widget(job, "render.shadows");
 }
 
 // "Output" and "Split view".

@@ -774,8 +774,8 @@ struct Renderer::Impl {
         const glm::vec3 pad(0.05f * glm::length(scene_box.max - scene_box.min) + 1e-4f);
         scene_box.min -= pad;
         scene_box.max += pad;
-        shadow_plan = plan_shadows(lights, std::min<int>(int(lights.size()), kMaxLights), cam, scene_box,
-                                   s.shadow_map_size, s.shadow_cascades, context.capabilities().max_texture_size);
+        plan_shadows(lights, std::min<int>(int(lights.size()), kMaxLights), cam, scene_box, s.shadow_map_size,
+                     s.shadow_cascades, context.capabilities().max_texture_size, shadow_plan);
         if (!shadow_plan.empty()) frame_shadows = int(s.shadows);
     }
 

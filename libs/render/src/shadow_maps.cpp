@@ -129,9 +129,17 @@ ShadowTile perspective_tile(glm::vec3 eye, glm::vec3 dir, glm::vec3 up, float ha
 ShadowPlan plan_shadows(const std::vector<LightInstance>& lights, int light_count, const CameraSetup& camera,
                         const Bounds& scene, int map_size, int cascades, int max_texture_size) {
     ShadowPlan plan;
+    plan_shadows(lights, light_count, camera, scene, map_size, cascades, max_texture_size, plan);
+    return plan;
+}
+
+void plan_shadows(const std::vector<LightInstance>& lights, int light_count, const CameraSetup& camera,
+                  const Bounds& scene, int map_size, int cascades, int max_texture_size, ShadowPlan& plan) {
+    plan.atlas_width = plan.atlas_height = plan.tile_size = 0;
+    plan.tiles.clear();
     const int n = std::clamp(light_count, 0, int(lights.size()));
-    plan.lights.resize(std::size_t(n));
-    if (scene.empty || n == 0 || map_size <= 0) return plan;
+    plan.lights.assign(std::size_t(n), LightShadow{});
+    if (scene.empty || n == 0 || map_size <= 0) return;
     cascades = std::clamp(cascades, 1, 4);
     auto tiles_of = [&](const LightInstance& l) {
         return l.type == Light::Type::Directional ? cascades : l.type == Light::Type::Point ? 6 : 1;
@@ -143,7 +151,7 @@ ShadowPlan plan_shadows(const std::vector<LightInstance>& lights, int light_coun
         plan.lights[std::size_t(i)] = {count, k};
         count += k;
     }
-    if (count == 0) return plan;
+    if (count == 0) return;
     const int cols = int(std::ceil(std::sqrt(double(count))));
     const int rows = (count + cols - 1) / cols;
     int tile = map_size;
@@ -184,7 +192,6 @@ ShadowPlan plan_shadows(const std::vector<LightInstance>& lights, int light_coun
     }
     for (int t = 0; t < int(plan.tiles.size()); ++t)
         plan.tiles[std::size_t(t)].rect = glm::ivec4((t % cols) * tile, (t / cols) * tile, tile, tile);
-    return plan;
 }
 
 glm::mat4 tile_lookup_matrix(const ShadowTile& tile) {

@@ -55,6 +55,9 @@ struct ShadowPlan {
 // all; a directional light takes `cascades` (1..4) tiles. Nothing when `scene` is empty.
 ShadowPlan plan_shadows(const std::vector<LightInstance>& lights, int light_count, const CameraSetup& camera,
                         const Bounds& scene, int map_size, int cascades, int max_texture_size);
+// The same into `plan`, whose storage is reused (a warm frame allocates nothing).
+void plan_shadows(const std::vector<LightInstance>& lights, int light_count, const CameraSetup& camera,
+                  const Bounds& scene, int map_size, int cascades, int max_texture_size, ShadowPlan& plan);
 
 // The tile's matrix for lookups: world -> (u, v, depth) in [0, 1] of the tile itself.
 glm::mat4 tile_lookup_matrix(const ShadowTile& tile);

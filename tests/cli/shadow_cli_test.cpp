@@ -1,0 +1,109 @@
+// Shadows of punctual lights (issue 31), through the program as a user runs it: the rasteriser's
+// shadows fall where the path tracer's do. tests/data/shadows (scripts/make-shadow-scenes.py): a
+// ground plane with two spheres, a box and a thin pole under one directional, point or spot
+// light. `fresnel render` with each filter and with --shadows off against `fresnel trace
+// --max-bounces 1` (direct light only, which is all the rasteriser computes for punctual lights):
+// measured 37-42 dB with soft shadows, 23-24 dB without (384^2, 64 spp). Here at 160^2 and
+// 48 spp: the floors leave ~3 dB for the tracer's noise.
+#include "cli_harness.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "fresnel/core/image.h"
+#include "fresnel/core/metrics.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using fresnel::test::command_line;
+using fresnel::test::quote;
+using fresnel::test::Result;
+using fresnel::test::run_captured;
+using fresnel::test::show;
+
+const fs::path kScenes = fs::path(FRESNEL_SOURCE_DIR) / "tests" / "data" / "shadows";
+
+class Shadows : public fresnel::test::TempDirTest {
+protected:
+    Shadows() : TempDirTest("fresnel_shadows") {}
+    Result run(const std::vector<std::string>& args) {
+        return run_captured(command_line(quote(FRESNEL_EXE), args), dir_);
+    }
+    // PSNR of two PNGs (RGB over every pixel).
+    static double psnr(const fs::path& a, const fs::path& b) {
+        return fresnel::compare_images(fresnel::read_image8(a), fresnel::read_image8(b), false).psnr_db;
+    }
+};
+
+const std::vector<std::string> kView = {"--env", "none", "--size", "160", "--yaw", "20", "--pitch", "30"};
+
+std::vector<std::string> with(std::vector<std::string> head, const std::vector<std::string>& tail) {
+    head.insert(head.end(), tail.begin(), tail.end());
+    return head;
+}
+
+}  // namespace
+
+TEST_F(Shadows, FallWhereTheTracersDo) {
+    for (const char* light : {"directional", "point", "spot"}) {
+        const fs::path scene = kScenes / (std::string("shadow-") + light + ".gltf");
+        ASSERT_TRUE(fs::exists(scene)) << scene;
+        const fs::path truth = dir_ / "trace.png", soft = dir_ / "soft.png", hard = dir_ / "hard.png",
+                       off = dir_ / "off.png";
+        Result r = run(with({"trace", scene.string(), "-o", truth.string(), "--spp", "48", "--max-bounces", "1"}, kView));
+        ASSERT_EQ(r.exit_code, 0) << show(r);
+        r = run(with({"render", scene.string(), "-o", soft.string()}, kView));
+        ASSERT_EQ(r.exit_code, 0) << show(r);
+        r = run(with({"render", scene.string(), "-o", hard.string(), "--shadows", "hard"}, kView));
+        ASSERT_EQ(r.exit_code, 0) << show(r);
+        r = run(with({"render", scene.string(), "-o", off.string(), "--shadows", "off"}, kView));
+        ASSERT_EQ(r.exit_code, 0) << show(r);
+        const double p_soft = psnr(soft, truth), p_hard = psnr(hard, truth), p_off = psnr(off, truth);
+        std::printf("%s: soft %.2f dB, hard %.2f dB, off %.2f dB against trace --max-bounces 1\n", light, p_soft,
+                    p_hard, p_off);
+        EXPECT_GE(p_soft, 33.0) << light;
+        EXPECT_GE(p_hard, 32.0) << light;
+        EXPECT_GE(p_soft, p_off + 8.0) << light;
+    }
+}
+
+// A directional light's cascades: more of them and smaller maps still put the shadows in place;
+// the settings are checked (a cascade count outside 1..4 is an error naming the flag).
+TEST_F(Shadows, CascadesAndMapSizes) {
+    const fs::path scene = kScenes / "shadow-directional.gltf";
+    const fs::path a = dir_ / "a.png", b = dir_ / "b.png";
+    Result r = run(with({"render", scene.string(), "-o", a.string(), "--shadow-cascades", "1"}, kView));
+    ASSERT_EQ(r.exit_code, 0) << show(r);
+    r = run(with({"render", scene.string(), "-o", b.string(), "--shadow-cascades", "4", "--shadow-map-size", "512"},
+                 kView));
+    ASSERT_EQ(r.exit_code, 0) << show(r);
+    EXPECT_GE(psnr(a, b), 30.0);
+    // Bad values are usage errors (exit 2), naming the flag or the choices.
+    r = run(with({"render", scene.string(), "-o", a.string(), "--shadow-cascades", "9"}, kView));
+    EXPECT_EQ(r.exit_code, 2) << show(r);
+    EXPECT_NE(r.err.find("--shadow-cascades"), std::string::npos) << show(r);
+    r = run(with({"render", scene.string(), "-o", a.string(), "--shadows", "sotf"}, kView));
+    EXPECT_EQ(r.exit_code, 2) << show(r);
+    EXPECT_NE(r.err.find("soft"), std::string::npos) << show(r);
+}
+
+// Without a punctual light there is nothing to shadow: the environment-only scene renders the
+// same with shadows on and off (no shadow pass, the same shader).
+TEST_F(Shadows, EnvironmentOnlyIsUnchanged) {
+    const fs::path scene = kScenes / "shadow-environment.gltf";
+    const fs::path a = dir_ / "a.png", b = dir_ / "b.png";
+    const std::vector<std::string> view = {"--env", "color:0.5,0.6,0.8", "--size", "96"};
+    // A first run bakes the environment into the test's cache (a fresh bake and a cached one may
+    // differ in the last bit); both compared runs read the cache.
+    ASSERT_EQ(run(with({"render", scene.string(), "-o", a.string()}, view)).exit_code, 0);
+    ASSERT_EQ(run(with({"render", scene.string(), "-o", a.string()}, view)).exit_code, 0);
+    ASSERT_EQ(run(with({"render", scene.string(), "-o", b.string(), "--shadows", "off"}, view)).exit_code, 0);
+    EXPECT_TRUE(std::isinf(psnr(a, b)));
+}
