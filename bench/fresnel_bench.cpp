@@ -112,7 +112,7 @@ nlohmann::json khronos_frames(const fs::path& helmet, const fs::path& engine, co
 }  // namespace
 
 int main(int argc, char** argv) {
-    bool quick = false, as_json = false, frames_only = false;
+    bool quick = false, as_json = false, frames_only = false, shadows_only = false;
     float anisotropy = kDefaultAnisotropy;
     int msaa = 4;
     int frames = 0;                 // --frames N: frames timed per model (0: 15, 5 with --quick)
@@ -129,6 +129,7 @@ int main(int argc, char** argv) {
         "  --quick            fewer runs\n"
         "  --json             the figures as JSON\n"
         "  --frames-only      only the 1024^2 image-based-light frames (with CPU time per frame)\n"
+        "  --shadows-only     only the shadows' frame cost (1024^2, shadows off / hard / soft)\n"
         "  --frames N         frames timed per model\n"
         "  --helmet           DamagedHelmet's frames alone (with --frames-only)\n"
         "  --engine           2CylinderEngine's frames alone (with --frames-only)\n"
@@ -147,6 +148,7 @@ int main(int argc, char** argv) {
         } else if (arg == "--quick") quick = true;
         else if (arg == "--json") as_json = true;
         else if (arg == "--frames-only") frames_only = true;
+        else if (arg == "--shadows-only") shadows_only = true;
         else if (arg == "--float-frame") frame_format = RenderSettings::FrameFormat::Float;
         else if (arg == "--helmet") helmet_frames_only = true;
         else if (arg == "--engine") engine_frames_only = true;
@@ -179,6 +181,84 @@ int main(int argc, char** argv) {
     out["machine"] = {{"cpu", cpu_model()}, {"threads", std::thread::hardware_concurrency()}, {"memory_gib", memory_gib()},
                       {"gl_renderer", context->renderer()}, {"gl_version", context->version()}};
     const int runs = quick ? 3 : 7;
+
+    // 0. What shadows cost a frame (issue 31's target: shadows and occlusion together at most 1.5x
+    //    the frame without): DamagedHelmet at 1024^2 under the studio environment and one
+    //    directional light, and the shadow scene (tests/data/shadows/shadow-directional.gltf) under
+    //    three lights (its directional, a point and a spot light), each with shadows off, hard and
+    //    soft; drawn and fenced, the median of warm frames, in one run so the ratios compare like
+    //    with like.
+    auto shadow_costs = [&]() {
+        nlohmann::json j;
+        ibl::BakedIbl studio_env = ibl::load_or_bake(ibl::parse_environment(env.string()), ibl::BakeOptions{}, {}, false);
+        auto time_frames = [&](const Scene& scene, const std::vector<LightInstance>& lights, const ibl::BakedIbl* ibl,
+                               Shadows mode) {
+            Renderer renderer(*context);
+            renderer.set_scene(scene);
+            RenderSettings rs = frame_settings;
+            rs.environment = ibl;
+            rs.shadows = mode;
+            CameraSetup cam = orbit_camera(scene_bounds(scene, flatten(scene)), {20.0f, 30.0f}, 1024, 1024);
+            renderer.draw(cam, lights, rs);  // warm-up: shaders, uploads
+            renderer.finish();
+            std::vector<double> ms;
+            for (int f = 0; f < (frames > 0 ? frames : quick ? 5 : 11); ++f) {
+                auto t = Clock::now();
+                renderer.draw(cam, lights, rs);
+                renderer.finish();
+                ms.push_back(ms_since(t));
+            }
+            return median(ms);
+        };
+        auto measure = [&](const char* name, const Scene& scene, const std::vector<LightInstance>& lights,
+                           const ibl::BakedIbl* ibl) {
+            const double off = time_frames(scene, lights, ibl, Shadows::Off);
+            const double hard = time_frames(scene, lights, ibl, Shadows::Hard);
+            const double soft = time_frames(scene, lights, ibl, Shadows::Soft);
+            j[name] = {{"off_ms", off}, {"hard_ms", hard}, {"soft_ms", soft}, {"hard_ratio", hard / off},
+                       {"soft_ratio", soft / off}, {"lights", lights.size()}};
+        };
+        Diagnostics d;
+        Scene helmet_scene = load_gltf(helmet, d);
+        LightInstance sun;
+        sun.direction = direction_from_angles(30.0f, 45.0f);
+        sun.radiance = glm::vec3(3.0f);
+        measure("damaged_helmet_ibl_1_directional", helmet_scene, {sun}, &studio_env);
+        const fs::path shadow_scene = fs::path(FRESNEL_SOURCE_DIR) / "tests/data/shadows/shadow-directional.gltf";
+        if (fs::exists(shadow_scene)) {
+            Scene scene = load_gltf(shadow_scene, d);
+            std::vector<LightInstance> lights = scene_lights(scene, flatten(scene));
+            LightInstance point;
+            point.type = Light::Type::Point;
+            point.position = {0.6f, 3.0f, 1.2f};
+            point.radiance = glm::vec3(40.0f);
+            LightInstance spot;
+            spot.type = Light::Type::Spot;
+            spot.position = {-1.5f, 3.5f, 2.5f};
+            spot.direction = glm::normalize(glm::vec3(1.2f, -3.2f, -2.6f));
+            spot.radiance = glm::vec3(60.0f);
+            spot.inner_cone = 0.35f;
+            spot.outer_cone = 0.6f;
+            lights.push_back(point);
+            lights.push_back(spot);
+            measure("shadow_scene_3_lights", scene, lights, nullptr);
+        }
+        return j;
+    };
+    auto print_shadows = [](const nlohmann::json& j) {
+        std::printf("shadows' frame cost, 1024^2, drawn and fenced (median; ratio to --shadows off):\n");
+        for (const auto& [name, v] : j.items())
+            std::printf("  %-34s off %.1f ms, hard %.1f ms (%.2fx), soft %.1f ms (%.2fx)  [target: <= 1.5x with occlusion]\n",
+                        name.c_str(), v["off_ms"].get<double>(), v["hard_ms"].get<double>(), v["hard_ratio"].get<double>(),
+                        v["soft_ms"].get<double>(), v["soft_ratio"].get<double>());
+    };
+    if (shadows_only) {
+        nlohmann::json j = shadow_costs();
+        if (as_json) std::printf("%s\n", j.dump(2).c_str());
+        else print_shadows(j);
+        return 0;
+    }
+    if (!frames_only) out["shadows"] = shadow_costs();
 
     // 1. DamagedHelmet.glb: parse + decode (parallel), upload, frame at 1024^2.
     std::vector<double> load, upload, frame, draw_only, first;
@@ -386,6 +466,7 @@ int main(int argc, char** argv) {
     std::printf("whole `fresnel render` DamagedHelmet.glb -> 512^2 PNG, warm environment cache: %.0f ms median  [target 420 ms]\n",
                 fr["process_512_ms"].get<double>());
     const auto& i = out["ibl"];
+    print_shadows(out["shadows"]);
     std::printf("IBL bake studio_small_03_1k.hdr at defaults: %.0f ms median  [Khronos: %.0f ms, %.0fx slower]\n",
                 i["bake_ms_median"].get<double>(), i["khronos_env_ms"].get<double>(), i["speedup_vs_khronos"].get<double>());
     std::printf("  warm cache: %.1f ms to load, %.1f ms to a first 512^2 frame\n", i["warm_cache_load_ms"].get<double>(),

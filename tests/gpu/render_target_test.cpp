@@ -12,6 +12,8 @@
 #include "fresnel/gpu/context.h"
 #include "fresnel/gpu/device.h"
 #include "fresnel/core/color.h"
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "fresnel/job/camera.h"
 #include "fresnel/job/lights.h"
 #include "fresnel/render/renderer.h"
@@ -311,6 +313,40 @@ TEST_F(RenderTargets, AlternatingFrameFormatsKeepTheirTargets) {
     FrameStats stats;
     renderer.draw(cam, lights, left, &stats);
     EXPECT_TRUE(stats.targets_rebuilt);
+    renderer.finish();
+}
+
+// Shadow maps are drawn when what they show changes and kept otherwise: a still frame drawn
+// again reuses them (the same picture), a moved light or node redraws them, --shadows off draws
+// none, and a frame with shadows after one without finds them still valid.
+TEST_F(RenderTargets, ShadowMapsAreKeptWhileNothingMoves) {
+    if (!start()) GTEST_SKIP() << why_;
+    Renderer& renderer = demo_->renderer;
+    RenderSettings s;
+    s.width = s.height = 64;
+    s.shadow_map_size = 256;
+    const CameraSetup cam = demo_->camera(s.width, s.height);
+    std::vector<LightInstance> lights = default_lights();  // two directional lights, two cascades each
+    auto frame = [&](const std::vector<LightInstance>& l, const RenderSettings& settings) {
+        FrameStats stats;
+        ImageF image = renderer.render(cam, l, settings, &stats);
+        EXPECT_EQ(stats.gl_errors, "");
+        return std::pair{stats.shadow_tiles_drawn, image};
+    };
+    auto [first_tiles, first] = frame(lights, s);
+    EXPECT_EQ(first_tiles, 4);
+    auto [again_tiles, again] = frame(lights, s);
+    EXPECT_EQ(again_tiles, 0) << "a still frame redrew its shadow maps";
+    EXPECT_EQ(first.pixels, again.pixels);
+    lights[0].direction = direction_from_angles(60.0f, 40.0f);
+    EXPECT_EQ(frame(lights, s).first, 4) << "a moved light";
+    RenderSettings off = s;
+    off.shadows = Shadows::Off;
+    EXPECT_EQ(frame(lights, off).first, 0);
+    EXPECT_EQ(frame(lights, s).first, 0) << "nothing moved while shadows were off";
+    for (Node& n : demo_->scene.nodes) n.local = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.1f, 0.0f)) * n.local;
+    renderer.update_transforms();
+    EXPECT_EQ(frame(lights, s).first, 4) << "a moved node";
     renderer.finish();
 }
 

@@ -779,6 +779,65 @@ struct Renderer::Impl {
         if (!shadow_plan.empty()) frame_shadows = int(s.shadows);
     }
 
+    // What the maps were last drawn from (shadow_inputs_key): a frame with the same plan, draws
+    // and casting materials keeps them (the viewer redrawing a still scene, a turntable's
+    // environment spin, batch jobs on one scene draw them once).
+    std::uint64_t shadow_key = 0;
+    std::uint64_t shadow_inputs_key() const {
+        std::uint64_t h = 1469598103934665603ull;
+        auto mix = [&h](const void* data, std::size_t bytes) {
+            const auto* b = static_cast<const unsigned char*>(data);
+            for (std::size_t i = 0; i < bytes; ++i) h = (h ^ b[i]) * 1099511628211ull;
+        };
+        mix(&shadow_plan.atlas_width, sizeof(int));
+        mix(&shadow_plan.atlas_height, sizeof(int));
+        for (const ShadowTile& t : shadow_plan.tiles) {
+            mix(&t.view_projection, sizeof t.view_projection);
+            mix(&t.rect, sizeof t.rect);
+        }
+        mix(&scene, sizeof scene);
+        for (const Draw& d : opaque_draws) {
+            mix(&d.prim, sizeof d.prim);
+            mix(&d.model, sizeof d.model);
+            if (d.morph) mix(d.morph_weights.data(), sizeof d.morph_weights);
+            if (d.joints) mix(d.joints->data(), d.joints->size() * sizeof(glm::mat4));
+            if (d.prim->material >= 0) {  // what a masked material casts (the viewer edits materials)
+                const Material& m = scene->materials[std::size_t(d.prim->material)];
+                mix(&m.alpha_mode, sizeof m.alpha_mode);
+                if (m.alpha_mode == AlphaMode::Mask) {
+                    mix(&m.alpha_cutoff, sizeof m.alpha_cutoff);
+                    mix(&m.base_color_factor.w, sizeof(float));
+                    mix(&m.base_color.texture, sizeof(int));
+                    mix(&m.base_color.transform, sizeof m.base_color.transform);
+                }
+            }
+        }
+        return h;
+    }
+
+    // Whether a draw's box (its model's POSITION box) can touch a tile: not when all eight
+    // corners lie beyond one of the tile's clip planes. Skinned draws always can (joints move them).
+    static bool may_cast(const Draw& d, const ShadowTile& tile) {
+        if (d.joints) return true;
+        const glm::mat4 m = tile.view_projection * d.model;
+        int outside[6] = {0, 0, 0, 0, 0, 0};
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 p(i & 1 ? d.prim->bounds_max.x : d.prim->bounds_min.x,
+                              i & 2 ? d.prim->bounds_max.y : d.prim->bounds_min.y,
+                              i & 4 ? d.prim->bounds_max.z : d.prim->bounds_min.z);
+            const glm::vec4 c = m * glm::vec4(p, 1.0f);
+            outside[0] += c.x < -c.w;
+            outside[1] += c.x > c.w;
+            outside[2] += c.y < -c.w;
+            outside[3] += c.y > c.w;
+            outside[4] += c.z < -c.w;
+            outside[5] += c.z > c.w;
+        }
+        for (int k = 0; k < 6; ++k)
+            if (outside[k] == 8) return false;
+        return true;
+    }
+
     // Draws the planned maps: every opaque and alpha-masked draw's depth into each tile
     // (blended and transmissive ones cast none, as they let light through), both faces, with a
     // slope-scaled bias. After pack_frame: pbr.vert's frame block must be bound.
@@ -804,11 +863,12 @@ struct Renderer::Impl {
         state.offset_units = 2.0f;
         device.apply(state);
         static const Material kDefaultMaterial{};
+        stats.shadow_tiles_drawn = int(plan.tiles.size());
         for (const ShadowTile& tile : plan.tiles) {
             device.viewport(tile.rect.x, tile.rect.y, tile.rect.z, tile.rect.w);
             for (const Draw& d : opaque_draws) {
                 const GpuPrimitive& p = *d.prim;
-                if (p.topology != Topology::Triangles) continue;
+                if (p.topology != Topology::Triangles || !may_cast(d, tile)) continue;
                 const Material& m = p.material >= 0 ? scene->materials[std::size_t(p.material)] : kDefaultMaterial;
                 FeatureMask features = 0;
                 const gpu::Texture* base = nullptr;
@@ -1141,6 +1201,7 @@ Renderer::~Renderer() = default;
 void Renderer::set_scene(const Scene& scene, int scene_index) {
     impl_->scene = &scene;
     impl_->scene_index = scene_index;
+    impl_->shadow_key = 0;  // new primitives may sit where the old ones were
     impl_->instances = flatten(scene, scene_index);
     impl_->upload(scene);
     impl_->upload_textures();
@@ -1299,8 +1360,10 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
         std::sort(transmissive.begin(), transmissive.end(), far_to_near);
         r.plan_frame_shadows(cam, lights, settings);
         r.pack_frame(cam, lights, settings);
-        if (r.frame_shadows > 0) {
+        const std::uint64_t shadow_key = r.frame_shadows > 0 ? r.shadow_inputs_key() : 0;
+        if (r.frame_shadows > 0 && (shadow_key != r.shadow_key || !r.shadow_atlas)) {
             r.draw_shadow_maps(stats);
+            r.shadow_key = shadow_key;
             r.device.bind_framebuffer(&r.targets->msaa_fb);
             r.device.viewport(0, 0, w, h);
         }

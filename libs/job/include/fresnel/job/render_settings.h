@@ -70,8 +70,8 @@ struct Fog {
 inline constexpr float kDefaultAnisotropy = 6.0f;
 
 // Shadows of punctual lights in the rasteriser (`--shadows`): none, hard (one bilinear
-// depth comparison per light, the hardware's 2x2 filter) or soft (a rotated disk of
-// comparisons, a few texels wide: the edge of a point light's shadow anti-aliased, not
+// depth comparison per light, the hardware's 2x2 filter) or soft (four comparisons on a disk
+// turned per pixel, a few texels wide: the edge of a point light's shadow anti-aliased, not
 // widened). Directional lights use cascaded maps fitted to the view, spot lights a
 // perspective map, point lights six (a cube), all tiles of one depth atlas (shadows.h).
 enum class Shadows { Off = 0, Hard, Soft };

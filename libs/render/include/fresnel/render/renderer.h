@@ -62,6 +62,9 @@ struct FrameStats {
     int alpha_packed_draws = 0;
     // Draws that left maps unread for want of texture units (RenderSettings::max_texture_units).
     int unit_limited_draws = 0;
+    // Shadow maps drawn this frame (RenderSettings::shadows): 0 when the frame has none or kept
+    // the last frame's, whose lights, casters and view gave the same maps.
+    int shadow_tiles_drawn = 0;
 };
 
 class Renderer {
