@@ -198,7 +198,10 @@ int main(int argc, char** argv) {
             RenderSettings rs = frame_settings;
             rs.environment = ibl;
             rs.shadows = mode;
-            CameraSetup cam = orbit_camera(scene_bounds(scene, flatten(scene)), {20.0f, 30.0f}, 1024, 1024);
+            OrbitParams view;
+            view.yaw_deg = 20.0f;
+            view.pitch_deg = 30.0f;
+            CameraSetup cam = orbit_camera(scene_bounds(scene, flatten(scene)), view, 1024, 1024);
             renderer.draw(cam, lights, rs);  // warm-up: shaders, uploads
             renderer.finish();
             std::vector<double> ms;

@@ -234,6 +234,19 @@ try {
         const pl = psnr(lit, sceneShot), pu = psnr(unlit, sceneShot);
         check(n === 2 && pl < 35 && pu >= 50, `an added point light: ${pl.toFixed(2)} dB (< 35), removed ${pu.toFixed(2)} dB (>= 50)`);
 
+        // Shadows toggled live (the registry's render.shadows): a light from the side casts the
+        // helmet's own shadows; off changes the frame, soft again restores it.
+        await scenePage.evaluate(() => window.fresnel.addLight('point:1.5,1,0.5,60'));
+        const shadowed = await shot('web_scene_shadowed.png');
+        await scenePage.evaluate(() => window.fresnel.set('render.shadows', 'off'));
+        const unshadowed = await shot('web_scene_unshadowed.png');
+        await scenePage.evaluate(() => window.fresnel.set('render.shadows', 'soft'));
+        const reshadowed = await shot('web_scene_reshadowed.png');
+        const extra = await scenePage.evaluate(() => window.fresnel.state().lights.filter(l => l.origin === "extra").length);
+        await scenePage.evaluate(k => window.fresnel.removeLight(k - 1), extra);
+        const pOff = psnr(shadowed, unshadowed), pBack = psnr(shadowed, reshadowed);
+        check(pOff < 45 && pBack >= 50, `shadows off changes the frame: ${pOff.toFixed(2)} dB (< 45), soft again ${pBack.toFixed(2)} dB (>= 50)`);
+
         // The scene file picked with the files it names (without their folder): found by name.
         await scenePage.evaluate(() => window.fresnel.set('yaw', 120));
         const pickError = await pick(scenePage, '#scene-file', [path.join(sceneDir, 'helmet.fresnel.json'), path.join(sceneDir, 'DamagedHelmet.glb'), ...bakedFiles],
