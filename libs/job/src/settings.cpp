@@ -179,6 +179,26 @@ Setting number(std::string key, std::string flag, std::string unit, double lo, d
     return s;
 }
 
+Setting integer(std::string key, std::string flag, std::string unit, double lo, double hi, std::string doc,
+                unsigned front_ends, std::function<int&(Job&)> field) {
+    Setting s;
+    s.key = std::move(key);
+    s.flag = std::move(flag);
+    s.type = Type::Int;
+    s.unit = std::move(unit);
+    s.min = lo;
+    s.max = hi;
+    s.doc = std::move(doc);
+    s.front_ends = front_ends;
+    s.get = [field](const Job& j) {
+        Value v;
+        v.number = field(const_cast<Job&>(j));
+        return v;
+    };
+    s.put = [field](Job& j, const Value& v) { field(j) = int(v.number); };
+    return s;
+}
+
 Setting boolean(std::string key, std::string flag, bool negated, std::string doc, unsigned front_ends,
                 std::function<bool&(Job&)> field) {
     Setting s;
@@ -598,44 +618,15 @@ std::vector<Setting> make_registry() {
         "(as the Khronos Sample Viewer, which has none). trace always shadows",
         raster, [](const Job& j) { return std::string(shadows_name(j.output.shadows)); },
         [](Job& j, const std::string& t) { j.output.shadows = *parse_shadows(t); }));
-    {
-        Setting s;
-        s.key = "render.shadowMapSize";
-        s.flag = "--shadow-map-size";
-        s.type = Type::Int;
-        s.min = 64;
-        s.max = 8192;
-        s.unit = "texels";
-        s.doc = "Texels a side of each shadow map (a cascade, a spot light's map, a cube face); smaller where the "
-                "atlas of every light's maps would exceed the GPU's texture size";
-        s.example = "1024";
-        s.front_ends = raster;
-        s.get = [](const Job& j) {
-            Value v;
-            v.number = j.output.shadow_map_size;
-            return v;
-        };
-        s.put = [](Job& j, const Value& v) { j.output.shadow_map_size = int(v.number); };
-        r.push_back(s);
-    }
-    {
-        Setting s;
-        s.key = "render.shadowCascades";
-        s.flag = "--shadow-cascades";
-        s.type = Type::Int;
-        s.min = 1;
-        s.max = 4;
-        s.doc = "Shadow maps of a directional light, each fitted to a slice of the view's depth";
-        s.example = "3";
-        s.front_ends = raster;
-        s.get = [](const Job& j) {
-            Value v;
-            v.number = j.output.shadow_cascades;
-            return v;
-        };
-        s.put = [](Job& j, const Value& v) { j.output.shadow_cascades = int(v.number); };
-        r.push_back(s);
-    }
+    r.push_back(integer("render.shadowMapSize", "--shadow-map-size", "texels", 64, 8192,
+                        "Texels a side of each shadow map (a cascade, a spot light's map, a cube face); smaller where "
+                        "the atlas of every light's maps would exceed the GPU's texture size",
+                        raster, [](Job& j) -> int& { return j.output.shadow_map_size; }));
+    r.back().example = "1024";
+    r.push_back(integer("render.shadowCascades", "--shadow-cascades", "", 1, 4,
+                        "Shadow maps of a directional light, each fitted to a slice of the view's depth", raster,
+                        [](Job& j) -> int& { return j.output.shadow_cascades; }));
+    r.back().example = "3";
     r.push_back(choice(
         "render.shading", "--shading", {"auto", "gltf", "ogl1", "ogl1-pixel", "blinn-phong-normalized"},
         "Shading model: auto (OpenGL 1 for OBJ/MTL Phong materials, glTF for the rest), gltf, ogl1 (OpenGL 1 per "
