@@ -159,12 +159,14 @@ std::string debug_name(DebugChannel c) {
 
 // --- the table -----------------------------------------------------------------------------
 
-Setting number(std::string key, std::string flag, std::string unit, double lo, double hi, std::string doc,
-               unsigned front_ends, std::function<float&(Job&)> field) {
+// A number setting held in a float (Type::Number) or an int (Type::Int) field of the Job.
+template <typename T>
+Setting numeric(Type type, std::string key, std::string flag, std::string unit, double lo, double hi, std::string doc,
+                unsigned front_ends, std::function<T&(Job&)> field) {
     Setting s;
     s.key = std::move(key);
     s.flag = std::move(flag);
-    s.type = Type::Number;
+    s.type = type;
     s.unit = std::move(unit);
     s.min = lo;
     s.max = hi;
@@ -175,28 +177,18 @@ Setting number(std::string key, std::string flag, std::string unit, double lo, d
         v.number = field(const_cast<Job&>(j));
         return v;
     };
-    s.put = [field](Job& j, const Value& v) { field(j) = float(v.number); };
+    s.put = [field](Job& j, const Value& v) { field(j) = T(v.number); };
     return s;
 }
-
+Setting number(std::string key, std::string flag, std::string unit, double lo, double hi, std::string doc,
+               unsigned front_ends, std::function<float&(Job&)> field) {
+    return numeric<float>(Type::Number, std::move(key), std::move(flag), std::move(unit), lo, hi, std::move(doc),
+                          front_ends, std::move(field));
+}
 Setting integer(std::string key, std::string flag, std::string unit, double lo, double hi, std::string doc,
                 unsigned front_ends, std::function<int&(Job&)> field) {
-    Setting s;
-    s.key = std::move(key);
-    s.flag = std::move(flag);
-    s.type = Type::Int;
-    s.unit = std::move(unit);
-    s.min = lo;
-    s.max = hi;
-    s.doc = std::move(doc);
-    s.front_ends = front_ends;
-    s.get = [field](const Job& j) {
-        Value v;
-        v.number = field(const_cast<Job&>(j));
-        return v;
-    };
-    s.put = [field](Job& j, const Value& v) { field(j) = int(v.number); };
-    return s;
+    return numeric<int>(Type::Int, std::move(key), std::move(flag), std::move(unit), lo, hi, std::move(doc),
+                        front_ends, std::move(field));
 }
 
 Setting boolean(std::string key, std::string flag, bool negated, std::string doc, unsigned front_ends,
@@ -443,47 +435,18 @@ std::vector<Setting> make_registry() {
     r.push_back(number("environment.intensity", "--env-intensity", "", 0, 1e9, "Scale the environment's radiance",
                        all | kSweep, [](Job& j) -> float& { return j.environment.intensity; }));
     r.back().slider_min = 0, r.back().slider_max = 4;
-    {
-        Setting s;
-        s.key = "environment.bakeSamples";
-        s.flag = "--env-samples";
-        s.type = Type::Int;
-        s.min = 1;
-        s.max = 65536;
-        s.doc = "GGX samples per texel when baking the environment";
-        s.example = "64";
-        s.front_ends = raster;
-        s.get = [](const Job& j) {
-            Value v;
-            v.number = j.environment.bake_samples;
-            return v;
-        };
-        s.put = [](Job& j, const Value& v) { j.environment.bake_samples = int(v.number); };
-        r.push_back(s);
-    }
-    {
-        Setting s;
-        s.key = "environment.bakeSize";
-        s.flag = "--env-size";
-        s.type = Type::Int;
-        s.min = 4;
-        s.max = 4096;
-        s.unit = "pixels, a power of two";
-        s.doc = "Specular cube face size when baking the environment";
-        s.example = "128";
-        s.check = [](const std::string& t) {
-            int n = std::atoi(t.c_str());
-            return n > 0 && (n & (n - 1)) == 0 ? std::string() : std::string("-");
-        };
-        s.front_ends = raster;
-        s.get = [](const Job& j) {
-            Value v;
-            v.number = j.environment.bake_size;
-            return v;
-        };
-        s.put = [](Job& j, const Value& v) { j.environment.bake_size = int(v.number); };
-        r.push_back(s);
-    }
+    r.push_back(integer("environment.bakeSamples", "--env-samples", "", 1, 65536,
+                        "GGX samples per texel when baking the environment", raster,
+                        [](Job& j) -> int& { return j.environment.bake_samples; }));
+    r.back().example = "64";
+    r.push_back(integer("environment.bakeSize", "--env-size", "pixels, a power of two", 4, 4096,
+                        "Specular cube face size when baking the environment", raster,
+                        [](Job& j) -> int& { return j.environment.bake_size; }));
+    r.back().example = "128";
+    r.back().check = [](const std::string& t) {
+        int n = std::atoi(t.c_str());
+        return n > 0 && (n & (n - 1)) == 0 ? std::string() : std::string("-");
+    };
     r.push_back(boolean("environment.cache", "--no-cache", true,
                         "Read and write baked environments and the BRDF table under $XDG_CACHE_HOME/fresnel "
                         "(false: bake them again)",

@@ -854,9 +854,7 @@ struct Renderer::Impl {
         device.bind_framebuffer(&shadow_fb);
         device.no_scissor();
         device.viewport(0, 0, plan.atlas_width, plan.atlas_height);
-        gpu::PipelineState clear_state;  // depth writes on for the clear
-        device.apply(clear_state);
-        device.clear(glm::vec4(0.0f), true);
+        device.clear(glm::vec4(0.0f), true);  // (clear() turns depth writes on itself)
         gpu::PipelineState state;
         state.cull = gpu::Cull::None;
         state.offset_factor = 1.5f;
