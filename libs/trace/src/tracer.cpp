@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -133,6 +134,8 @@ private:
 // One primitive instance in world space.
 struct Geometry {
     const Material* material = nullptr;
+    int material_index = -1;  // the scene's material (-1: the default material)
+    int node = -1;            // the scene node it is an instance of
     const TextureSource* textures = nullptr;
     std::vector<glm::vec3> positions, normals, bitangents;
     std::vector<glm::vec4> tangents;  // xyz world, w the handedness (mirrors included)
@@ -341,6 +344,8 @@ TraceScene::TraceScene(const Scene& scene, const std::vector<NodeInstance>& inst
             g->material = prim.material >= 0 && prim.material < int(im.materials.size())
                               ? &im.materials[std::size_t(prim.material)]
                               : &kDefaultMaterial;
+            g->material_index = prim.material >= 0 && prim.material < int(im.materials.size()) ? prim.material : -1;
+            g->node = inst.node;
             g->textures = im.textures.get();
             g->mirrored = det < 0.0f;
             const std::size_t n = prim.positions.size();
@@ -730,6 +735,73 @@ ImageF to_output(const ImageF& radiance, const RenderSettings& s) {
         o[2] = c.z;
         o[3] = alpha;
     }
+    return out;
+}
+
+SurfaceImages trace_surfaces(const TraceScene& tscene, const CameraSetup& camera, int width, int height,
+                             unsigned threads) {
+    if (width < 1 || height < 1) throw Error("trace", "", "empty image size");
+    const TraceScene::Impl& scene = tscene.impl();
+    const glm::mat4 inv_vp = glm::inverse(camera.projection * camera.view);
+    auto unproject = [&](glm::vec2 ndc, float z) {
+        glm::vec4 p = inv_vp * glm::vec4(ndc, z, 1.0f);
+        return glm::vec3(p) / p.w;
+    };
+    // The view axis (depth is measured along it, as a depth buffer's linear depth).
+    const glm::vec3 forward = -glm::vec3(glm::inverse(camera.view)[2]);
+    SurfaceImages out;
+    out.width = width;
+    out.height = height;
+    const std::size_t n = std::size_t(width) * std::size_t(height);
+    out.depth.assign(n, std::numeric_limits<float>::infinity());
+    out.position.assign(n * 3, 0.0f);
+    out.normal.assign(n * 3, 0.0f);
+    out.geometric_normal.assign(n * 3, 0.0f);
+    out.uv.assign(n * 2, 0.0f);
+    out.material.assign(n, -1);
+    out.node.assign(n, -1);
+    parallel_for(
+        std::size_t(height),
+        [&](std::size_t row) {
+            const int y = int(row);
+            for (int x = 0; x < width; ++x) {
+                // The pixel's centre, as the rasteriser samples it.
+                glm::vec2 ndc((float(x) + 0.5f) / float(width) * 2.0f - 1.0f, 1.0f - (float(y) + 0.5f) / float(height) * 2.0f);
+                glm::vec3 o = unproject(ndc, -1.0f), d = glm::normalize(unproject(ndc, 1.0f) - o);
+                Hit hit = scene.intersect(o, d, std::numeric_limits<float>::infinity(), 0, true);
+                if (!hit.valid()) continue;
+                const Geometry& g = *scene.geometries[hit.geom];
+                const std::uint32_t* tri = &g.indices[std::size_t(hit.prim) * 3];
+                const float u = hit.u, v = hit.v, w0 = 1.0f - u - v;
+                glm::vec3 p = w0 * g.positions[tri[0]] + u * g.positions[tri[1]] + v * g.positions[tri[2]];
+                glm::vec3 ng = glm::normalize(g.mirrored ? -hit.ng : hit.ng);
+                glm::vec3 ns = ng;
+                if (!g.normals.empty()) {
+                    ns = w0 * g.normals[tri[0]] + u * g.normals[tri[1]] + v * g.normals[tri[2]];
+                    float len = glm::length(ns);
+                    ns = len > 0 ? ns / len : ng;
+                }
+                if (glm::dot(ng, d) > 0.0f) {  // a back face (double-sided): the flipped frame, as shading sees it
+                    ng = -ng;
+                    ns = -ns;
+                }
+                const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
+                out.depth[i] = glm::dot(p - camera.eye, forward);
+                for (int c = 0; c < 3; ++c) {
+                    out.position[i * 3 + std::size_t(c)] = p[c];
+                    out.normal[i * 3 + std::size_t(c)] = ns[c];
+                    out.geometric_normal[i * 3 + std::size_t(c)] = ng[c];
+                }
+                if (!g.uv0.empty()) {
+                    glm::vec2 uv = w0 * g.uv0[tri[0]] + u * g.uv0[tri[1]] + v * g.uv0[tri[2]];
+                    out.uv[i * 2] = uv.x;
+                    out.uv[i * 2 + 1] = uv.y;
+                }
+                out.material[i] = g.material_index;
+                out.node[i] = g.node;
+            }
+        },
+        threads);
     return out;
 }
 

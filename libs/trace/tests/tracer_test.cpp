@@ -473,3 +473,46 @@ TEST(Tracer, TransmissionAndVolumeAttenuation) {
     ASSERT_GT(a.n, 300u);
     EXPECT_NEAR(a.mean, 0.5, 0.05) << "standard error " << a.err;
 }
+
+// trace_surfaces against a sphere whose answer is known: at the image centre the ray meets the
+// sphere's nearest point, at distance D - r along the view axis, normal towards the camera;
+// corners see nothing; ids name the material and the node; the depth grows off-centre as the
+// sphere curves away, and every hit lies on the sphere.
+TEST(TraceSurfaces, SphereDepthNormalsAndIds) {
+    Scene s = spheres(lambert(0.5f), {glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), glm::vec4(0.0f, 0.0f, -40.0f, 1.0f)});
+    auto instances = flatten(s);
+    TraceScene tscene(s, instances);
+    Bounds box;
+    box.min = glm::vec3(-1.0f);
+    box.max = glm::vec3(1.0f);
+    box.empty = false;
+    CameraSetup cam = look_at_camera(box, glm::vec3(0.0f, 0.0f, 5.0f),
+                                     glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f), 30.0f, 65, 49);
+    SurfaceImages g = trace_surfaces(tscene, cam, 65, 49, 1);
+    ASSERT_EQ(g.width, 65);
+    ASSERT_EQ(g.depth.size(), std::size_t(65 * 49));
+    const std::size_t c = std::size_t(24) * 65 + 32;  // the centre pixel
+    EXPECT_NEAR(g.depth[c], 4.0f, 2e-3f);  // a 96x48 sphere is within 1e-3 of the true one there
+    EXPECT_NEAR(g.normal[c * 3 + 2], 1.0f, 1e-3f);
+    EXPECT_NEAR(g.geometric_normal[c * 3 + 2], 1.0f, 1e-2f);
+    EXPECT_NEAR(g.position[c * 3 + 2], 1.0f, 2e-3f);
+    EXPECT_EQ(g.material[c], 0);
+    EXPECT_EQ(g.node[c], 0);  // the near sphere, not the one behind it
+    EXPECT_TRUE(std::isinf(g.depth[0]));
+    EXPECT_EQ(g.material[0], -1);
+    EXPECT_EQ(g.node[0], -1);
+    int hits = 0;
+    for (std::size_t i = 0; i < g.depth.size(); ++i) {
+        if (!std::isfinite(g.depth[i])) continue;
+        ++hits;
+        glm::vec3 p(g.position[i * 3], g.position[i * 3 + 1], g.position[i * 3 + 2]);
+        EXPECT_NEAR(glm::length(p), 1.0f, 5e-3f);
+        EXPECT_GE(g.depth[i], g.depth[c] - 1e-4f);
+        EXPECT_NEAR(g.depth[i], 5.0f - p.z, 1e-4f);  // depth is along the view axis
+    }
+    EXPECT_GT(hits, 100);
+    // The same on two threads.
+    SurfaceImages g2 = trace_surfaces(tscene, cam, 65, 49, 2);
+    EXPECT_EQ(g2.depth, g.depth);
+    EXPECT_EQ(g2.node, g.node);
+}

@@ -94,6 +94,25 @@ ImageF trace_image(const TraceScene& scene, const CameraSetup& camera, const std
                    const EnvironmentLight* environment, const TraceSettings& settings, TraceStats* stats = nullptr,
                    const TraceProgress& progress = {});
 
+// What the camera sees at each pixel's centre, from one ray per pixel (no shading): the
+// geometry a training pipeline or a compositor wants beside the image, exact (float32, no
+// multisampling blend at edges). Rows top to bottom, row-major; a pixel with no surface has
+// depth +infinity, zero vectors and material/node -1. The surfaces rays see are the tracer's:
+// single-sided back faces and MASK texels below the cutoff are not hit; BLEND surfaces are
+// hit with probability alpha (seed 0).
+struct SurfaceImages {
+    int width = 0, height = 0;
+    std::vector<float> depth;             // distance from the eye along the view axis (linear depth)
+    std::vector<float> position;          // world position, 3 per pixel
+    std::vector<float> normal;            // shading normal (interpolated, facing the camera), 3 per pixel
+    std::vector<float> geometric_normal;  // the triangle's normal (facing the camera), 3 per pixel
+    std::vector<float> uv;                // TEXCOORD_0 (0,0 without), 2 per pixel
+    std::vector<int> material;            // the scene's material index (-1: none or the default material)
+    std::vector<int> node;                // the scene node whose mesh it is (-1: none)
+};
+SurfaceImages trace_surfaces(const TraceScene& scene, const CameraSetup& camera, int width, int height,
+                             unsigned threads = 0);
+
 // The traced radiance as `fresnel render` would write it with `settings` (exposure, tone
 // mapper, encoding, background colour or transparency, premultiplied or straight alpha):
 // display-encoded values in [0,1] when settings.encoding is set, else linear.
