@@ -22,6 +22,7 @@
 #include "fresnel/material/evaluate.h"
 #include "fresnel/ibl/precompute.h"
 #include "fresnel/material/bsdf.h"
+#include "fresnel/scene/scene_textures.h"
 
 namespace fresnel::trace {
 
@@ -84,52 +85,11 @@ glm::vec3 offset_ray(glm::vec3 p, glm::vec3 n) {
     return out;
 }
 
-// ---------------------------------------------------------------------------
-// Textures: every (texture, colour space) a material reads, decoded once with its mip
-// chain. Camera rays read level 0 (the pixel's samples integrate its footprint, as Cycles
-// does); later bounces read level kSecondaryLod, a footprint that a diffuse or glossy bounce
-// far exceeds anyway, and one that stays in the caches (incoherent reads of five 2048^2
-// maps were a quarter of the time).
-
-class SceneTextures final : public TextureSource {
-public:
-    SceneTextures(const Scene& scene) : scene_(scene) {
-        std::vector<std::pair<int, bool>> wanted;
-        for (const Material& m : scene.materials)
-            for (int i = 0; i < kMaterialMapCount; ++i) {
-                auto map = MaterialMap(i);
-                const TextureSlot* slot = material_map(m, map);
-                if (!slot || !slot->valid()) continue;
-                wanted.emplace_back(slot->texture, material_map_info(map).srgb);
-            }
-        std::sort(wanted.begin(), wanted.end());
-        wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
-        textures_.resize(scene.textures.size() * 2);
-        parallel_for(wanted.size(), [&](std::size_t k) {
-            auto [t, srgb] = wanted[k];
-            if (t < 0 || t >= int(scene.textures.size())) return;
-            const Texture& tex = scene.textures[std::size_t(t)];
-            if (tex.image < 0 || tex.image >= int(scene.images.size()) || !scene.images[std::size_t(tex.image)].valid())
-                return;
-            TextureSampler s;
-            s.mag_filter = tex.sampler.mag_filter;
-            s.min_filter = tex.sampler.min_filter;
-            s.mip_filter = MipFilter::Linear;
-            s.wrap_s = tex.sampler.wrap_s;
-            s.wrap_t = tex.sampler.wrap_t;
-            textures_[std::size_t(t) * 2 + (srgb ? 1 : 0)] =
-                std::make_unique<SampledTexture>(scene.images[std::size_t(tex.image)].pixels, s, srgb);
-        });
-    }
-    const SampledTexture* get(int texture, bool srgb) const override {
-        std::size_t i = std::size_t(texture) * 2 + (srgb ? 1 : 0);
-        return texture >= 0 && i < textures_.size() ? textures_[i].get() : nullptr;
-    }
-
-private:
-    const Scene& scene_;
-    std::vector<std::unique_ptr<SampledTexture>> textures_;
-};
+// Textures (fresnel::SceneTextures): every (texture, colour space) a material reads, decoded
+// once with its mip chain. Camera rays read level 0 (the pixel's samples integrate its
+// footprint, as Cycles does); later bounces read level kSecondaryLod, a footprint that a
+// diffuse or glossy bounce far exceeds anyway, and one that stays in the caches (incoherent
+// reads of five 2048^2 maps were a quarter of the time).
 
 // One primitive instance in world space.
 struct Geometry {
