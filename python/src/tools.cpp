@@ -253,7 +253,7 @@ py::dict compare(py::handle test, py::handle reference, const py::object& mask, 
     const std::size_t pixels = mask_count(m, std::size_t(t.width) * std::size_t(t.height));
     d["pixels"] = pixels;
     if (pixels == 0) {
-        d["psnr"] = 99.0;
+        d["psnr_db"] = 99.0;
         d["ssim"] = 1.0;
         d["flip"] = 0.0;
         d["mv_rms_db"] = -99.0;
@@ -267,7 +267,7 @@ py::dict compare(py::handle test, py::handle reference, const py::object& mask, 
     double hdr = NAN;
     if (t_lin && r_lin) hdr = masked_mean(flip_hdr(r, t, flip_exposures(r), ppd), m);
     py::gil_scoped_acquire gil;
-    d["psnr"] = finite_or(psnr, 99.0);
+    d["psnr_db"] = finite_or(psnr, 99.0);
     d["ssim"] = s;
     d["flip"] = flip;
     d["mv_rms_db"] = finite_or(mv, 99.0);
@@ -288,7 +288,7 @@ py::dict residual_dict(const fit::Residual& r) {
     py::dict d;
     d["rms"] = r.rms;
     d["max"] = r.max;
-    d["psnr"] = r.psnr_db;
+    d["psnr_db"] = r.psnr_db;
     return d;
 }
 
@@ -404,14 +404,14 @@ void bind_tools(py::module_& m) {
           "anisotropy, iridescence, transmission, diffuse_transmission, diffuse_roughness ... uv0: (N, 2).");
     m.def("compare", &compare, py::arg("test"), py::arg("reference"), py::arg("mask") = py::none(), py::arg("linear") = false,
           py::arg("ppd") = flip_default_pixels_per_degree(),
-          "compare(test, reference, mask=None, linear=False, ppd=67.0) -> dict: psnr (dB), ssim, flip (LDR-FLIP mean),\n"
+          "compare(test, reference, mask=None, linear=False, ppd=67.0) -> dict: psnr_db, ssim, flip (LDR-FLIP mean),\n"
           "mv_rms_db, pixels; hdr_flip when both are linear. Images are arrays (uint8 0..255, or floats: display\n"
           "values in [0, 1], linear with linear=True) or file names (EXR/HDR read as linear). mask: 'auto' (pixels\n"
           "either image covers), a mask image, or None (every pixel). `fresnel compare`'s metrics.");
     m.def("fit", &fit_material, py::kw_only(), py::arg("kd") = py::none(), py::arg("ks") = py::none(),
           py::arg("ns") = py::none(), py::arg("base_color") = py::none(), py::arg("metallic") = py::none(),
-          py::arg("roughness") = py::none(), py::arg("match") = "opengl1",
-          "fit(kd=, ks=, ns=, match='opengl1') -> {'pbr': {...}, 'residual': {...}}: a Phong (MTL) material as\n"
+          py::arg("roughness") = py::none(), py::arg("match") = "albedo",
+          "fit(kd=, ks=, ns=, match='albedo') -> {'pbr': {...}, 'residual': {...}}: a Phong (MTL) material as\n"
           "metallic-roughness; fit(base_color=, metallic=, roughness=) -> {'phong': {...}, 'residual': ...}: the other\n"
           "way. `fresnel fit`'s fits.");
     m.def("save", &save_image, py::arg("path"), py::arg("image"),
