@@ -10,7 +10,7 @@ CMAKE_GEN   := $(shell command -v ninja >/dev/null 2>&1 && echo "-G Ninja")
 
 WEB_BUILD   ?= build-web
 
-.PHONY: all deps configure build demo test test-fast asan fuzz bench fidelity-report clean web web-deps web-bench
+.PHONY: all deps configure build demo test test-fast asan fuzz bench fidelity-report clean web web-deps web-bench python
 
 all: build
 
@@ -26,6 +26,11 @@ configure: $(BUILD)/CMakeCache.txt
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
+
+# The Python module alone, into $(BUILD)/python (docs/python.md):
+#   PYTHONPATH=$(BUILD)/python python3 -c 'import fresnel'
+python: deps configure
+	cmake --build $(BUILD) -j $(JOBS) --target fresnel_python
 
 demo: deps
 	@$(MAKE) --no-print-directory build

@@ -153,6 +153,11 @@ if os.path.exists(os.path.join(ogl1, "render")):
     runs.append(("ogl1-ref render", [python, os.path.join(ogl1, "render"), os.path.join(scenes, "spheres.obj"),
                                      "-o", f"{scratch}/d.png", "--size", "32x32"]))
 runs.append(("Python with NumPy and Pillow", [python, "-c", "import numpy, PIL.Image, PIL.PngImagePlugin"]))
+# The Python module (python/): its frame, and the pytest that runs its tests.
+if os.path.isdir(os.path.join(build, "python", "fresnel")):
+    runs.append(("the Python module", [python, "-c",
+                 f"import sys; sys.path.insert(0, {os.path.join(build, 'python')!r}); import pytest, fresnel; "
+                 "fresnel.render(fresnel.load(), size=(32, 24))"]))
 
 display_proc = None
 display_pipe = None
