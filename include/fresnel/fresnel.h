@@ -31,6 +31,7 @@
 #include "fresnel/scene/procedural.h"
 #include "fresnel/scene/scene_writer.h"
 #include "fresnel/scene/scene.h"
+#include "fresnel/scene/scene_textures.h"
 #include "fresnel/scene/tangents.h"
 
 #include "fresnel/material/brdf.h"

@@ -61,6 +61,21 @@ if(NOT out STREQUAL "fresnel ${VERSION}\n")
   message(FATAL_ERROR "fresnel --version printed '${out}', expected 'fresnel ${VERSION}'")
 endif()
 
+# 2b. The Python package (when the build has it): installed into the prefix's site-packages, imported
+# from there alone, and rendering.
+if(EXISTS "${BUILD_DIR}/python/fresnel/__init__.py" AND DEFINED PYTHON)
+  set(site "${prefix}/lib/python3/dist-packages")
+  foreach(f fresnel/__init__.py fresnel/__init__.pyi fresnel/py.typed)
+    if(NOT EXISTS "${site}/${f}")
+      message(FATAL_ERROR "not installed: lib/python3/dist-packages/${f}")
+    endif()
+  endforeach()
+  run("importing the installed Python package" "${PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/check_python_package.py" "${site}")
+  if(NOT out STREQUAL "${VERSION} (12, 16, 3)\n")
+    message(FATAL_ERROR "the installed Python package printed '${out}'")
+  endif()
+endif()
+
 # 3. The consumer: configure against the prefix alone, build, run.
 run("configuring the consumer" ${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/install/consumer" -B "${WORK_DIR}/build"
     -G "${GENERATOR}" -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_BUILD_TYPE=${BUILD_TYPE} "-DCMAKE_PREFIX_PATH=${prefix}"
