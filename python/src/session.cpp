@@ -9,9 +9,11 @@
 #include <optional>
 
 #include "common.h"
+#include "fresnel/core/spelling.h"
 #include "fresnel/gpu/context.h"
 #include "fresnel/ibl/bake.h"
 #include "fresnel/job/scene_file.h"
+#include "fresnel/material/properties.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/scene/pose.h"
 #include "fresnel/scene/scene_textures.h"
@@ -38,7 +40,14 @@ const char* const kLoadSettings[] = {"variant", "poseSkins", "objNormals", "allo
 
 // The job a call renders: `job` (else the scene's own), the keywords applied, the scene's source.
 Job effective_job(const PyScene& s, const py::object& job, const py::kwargs& kwargs) {
-    Job j = job.is_none() ? s.job : job.cast<Job>();
+    Job j = s.job;
+    if (py::isinstance<py::dict>(job)) {
+        j = Job{};
+        set_settings(j, job);
+    } else if (!job.is_none()) {
+        if (!py::isinstance<Job>(job)) throw py::type_error("job: expected a fresnel.Job, a dict of settings or None");
+        j = job.cast<Job>();
+    }
     set_settings(j, kwargs);
     Job asked = j;
     j.source = s.job.source;
@@ -347,6 +356,52 @@ py::dict camera(const ScenePtr& scene, const py::object& job, const py::kwargs& 
     return d;
 }
 
+// A copy of the scene with material properties changed through the material property registry
+// (the names and checks of scene files' "materials" overrides and the viewer's editor).
+ScenePtr with_material(const PyScene& s, const py::object& material, const py::kwargs& properties) {
+    auto out = std::make_shared<PyScene>();
+    out->job = s.job;
+    out->name = s.name;
+    Scene copy = *s.scene;
+    std::vector<std::size_t> targets;
+    if (material.is_none()) {
+        for (std::size_t i = 0; i < copy.materials.size(); ++i) targets.push_back(i);
+    } else if (py::isinstance<py::str>(material)) {
+        const std::string name = material.cast<std::string>();
+        for (std::size_t i = 0; i < copy.materials.size(); ++i)
+            if (copy.materials[i].name == name) targets.push_back(i);
+        if (targets.empty()) throw Error(s.name, "material", "no material named '" + name + "'");
+    } else {
+        const int index = material.cast<int>();
+        if (index < 0 || std::size_t(index) >= copy.materials.size())
+            throw Error(s.name, "material", "no material " + std::to_string(index) + " (the scene has " +
+                                                std::to_string(copy.materials.size()) + ")");
+        targets.push_back(std::size_t(index));
+    }
+    for (auto [key, value] : properties) {
+        const std::string name = py::str(key).cast<std::string>();
+        if (!material_properties::find(name)) {
+            std::vector<std::string> names;
+            for (const auto& p : material_properties::all()) names.emplace_back(p.name);
+            throw py::type_error("unknown material property '" + name + "'" + did_you_mean(name, names) +
+                                 "; `fresnel settings --materials` lists them");
+        }
+        std::string text;
+        if (py::isinstance<py::str>(value)) text = value.cast<std::string>();
+        else if (py::isinstance<py::bool_>(value)) text = value.cast<bool>() ? "true" : "false";
+        else if (PySequence_Check(value.ptr())) {
+            py::sequence seq = py::reinterpret_borrow<py::sequence>(value);
+            for (std::size_t i = 0; i < seq.size(); ++i)
+                text += (i ? "," : "") + py::repr(py::float_(py::reinterpret_borrow<py::object>(seq[i]))).cast<std::string>();
+        } else {
+            text = py::repr(py::float_(py::reinterpret_borrow<py::object>(value))).cast<std::string>();
+        }
+        for (std::size_t i : targets) material_properties::set(copy.materials[i], name, text, name);
+    }
+    out->scene = std::make_shared<const Scene>(std::move(copy));
+    return out;
+}
+
 }  // namespace
 
 const Scene& scene_of(py::handle scene) { return *scene.cast<ScenePtr>()->scene; }
@@ -412,6 +467,11 @@ void bind_session(py::module_& m) {
             py::arg("time"), py::arg("animation") = -1,
             "The scene posed at `time` seconds of its animations (all, or animation K): a new Scene,\n"
             "skins and morph targets applied on the CPU (the reference posing).")
+        .def("with_material", &with_material, py::arg("material") = py::none(),
+             "with_material(material=None, **properties) -> Scene: a copy with material properties changed, by their\n"
+             "glTF names (roughnessFactor=0.3, baseColorFactor=(1, 0, 0, 1), clearcoatFactor=1, ...; `fresnel settings\n"
+             "--materials` lists them), checked as scene files' overrides are; `material`: an index, a name, or None\n"
+             "(every material). A missing extension is added with its defaults.")
         .def(
             "camera", &camera, py::arg("job") = py::none(),
             "The camera a job sees the scene with: view and projection (4x4, OpenGL conventions), eye, target,\n"

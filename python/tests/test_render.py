@@ -52,6 +52,9 @@ def test_scene_files_keep_their_settings(exe, tmp_path):
     # A job given replaces the file's settings; keywords apply on top of either.
     assert fresnel.render(scene, fresnel.Job(size=(32, 24))).shape == (24, 32, 3)
     assert fresnel.render(scene, size=(48, 32)).shape == (32, 48, 3)
+    assert fresnel.render(scene, {"render.size": (40, 30)}).shape == (30, 40, 3)
+    with pytest.raises(TypeError, match="job"):
+        fresnel.render(scene, 42)
 
 
 def test_channels(demo):
@@ -142,3 +145,23 @@ def test_scene_properties(helmet):
     cam = scene.camera(size=(200, 100))
     assert cam["view"].shape == (4, 4) and cam["width"] == 200 and cam["near"] < cam["far"]
     assert "DamagedHelmet" in repr(scene)
+
+
+def test_with_material_and_pose(helmet, shared):
+    scene = fresnel.load(helmet)
+    red = scene.with_material("Material_MR", baseColorFactor=(1, 0, 0, 1), roughnessFactor=0.2, clearcoatFactor=1)
+    m = fresnel.evaluate(red, 0, [[0.5, 0.5]])
+    assert m["clearcoat"][0] == 1.0
+    assert fresnel.evaluate(scene, 0, [[0.5, 0.5]])["clearcoat"][0] == 0.0  # the original is untouched
+    a, b = fresnel.render(scene, size=(64, 64)), fresnel.render(red, size=(64, 64))
+    assert (b[..., 0].astype(int) - b[..., 1]).mean() > (a[..., 0].astype(int) - a[..., 1]).mean() + 5
+    with pytest.raises(TypeError, match="did you mean 'roughnessFactor'"):
+        scene.with_material(roughnesFactor=0.5)
+    with pytest.raises(fresnel.Error, match="roughnessFactor"):
+        scene.with_material(roughnessFactor=2.0)
+    with pytest.raises(fresnel.Error, match="no material"):
+        scene.with_material(5, roughnessFactor=0.5)
+    man = fresnel.load(shared / "assets" / "models" / "CesiumMan" / "CesiumMan.glb")
+    assert len(man.animations) == 1
+    posed = man.pose(0.5)
+    assert not np.array_equal(fresnel.render(man, size=(48, 48)), fresnel.render(posed, size=(48, 48)))
