@@ -14,7 +14,7 @@
 #include "fresnel/ibl/bake.h"
 #include "fresnel/ibl/environment.h"
 #include "fresnel/job/job.h"
-#include "fresnel/trace/environment_light.h"
+#include "fresnel/trace/job_inputs.h"
 #include "fresnel/trace/tracer.h"
 #include "job_options.h"
 #include "progress.h"
@@ -59,14 +59,7 @@ int run_trace(const TraceOptions& o, const CLI::App* cmd) {
     const RenderSettings& rs = resolved.settings;
 
     auto t_env = Clock::now();
-    std::optional<trace::EnvironmentLight> environment;
-    if (resolved.environment) {
-        const ibl::EnvironmentSource& src = *resolved.environment;
-        if (src.kind == ibl::EnvironmentSource::Kind::File && ibl::is_baked_dir(src.path))
-            throw Error(src.path.string(), "--env",
-                        "a baked folder holds no panorama; trace needs the .hdr/.exr it was baked from");
-        environment.emplace(ibl::load_panorama(src), rs.env_rotation_deg, rs.env_intensity);
-    }
+    trace::JobInputs inputs = trace::load_job_inputs(resolved);  // the environment, the BRDF table
     double env_ms = ms_since(t_env);
 
     auto t_build = Clock::now();
@@ -74,31 +67,20 @@ int run_trace(const TraceOptions& o, const CLI::App* cmd) {
     double build_ms = ms_since(t_build);
 
     trace::TraceSettings ts;
-    ts.width = rs.width;
-    ts.height = rs.height;
     ts.samples = o.spp;
     ts.max_bounces = o.max_bounces;
     ts.time_limit_s = o.time_limit;
     ts.seed = o.seed;
     ts.threads = o.threads;
     ts.env_visibility = !o.no_env_visibility;
-    ts.brdf = rs.brdf;
-    // The rasteriser's energy model: its BRDF table (cached as render caches it).
-    ImageF lut;
-    if (rs.energy_compensation) {
-        lut = ibl::load_or_bake_lut(resolved.bake_options, resolved.use_cache);
-        ts.brdf_lut = &lut;
-    }
-    // env and blur backgrounds both show the environment (sharp: the tracer has no blurred copy).
-    ts.env_background = rs.background_mode != RenderSettings::Background::Color;
-
+    ts = inputs.settings(resolved, ts);
     ts.stop = &interrupt.requested();
 
     trace::TraceStats stats;
     ImageF radiance;
     {
         ProgressBar bar("tracing", true);
-        radiance = trace::trace_image(tscene, resolved.camera, resolved.lights, environment ? &*environment : nullptr, ts,
+        radiance = trace::trace_image(tscene, resolved.camera, resolved.lights, inputs.light(), ts,
                                       &stats, [&](double f) { bar.update(f); });
     }
     ImageF image = trace::to_output(radiance, rs);

@@ -17,7 +17,7 @@
 #include "fresnel/render/renderer.h"
 #include "fresnel/scene/pose.h"
 #include "fresnel/scene/scene_textures.h"
-#include "fresnel/trace/environment_light.h"
+#include "fresnel/trace/job_inputs.h"
 #include "fresnel/trace/tracer.h"
 
 namespace fresnel::python {
@@ -271,36 +271,20 @@ py::object trace_image(const ScenePtr& scene, const py::object& job, int spp, in
     {
         py::gil_scoped_release release;
         ResolvedJob r = resolve(j, *scene->scene, &diag);
-        const RenderSettings& rs = r.settings;
-        std::optional<trace::EnvironmentLight> environment;
-        if (r.environment) {
-            const ibl::EnvironmentSource& src = *r.environment;
-            if (src.kind == ibl::EnvironmentSource::Kind::File && ibl::is_baked_dir(src.path))
-                throw Error(src.path.string(), "environment",
-                            "a baked folder holds no panorama; trace needs the .hdr/.exr it was baked from");
-            environment.emplace(ibl::load_panorama(src), rs.env_rotation_deg, rs.env_intensity);
-        }
+        trace::JobInputs inputs = trace::load_job_inputs(r);
         const trace::TraceScene& ts_scene = trace_scene(*scene, r);
         trace::TraceSettings ts;
-        ts.width = rs.width;
-        ts.height = rs.height;
         ts.samples = spp;
         ts.max_bounces = max_bounces;
         ts.time_limit_s = time_limit;
         ts.seed = seed;
         ts.threads = threads;
         ts.env_visibility = env_visibility;
-        ts.brdf = rs.brdf;
-        ImageF lut;
-        if (rs.energy_compensation) {
-            lut = ibl::load_or_bake_lut(r.bake_options, r.use_cache);
-            ts.brdf_lut = &lut;
-        }
-        ts.env_background = rs.background_mode != RenderSettings::Background::Color;
+        ts = inputs.settings(r, ts);
         ts.stop = &bridge.stop;
-        ImageF traced = trace::trace_image(ts_scene, r.camera, r.lights, environment ? &*environment : nullptr, ts, nullptr,
+        ImageF traced = trace::trace_image(ts_scene, r.camera, r.lights, inputs.light(), ts, nullptr,
                                            [&](double f) { bridge(f); });
-        out = radiance ? std::move(traced) : trace::to_output(traced, rs);
+        out = radiance ? std::move(traced) : trace::to_output(traced, r.settings);
         transparent = r.transparent();
     }
     bridge.rethrow();

@@ -547,6 +547,21 @@ struct Integrator {
     }
 };
 
+// Camera rays through points of the image (NDC), from the near plane; the direction through the
+// mid-depth point (better conditioned than the far plane's, which a far/near of 1000 puts far out).
+struct CameraRays {
+    glm::mat4 inv_vp;
+    explicit CameraRays(const CameraSetup& camera) : inv_vp(glm::inverse(camera.projection * camera.view)) {}
+    glm::vec3 unproject(glm::vec2 ndc, float z) const {
+        glm::vec4 p = inv_vp * glm::vec4(ndc, z, 1.0f);
+        return glm::vec3(p) / p.w;
+    }
+    void ray(glm::vec2 ndc, glm::vec3& origin, glm::vec3& direction) const {
+        origin = unproject(ndc, -1.0f);
+        direction = glm::normalize(unproject(ndc, 0.0f) - origin);
+    }
+};
+
 }  // namespace
 
 ImageF trace_image(const TraceScene& tscene, const CameraSetup& camera, const std::vector<LightInstance>& lights,
@@ -556,11 +571,7 @@ ImageF trace_image(const TraceScene& tscene, const CameraSetup& camera, const st
     const int W = settings.width, H = settings.height;
     if (W < 1 || H < 1) throw Error("trace", "", "empty image size");
     const TraceScene::Impl& scene = tscene.impl();
-    const glm::mat4 inv_vp = glm::inverse(camera.projection * camera.view);
-    auto unproject = [&](glm::vec2 ndc, float z) {
-        glm::vec4 p = inv_vp * glm::vec4(ndc, z, 1.0f);
-        return glm::vec3(p) / p.w;
-    };
+    const CameraRays rays_of(camera);
 
     std::vector<float> sum(std::size_t(W) * H * 4, 0.0f);  // RGB radiance, coverage
     constexpr int kTile = 32;
@@ -620,9 +631,7 @@ ImageF trace_image(const TraceScene& tscene, const CameraSetup& camera, const st
                             ln.rng = Rng(splitmix64(splitmix64(settings.seed ^ splitmix64(pixel)) + std::uint64_t(s)), 0);
                             glm::vec2 j = ln.rng.uniform2();
                             glm::vec2 ndc(2.0f * (float(x) + j.x) / float(W) - 1.0f, 1.0f - 2.0f * (float(y) + j.y) / float(H));
-                            glm::vec3 near_p = unproject(ndc, -1.0f), mid_p = unproject(ndc, 0.0f);
-                            ln.o = near_p;
-                            ln.d = glm::normalize(mid_p - near_p);
+                            rays_of.ray(ndc, ln.o, ln.d);
                             org[n] = ln.o;
                             dirs[n] = ln.d;
                             seeds[n] = splitmix64(ln.rng.next());
@@ -702,11 +711,7 @@ SurfaceImages trace_surfaces(const TraceScene& tscene, const CameraSetup& camera
                              unsigned threads) {
     if (width < 1 || height < 1) throw Error("trace", "", "empty image size");
     const TraceScene::Impl& scene = tscene.impl();
-    const glm::mat4 inv_vp = glm::inverse(camera.projection * camera.view);
-    auto unproject = [&](glm::vec2 ndc, float z) {
-        glm::vec4 p = inv_vp * glm::vec4(ndc, z, 1.0f);
-        return glm::vec3(p) / p.w;
-    };
+    const CameraRays rays_of(camera);
     // The view axis (depth is measured along it, as a depth buffer's linear depth).
     const glm::vec3 forward = -glm::vec3(glm::inverse(camera.view)[2]);
     SurfaceImages out;
@@ -727,7 +732,8 @@ SurfaceImages trace_surfaces(const TraceScene& tscene, const CameraSetup& camera
             for (int x = 0; x < width; ++x) {
                 // The pixel's centre, as the rasteriser samples it.
                 glm::vec2 ndc((float(x) + 0.5f) / float(width) * 2.0f - 1.0f, 1.0f - (float(y) + 0.5f) / float(height) * 2.0f);
-                glm::vec3 o = unproject(ndc, -1.0f), d = glm::normalize(unproject(ndc, 1.0f) - o);
+                glm::vec3 o, d;
+                rays_of.ray(ndc, o, d);
                 Hit hit = scene.intersect(o, d, std::numeric_limits<float>::infinity(), 0, true);
                 if (!hit.valid()) continue;
                 const Geometry& g = *scene.geometries[hit.geom];

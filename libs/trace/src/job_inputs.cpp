@@ -1,0 +1,32 @@
+#include "fresnel/trace/job_inputs.h"
+
+#include "fresnel/ibl/bake.h"
+#include "fresnel/ibl/environment.h"
+
+namespace fresnel::trace {
+
+TraceSettings JobInputs::settings(const ResolvedJob& job, TraceSettings base) const {
+    const RenderSettings& rs = job.settings;
+    base.width = rs.width;
+    base.height = rs.height;
+    base.brdf = rs.brdf;
+    base.brdf_lut = brdf_lut.pixels.empty() ? nullptr : &brdf_lut;
+    base.env_background = rs.background_mode != RenderSettings::Background::Color;
+    return base;
+}
+
+JobInputs load_job_inputs(const ResolvedJob& job) {
+    JobInputs in;
+    const RenderSettings& rs = job.settings;
+    if (job.environment) {
+        const ibl::EnvironmentSource& src = *job.environment;
+        if (src.kind == ibl::EnvironmentSource::Kind::File && ibl::is_baked_dir(src.path))
+            throw Error(src.path.string(), "--env",
+                        "a baked folder holds no panorama; trace needs the .hdr/.exr it was baked from");
+        in.environment.emplace(ibl::load_panorama(src), rs.env_rotation_deg, rs.env_intensity);
+    }
+    if (rs.energy_compensation) in.brdf_lut = ibl::load_or_bake_lut(job.bake_options, job.use_cache);
+    return in;
+}
+
+}  // namespace fresnel::trace
