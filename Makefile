@@ -44,6 +44,8 @@ test: deps
 	@$(MAKE) --no-print-directory build
 	@$(MAKE) --no-print-directory web
 	@scripts/install-test-tools.sh $(BUILD)/node-tools
+	@# Configure again: node and the tools installed since the first configure register their tests.
+	@cmake $(BUILD) > /dev/null
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	@$(MAKE) --no-print-directory asan
 

@@ -16,6 +16,16 @@ done
 # at the top level, which has no JSON Schema 2020-12 (ajv/dist/2020): ask for ajv 8 again then.
 if [[ -d $dir/node_modules/ajv && ! -f $dir/node_modules/ajv/dist/2020.js ]]; then missing+=(ajv@8); fi
 [[ ${#missing[@]} -eq 0 ]] && exit 0
+# A fresh Debian has node (web-packages.txt) but not npm: Debian's npm then (best effort; not in
+# a package list, because a node from elsewhere, such as NodeSource's, brings its own npm and
+# conflicts with Debian's).
+if ! command -v npm >/dev/null 2>&1 && command -v apt-get >/dev/null 2>&1; then
+  SUDO=""
+  if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+  echo "install-test-tools: installing Debian's npm"
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends npm >/dev/null 2>&1 ||
+    echo "install-test-tools: apt-get install npm failed"
+fi
 if ! command -v npm >/dev/null 2>&1; then
   echo "install-test-tools: npm not found; the KTX2 reader and docs format tests will skip"
   exit 0
