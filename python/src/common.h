@@ -4,7 +4,10 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <atomic>
 #include <map>
+#include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,6 +56,41 @@ py::array_t<T> vector_array(std::vector<T>&& values, std::vector<py::ssize_t> sh
 // a file name (read as `fresnel compare` reads it). `is_float`: the values are linear
 // (an EXR/HDR file, or a float array the caller says is linear).
 ImageF image_from(py::handle image, const std::string& what, bool* from_float_file = nullptr);
+
+// A Python callable as a progress function called from worker threads: the GIL is taken for
+// the call; an exception it raises (or Ctrl+C) sets `stop` and is raised when the work returns.
+struct ProgressBridge {
+    py::object callback;
+    std::atomic<bool> stop{false};
+    std::mutex mutex;
+    std::optional<py::error_already_set> error;
+
+    void operator()(double fraction) {
+        if (stop) return;
+        py::gil_scoped_acquire gil;
+        try {
+            if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+            if (!callback.is_none()) callback(fraction);
+        } catch (py::error_already_set& e) {
+            std::lock_guard<std::mutex> lock(mutex);
+            if (!error) error.emplace(std::move(e));
+            stop = true;
+        }
+    }
+    void rethrow() {
+        if (error) {
+            py::error_already_set e = std::move(*error);
+            error.reset();
+            throw e;
+        }
+    }
+    ~ProgressBridge() {
+        if (error) {
+            py::gil_scoped_acquire gil;
+            error.reset();
+        }
+    }
+};
 
 void bind_job(py::module_& m);
 void bind_session(py::module_& m);

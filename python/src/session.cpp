@@ -90,41 +90,6 @@ const trace::TraceScene& trace_scene(PyScene& s, const ResolvedJob& r) {
     return *t;
 }
 
-// A Python callable as a progress function called from worker threads: the GIL is taken for
-// the call; an exception it raises (or Ctrl+C) sets `stop` and is raised when the work returns.
-struct ProgressBridge {
-    py::object callback;
-    std::atomic<bool> stop{false};
-    std::mutex mutex;
-    std::optional<py::error_already_set> error;
-
-    void operator()(double fraction) {
-        if (stop) return;
-        py::gil_scoped_acquire gil;
-        try {
-            if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-            if (!callback.is_none()) callback(fraction);
-        } catch (py::error_already_set& e) {
-            std::lock_guard<std::mutex> lock(mutex);
-            if (!error) error.emplace(std::move(e));
-            stop = true;
-        }
-    }
-    void rethrow() {
-        if (error) {
-            py::error_already_set e = std::move(*error);
-            error.reset();
-            throw e;
-        }
-    }
-    ~ProgressBridge() {
-        if (error) {
-            py::gil_scoped_acquire gil;
-            error.reset();
-        }
-    }
-};
-
 bool wants_float(const std::string& dtype) {
     if (dtype == "float32") return true;
     if (dtype == "uint8") return false;

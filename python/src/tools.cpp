@@ -57,22 +57,18 @@ py::dict bake(py::handle environment, const py::object& output, int size, int sa
             throw py::value_error("environment: an equirectangular panorama is twice as wide as it is high; got " +
                                   std::to_string(panorama.width) + "x" + std::to_string(panorama.height));
     }
-    std::atomic<bool> interrupted{false};
+    ProgressBridge bridge;  // a callback that raises is called no more; its exception is raised after the bake
+    bridge.callback = progress;
+    std::string dir;
+    if (!output.is_none()) dir = py::str(py::module_::import("os").attr("fspath")(output)).cast<std::string>();
     ibl::BakedIbl baked;
     {
         py::gil_scoped_release release;
-        baked = ibl::bake(panorama, options, [&](double f) {
-            py::gil_scoped_acquire gil;
-            if (!progress.is_none()) progress(f);
-        });
+        baked = ibl::bake(panorama, options, [&](double f) { bridge(f); });
         baked.source = source;
-        if (!output.is_none()) {
-            py::gil_scoped_acquire gil;
-            std::string dir = py::str(py::module_::import("os").attr("fspath")(output)).cast<std::string>();
-            py::gil_scoped_release again;
-            ibl::save_baked(baked, dir, options);
-        }
+        if (!dir.empty() && !bridge.stop) ibl::save_baked(baked, dir, options);
     }
+    bridge.rethrow();
     py::dict d;
     py::list specular;
     for (const ibl::CubeLevel& level : baked.specular.levels) specular.append(cube_array(level));

@@ -25,6 +25,13 @@ def test_bake_studio_and_an_array(tmp_path):
     # The baked folder is a job's environment.
     image = fresnel.render(fresnel.load(), size=(32, 24), env=str(tmp_path / "baked"))
     assert image.mean() > 10
+    # A progress callback that raises stops calling; its exception reaches the caller, nothing is written.
+    def fail(fraction):
+        raise RuntimeError("stop")
+
+    with pytest.raises(RuntimeError, match="stop"):
+        fresnel.bake("studio", tmp_path / "failed", size=8, samples=8, levels=2, progress=fail)
+    assert not (tmp_path / "failed").exists()
     with pytest.raises(ValueError, match="twice as wide"):
         fresnel.bake(np.zeros((10, 10, 3), np.float32))
     with pytest.raises(ValueError, match="power of two"):
