@@ -39,7 +39,7 @@ const std::vector<std::string>& supported_gltf_extensions() {
         "KHR_materials_pbrSpecularGlossiness", "KHR_materials_clearcoat", "KHR_materials_sheen",
         "EXT_meshopt_compression", "KHR_draco_mesh_compression", "EXT_texture_webp", "KHR_materials_variants",
         "KHR_animation_pointer", "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_dispersion",
-        "KHR_node_visibility", "KHR_materials_anisotropy", "KHR_materials_iridescence",
+        "KHR_node_visibility", "KHR_materials_anisotropy", "KHR_materials_iridescence", "EXT_mesh_gpu_instancing",
         "KHR_materials_diffuse_transmission", "KHR_materials_diffuse_roughness",
     };
     return list;
@@ -163,6 +163,7 @@ public:
         load_lights();
         load_nodes();
         load_scenes();
+        expand_gpu_instancing(accessors);
         load_skins(accessors);
         load_animations(accessors);
         pose_skins();
@@ -918,6 +919,91 @@ private:
         roots_parents_ = std::move(parents);
     }
     std::vector<int> roots_parents_;
+
+    // EXT_mesh_gpu_instancing: a node whose mesh is drawn once per instance, each at the node's
+    // world transform times the instance's TRANSLATION, ROTATION and SCALE. Each instance becomes a
+    // child node of its own holding the mesh (named "NODE #K"), and the node keeps no mesh, so that
+    // every consumer of the node graph (rasteriser, tracer, bounds, picking, writers) sees the
+    // instances with nothing of its own to learn; the node's lights, camera and children stay
+    // single. Accessors: TRANSLATION and SCALE VEC3 float, ROTATION VEC4 float or normalized
+    // byte/short, one count; attributes named "_..." are the application's and ignored.
+    void expand_gpu_instancing(const gltf::AccessorDecoder& accessors) {
+        static const char* kExt = "EXT_mesh_gpu_instancing";
+        const json& arr = r_.array(doc_, "nodes", "");
+        const std::size_t original = scene_.nodes.size();
+        for (std::size_t i = 0; i < original; ++i) {
+            const json& ext = r_.object(arr[i], "extensions", "/nodes/" + std::to_string(i));
+            const json* inst = r_.find(ext, kExt);
+            if (!inst) continue;
+            const std::string ptr = "/nodes/" + std::to_string(i) + "/extensions/" + kExt;
+            if (!inst->is_object()) r_.fail(ptr, "must be an object");
+            if (scene_.nodes[i].mesh < 0) {
+                warn(ptr, "the node has no mesh to instance; ignored");
+                continue;
+            }
+            if (scene_.nodes[i].skin >= 0) {
+                warn(ptr, "instancing a skinned mesh is not supported; the mesh is drawn once, at the node");
+                continue;
+            }
+            const json& attrs = r_.object(*inst, "attributes", ptr);
+            std::vector<double> t, r, sc;
+            std::size_t count = 0;
+            bool any = false;
+            for (auto it = attrs.begin(); it != attrs.end(); ++it) {
+                const std::string name = it.key(), ap = ptr + "/attributes/" + name;
+                if (!name.empty() && name[0] == '_') continue;  // application-specific
+                if (name != "TRANSLATION" && name != "ROTATION" && name != "SCALE") {
+                    warn(ap, "unknown instance attribute; ignored");
+                    continue;
+                }
+                int a = r_.index(attrs, name.c_str(), ptr + "/attributes", accessors.accessor_count(), "accessor", true);
+                int components = 0, type = 0;
+                bool normalized = false;
+                std::size_t n = 0;
+                accessors.describe(a, components, type, normalized, n);
+                const bool rotation = name == "ROTATION";
+                const bool float_type = type == gltf_code::kFloat;
+                const bool normalized_int = normalized && (type == gltf_code::kByte || type == gltf_code::kShort);
+                if (components != (rotation ? 4 : 3) || !(float_type || (rotation && normalized_int)))
+                    r_.fail(ap, std::string("must be ") + (rotation ? "VEC4 float or normalized byte/short" : "VEC3 float"));
+                if (any && n != count)
+                    r_.fail(ap, "accessor " + std::to_string(a) + " has " + std::to_string(n) + " elements, the others " +
+                                    std::to_string(count));
+                count = n;
+                any = true;
+                // The nodes the instances become, within the load's geometry budget.
+                check_geometry(n * (sizeof(Node) + 3 * sizeof(double) * 4), ap);
+                gltf::AccessorData d = accessors.read(a);
+                for (double v : d.values)
+                    if (!std::isfinite(v)) r_.fail(ap, "holds a value that is not finite");
+                (name == "TRANSLATION" ? t : rotation ? r : sc) = std::move(d.values);
+            }
+            if (!any) r_.fail(ptr + "/attributes", "names no TRANSLATION, ROTATION or SCALE accessor");
+            geometry_bytes_ += count * sizeof(Node);
+            const int mesh = scene_.nodes[i].mesh;
+            const std::vector<float> weights = scene_.nodes[i].weights;
+            const std::string base = scene_.nodes[i].name.empty() ? "node " + std::to_string(i) : scene_.nodes[i].name;
+            scene_.nodes[i].mesh = -1;
+            scene_.nodes.reserve(scene_.nodes.size() + count);
+            for (std::size_t k = 0; k < count; ++k) {
+                Node n;
+                n.name = base + " #" + std::to_string(k);
+                n.mesh = mesh;
+                n.weights = weights;
+                if (!t.empty()) n.translation = glm::vec3(float(t[k * 3]), float(t[k * 3 + 1]), float(t[k * 3 + 2]));
+                if (!r.empty()) {
+                    glm::quat q{float(r[k * 4 + 3]), float(r[k * 4]), float(r[k * 4 + 1]), float(r[k * 4 + 2])};
+                    float len = glm::length(q);
+                    n.rotation = len > 0 ? q / len : glm::quat(1, 0, 0, 0);
+                }
+                if (!sc.empty()) n.scale = glm::vec3(float(sc[k * 3]), float(sc[k * 3 + 1]), float(sc[k * 3 + 2]));
+                n.local = glm::translate(glm::mat4(1.0f), n.translation) * glm::mat4_cast(n.rotation) *
+                          glm::scale(glm::mat4(1.0f), n.scale);
+                scene_.nodes[i].children.push_back(int(scene_.nodes.size()));
+                scene_.nodes.push_back(std::move(n));
+            }
+        }
+    }
 
     // Skins into Scene::skins. Skins were read only to pose them (GltfLoadOptions::pose_skins):
     // without that option, a skin that cannot be read is dropped with a warning (its joints

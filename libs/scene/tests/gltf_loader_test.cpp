@@ -825,6 +825,62 @@ TEST(GltfNodes, KhrNodeVisibility) {
     EXPECT_EQ(load_error(doc.gltf()).where(), "/nodes/0/extensions/KHR_node_visibility/visible");
 }
 
+// EXT_mesh_gpu_instancing: each instance a child node holding the mesh at the node's world
+// transform times its TRS; the node itself keeps its light but no mesh; bad accessors are refused.
+TEST(GltfNodes, ExtMeshGpuInstancing) {
+    Doc doc;
+    int pos = doc.positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    doc.mesh({{"attributes", {{"POSITION", pos}}}});
+    doc.j["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+    doc.j["extensionsRequired"] = {"EXT_mesh_gpu_instancing"};
+    int t = doc.attribute(FLOAT, "VEC3", {0, 0, 0, 10, 0, 0, 0, 0, 5});
+    // 90 degrees about +Z for the second instance, as normalized shorts.
+    const double h = std::sqrt(0.5) * 32767.0;
+    int r = doc.attribute(SHORT, "VEC4", {0, 0, 0, 32767, 0, 0, h, h, 0, 0, 0, 32767}, true);
+    int sc = doc.attribute(FLOAT, "VEC3", {1, 1, 1, 1, 1, 1, 2, 2, 2});
+    int id = doc.attribute(FLOAT, "SCALAR", {7, 8, 9});
+    doc.j["nodes"][0]["translation"] = {0, 100, 0};
+    doc.j["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = {
+        {"TRANSLATION", t}, {"ROTATION", r}, {"SCALE", sc}, {"_ID", id}};
+    Diagnostics d;
+    Scene s = load(doc.gltf(), d);
+    EXPECT_EQ(d.total(), 0u) << all_warnings(d);
+    EXPECT_EQ(gltf_extension_support("EXT_mesh_gpu_instancing"), GltfExtensionSupport::Supported);
+    ASSERT_EQ(s.nodes.size(), 4u);
+    EXPECT_EQ(s.nodes[0].mesh, -1);
+    auto inst = flatten(s);
+    std::vector<glm::vec3> corner;  // where each instance puts the vertex (1, 0, 0)
+    for (const NodeInstance& i : inst)
+        if (s.nodes[std::size_t(i.node)].mesh == 0) corner.push_back(glm::vec3(i.world * glm::vec4(1, 0, 0, 1)));
+    ASSERT_EQ(corner.size(), 3u);
+    EXPECT_NEAR(glm::distance(corner[0], glm::vec3(1, 100, 0)), 0.0f, 1e-4f);
+    EXPECT_NEAR(glm::distance(corner[1], glm::vec3(10, 101, 0)), 0.0f, 1e-3f);  // rotated onto +Y
+    EXPECT_NEAR(glm::distance(corner[2], glm::vec3(2, 100, 5)), 0.0f, 1e-4f);   // scaled by 2
+    EXPECT_EQ(s.nodes[2].name, "node 0 #1");
+    Bounds b = scene_bounds(s, inst);
+    EXPECT_NEAR(b.max.x, 10.0f, 1e-3f);  // the rotated instance reaches x = 10 with its origin
+    EXPECT_NEAR(b.max.z, 5.0f, 1e-4f);
+
+    // Counts that differ, a wrong type, no attribute at all: refused where they are.
+    const std::string where = "/nodes/0/extensions/EXT_mesh_gpu_instancing/attributes";
+    Doc bad = doc;
+    bad.j["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["SCALE"] = bad.attribute(FLOAT, "VEC3", {1, 1, 1});
+    EXPECT_EQ(load_error(bad.gltf()).where(), where + "/SCALE");  // read in name order: ROTATION, SCALE, ...
+    bad = doc;
+    bad.j["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["TRANSLATION"] = id;
+    EXPECT_EQ(load_error(bad.gltf()).where(), where + "/TRANSLATION");
+    bad = doc;
+    bad.j["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = {{"_ID", id}};
+    EXPECT_EQ(load_error(bad.gltf()).where(), where);
+    // A node without a mesh: a warning, nothing instanced.
+    bad = doc;
+    bad.j["nodes"][0].erase("mesh");
+    Diagnostics d2;
+    Scene none = load(bad.gltf(), d2);
+    EXPECT_EQ(none.nodes.size(), 1u);
+    EXPECT_TRUE(has_warning(d2, "/nodes/0/extensions/EXT_mesh_gpu_instancing", "no mesh"));
+}
+
 TEST(GltfMaterials, FactorsModesAndExtensions) {
     Image8 pixels;
     auto png = make_png(3, 2, &pixels);
