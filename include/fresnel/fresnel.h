@@ -70,6 +70,7 @@
 
 #include "fresnel/trace/distribution.h"
 #include "fresnel/trace/environment_light.h"
+#include "fresnel/trace/job_inputs.h"
 #include "fresnel/trace/tracer.h"
 
 #include "fresnel/viewer/automation.h"
