@@ -351,6 +351,14 @@ ScenePtr with_material(const PyScene& s, const py::object& material, const py::k
     return out;
 }
 
+// The `name` of each item, by index.
+template <class T>
+py::list names_of(const std::vector<T>& items) {
+    py::list l;
+    for (const T& item : items) l.append(item.name);
+    return l;
+}
+
 }  // namespace
 
 const Scene& scene_of(py::handle scene) { return *scene.cast<ScenePtr>()->scene; }
@@ -369,21 +377,12 @@ void bind_session(py::module_& m) {
         .def_property_readonly("path", [](const PyScene& s) { return s.name; })
         .def_property_readonly("job", [](const PyScene& s) { return s.job; },
                                "The job it was loaded with (a scene file's settings): what render() uses without one.")
-        .def_property_readonly("materials",
-                               [](const PyScene& s) {
-                                   py::list l;
-                                   for (const Material& mat : s.scene->materials) l.append(mat.name);
-                                   return l;
-                               },
+        .def_property_readonly("materials", [](const PyScene& s) { return names_of(s.scene->materials); },
                                "The materials' names, by index.")
         .def_property_readonly("variants", [](const PyScene& s) { return s.scene->material_variants; },
                                "KHR_materials_variants names (load(path, variant=NAME) applies one).")
-        .def_property_readonly("animations",
-                               [](const PyScene& s) {
-                                   py::list l;
-                                   for (const auto& a : s.scene->animations) l.append(a.name);
-                                   return l;
-                               })
+        .def_property_readonly("animations", [](const PyScene& s) { return names_of(s.scene->animations); },
+                               "The animations' names, by index (pose(time, animation=K) plays one).")
         .def_property_readonly("cameras", [](const PyScene& s) { return s.scene->cameras.size(); },
                                "How many cameras the file has (camera=N looks through one).")
         .def_property_readonly("node_count", [](const PyScene& s) { return s.scene->nodes.size(); })
