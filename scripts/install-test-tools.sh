@@ -7,11 +7,21 @@
 # Best effort: without node/npm or the npm registry, those tests skip.
 set -u
 dir=${1:-build/node-tools}
-want=(ktx-parse@0.7 ajv@8 js-yaml@4 kubernetes-models@4 gltf-validator@2.0.0-dev.3.10 playwright-core@1.65.1)
+# playwright-core 1.62 and later need Node.js 20; Debian 12's is 18, which 1.61.1 still runs.
+playwright=1.65.1
+if command -v node >/dev/null 2>&1 && ! node -e 'process.exit(+process.versions.node.split(".")[0] >= 20 ? 0 : 1)' 2>/dev/null; then
+  playwright=1.61.1
+fi
+want=(ktx-parse@0.7 ajv@8 js-yaml@4 kubernetes-models@4 gltf-validator@2.0.0-dev.3.10 playwright-core@$playwright)
 missing=()
 for p in "${want[@]}"; do
   [[ -d $dir/node_modules/${p%@*} ]] || missing+=("$p")
 done
+# playwright-core at another version than this Node.js needs: that version instead.
+if [[ -f $dir/node_modules/playwright-core/package.json ]] &&
+   ! grep -q "\"version\": \"$playwright\"" "$dir/node_modules/playwright-core/package.json"; then
+  missing+=("playwright-core@$playwright")
+fi
 # Another tool's install (scripts/setup-gltf-transform.sh shares this folder) can leave ajv 6
 # at the top level, which has no JSON Schema 2020-12 (ajv/dist/2020): ask for ajv 8 again then.
 if [[ -d $dir/node_modules/ajv && ! -f $dir/node_modules/ajv/dist/2020.js ]]; then missing+=(ajv@8); fi
