@@ -41,10 +41,8 @@ struct Loaded {
 Loaded load(const std::string& path) {
     const ImageLimits limits;
     auto bytes = read_file_bytes(path, limits.max_decoded_bytes);
-    static const std::uint8_t exr_magic[4] = {0x76, 0x2f, 0x31, 0x01};
     Loaded l;
-    l.is_float = (bytes.size() >= 4 && std::equal(exr_magic, exr_magic + 4, bytes.begin())) ||
-                 (bytes.size() >= 2 && bytes[0] == '#' && bytes[1] == '?');
+    l.is_float = is_linear_image(bytes);
     ImageF img = decode_image_float(bytes, path, limits);
     if (l.is_float) {
         l.display = to_display(img);

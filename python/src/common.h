@@ -35,6 +35,11 @@ const settings::Setting& setting_for(const std::string& name);
 // int, float, str, os.PathLike, None (an optional setting's "none"), and sequences for
 // vectors (X,Y,Z) and sizes (W, H). Bad values raise fresnel.Error, wrong types TypeError.
 void set_setting(Job& job, const std::string& name, py::handle value);
+// A Python value as registry text: bool as true/false, str and os.PathLike as they are, numbers
+// in their shortest form, sequences of numbers joined by `separator`; other types raise TypeError
+// "<where>: expected <expected>, got <type>".
+std::string python_text(py::handle value, const std::string& separator, const std::string& where,
+                        const std::string& expected);
 void set_settings(Job& job, const py::dict& values);
 // A setting's value in `job` as a Python value (bool, int, float, tuple, str, None).
 py::object get_setting(const Job& job, const settings::Setting& setting);

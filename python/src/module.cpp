@@ -74,38 +74,44 @@ bool is_number(py::handle v) {
            !PySequence_Check(v.ptr());
 }
 
-// A Python value as the registry's text.
-std::string value_text(const settings::Setting& s, py::handle v, const std::string& where) {
-    using settings::Type;
-    auto wrong = [&](const char* got) {
-        return py::type_error(where + ": expected " + s.expected() + ", got " + got);
-    };
-    if (v.is_none()) {
-        if (s.none.empty()) throw wrong("None");
-        return s.none;
-    }
-    if (py::isinstance<py::bool_>(v) || py::isinstance(v, py::module_::import("numpy").attr("bool_"))) {
-        if (s.type != Type::Bool) throw wrong("a bool");
+}  // namespace
+
+std::string python_text(py::handle v, const std::string& separator, const std::string& where, const std::string& expected) {
+    auto wrong = [&](const char* got) { return py::type_error(where + ": expected " + expected + ", got " + got); };
+    if (py::isinstance<py::bool_>(v) || py::isinstance(v, py::module_::import("numpy").attr("bool_")))
         return v.cast<bool>() ? "true" : "false";
-    }
     if (py::isinstance<py::str>(v)) return v.cast<std::string>();
     if (py::hasattr(v, "__fspath__")) return py::str(py::module_::import("os").attr("fspath")(v)).cast<std::string>();
-    if (is_number(v)) {
-        if (s.type == Type::Bool) throw wrong("a number");
-        return number_text(v);
-    }
+    if (is_number(v)) return number_text(v);
     if (PySequence_Check(v.ptr())) {
         py::sequence seq = py::reinterpret_borrow<py::sequence>(v);
         std::string text;
         for (std::size_t i = 0; i < seq.size(); ++i) {
             py::object e = seq[i];
             if (!is_number(e)) throw wrong("a sequence with a non-number in it");
-            if (i) text += s.type == Type::Size ? "x" : ",";
+            if (i) text += separator;
             text += number_text(e);
         }
         return text;
     }
     throw wrong(Py_TYPE(v.ptr())->tp_name);
+}
+
+namespace {
+
+// A Python value as the registry's text: python_text, with the setting's own rules for None and
+// for booleans (a bool only for a Bool setting, a number never for one).
+std::string value_text(const settings::Setting& s, py::handle v, const std::string& where) {
+    using settings::Type;
+    auto wrong = [&](const char* got) { return py::type_error(where + ": expected " + s.expected() + ", got " + got); };
+    if (v.is_none()) {
+        if (s.none.empty()) throw wrong("None");
+        return s.none;
+    }
+    const bool is_bool = py::isinstance<py::bool_>(v) || py::isinstance(v, py::module_::import("numpy").attr("bool_"));
+    if (is_bool && s.type != Type::Bool) throw wrong("a bool");
+    if (is_number(v) && s.type == Type::Bool) throw wrong("a number");
+    return python_text(v, s.type == Type::Size ? "x" : ",", where, s.expected());
 }
 
 }  // namespace
@@ -161,10 +167,7 @@ ImageF image_from(py::handle image, const std::string& what, bool* from_float_fi
             py::gil_scoped_release release;
             bytes = read_file_bytes(path, limits.max_decoded_bytes);
         }
-        static const std::uint8_t exr_magic[4] = {0x76, 0x2f, 0x31, 0x01};
-        bool is_float = (bytes.size() >= 4 && std::equal(exr_magic, exr_magic + 4, bytes.begin())) ||
-                        (bytes.size() >= 2 && bytes[0] == '#' && bytes[1] == '?');
-        if (from_float_file) *from_float_file = is_float;
+        if (from_float_file) *from_float_file = is_linear_image(bytes);
         py::gil_scoped_release release;
         return decode_image_float(bytes, path, limits);
     }

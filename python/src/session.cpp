@@ -329,22 +329,14 @@ ScenePtr with_material(const PyScene& s, const py::object& material, const py::k
     }
     for (auto [key, value] : properties) {
         const std::string name = py::str(key).cast<std::string>();
-        if (!material_properties::find(name)) {
+        const material_properties::Property* property = material_properties::find(name);
+        if (!property) {
             std::vector<std::string> names;
             for (const auto& p : material_properties::all()) names.emplace_back(p.name);
             throw py::type_error("unknown material property '" + name + "'" + did_you_mean(name, names) +
                                  "; `fresnel settings --materials` lists them");
         }
-        std::string text;
-        if (py::isinstance<py::str>(value)) text = value.cast<std::string>();
-        else if (py::isinstance<py::bool_>(value)) text = value.cast<bool>() ? "true" : "false";
-        else if (PySequence_Check(value.ptr())) {
-            py::sequence seq = py::reinterpret_borrow<py::sequence>(value);
-            for (std::size_t i = 0; i < seq.size(); ++i)
-                text += (i ? "," : "") + py::repr(py::float_(py::reinterpret_borrow<py::object>(seq[i]))).cast<std::string>();
-        } else {
-            text = py::repr(py::float_(py::reinterpret_borrow<py::object>(value))).cast<std::string>();
-        }
+        const std::string text = python_text(value, ",", name, material_properties::expected(*property));
         for (std::size_t i : targets) material_properties::set(copy.materials[i], name, text, name);
     }
     out->scene = std::make_shared<const Scene>(std::move(copy));

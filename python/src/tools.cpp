@@ -339,6 +339,15 @@ py::dict fit_material(const py::object& kd, const py::object& ks, const py::obje
 
 // ---- files -----------------------------------------------------------------------------
 
+// A uint8 array (H, W, 1..4) as an 8-bit image (copied).
+Image8 image8_from(py::handle image) {
+    auto b = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(image);
+    if (!b || b.ndim() != 3 || b.shape(2) < 1 || b.shape(2) > 4) throw py::type_error("image: expected a uint8 array (H, W, C)");
+    Image8 img{int(b.shape(1)), int(b.shape(0)), int(b.shape(2))};
+    std::copy(b.data(), b.data() + b.size(), img.pixels.begin());
+    return img;
+}
+
 void save_image(const py::object& path, py::handle image) {
     std::string file = py::str(py::module_::import("os").attr("fspath")(path)).cast<std::string>();
     std::string ext = file.size() >= 4 ? file.substr(file.size() - 4) : "";
@@ -348,10 +357,8 @@ void save_image(const py::object& path, py::handle image) {
         throw py::type_error("image: expected an array of shape (H, W, 3) or (H, W, 4)");
     const bool bytes = a.dtype().is(py::dtype::of<std::uint8_t>());
     if (ext == ".png") {
-        auto b = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(
-            bytes ? a : py::array(py::module_::import("numpy").attr("clip")(a, 0.0, 1.0).attr("__mul__")(255.0).attr("__add__")(0.5)));
-        Image8 img{int(b.shape(1)), int(b.shape(0)), int(b.shape(2))};
-        std::copy(b.data(), b.data() + b.size(), img.pixels.begin());
+        // Floats are quantised as the renderer's PNGs are (to_image8: clamped, rounded).
+        Image8 img = bytes ? image8_from(a) : to_image8(image_from(a, "image"), a.shape(2) == 4);
         py::gil_scoped_release release;
         write_png(file, img);
     } else if (ext == ".exr" || ext == ".hdr") {
@@ -366,11 +373,7 @@ void save_image(const py::object& path, py::handle image) {
 }
 
 py::bytes png_bytes(py::handle image) {
-    auto b = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(image);
-    if (!b || b.ndim() != 3 || b.shape(2) < 1 || b.shape(2) > 4) throw py::type_error("image: expected a uint8 array (H, W, C)");
-    Image8 img{int(b.shape(1)), int(b.shape(0)), int(b.shape(2))};
-    std::copy(b.data(), b.data() + b.size(), img.pixels.begin());
-    std::vector<std::uint8_t> png = encode_png(img);
+    std::vector<std::uint8_t> png = encode_png(image8_from(image));
     return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
 }
 

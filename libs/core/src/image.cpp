@@ -343,10 +343,19 @@ ImageF decode_exr(std::span<const std::uint8_t>, const std::string& name, const 
 
 }  // namespace
 
-ImageF decode_image_float(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits) {
+namespace {
+bool is_exr(std::span<const std::uint8_t> bytes) {
     static const std::uint8_t exr_magic[4] = {0x76, 0x2f, 0x31, 0x01};
-    if (bytes.size() >= 4 && std::memcmp(bytes.data(), exr_magic, 4) == 0) return decode_exr(bytes, name, limits);
-    if (bytes.size() >= 2 && bytes[0] == '#' && bytes[1] == '?') return decode_hdr(bytes, name, limits);
+    return bytes.size() >= 4 && std::memcmp(bytes.data(), exr_magic, 4) == 0;
+}
+bool is_radiance_hdr(std::span<const std::uint8_t> bytes) { return bytes.size() >= 2 && bytes[0] == '#' && bytes[1] == '?'; }
+}  // namespace
+
+bool is_linear_image(std::span<const std::uint8_t> bytes) { return is_exr(bytes) || is_radiance_hdr(bytes); }
+
+ImageF decode_image_float(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits) {
+    if (is_exr(bytes)) return decode_exr(bytes, name, limits);
+    if (is_radiance_hdr(bytes)) return decode_hdr(bytes, name, limits);
     // 8-bit formats: values / 255 (no transfer curve applied).
     Image8 img = decode_image8(bytes, name, limits);
     ImageF out(img.width, img.height);

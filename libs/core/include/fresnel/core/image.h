@@ -52,6 +52,9 @@ ImageF read_image_float(const std::filesystem::path& path, const ImageLimits& li
 // Decodes a float image from memory, by its magic bytes: OpenEXR, Radiance .hdr, else 8-bit
 // formats as decode_image8, values / 255.
 ImageF decode_image_float(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits = {});
+// Whether `bytes` are an OpenEXR or Radiance HDR file: linear values, where the 8-bit formats
+// decode_image_float reads hold display values / 255.
+bool is_linear_image(std::span<const std::uint8_t> bytes);
 
 // The encoded bytes of a file (PNG through zlib, Radiance RGBE); throw fresnel::Error.
 std::vector<std::uint8_t> encode_png(const Image8& image);
