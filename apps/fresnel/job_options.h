@@ -20,9 +20,7 @@ struct RenderOptions {
     int turntable = 0;       // render --turntable N
     std::string video;       // render --video FILE.mp4
     int fps = 24;            // render --fps: of --frames and --video
-    std::optional<float> time;       // render --time: seconds on the animations' timeline
-    std::optional<int> animation;    // render --animation: which one (default: all)
-    std::optional<int> frames;       // render --frames: numbered images from --time
+    std::optional<int> frames;       // render --frames: numbered images from --time (the settings' animation.time)
     std::string posing = "gpu";      // render --posing: skins and morph targets on the gpu or the cpu
     // The job settings (fresnel/job/settings.h) as given on the command line: a valued flag's
     // text by the setting's key, a switch (--no-cache, --pose-skins) by its key, a shortcut

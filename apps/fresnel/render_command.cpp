@@ -24,6 +24,7 @@
 #include "fresnel/ibl/environment.h"
 #include "fresnel/job/job.h"
 #include "fresnel/render/renderer.h"
+#include "fresnel/render/scene_posing.h"
 #include "fresnel/job/scene_file.h"
 #include "fresnel/scene/pose.h"
 #include "command_line.h"
@@ -133,35 +134,24 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
         print_error("--turntable: turns the orbit camera; not with --camera or a scene file's lookAt/model camera");
         return kExitUsage;
     }
-    const bool animated = o.time || o.animation || o.frames;
+    const Job::Source::Animation animation = job.source.animation;
+    const bool animated = animation.posed() || o.frames;
     if (o.turntable > 0 && o.frames) {
         print_error("--turntable and --frames: one frame sequence at a time (--turntable N --time T turns an animated model posed at T)");
         return kExitUsage;
     }
-    if (o.time && !std::isfinite(*o.time)) {
-        print_error("--time: must be finite");
-        return kExitUsage;
-    }
-    // An animated frame is posed from the bind pose (skins by the animated joints).
-    if (animated) job.source.pose_skins = false;
 
-    // Scene, then the rules of docs/shading.md's "Lighting rules" (fresnel/job/job.h).
+    // Scene (at rest: posed below, frame by frame), then the rules of docs/shading.md's
+    // "Lighting rules" (fresnel/job/job.h).
+    job.source.animation = {};
     auto t_load = Clock::now();
     Scene scene = load_scene(job, diag);
     double load_ms = ms_since(t_load);
+    job.source.animation = animation;
+    if (animated) check_animation(job, scene, diag);
     ResolvedJob resolved = resolve(job, scene, &diag);
     print_warnings(diag);
     const std::string model_name = o.models.empty() ? std::string("demo") : o.models[0];
-    if (animated) {
-        if (scene.animations.empty()) {
-            Diagnostics none;
-            none.warn(model_name, "", "the file has no animations; rendering its rest pose posed on the CPU");
-            print_warnings(none);
-        }
-        if (o.animation && (*o.animation < 0 || std::size_t(*o.animation) >= scene.animations.size()))
-            throw Error(model_name, "--animation " + std::to_string(*o.animation),
-                        "the file has " + std::to_string(scene.animations.size()) + " animations");
-    }
     std::string label = "baking " + (resolved.environment ? resolved.environment->describe() : std::string());
     ProgressBar bar(label);
     JobLighting lighting = load_lighting(resolved, [&](double f) { bar.update(f); });
@@ -179,17 +169,17 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
     // bind pose once and moves only the nodes; CPU posing (the reference) uploads each
     // frame's posed meshes.
     RenderSettings rs = lighting.settings(resolved);
-    const bool gpu_posing = animated && o.posing == "gpu" && gpu_animatable(scene);
-    if (animated && o.posing == "gpu" && !gpu_posing) {
+    renderer.set_scene(scene, resolved.scene_index);
+    upload_ms += ms_since(t_gpu);
+    ScenePosing posing;  // the frame drawn is `scene`, posed in place
+    posing.reset(scene, o.posing == "gpu");
+    if (animated && o.posing == "gpu" && !posing.on_gpu()) {
         Diagnostics note;
         note.warn(model_name, "--posing gpu",
                   "a skin has more than " + std::to_string(kMaxGpuSkinJoints) + " joints or a primitive more than " +
                       std::to_string(kMaxGpuMorphTargets) + " morph targets; posing on the CPU");
         print_warnings(note);
     }
-    rs.gpu_animation = gpu_posing;
-    Scene posed;  // the frame being drawn (the renderer keeps a pointer to it)
-    if (gpu_posing) posed = scene;
     const int frames = o.turntable > 0 ? o.turntable : o.frames.value_or(1);
     const bool numbered = o.turntable > 0 || o.frames.has_value();
     std::vector<float> times;
@@ -198,32 +188,20 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
     FrameStats stats;
     for (int i = 0; i < frames; ++i) {
         ResolvedJob frame_job = resolved;
-        const Scene* draw = &scene;
         if (animated) {
-            float t = o.time.value_or(0.0f) + (o.frames ? float(i) / float(o.fps) : 0.0f);
+            float t = animation.at() + (o.frames ? float(i) / float(o.fps) : 0.0f);
             times.push_back(t);
-            if (gpu_posing) {
-                posed.nodes = scene.nodes;  // and what KHR_animation_pointer may animate
-                posed.materials = scene.materials;
-                posed.lights = scene.lights;
-                posed.cameras = scene.cameras;
-                animate(posed, o.animation.value_or(-1), t);
-            } else {
-                posed = animated_scene(scene, o.animation.value_or(-1), t);
-            }
-            frame_job = resolve(job, posed);  // the lights follow their nodes
-            if (!job.camera.scene_camera) frame_job.camera = resolved.camera;
-            draw = &posed;
+            auto t_upload = Clock::now();
+            posing.show(renderer, animation.index, t, resolved.scene_index);
+            upload_ms += ms_since(t_upload);
+            rs.gpu_animation = posing.gpu_animation();
+            frame_job = resolve(job, scene);  // the lights and the file's cameras follow their nodes
         }
         if (o.turntable > 0) {
             Job frame = job;
             frame.camera.yaw_deg = job.camera.yaw_deg + 360.0f * float(i) / float(frames);
             frame_job.camera = resolve(frame, scene).camera;
         }
-        auto t_upload = Clock::now();
-        if (i == 0 || (animated && !gpu_posing)) renderer.set_scene(*draw, frame_job.scene_index);
-        else if (gpu_posing) renderer.update_transforms();
-        upload_ms += ms_since(i == 0 ? t_gpu : t_upload);
         auto t_draw = Clock::now();
         stats = FrameStats{};
         outputs.push_back(numbered ? frame_path(output, i, frames) : output);
@@ -295,10 +273,6 @@ Runner add_render_command(CLI::App& app) {
     cmd->add_option("--video", o->video, "With --turntable: also encode the PNG frames into this MP4 (H.264) with ffmpeg");
     cmd->add_option("--fps", o->fps, "Frames per second of --frames (the animation's time step) and of --video")
         ->capture_default_str()->check(CLI::Range(1, 240));
-    cmd->add_option("--time", o->time,
-                    "Pose the scene at T seconds of its animations (clamped to each one's keyframes); skins and "
-                    "morph targets follow. Default: the rest pose");
-    cmd->add_option("--animation", o->animation, "Play only animation K (0-based; `fresnel info` lists them). Default: all");
     cmd->add_option("--frames", o->frames,
                     "Write N frames from --time (default 0) at --fps, numbered as --turntable's: OUT-000.png ...")
         ->check(CLI::Range(1, 100000));

@@ -15,12 +15,14 @@ Runner add_view_command(CLI::App& app) {
                 "  fresnel view model.glb\n"
                 "  fresnel view models/                                        # PageUp/PageDown step through the folder\n"
                 "  fresnel view scene.fresnel.json --env sky.hdr\n"
+                "  fresnel view CesiumMan.glb --time 1.2                        # paused at 1.2 s (Space plays)\n"
                 "\nMouse and keys: left drag orbits (on a light's handle: moves it), left click selects, right or middle\n"
                 "drag (or shift + left drag) pans, the wheel dollies; F frames all, R resets the camera, A turns the\n"
                 "camera by itself, O opens the file browser, PageUp/PageDown step through the folder, Ctrl+C copies the\n"
                 "view as a render command, Ctrl+S saves it as a scene file, F12 saves a screenshot, F5 reloads the\n"
-                "shaders (--shaders), Tab hides the GUI, Escape quits. Drop a model, a scene file or an environment\n"
-                "on the window to open it (docs/view.md).\n");
+                "shaders (--shaders), Space plays or pauses the animations (an animated file plays as it opens,\n"
+                "unless --time, --script or --screenshot is given), Tab hides the GUI, Escape quits. Drop a model, a\n"
+                "scene file or an environment on the window to open it (docs/view.md).\n");
     o->cmd = cmd;
     cmd->add_option("model", o->job->models,
                     "A model (.gltf, .glb, .obj), a scene file (.fresnel.json; flags given override it), or a folder "

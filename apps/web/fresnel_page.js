@@ -203,6 +203,7 @@ async function openFilesOrThrow(files) {
     if (env) set('env', `${dir}/${env.name}`);
     await draw();
     syncPanel();
+    if (model) play(true);  // an animated model plays as it opens
     if (!$('error').hidden) throw new Error($('error').textContent);
 }
 // A scene file among picked or dropped files (a folder, or the files it names picked with it):
@@ -510,8 +511,73 @@ function showSetting(el, value) {
     const out = el.parentElement.querySelector('output');
     if (out) out.textContent = el.dataset.unit ? `${el.value} ${el.dataset.unit}` : el.value;
 }
+// Animation playback: the page's clock advances the job's animation.time (the settings
+// registry's; the C++ side poses the scene at it, as `fresnel render --time` does) while
+// playing; the time slider scrubs, the speed may be negative, looping wraps at the end.
+const playback = { playing: false, speed: 1, loop: true, last: 0, lo: 0, hi: 0, time: null };
+function showPlayback() {
+    $('play').textContent = playback.playing ? 'pause' : 'play';
+    const t = $('anim-time');
+    t.min = playback.lo;
+    t.max = playback.hi;
+    t.value = playback.time === null ? playback.lo : playback.time;
+    t.parentElement.querySelector('output').textContent = playback.time === null ? 'rest pose'
+        : `${playback.time.toFixed(3)} s of ${playback.hi.toFixed(3)} s`;
+}
+function buildAnimation(st) {
+    const list = st.animations;
+    $('animation-panel').hidden = !list.length;
+    if (!list.length) { playback.playing = false; return; }
+    const sel = $('animation');
+    const index = st.settings['animation.index'];
+    if (sel.options.length !== list.length + 1) {
+        sel.replaceChildren(new Option(`all (${list.length})`, 'all'));
+        list.forEach((a, i) => sel.add(new Option(`${i}: ${a.name || '(unnamed)'}`, String(i))));
+    }
+    sel.value = index;
+    const chosen = index === 'all' ? list : [list[Number(index)]];
+    playback.lo = Math.min(...chosen.map(a => a.start));
+    playback.hi = Math.max(...chosen.map(a => a.end));
+    const time = st.settings['animation.time'];
+    playback.time = time === 'rest' ? null : Number(time);
+    showPlayback();
+}
+function tick(now) {
+    if (!playback.playing) return;
+    const dt = playback.last ? (now - playback.last) / 1000 : 0;
+    playback.last = now;
+    const { lo, hi } = playback, length = hi - lo;
+    let t = (playback.time === null ? lo : playback.time) + dt * playback.speed;
+    if (t > hi || t < lo) {
+        if (playback.loop && length > 0) t = lo + (((t - lo) % length) + length) % length;
+        else { t = Math.min(Math.max(t, lo), hi); playback.playing = false; }
+    }
+    try {
+        set('animation.time', t);
+        playback.time = t;
+        drawNow();
+    } catch (e) { showError(e.message); playback.playing = false; }
+    showPlayback();
+    if (playback.playing) requestAnimationFrame(tick);
+}
+function play(on) {
+    playback.playing = on && !$('animation-panel').hidden;
+    playback.last = 0;
+    if (playback.playing) {
+        if (playback.time === null || playback.time >= playback.hi || playback.time < playback.lo) playback.time = playback.lo;
+        requestAnimationFrame(tick);
+    }
+    showPlayback();
+}
+
 function syncPanel() {
     const st = state();
+    buildAnimation(st);
+    $('variant-label').hidden = !st.variants.length;
+    if (st.variants.length && $('variant').options.length !== st.variants.length + 1) {
+        $('variant').replaceChildren(new Option('(default materials)', ''));
+        for (const v of st.variants) $('variant').add(new Option(v, v));
+    }
     for (const el of document.querySelectorAll('#panel [data-setting]')) showSetting(el, st.settings[el.dataset.setting]);
     for (const term of st.settings['render.brdf'].split(',')) {
         const [key, value] = term.split('=');
@@ -569,6 +635,35 @@ function bindPanel() {
     };
     $('add-dir').addEventListener('click', add('dir:30,45,3'));
     $('add-point').addEventListener('click', add('point:0,1,1,5'));
+    $('play').addEventListener('click', () => play(!playback.playing));
+    $('rest-pose').addEventListener('click', async () => {
+        play(false);
+        try { set('animation.time', 'rest'); set('animation.index', 'all'); } catch (e) { showError(e.message); }
+        await draw();
+        syncPanel();
+    });
+    $('loop').addEventListener('input', () => { playback.loop = $('loop').checked; });
+    $('anim-speed').addEventListener('input', () => {
+        playback.speed = Number($('anim-speed').value);
+        $('anim-speed').parentElement.querySelector('output').textContent = `${playback.speed}×`;
+    });
+    $('anim-time').addEventListener('input', () => {  // scrubbing; playing goes on from there
+        try { set('animation.time', $('anim-time').value); } catch (e) { showError(e.message); return; }
+        playback.time = Number($('anim-time').value);
+        showPlayback();
+        scheduleDraw();
+    });
+    $('animation').addEventListener('input', async () => {
+        try {
+            set('animation.index', $('animation').value);
+            buildAnimation(state());
+            if (playback.playing || playback.time === null) set('animation.time', playback.lo);
+            else set('animation.time', Math.min(Math.max(playback.time, playback.lo), playback.hi));
+        } catch (e) { showError(e.message); }
+        await draw();
+        syncPanel();
+    });
+    canvas.addEventListener('keydown', e => { if (e.key === ' ') { e.preventDefault(); play(!playback.playing); } });
     $('material').addEventListener('input', () => buildMaterial(materials()));
     $('material-revert').addEventListener('click', () => {
         try { setMaterial(Number($('material').value), 'reset', ''); } catch (e) { showError(e.message); }
@@ -649,6 +744,8 @@ async function main() {
                        // The settings registry (key, flag, type, default, example, doc, ...), and a
                        // setting changed without drawing (tests set many at once).
                        settings: registry,
+                       // Animation playback (play(true|false), and its state: playing, time, range).
+                       play, playback: () => ({ ...playback }),
                        setOnly: (k, v) => set(k, v) };
     if (params.has('scene')) {  // a scene file: read as `fresnel render SCENE` reads it, then the other parameters as flags
         try {
@@ -690,6 +787,8 @@ async function main() {
         drawNow();
         $('progress').hidden = true;
         syncPanel();
+        // An animated model plays as it opens (as in other glTF viewers), unless ?time= asked for a pose.
+        if (!params.has('time') && !params.has('animation.time')) play(true);
     } catch (e) {
         fail(e.message);
     }

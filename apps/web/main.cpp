@@ -22,6 +22,7 @@
 #include "fresnel/job/job.h"
 #include "fresnel/job/orbit_controller.h"
 #include "fresnel/render/renderer.h"
+#include "fresnel/render/scene_posing.h"
 #include "fresnel/job/scene_file.h"
 #include "fresnel/job/settings.h"
 #include "fresnel/material/properties.h"
@@ -55,6 +56,7 @@ struct App {
     std::unique_ptr<Renderer> renderer;
     Job job;
     std::unique_ptr<Scene> scene;
+    ScenePosing posing;  // `scene` posed in place at the job's animation time (the page plays it)
     ResolvedJob resolved;
     JobLighting lighting;
     std::string lighting_key = "\n";  // nothing loaded
@@ -106,6 +108,10 @@ struct App {
             for (const std::string& w : diag.lines()) warnings += w + "\n";
             if (s->key == "render.size")
                 emscripten_set_canvas_element_size(canvas.c_str(), job.output.width, job.output.height);
+            if (s->key == "variant" && scene) {  // KHR_materials_variants: the scene again with the variant's materials
+                Diagnostics load;
+                show(job, load);
+            }
         }
     }
 
@@ -119,6 +125,8 @@ struct App {
         j.camera.scene_camera.reset();
         j.camera.look_at.reset();
         j.source.models.clear();
+        j.source.variant.clear();
+        j.source.animation = {};  // a new model starts at its rest pose (the page plays an animated one)
         Diagnostics diag;
         show(j, diag);
     }
@@ -137,9 +145,13 @@ struct App {
     }
 
     void show(const Job& j, Diagnostics& diag) {
-        auto s = std::make_unique<Scene>(load_scene(j, diag));
+        Job rest = j;  // loaded at rest, posed at the job's time by pose()
+        rest.source.animation = {};
+        auto s = std::make_unique<Scene>(load_scene(rest, diag));
+        check_animation(j, *s, diag);
         ResolvedJob r = resolve(j, *s);
         renderer->set_scene(*s, r.scene_index);
+        posing.reset(*s);
         scene = std::move(s);
         loaded_materials = scene->materials;
         job = j;
@@ -157,6 +169,21 @@ struct App {
         Material& m = scene->materials[std::size_t(index)];
         if (key == "reset") m = loaded_materials.at(std::size_t(index));
         else material_properties::set(m, key, value, "material " + std::to_string(index));
+        posing.keep_materials();
+    }
+
+    // The scene at the job's animation time (animation.time, animation.index: the page's
+    // playback sets them), when that changed.
+    void pose() {
+        const Job::Source::Animation& a = job.source.animation;
+        std::optional<float> t;
+        if (a.posed() && !scene->animations.empty()) t = a.at();
+        try {
+            posing.show(*renderer, a.index, t, job.source.scene);
+        } catch (...) {
+            job.source.animation = {};
+            throw;
+        }
     }
 
     // The materials as JSON (the page's editor): the registry's properties of the core and of
@@ -224,6 +251,16 @@ struct App {
         nlohmann::json values = nlohmann::json::object();
         for (const settings::Setting* s : settings::offered_by(settings::kWeb)) values[s->key] = settings::get(job, *s);
         out["settings"] = values;
+        // The animations (the page's playback: names and keyframe ranges) and the variants.
+        nlohmann::json animations = nlohmann::json::array(), variants = nlohmann::json::array();
+        if (scene) {
+            for (const Animation& a : scene->animations)
+                animations.push_back({{"name", a.name}, {"start", a.start()}, {"end", a.end()}});
+            for (const std::string& v : scene->material_variants) variants.push_back(v);
+        }
+        out["animations"] = animations;
+        out["posedOnGpu"] = posing.on_gpu();
+        out["variants"] = variants;
         return out.dump();
     }
 
@@ -231,6 +268,7 @@ struct App {
     // worked before stays when the new one fails.
     void prepare() {
         if (!scene) throw Error("fresnel", "", "no model loaded");
+        pose();
         resolved = resolve(job, *scene);
         std::string key = fresnel::lighting_key(resolved);
         if (key == lighting_key) return;
@@ -267,6 +305,7 @@ struct App {
     void draw() {
         prepare();
         RenderSettings rs = lighting.settings(resolved);
+        rs.gpu_animation = posing.gpu_animation();
         double t = emscripten_get_now();
         stats = {};
         renderer->draw(resolved.camera, resolved.lights, rs, RenderTarget::default_framebuffer(0, 0), &stats);

@@ -143,6 +143,73 @@ TEST_F(AnimationCli, NumberedFramesAndJson) {
     EXPECT_NE(a.pixels, b.pixels);
 }
 
+// The time is a setting (animation.time, animation.index: fresnel/job/settings.h), so every
+// front end poses the scene alike: a scene file's "animation", a batch job and a batch sweep of
+// --time give render --time's picture (CPU posing where render poses on the GPU: >= 45 dB, as
+// GpuAndCpuPosingAgree), trace --time traces the posed scene, and the camera stays fitted to
+// the rest pose (the same view at every time).
+TEST_F(AnimationCli, TimeIsASettingOfEveryFrontEnd) {
+    fs::path model = kModels / "CesiumMan" / "CesiumMan.glb";
+    if (!fs::exists(model)) GTEST_SKIP() << "not found: " << model;
+    auto png = [&](const std::string& name) { return fresnel::read_image8(dir_ / name); };
+    auto psnr = [&](const std::string& a, const std::string& b) {
+        return fresnel::compare_images(png(a), png(b), false).psnr_db;
+    };
+    const std::vector<std::string> view = {"--size", "96x96", "--yaw", "30", "--env", "color:0.6,0.6,0.6", "--env-size", "16",
+                                           "--allow-external-files"};  // the scene file and jobs name the model by its absolute path
+    auto with = [&](std::vector<std::string> args) {
+        args.insert(args.end(), view.begin(), view.end());
+        return args;
+    };
+    ASSERT_EQ(run(with({"render", model.string(), "-o", (dir_ / "r.png").string(), "--time", "0.75", "--posing", "cpu"})).exit_code, 0);
+    ASSERT_EQ(run(with({"render", model.string(), "-o", (dir_ / "rest.png").string()})).exit_code, 0);
+    EXPECT_LT(psnr("r.png", "rest.png"), 35.0);
+    {
+        nlohmann::json scene = {{"fresnel", 1}, {"model", model.string()}, {"animation", {{"time", 0.75}, {"index", 0}}}};
+        std::ofstream(dir_ / "walk.fresnel.json") << scene.dump();
+        Result r = run(with({"render", (dir_ / "walk.fresnel.json").string(), "-o", (dir_ / "s.png").string()}));
+        ASSERT_EQ(r.exit_code, 0) << show(r);
+        std::printf("scene file vs render --time: %.1f dB\n", psnr("s.png", "r.png"));
+        EXPECT_GE(psnr("s.png", "r.png"), 45.0) << "scene file";
+    }
+    {
+        std::ofstream(dir_ / "jobs.jsonl") << nlohmann::json({{"model", model.string()}, {"animation", {{"time", 0.75}}},
+                                                              {"output", "b.png"}}).dump()
+                                           << "\n";
+        Result r = run(with({"batch", (dir_ / "jobs.jsonl").string(), "--out", (dir_ / "batch").string()}));
+        ASSERT_EQ(r.exit_code, 0) << show(r);
+        std::printf("batch job vs render --time: %.1f dB\n", psnr("batch/b.png", "r.png"));
+        EXPECT_GE(psnr("batch/b.png", "r.png"), 45.0) << "batch";
+        // A sweep over time: the frames of an animation as a batch.
+        std::ofstream(dir_ / "one.jsonl") << nlohmann::json({{"model", model.string()}, {"sweep", {{"time", {0, 1.5, 3}}}},
+                                                             {"output", "walk.png"}}).dump()
+                                          << "\n";
+        r = run(with({"batch", (dir_ / "one.jsonl").string(), "--out", (dir_ / "sweep").string()}));
+        ASSERT_EQ(r.exit_code, 0) << show(r);
+        std::vector<fs::path> frames;
+        for (const auto& e : fs::recursive_directory_iterator(dir_ / "sweep"))
+            if (e.path().extension() == ".png") frames.push_back(e.path());
+        std::sort(frames.begin(), frames.end());
+        ASSERT_EQ(frames.size(), 3u) << show(r);
+        EXPECT_GE(fresnel::compare_images(fresnel::read_image8(frames[1]), png("r.png"), false).psnr_db, 45.0)
+            << frames[1] << ": the sweep's t = 0.75";
+    }
+    {
+        auto trace = [&](const std::string& out, std::vector<std::string> extra) {
+            std::vector<std::string> args = {"trace", model.string(), "-o", (dir_ / out).string(), "--spp", "4", "--seed", "3",
+                                             "--size", "96x96", "--yaw", "30", "--env", "color:0.6,0.6,0.6"};
+            args.insert(args.end(), extra.begin(), extra.end());
+            return run(args);
+        };
+        ASSERT_EQ(trace("t.png", {"--time", "0.75"}).exit_code, 0);
+        ASSERT_EQ(trace("t_rest.png", {}).exit_code, 0);
+        std::printf("trace --time vs the rest pose's trace %.1f dB, vs render --time %.1f dB\n", psnr("t.png", "t_rest.png"),
+                    psnr("t.png", "r.png"));
+        EXPECT_LT(psnr("t.png", "t_rest.png"), 30.0) << "trace --time poses the scene";
+        EXPECT_GT(psnr("t.png", "r.png"), 20.0) << "trace and render agree on the pose";
+    }
+}
+
 TEST_F(AnimationCli, InfoListsAnimationsWithDurations) {
     int found = 0;
     for (const auto& m : kAnimated) {

@@ -415,6 +415,47 @@ TEST_F(View, ShadowsToggleLive) {
     EXPECT_GE(psnr("soft.png", "hard.png"), 30.0);  // and hard ones fall where soft ones do
 }
 
+// Animation playback (issue: the viewer played no animation). A screenshot at --time T equals
+// `fresnel render --time T`; a scripted session scrubs (`time`), chooses an animation, plays for
+// a while, pauses, and its screenshot equals the render command line it prints (which names
+// the time the playback reached), and differs from the rest pose.
+TEST_F(View, AnimationPlaybackShowsWhatRenderPosesAtTheSameTime) {
+    fs::path model = kShared / "assets/models/CesiumMan/CesiumMan.glb";
+    if (!fs::exists(model)) GTEST_SKIP() << "needs " << model;
+    EXPECT_GE(view_against_render({model.string(), "--size", "200x150", "--yaw", "30", "--time", "1.2"}), 40.0);
+    std::ofstream(dir_ / "a.txt") << "time 0.5\n"
+                                     "screenshot " << (dir_ / "half.png").string() << "\n"
+                                     "animation 0\n"
+                                     "play\n"
+                                     "wait 20\n"
+                                     "pause\n"
+                                     "screenshot " << (dir_ / "paused.png").string() << "\n"
+                                     "print\n"
+                                     "quit\n";
+    Result v = run({"view", model.string(), "--size", "200x150", "--script", (dir_ / "a.txt").string()}, true);
+    ASSERT_EQ(v.exit_code, 0) << v.err;
+    const std::string line = last_command_line(v.out);
+    ASSERT_NE(line.find("--time "), std::string::npos) << v.out;
+    ASSERT_NE(line.find("--animation 0"), std::string::npos) << v.out;
+    const float t = std::stof(line.substr(line.find("--time ") + 7));
+    EXPECT_GT(t, 0.5f) << "the playback did not move: " << line;
+    EXPECT_LE(t, 2.0f) << line;  // CesiumMan's walk lasts 2 s and loops
+    auto psnr = [&](const fs::path& x, const fs::path& y) {
+        return fresnel::compare_images(fresnel::read_image8(x), fresnel::read_image8(y), false).psnr_db;
+    };
+    std::vector<std::string> at = {"render", model.string(), "--size", "200x150", "--time", "0.5", "-o",
+                                   (dir_ / "r-half.png").string()};
+    ASSERT_EQ(run(at, false).exit_code, 0);
+    EXPECT_GE(psnr(dir_ / "half.png", dir_ / "r-half.png"), 40.0);
+    Result r = run_shell("cd " + quote(dir_.string()) + " && " + quote(FRESNEL_EXE) + line.substr(std::string("fresnel").size()));
+    ASSERT_EQ(r.exit_code, 0) << r.err << line;  // its -o view.png
+    const double paused = psnr(dir_ / "paused.png", dir_ / "view.png");
+    std::printf("view after playback (t = %.3f) vs its printed render line: %.1f dB\n", double(t), paused);
+    EXPECT_GE(paused, 40.0);
+    ASSERT_EQ(run({"render", model.string(), "--size", "200x150", "-o", (dir_ / "rest.png").string()}, false).exit_code, 0);
+    EXPECT_LT(psnr(dir_ / "half.png", dir_ / "rest.png"), 35.0);  // posed, not the rest pose
+}
+
 // A soak: 100 models opened in a row in one session; resident memory after the 100th is
 // within 10 % (+ 8 MiB) of what it was after the 20th, and every open worked.
 TEST_F(View, HundredOpensKeepResidentMemoryFlat) {

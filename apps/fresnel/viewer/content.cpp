@@ -25,6 +25,7 @@ bool Viewer::open_model(const std::string& path, bool keep_camera) {
     Job job = state_.job;
     job.source.model = path;
     job.source.models.clear();
+    job.source.animation = {};  // a new file starts at its rest pose (and plays, interactively)
     if (!keep_camera) {
         job.camera = state_.initial_camera;
         job.camera.scene_camera.reset();
@@ -64,11 +65,16 @@ bool Viewer::load_job(Job job, const std::string& label) {
     bool uploading = false;
     try {
         Diagnostics diag;
-        auto scene = std::make_unique<Scene>(load_scene(job, diag));
+        Job rest = job;  // loaded at rest, posed by sync_pose()
+        rest.source.animation = {};
+        auto scene = std::make_unique<Scene>(load_scene(rest, diag));
+        check_animation(job, *scene, diag);
         ResolvedJob resolved = resolve(job, *scene);  // e.g. --camera or --scene out of range
         uploading = true;
         renderer_->set_scene(*scene, resolved.scene_index);
+        posing_.reset(*scene);
         state_.scene = std::move(scene);
+        state_.playback.playing = false;
         state_.picked.reset();
         state_.original_materials = state_.scene->materials;
         state_.materials_edited = false;
@@ -85,6 +91,11 @@ bool Viewer::load_job(Job job, const std::string& label) {
         state_.status = path.empty() ? "the built-in demo" : path;
         window_->set_title("fresnel view - " + (path.empty() ? std::string("demo") : fs::path(path).filename().string()));
         if (!path.empty()) state_.remember(path);
+        // An animated file plays as it opens, as in other glTF viewers, unless a time was asked
+        // for (--time, a scene file's animation) or a script or a screenshot drives the window.
+        if (state_.animated() && !state_.job.source.animation.posed() && options_.script.empty() && !options_.frames &&
+            options_.screenshot.empty())
+            state_.play(true);
         return true;
     } catch (const std::exception& e) {
         state_.error = e.what();

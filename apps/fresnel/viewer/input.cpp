@@ -73,17 +73,19 @@ bool Viewer::handle_input() {
         if (window_->key_pressed(gui::Key::S, /*ctrl=*/true)) save_scene(state_.scene_save_path), changed = true;
         if (window_->key_pressed(gui::Key::A)) state_.spin_camera = !state_.spin_camera, changed = true;
         if (window_->key_pressed(gui::Key::F5)) reload_shaders(""), changed = true;
+        if (window_->key_pressed(gui::Key::Space) && state_.animated()) state_.play(!state_.playback.playing), changed = true;
     }
     return changed;
 }
 
 // Turns the camera (about the target), the environment and the added lights by 30 degrees a
-// second of the clock, as switched on.
+// second of the clock, as switched on, and plays the animation.
 void Viewer::spin() {
     auto now = Clock::now();
     double dt = spin_last_ ? std::chrono::duration<double>(now - *spin_last_).count() : 0.0;
     spin_last_ = now;
     state_.spin(dt);
+    state_.advance(dt);
 }
 
 void Viewer::copy_command_line() {

@@ -59,6 +59,7 @@ void Viewer::draw_gui() {
         ImGui::ProgressBar(bake_->progress->load());
     }
     if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) draw_file_panel();
+    if (state_.animated() && ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen)) draw_animation_panel();
     if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) draw_camera_panel();
     if (ImGui::CollapsingHeader("Environment")) draw_environment_panel();
     draw_output_panels();
@@ -103,10 +104,60 @@ void Viewer::draw_file_panel() {
         for (const auto& w : state_.warnings) ImGui::TextWrapped("%s", w.c_str());
         ImGui::TreePop();
     }
+    if (state_.scene && !state_.scene->material_variants.empty()) {  // KHR_materials_variants
+        const std::vector<std::string>& names = state_.scene->material_variants;
+        const std::string& current = job.source.variant;
+        std::string chosen = current;
+        if (ImGui::BeginCombo("variant", current.empty() ? "(default materials)" : current.c_str())) {
+            if (ImGui::Selectable("(default materials)", current.empty())) chosen.clear();
+            for (const std::string& n : names)
+                if (ImGui::Selectable(n.c_str(), n == current)) chosen = n;
+            ImGui::EndCombo();
+        }
+        if (chosen != current) {  // the scene again with the variant's materials; the view stays
+            Job next = state_.job;
+            next.source.variant = chosen;
+            const bool playing = state_.playback.playing;
+            if (load_job(std::move(next), state_.opened)) state_.playback.playing = playing;
+        }
+    }
     ImGui::TextDisabled("drop a model, a scene file or an environment onto the window");
     ImGui::InputText("##scene-file", &state_.scene_save_path);
     ImGui::SameLine();
     if (ImGui::Button("Save scene (Ctrl+S)")) save_scene(state_.scene_save_path);
+}
+
+// Playback of the scene's animations: which one, play/pause, the time, speed and looping
+// (the state's Playback; the pose is the job's, as `render --time --animation` takes it).
+void Viewer::draw_animation_panel() {
+    const std::vector<Animation>& animations = state_.scene->animations;
+    Job::Source::Animation& a = state_.job.source.animation;
+    auto label = [&](int i) {
+        const std::string& n = animations[std::size_t(i)].name;
+        return std::to_string(i) + ": " + (n.empty() ? "(unnamed)" : n);
+    };
+    const std::string all = "all (" + std::to_string(animations.size()) + ")";
+    if (ImGui::BeginCombo("animation", a.index < 0 ? all.c_str() : label(a.index).c_str())) {
+        if (ImGui::Selectable(all.c_str(), a.index < 0)) state_.set_animation(-1);
+        for (int i = 0; i < int(animations.size()); ++i)
+            if (ImGui::Selectable(label(i).c_str(), a.index == i)) state_.set_animation(i);
+        ImGui::EndCombo();
+    }
+    if (ImGui::Button(state_.playback.playing ? "Pause (Space)" : "Play (Space)")) state_.play(!state_.playback.playing);
+    ImGui::SameLine();
+    if (ImGui::Button("Rest pose")) {
+        state_.play(false);
+        a.time.reset();
+        a.index = -1;
+    }
+    const auto [lo, hi] = state_.animation_range();
+    float t = a.at();
+    if (ImGui::SliderFloat("time", &t, lo, hi, "%.3f s")) state_.set_time(t);  // scrubbing; playing goes on from there
+    ImGui::SliderFloat("speed", &state_.playback.speed, -4.0f, 4.0f, "%.2fx");
+    ImGui::SameLine();
+    ImGui::Checkbox("loop", &state_.playback.loop);
+    if (a.posed()) ImGui::Text("%.3f s of %.3f s%s", double(a.at()), double(hi), posing_.on_gpu() ? "" : ", posed on the CPU");
+    else ImGui::TextDisabled("rest pose (the file's nodes, no animation applied)");
 }
 
 void Viewer::draw_camera_panel() {

@@ -269,7 +269,9 @@ void Viewer::draw_material_editor() {
     if (materials_edited_ && ImGui::Button("Revert all materials")) {
         mats = original_materials_;
         materials_edited_ = false;
+        e = true;
     }
+    if (e) posing_.keep_materials();  // the playback keeps the edits
     if (materials_edited_)
         ImGui::TextDisabled("edits: in a saved scene (as overrides) and saved to glTF below; not in the command line");
     if (scene_ && job_.source.models.empty() && is_gltf(job_.source.model)) {

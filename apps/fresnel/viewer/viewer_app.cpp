@@ -81,7 +81,7 @@ int Viewer::loop(gui::Window& window) {
             window.wait_events(0.5);  // the progress bar twice a second (or sooner on input)
             redraw = 1;
         }
-        else if (bake_ || redraw > 0 || batch || automation_.pending() || state_.spinning()) window.poll_events();
+        else if (bake_ || redraw > 0 || batch || automation_.pending() || moving()) window.poll_events();
         else if (options_.watch_shaders) {
             window.wait_events(0.5);  // idle, but the shader folder is looked at twice a second
             if (shaders_changed()) reload_shaders(""), redraw = 3;
@@ -96,9 +96,10 @@ int Viewer::loop(gui::Window& window) {
         bool ready = false;
         try {
             if (handle_input()) redraw = 3;
-            if (state_.spinning()) spin();
+            if (moving()) spin();
             else spin_last_.reset();
             draw_gui();
+            sync_pose();
             ready = update_lighting();
             draw_scene();
         } catch (const std::exception& e) {  // never die on input: show it, keep the window
@@ -197,6 +198,21 @@ bool Viewer::update_lighting() {
     return !bake_ && key == lighting_key_;
 }
 
+// The scene posed at the time the state shows (job.source.animation), when that changed.
+void Viewer::sync_pose() {
+    if (!state_.scene) return;
+    const Job::Source::Animation& a = state_.job.source.animation;
+    std::optional<float> t;
+    if (a.posed() && state_.animated()) t = a.at();
+    try {
+        posing_.show(*renderer_, a.index, t, resolve(state_.job, *state_.scene).scene_index);
+    } catch (const std::exception& e) {  // an animation index the file lacks: the rest pose
+        state_.error = e.what();
+        state_.job.source.animation = {};
+        state_.playback.playing = false;
+    }
+}
+
 void Viewer::draw_scene() {
     const gui::Size size = window_->framebuffer_size();
     state_.framebuffer = {size.width, size.height};
@@ -213,6 +229,7 @@ void Viewer::draw_scene() {
     RenderSettings rs = lighting_.settings(state_.resolved);
     rs.width = fb.x;
     rs.height = fb.y;
+    rs.gpu_animation = posing_.gpu_animation();
     // GL errors pending from the GUI's last frame (ImGui's desktop GL backend on an ES
     // context, e.g. glPolygonMode) are not this frame's: clear them first.
     std::string gui_errors = gpu::Device().take_errors();
@@ -259,6 +276,7 @@ void Viewer::screenshot(const std::string& path) {
 
 void Viewer::set_material_field(Material& material, const std::string& field, const std::vector<float>& values) {
     viewer::set_material_field(material, field, values);
+    posing_.keep_materials();  // the playback keeps the edits
 }
 
 std::string Viewer::stats() {

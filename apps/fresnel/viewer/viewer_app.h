@@ -29,6 +29,7 @@
 #include "fresnel/gpu/resources.h"
 #include "fresnel/gui/window.h"
 #include "fresnel/render/renderer.h"
+#include "fresnel/render/scene_posing.h"
 #include "fresnel/viewer/automation.h"
 #include "fresnel/viewer/state.h"
 #include "viewer.h"
@@ -74,7 +75,10 @@ private:
     void release_gpu();
     int loop(gui::Window& window);
     bool update_lighting();
+    void sync_pose();
     void draw_scene();
+    // Something moves by the clock: auto-rotation or animation playback.
+    bool moving() const { return state_.spinning() || state_.playback.playing; }
     // content.cpp
     bool open_model(const std::string& path, bool keep_camera);
     bool open_scene_file(const std::string& path);
@@ -91,6 +95,7 @@ private:
     // panels.cpp
     void draw_gui();
     void draw_file_panel();
+    void draw_animation_panel();
     void draw_camera_panel();
     void draw_environment_panel();
     void draw_output_panels();
@@ -111,6 +116,7 @@ private:
     gui::Window* window_ = nullptr;
     std::unique_ptr<Renderer> renderer_;
     JobLighting lighting_;
+    ScenePosing posing_;  // state_.scene posed in place at the state's time
     static constexpr const char* kNoLighting = "(none yet)";
     std::string lighting_key_ = kNoLighting, failed_key_;
     std::unique_ptr<Bake> bake_;

@@ -51,6 +51,7 @@ int glfw_key(Key k) {
         case Key::S: return GLFW_KEY_S;
         case Key::A: return GLFW_KEY_A;
         case Key::F5: return GLFW_KEY_F5;
+        case Key::Space: return GLFW_KEY_SPACE;
     }
     return GLFW_KEY_UNKNOWN;
 }

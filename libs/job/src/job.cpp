@@ -7,6 +7,7 @@
 
 #include "fresnel/scene/gltf_loader.h"
 #include "fresnel/scene/obj_loader.h"
+#include "fresnel/scene/pose.h"
 #include "fresnel/scene/procedural.h"
 
 namespace fresnel {
@@ -22,7 +23,8 @@ std::size_t mib_bytes(float mib) {
 }
 }  // namespace
 
-Scene load_scene(const Job& job, Diagnostics& diag) {
+namespace {
+Scene load_rest_scene(const Job& job, Diagnostics& diag) {
     if (!job.source.models.empty()) return load_models(job, diag);
     if (job.source.model.empty()) return make_demo_scene();
     if (is_obj_path(job.source.model)) {
@@ -37,10 +39,32 @@ Scene load_scene(const Job& job, Diagnostics& diag) {
     GltfLoadOptions lo;
     lo.allow_external_files = job.source.allow_external_files;
     if (job.source.max_memory_mib > 0) lo.max_total_bytes = lo.max_geometry_bytes = mib_bytes(job.source.max_memory_mib);
-    lo.pose_skins = job.source.pose_skins;
+    lo.pose_skins = job.source.pose_skins && !job.source.animation.posed();  // animated skins pose from the bind pose
     Scene scene = load_gltf(job.source.model, diag, lo);
     if (!job.source.variant.empty()) apply_material_variant(scene, find_material_variant(scene, job.source.variant));
     return scene;
+}
+}  // namespace
+
+Scene load_scene(const Job& job, Diagnostics& diag) {
+    Scene scene = load_rest_scene(job, diag);
+    const Job::Source::Animation& a = job.source.animation;
+    if (a.posed() && job.source.models.empty()) {  // several models: each was posed as it loaded
+        check_animation(job, scene, diag);
+        ScenePoser(scene).pose(a.index, a.at(), true);
+    }
+    return scene;
+}
+
+void check_animation(const Job& job, const Scene& scene, Diagnostics& diag) {
+    const Job::Source::Animation& a = job.source.animation;
+    if (!a.posed()) return;
+    const std::string name = scene.source.empty() ? model_name(job) : scene.source;
+    if (a.index >= int(scene.animations.size()))
+        throw Error(name, "--animation " + std::to_string(a.index),
+                    "the file has " + std::to_string(scene.animations.size()) + " animations");
+    if (scene.animations.empty())
+        diag.warn(name, "--time", "the file has no animations; rendering its rest pose posed on the CPU");
 }
 
 ResolvedJob resolve(const Job& job, const Scene& scene, Diagnostics* diag) {
@@ -52,6 +76,7 @@ ResolvedJob resolve(const Job& job, const Scene& scene, Diagnostics* diag) {
     r.scene_index = job.source.scene;
     r.instances = flatten(scene, job.source.scene);
     r.bounds = scene_bounds(scene, r.instances);
+    const Bounds framing = framing_bounds(scene, job.source.scene, r.instances);
 
     // Camera.
     if (job.camera.scene_camera) {
@@ -72,7 +97,7 @@ ResolvedJob resolve(const Job& job, const Scene& scene, Diagnostics* diag) {
         r.camera = *c;
     } else if (job.camera.look_at) {
         const Job::Camera::LookAt& la = *job.camera.look_at;
-        r.camera = look_at_camera(r.bounds, la.eye, la.target, la.up, job.camera.yfov_deg, out.width, out.height);
+        r.camera = look_at_camera(framing, la.eye, la.target, la.up, job.camera.yfov_deg, out.width, out.height);
     } else {
         OrbitParams op;
         op.yaw_deg = job.camera.yaw_deg;
@@ -80,7 +105,7 @@ ResolvedJob resolve(const Job& job, const Scene& scene, Diagnostics* diag) {
         op.distance_k = job.camera.distance_k;
         op.yfov_deg = job.camera.yfov_deg;
         op.target = job.camera.target;
-        r.camera = orbit_camera(r.bounds, op, out.width, out.height);
+        r.camera = orbit_camera(framing, op, out.width, out.height);
     }
 
     // OpenGL 1 frames: every material (the default one when the scene has none) in its model.

@@ -38,6 +38,7 @@ Scene load_models(const Job& job, Diagnostics& diag) {
         one.source.allow_external_files = job.source.allow_external_files;
         one.source.pose_skins = job.source.pose_skins;
         one.source.max_memory_mib = job.source.max_memory_mib;
+        one.source.animation = job.source.animation;
         Scene scene = load_scene(one, diag);
         const std::string name = m.path.empty() ? std::string("demo") : m.path;
         for (const auto& o : m.materials) {

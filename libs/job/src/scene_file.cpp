@@ -562,7 +562,7 @@ SceneFile parse_scene_document(const json& doc, const std::string& name, const f
     // registry; the other keys are the file's structure.
     std::vector<std::string> known = ignore;
     for (const char* k : {"fresnel", "$schema", "description", "model", "models", "camera", "lights", "environment",
-                          "background", "render", "output"})
+                          "background", "render", "animation", "output"})
         known.push_back(k);
     if (auto* v = r.find(doc, "fresnel")) {
         int version = r.integer(*v, "/fresnel", 1, 1 << 30);
@@ -589,6 +589,10 @@ SceneFile parse_scene_document(const json& doc, const std::string& name, const f
     if (auto* v = r.find(doc, "environment")) read_environment(r, *v, job);
     if (auto* v = r.find(doc, "background")) read_background(r, *v, job);
     if (auto* v = r.find(doc, "render")) read_render(r, *v, job);
+    if (auto* v = r.find(doc, "animation")) {
+        r.object(*v, "/animation");
+        read_settings(r, *v, "animation", "/animation", job);
+    }
     if (auto* v = r.find(doc, "output")) {
         sf.output = r.output_path(*v, "/output");
         std::string e = sf.output->extension().string();

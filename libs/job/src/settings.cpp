@@ -377,6 +377,47 @@ std::vector<Setting> make_registry() {
         s.put = [](Job& j, const Value& v) { j.source.variant = v.text; };
         r.push_back(s);
     }
+    {
+        Setting s = number("animation.time", "--time", "seconds", -1e6, 1e6,
+                           "Pose the scene at T seconds of its animations (each clamped to its keyframes): skins, "
+                           "morph targets and KHR_animation_pointer; the camera keeps fitting the rest pose "
+                           "(rest: no animation applied)",
+                           all | kSweep, nullptr);
+        s.none = "rest";
+        s.slider_min = 0, s.slider_max = 10;
+        s.example = "1.5";
+        s.get = [](const Job& j) {
+            Value v;
+            v.unset = !j.source.animation.time;
+            v.number = j.source.animation.time.value_or(0.0f);
+            return v;
+        };
+        s.put = [](Job& j, const Value& v) {
+            if (v.unset) j.source.animation.time.reset();
+            else j.source.animation.time = float(v.number);
+        };
+        r.push_back(s);
+    }
+    {
+        Setting s;
+        s.key = "animation.index";
+        s.flag = "--animation";
+        s.type = Type::Int;
+        s.min = 0;
+        s.max = 1 << 20;
+        s.none = "all";
+        s.doc = "Play only animation K (0-based; fresnel info lists them; all: every animation). Alone it poses the "
+                "scene at time 0";
+        s.front_ends = all;
+        s.get = [](const Job& j) {
+            Value v;
+            v.unset = j.source.animation.index < 0;
+            v.number = std::max(j.source.animation.index, 0);
+            return v;
+        };
+        s.put = [](Job& j, const Value& v) { j.source.animation.index = v.unset ? -1 : int(v.number); };
+        r.push_back(s);
+    }
     r.push_back(boolean("poseSkins", "--pose-skins", false,
                         "Pose skinned meshes by their joints' rest transforms (false: the bind pose, as the Khronos "
                         "Sample Renderer's reference images show)",

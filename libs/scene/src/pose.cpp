@@ -69,6 +69,7 @@ void animate(Scene& scene, int index, float t) {
     if (index >= int(scene.animations.size()) || index < -1)
         throw Error(scene.source, "--animation " + std::to_string(index),
                     "the file has " + std::to_string(scene.animations.size()) + " animations");
+    if (scene.framing.empty()) keep_framing(scene);
     if (index >= 0) {
         animate_one(scene, scene.animations[std::size_t(index)], t);
         return;
@@ -145,6 +146,54 @@ Scene animated_scene(const Scene& rest, int index, float t) {
     animate(s, index, t);
     pose_meshes(s);
     return s;
+}
+
+ScenePoser::ScenePoser(Scene& scene) : scene_(&scene), mesh_count_(scene.meshes.size()) {
+    nodes_.reserve(scene.nodes.size());
+    for (const Node& n : scene.nodes)
+        nodes_.push_back({n.local, n.translation, n.scale, n.rotation, n.weights, n.mesh, n.world_space_mesh});
+    for (const Animation& a : scene.animations)
+        for (const AnimationChannel& c : a.channels) pointers_ = pointers_ || c.path == AnimationPath::Pointer;
+    if (pointers_) {
+        materials_ = scene.materials;
+        lights_ = scene.lights;
+        cameras_ = scene.cameras;
+    }
+}
+
+void ScenePoser::rest() {
+    if (!scene_ || !posed_) return;
+    Scene& s = *scene_;
+    for (std::size_t i = 0; i < nodes_.size() && i < s.nodes.size(); ++i) {
+        const NodePose& p = nodes_[i];
+        Node& n = s.nodes[i];
+        n.local = p.local;
+        n.translation = p.translation;
+        n.scale = p.scale;
+        n.rotation = p.rotation;
+        n.weights = p.weights;
+        n.mesh = p.mesh;
+        n.world_space_mesh = p.world_space_mesh;
+    }
+    s.meshes.resize(mesh_count_);  // CPU-posed copies
+    if (pointers_) {
+        s.materials = materials_;
+        s.lights = lights_;
+        s.cameras = cameras_;
+    }
+    posed_ = false;
+}
+
+void ScenePoser::pose(int index, float t, bool meshes) {
+    if (!scene_) return;
+    rest();
+    animate(*scene_, index, t);
+    posed_ = true;
+    if (meshes) pose_meshes(*scene_);
+}
+
+void ScenePoser::keep_materials() {
+    if (scene_ && pointers_) materials_ = scene_->materials;
 }
 
 }  // namespace fresnel

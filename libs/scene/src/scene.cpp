@@ -59,4 +59,17 @@ Bounds scene_bounds(const Scene& scene, const std::vector<NodeInstance>& instanc
     return b;
 }
 
+Bounds framing_bounds(const Scene& scene, int index, const std::vector<NodeInstance>& instances) {
+    const std::size_t k = std::size_t(index + 1);
+    if (index >= -1 && k < scene.framing.size()) return scene.framing[k];
+    return scene_bounds(scene, instances);
+}
+
+void keep_framing(Scene& scene) {
+    std::vector<Bounds> framing;
+    framing.reserve(scene.scenes.size() + 1);
+    for (int i = -1; i < int(scene.scenes.size()); ++i) framing.push_back(scene_bounds(scene, flatten(scene, i)));
+    scene.framing = std::move(framing);
+}
+
 }  // namespace fresnel

@@ -297,3 +297,73 @@ TEST(AnimationPose, SkinFollowsTheAnimatedJoint) {
     pose_skinned(r, mats, world[0], SkinWeights::Homogeneous);
     for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(glm::length(r.positions[i] - q.positions[i]), 0.0f, 1e-6f);
 }
+
+// A skinned, morphing, moving scene posed again and again in place (ScenePoser) is at every
+// time what animated_scene makes from the rest pose, and goes back to the rest pose exactly.
+TEST(ScenePoser, PosesInPlaceAsAnimatedSceneDoesAndRestsAgain) {
+    Scene s = test_scene();
+    Primitive& p = s.meshes[0].primitives[0];
+    p.joints = {glm::uvec4(0), glm::uvec4(0), glm::uvec4(0)};
+    p.weights = {glm::vec4(1, 0, 0, 0), glm::vec4(1, 0, 0, 0), glm::vec4(1, 0, 0, 0)};
+    s.nodes[0].skin = 0;
+    Skin skin;
+    skin.joints = {1};
+    skin.inverse_bind = {glm::mat4(1.0f)};
+    s.skins.push_back(skin);
+    Animation turn, morph;
+    std::vector<float> rot = quat_z(0);
+    for (float c : quat_z(90)) rot.push_back(c);
+    turn.samplers.push_back(make(Interpolation::Linear, {0, 2}, rot, 4));
+    turn.channels = {{0, 1, AnimationPath::Rotation, ""}};
+    morph.samplers.push_back(make(Interpolation::Linear, {0, 1}, {0, 0, 1, 0.5f}, 2));
+    morph.channels = {{0, 0, AnimationPath::Weights, ""}};
+    s.animations = {turn, morph};
+    const Scene rest = s;
+    ScenePoser poser(s);
+    for (int index : {-1, 0, 1, -1})
+        for (float t : {0.3f, 1.7f, 0.9f}) {
+            poser.pose(index, t, true);
+            const Scene want = animated_scene(rest, index, t);
+            ASSERT_EQ(s.meshes.size(), want.meshes.size()) << index << " " << t;
+            for (std::size_t n = 0; n < s.nodes.size(); ++n) {
+                EXPECT_EQ(s.nodes[n].local, want.nodes[n].local);
+                EXPECT_EQ(s.nodes[n].mesh, want.nodes[n].mesh);
+                EXPECT_EQ(s.nodes[n].weights, want.nodes[n].weights);
+            }
+            for (std::size_t m = 0; m < s.meshes.size(); ++m)
+                EXPECT_EQ(s.meshes[m].primitives[0].positions, want.meshes[m].primitives[0].positions) << index << " " << t;
+        }
+    s.nodes[1].visible = false;  // not something animations change: kept across poses
+    poser.pose(0, 1.0f, false);   // the GPU's way: the nodes move, the meshes stay as loaded
+    EXPECT_EQ(s.meshes.size(), rest.meshes.size());
+    EXPECT_FALSE(s.nodes[1].visible);
+    EXPECT_NEAR(z_angle(s.nodes[1].rotation), 45.0f, 1e-3f);
+    EXPECT_THROW(poser.pose(2, 0.0f, true), Error);
+    poser.rest();
+    ASSERT_EQ(s.meshes.size(), rest.meshes.size());
+    EXPECT_EQ(s.meshes[0].primitives[0].positions, rest.meshes[0].primitives[0].positions);
+    for (std::size_t n = 0; n < s.nodes.size(); ++n) {
+        EXPECT_EQ(s.nodes[n].local, rest.nodes[n].local);
+        EXPECT_EQ(s.nodes[n].mesh, rest.nodes[n].mesh);
+        EXPECT_FALSE(s.nodes[n].world_space_mesh);
+    }
+}
+
+// A posed scene keeps the rest pose's bounds for cameras (Scene::framing), so that frames of an
+// animation, and a single frame at some time, are fitted alike.
+TEST(ScenePoser, ThePosedSceneKeepsTheRestPosesFraming) {
+    Scene s = test_scene();
+    Animation slide;
+    slide.samplers.push_back(make(Interpolation::Linear, {0, 1}, {0, 0, 0, 10, 0, 0}, 3));
+    slide.channels = {{0, 0, AnimationPath::Translation, ""}};
+    s.animations.push_back(slide);
+    const Bounds rest = scene_bounds(s, flatten(s));
+    Scene posed = animated_scene(s, 0, 1.0f);
+    const std::vector<NodeInstance> moved = flatten(posed);
+    EXPECT_NEAR(scene_bounds(posed, moved).min.x, 10.0f, 1e-6f);  // the triangle moved
+    const Bounds framed = framing_bounds(posed, -1, moved);
+    EXPECT_EQ(framed.min, rest.min);
+    EXPECT_EQ(framed.max, rest.max);
+    EXPECT_EQ(framing_bounds(posed, 0, moved).max, rest.max);
+    EXPECT_EQ(framing_bounds(s, -1, flatten(s)).max, rest.max);  // never posed: its own bounds
+}

@@ -127,6 +127,31 @@ bool Automation::step(State& s, AutomationHost& host, bool ready) {
             else failed("light-remove: no added light " + c.args[0]);
             return false;
         }
+        if (c.name == "play" || c.name == "pause") {
+            if (c.name == "play" && !s.animated()) failed("play: the scene has no animations");
+            s.play(c.name == "play");
+            return false;
+        }
+        if (c.name == "time") {
+            s.set_time(c.number(0));
+            return false;
+        }
+        if (c.name == "animation") {
+            const int n = c.args[0] == "all" ? -1 : int(c.number(0));
+            const std::size_t count = s.scene ? s.scene->animations.size() : 0;
+            if (n >= 0 && std::size_t(n) >= count)
+                failed("animation: no animation " + c.args[0] + " (the scene has " + std::to_string(count) + ")");
+            else s.set_animation(n);
+            return false;
+        }
+        if (c.name == "speed") {
+            s.playback.speed = c.number(0);
+            continue;
+        }
+        if (c.name == "loop") {
+            s.playback.loop = c.args[0] == "on";
+            continue;
+        }
         if (c.name == "orbit-lights") {
             s.orbit_lights = c.args[0] == "on";
             return false;

@@ -40,6 +40,8 @@ const std::map<std::string, Signature>& commands() {
         {"save", {-1, 0}},        {"save-scene", {-1, 0}},   {"auto-rotate", {2, 0}},  {"reload-shaders", {-4, 0}},
         {"light", {1, 0}},        {"light-remove", {1, 1}},  {"orbit-lights", {1, 0}}, {"hide", {1, 1}},
         {"show", {1, 1}},         {"pick", {2, 2}},          {"select", {1, 1}},
+        {"play", {0, 0}},         {"pause", {0, 0}},         {"time", {1, 1}},         {"animation", {1, 0}},
+        {"speed", {1, 1}},        {"loop", {1, 0}},
     };
     return c;
 }
@@ -174,6 +176,13 @@ std::vector<Command> read_view_script(const std::string& path) {
         if (c.name == "auto-rotate" && ((c.args[0] != "camera" && c.args[0] != "env") || (c.args[1] != "on" && c.args[1] != "off")))
             fail("auto-rotate: expected camera|env on|off");
         if (c.name == "orbit-lights" && c.args[0] != "on" && c.args[0] != "off") fail("orbit-lights: expected on|off");
+        if (c.name == "loop" && c.args[0] != "on" && c.args[0] != "off") fail("loop: expected on|off");
+        if (c.name == "speed" && !(std::fabs(c.number(0)) <= 100.0f)) fail("speed: expected a number in [-100, 100]");
+        if (c.name == "time" && !(std::fabs(c.number(0)) <= 1e6f)) fail("time: expected seconds in [-1e6, 1e6]");
+        if (c.name == "animation" && c.args[0] != "all") {
+            float v = 0.0f;
+            if (!parse_float(c.args[0], v) || v < 0 || v != float(int(v))) fail("animation: expected N (>= 0) or all");
+        }
         if (c.name == "light") {
             try {
                 parse_light(c.args[0]);

@@ -152,4 +152,56 @@ std::string State::camera_label(int i) const {
     return "camera " + std::to_string(i) + (name.empty() ? "" : ": " + name);
 }
 
+bool State::animated() const { return scene && !scene->animations.empty(); }
+
+std::pair<float, float> State::animation_range() const {
+    if (!animated()) return {0.0f, 0.0f};
+    const auto& all = scene->animations;
+    const int index = job.source.animation.index;
+    if (index >= 0 && std::size_t(index) < all.size()) return {all[std::size_t(index)].start(), all[std::size_t(index)].end()};
+    float lo = all.front().start(), hi = all.front().end();
+    for (const Animation& a : all) lo = std::min(lo, a.start()), hi = std::max(hi, a.end());
+    return {lo, hi};
+}
+
+void State::play(bool on) {
+    playback.playing = on && animated();
+    if (!playback.playing) return;
+    const auto [lo, hi] = animation_range();
+    std::optional<float>& t = job.source.animation.time;
+    if (!t || *t >= hi || *t < lo) t = lo;
+}
+
+void State::set_time(float t) {
+    if (std::isfinite(t)) job.source.animation.time = t;
+}
+
+void State::set_animation(int index) {
+    job.source.animation.index = index;
+    const auto [lo, hi] = animation_range();
+    std::optional<float>& t = job.source.animation.time;
+    if (playback.playing || !t) t = lo;
+    else t = std::clamp(*t, lo, hi);
+}
+
+bool State::advance(double seconds) {
+    if (!playback.playing || !animated()) return false;
+    const auto [lo, hi] = animation_range();
+    const double length = double(hi) - double(lo);
+    double t = double(job.source.animation.at()) + seconds * double(playback.speed);
+    if (length <= 0.0) {
+        t = lo;
+    } else if (t > hi || t < lo) {
+        if (playback.loop) {
+            t = double(lo) + std::fmod(t - double(lo), length);
+            if (t < lo) t += length;  // playing backwards
+        } else {
+            t = std::clamp(t, double(lo), double(hi));
+            playback.playing = false;
+        }
+    }
+    job.source.animation.time = float(t);
+    return true;
+}
+
 }  // namespace fresnel::viewer

@@ -3,9 +3,13 @@
 // host, when the engine waits for a drawn frame, and how failures are reported.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <fstream>
 #include <stdexcept>
 
+#include "fresnel/core/error.h"
 #include "fresnel/viewer/automation.h"
+#include "fresnel/viewer/script.h"
 #include "viewer_test_scenes.h"
 
 namespace fresnel::viewer {
@@ -273,6 +277,64 @@ TEST(Automation, ABakeFailureIsReportedAtTheEnvLine) {
     a.fail(host, a.env_line(), "env failed");
     EXPECT_TRUE(a.failed());
     EXPECT_EQ(host.errors, (std::vector<std::string>{"s.txt: line 7: env failed"}));
+}
+
+TEST(Automation, PlaybackCommands) {
+    State s;
+    s.scene = std::make_unique<Scene>(test::animated_box_before_sphere());
+    RecordingHost host;
+    Automation a({cmd(1, "time", {"1.25"}), cmd(2, "animation", {"1"}), cmd(3, "speed", {"-2"}), cmd(4, "loop", {"off"}),
+                  cmd(5, "play"), cmd(6, "pause"), cmd(7, "animation", {"5"}), cmd(8, "animation", {"all"}),
+                  cmd(9, "quit")},
+                 "s.txt");
+    a.step(s, host, true);  // time
+    EXPECT_FLOAT_EQ(*s.job.source.animation.time, 1.25f);
+    a.step(s, host, true);  // animation 1, paused: the time stays within [1, 4]
+    EXPECT_EQ(s.job.source.animation.index, 1);
+    EXPECT_FLOAT_EQ(*s.job.source.animation.time, 1.25f);
+    a.step(s, host, true);  // speed and loop change nothing drawn; play does
+    EXPECT_FLOAT_EQ(s.playback.speed, -2.0f);
+    EXPECT_FALSE(s.playback.loop);
+    EXPECT_TRUE(s.playback.playing);
+    a.step(s, host, true);  // pause
+    EXPECT_FALSE(s.playback.playing);
+    a.step(s, host, true);  // animation 5: the scene has 2
+    EXPECT_TRUE(a.failed());
+    ASSERT_EQ(host.errors.size(), 1u);
+    EXPECT_EQ(host.errors[0], "s.txt: line 7: animation: no animation 5 (the scene has 2)");
+    EXPECT_EQ(s.job.source.animation.index, 1);
+    a.step(s, host, true);  // animation all
+    EXPECT_EQ(s.job.source.animation.index, -1);
+    EXPECT_TRUE(a.step(s, host, true));  // quit
+}
+
+TEST(Automation, PlayWithoutAnimationsFails) {
+    State s = drawn_scene();
+    RecordingHost host;
+    Automation a({cmd(3, "play")}, "s.txt");
+    a.step(s, host, true);
+    EXPECT_FALSE(s.playback.playing);
+    EXPECT_EQ(host.errors, (std::vector<std::string>{"s.txt: line 3: play: the scene has no animations"}));
+}
+
+TEST(Script, PlaybackCommandsAreChecked) {
+    const std::string path = ::testing::TempDir() + "fresnel_playback_script.txt";
+    auto read = [&](const std::string& text) {
+        std::ofstream(path) << text;
+        return read_view_script(path);
+    };
+    std::vector<Command> ok = read("play\npause\ntime 1.5\nanimation 2\nanimation all\nspeed -0.5\nloop off\n");
+    ASSERT_EQ(ok.size(), 7u);
+    EXPECT_FLOAT_EQ(ok[2].number(0), 1.5f);
+    for (const char* bad : {"time x\n", "time\n", "animation -1\n", "animation 1.5\n", "loop maybe\n", "speed 1000\n", "play 2\n"}) {
+        try {
+            read(bad);
+            ADD_FAILURE() << bad;
+        } catch (const Error& e) {
+            EXPECT_EQ(e.where(), "line 1") << bad;
+        }
+    }
+    std::remove(path.c_str());
 }
 
 }  // namespace

@@ -247,5 +247,55 @@ TEST(State, TheRecentListIsKeptOnlyWhenTheJobUsesTheCache) {
     fs::remove_all(d);
 }
 
+// Playback: the time is the job's (what `print` and save-scene write, what the window poses).
+TEST(State, PlaybackAdvancesTheJobsTimeAndLoopsOrStops) {
+    State s;
+    EXPECT_FALSE(s.animated());
+    s.play(true);
+    EXPECT_FALSE(s.playback.playing);  // nothing to play
+    s.scene = std::make_unique<Scene>(test::animated_box_before_sphere());
+    ASSERT_TRUE(s.animated());
+    EXPECT_EQ(s.animation_range(), std::make_pair(0.0f, 4.0f));  // all: the union of the keyframes
+    EXPECT_FALSE(s.job.source.animation.posed());                 // the rest pose until asked
+    EXPECT_FALSE(s.advance(0.5));                                 // paused: nothing moves
+    s.play(true);
+    ASSERT_TRUE(s.playback.playing);
+    EXPECT_EQ(s.job.source.animation.time, 0.0f);  // from the start
+    EXPECT_TRUE(s.advance(1.5));
+    EXPECT_FLOAT_EQ(*s.job.source.animation.time, 1.5f);
+    s.playback.speed = 2.0f;
+    s.advance(1.5);  // 1.5 + 3 = 4.5: wrapped to 0.5
+    EXPECT_NEAR(*s.job.source.animation.time, 0.5f, 1e-5f);
+    s.playback.speed = -1.0f;
+    s.advance(1.0);  // backwards past the start: from the end
+    EXPECT_NEAR(*s.job.source.animation.time, 3.5f, 1e-5f);
+    s.playback.speed = 1.0f;
+    s.playback.loop = false;
+    s.advance(10.0);  // no loop: stops at the end
+    EXPECT_FLOAT_EQ(*s.job.source.animation.time, 4.0f);
+    EXPECT_FALSE(s.playback.playing);
+    s.play(true);  // at the end, play starts again
+    EXPECT_FLOAT_EQ(*s.job.source.animation.time, 0.0f);
+}
+
+TEST(State, ChoosingAnAnimationTakesItsRange) {
+    State s;
+    s.scene = std::make_unique<Scene>(test::animated_box_before_sphere());
+    s.set_time(3.0f);
+    s.set_animation(0);  // paused: the time shown, clamped to [0, 2]
+    EXPECT_EQ(s.animation_range(), std::make_pair(0.0f, 2.0f));
+    EXPECT_FLOAT_EQ(*s.job.source.animation.time, 2.0f);
+    s.play(true);
+    s.set_animation(1);  // playing: from the start of [1, 4]
+    EXPECT_EQ(s.job.source.animation.index, 1);
+    EXPECT_FLOAT_EQ(*s.job.source.animation.time, 1.0f);
+    s.advance(0.25);
+    EXPECT_FLOAT_EQ(*s.job.source.animation.time, 1.25f);
+    s.set_animation(-1);
+    EXPECT_EQ(s.animation_range(), std::make_pair(0.0f, 4.0f));
+    s.set_time(std::nanf(""));  // ignored
+    EXPECT_FLOAT_EQ(*s.job.source.animation.time, 0.0f);
+}
+
 }  // namespace
 }  // namespace fresnel::viewer

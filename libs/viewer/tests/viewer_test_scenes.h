@@ -3,6 +3,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "fresnel/job/camera.h"
+#include "fresnel/scene/animation.h"
 #include "fresnel/scene/procedural.h"
 #include "fresnel/scene/scene.h"
 
@@ -51,6 +52,30 @@ inline Scene box_before_sphere() {
     b.local = glm::translate(glm::mat4(1.0f), b.translation);
     s.nodes = {a, b};
     s.scenes = {{0, 1}};
+    return s;
+}
+
+// box_before_sphere with two animations: 0 "slide" moves the box along +X from 0 at 0 s to 4 at
+// 2 s; 1 "lift" moves the sphere along +Y from 0 at 1 s to 3 at 4 s (linear).
+inline Scene animated_box_before_sphere() {
+    Scene s = box_before_sphere();
+    auto track = [](std::string name, int node, float t0, float t1, glm::vec3 from, glm::vec3 to) {
+        Animation a;
+        a.name = std::move(name);
+        AnimationSampler sampler;
+        sampler.input = {t0, t1};
+        sampler.output = {from.x, from.y, from.z, to.x, to.y, to.z};
+        sampler.width = 3;
+        a.samplers.push_back(sampler);
+        AnimationChannel c;
+        c.sampler = 0;
+        c.node = node;
+        c.path = AnimationPath::Translation;
+        a.channels.push_back(c);
+        return a;
+    };
+    s.animations.push_back(track("slide", 0, 0.0f, 2.0f, glm::vec3(0.0f), glm::vec3(4.0f, 0.0f, 0.0f)));
+    s.animations.push_back(track("lift", 1, 1.0f, 4.0f, glm::vec3(0.0f, 0.0f, -3.0f), glm::vec3(0.0f, 3.0f, -3.0f)));
     return s;
 }
 

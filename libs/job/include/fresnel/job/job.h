@@ -66,6 +66,17 @@ struct Job {
         };
         std::vector<Model> models;
         std::string variant;                // KHR_materials_variants name; empty = the default materials
+        // The scene posed at a time of its animations (load_scene poses it on the CPU: skins
+        // and morph targets as fresnel::animated_scene); neither set: the rest pose. The camera
+        // keeps fitting the rest pose (Scene::framing), so frames at different times line up.
+        struct Animation {
+            std::optional<float> time;  // seconds (each animation clamps to its keyframes); unset: 0 when `index` is set
+            int index = -1;             // the animation played; -1: all of them
+            bool posed() const { return time.has_value() || index >= 0; }
+            float at() const { return time.value_or(0.0f); }
+            bool operator==(const Animation&) const = default;
+        };
+        Animation animation;
         // OBJ corners without `vn`: Groups honours `s` (the specification: none means flat),
         // Smooth gives them a normal per position whatever the groups (what OpenGL 1 viewers
         // such as rgl, and ogl1-ref, do); Auto is Smooth under Output::shading ogl1 or
@@ -153,8 +164,15 @@ struct Job {
 };
 
 // Loads the job's scene: its glTF file (warnings into `diag`; throws fresnel::Error) or the demo;
-// with Source::models, every visible model merged into one scene (load_models).
+// with Source::models, every visible model merged into one scene (load_models); posed at
+// Source::animation when it asks for a time (on the CPU, fresnel/scene/pose.h). Front ends that
+// pose the scene themselves (a frame sequence, the viewer's playback) load it with the
+// animation unset and pose it with a ScenePoser.
 Scene load_scene(const Job& job, Diagnostics& diag);
+
+// Source::animation asked of `scene` (loaded at rest): throws fresnel::Error (the model's file)
+// for an animation index the file lacks, warns when the file has no animations.
+void check_animation(const Job& job, const Scene& scene, Diagnostics& diag);
 
 // Source::models: each visible model loaded (through load_scene), its material overrides
 // applied, put under a root with its transform. Throws fresnel::Error (the model's file).

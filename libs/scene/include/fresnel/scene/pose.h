@@ -63,4 +63,44 @@ void pose_meshes(Scene& scene);
 // pose_meshes).
 Scene animated_scene(const Scene& rest, int index, float t);
 
+// A scene posed again and again in place (a viewer's playback, a sequence of frames) without
+// copying it: what animations change (the nodes' transforms, morph weights and meshes, and the
+// materials, lights and cameras that KHR_animation_pointer channels reach) is kept as it was at
+// construction and put back before each pose; meshes posed on the CPU are appended after the
+// loaded ones and dropped again. Anything else (a node's visibility, edits) stays as it is.
+class ScenePoser {
+public:
+    ScenePoser() = default;
+    // `scene` at rest; it must outlive the poser (which keeps a pointer to it).
+    explicit ScenePoser(Scene& scene);
+
+    // The scene at animation `index` (-1: all of them) at time t: animate(), then with
+    // `meshes` pose_meshes() (the CPU reference); without, meshes stay as loaded for the GPU to
+    // pose from the nodes (RenderSettings::gpu_animation). Throws as animate() does.
+    void pose(int index, float t, bool meshes);
+    // Back to the pose at construction.
+    void rest();
+    // The scene's materials as they are now (edited) become the ones put back before each pose.
+    void keep_materials();
+    bool posed() const { return posed_; }
+
+private:
+    struct NodePose {  // what animate() and pose_meshes() change in a node
+        glm::mat4 local{1.0f};
+        glm::vec3 translation{0.0f}, scale{1.0f};
+        glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+        std::vector<float> weights;
+        int mesh = -1;
+        bool world_space_mesh = false;
+    };
+    Scene* scene_ = nullptr;
+    std::vector<NodePose> nodes_;
+    bool pointers_ = false;  // some channel is a KHR_animation_pointer: materials, lights and cameras are kept too
+    std::vector<Material> materials_;
+    std::vector<Light> lights_;
+    std::vector<Camera> cameras_;
+    std::size_t mesh_count_ = 0;
+    bool posed_ = false;
+};
+
 }  // namespace fresnel

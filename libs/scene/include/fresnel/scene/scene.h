@@ -141,6 +141,17 @@ struct Node {
     bool visible = true;
 };
 
+// World-space axis-aligned bounds following the camera convention: the 8 corners
+// of each primitive's POSITION min/max box transformed by its node's world matrix.
+struct Bounds {
+    glm::vec3 min{0.0f}, max{0.0f};
+    bool empty = true;
+    glm::vec3 center() const { return (min + max) * 0.5f; }
+    float radius() const;  // half the diagonal
+    // Grows to hold the box [box_min, box_max] after `transform` (its eight corners).
+    void extend(const glm::mat4& transform, const glm::vec3& box_min, const glm::vec3& box_max);
+};
+
 struct Scene {
     std::string source;  // file it came from
     std::vector<Node> nodes;
@@ -165,6 +176,11 @@ struct Scene {
     };
     std::vector<Part> parts;
     std::vector<std::string> material_variants;  // KHR_materials_variants names, in file order
+    // The bounds a camera is fitted to, per scene index + 1 (entry 0: the default scene), kept
+    // from the rest pose when the scene is first posed (fresnel::animate), so that every frame
+    // of an animation, and a single frame at a time T, share the rest pose's camera. Empty:
+    // the scene's own bounds (framing_bounds).
+    std::vector<Bounds> framing;
 };
 
 // KHR_materials_variants. The index of the variant called `name`; throws fresnel::Error
@@ -185,16 +201,11 @@ struct NodeInstance {
 // Flattens the scene graph of scene `index` (-1 = default scene) into node instances.
 std::vector<NodeInstance> flatten(const Scene& scene, int index = -1);
 
-// World-space axis-aligned bounds following the camera convention: the 8 corners
-// of each primitive's POSITION min/max box transformed by its node's world matrix.
-struct Bounds {
-    glm::vec3 min{0.0f}, max{0.0f};
-    bool empty = true;
-    glm::vec3 center() const { return (min + max) * 0.5f; }
-    float radius() const;  // half the diagonal
-    // Grows to hold the box [box_min, box_max] after `transform` (its eight corners).
-    void extend(const glm::mat4& transform, const glm::vec3& box_min, const glm::vec3& box_max);
-};
 Bounds scene_bounds(const Scene& scene, const std::vector<NodeInstance>& instances);
+// The bounds a camera of scene `index` (-1: the default) fits: Scene::framing's when the scene
+// was posed, else scene_bounds(scene, instances) (`instances`: flatten(scene, index)).
+Bounds framing_bounds(const Scene& scene, int index, const std::vector<NodeInstance>& instances);
+// Scene::framing from the scene as it is now (animate() calls it on a rest pose).
+void keep_framing(Scene& scene);
 
 }  // namespace fresnel

@@ -36,6 +36,10 @@
 //   select NODE            select the node's first primitive (as a click on it; the material editor follows)
 //   pick X Y               click-select at window point X, Y (from the top left); prints one JSON
 //                          line: {"node":N,"mesh":M,"primitive":P,"material":K,"distance":D} or {"node":null}
+//   play | pause           animation playback (from the time shown; play at the end starts again)
+//   time T                 show time T (seconds) of the animations: the scene posed as render --time T
+//   animation N|all        play only animation N, or all of them (render --animation)
+//   speed X | loop on|off  playback speed (seconds of animation a second; negative: backwards), looping
 //   stats                  print frame time, draw calls, triangles and resident memory as one JSON line
 //   quit                   exit: 0, or 1 when an open/env/screenshot of the script failed
 // Paths are relative to the current folder. A malformed line is reported as FILE:LINE and

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -57,6 +58,17 @@ struct State {
     float split_pos = 0.5f;       // the divider, 0..1 of the width
     Job::Output split_output;
 
+    // --- animation playback ---
+    // The time shown and the animation played are the job's (job.source.animation: a time
+    // set poses the scene, unset shows the rest pose), so `print`, save-scene and a screenshot
+    // name the pose they show; the window poses the scene for them (fresnel::ScenePoser).
+    struct Playback {
+        bool playing = false;
+        float speed = 1.0f;  // seconds of animation per second
+        bool loop = true;    // at the end: back to the start, else stop there
+    };
+    Playback playback;
+
     // --- messages ---
     std::string error, status, command_line;
 
@@ -100,6 +112,21 @@ struct State {
     void remember(const std::string& path);
     // The model PageUp (-1) or PageDown (+1) opens; nothing when no folder is being stepped.
     std::optional<std::string> step_folder(int delta) const;
+
+    // The scene's animations (none: false).
+    bool animated() const;
+    // The time range of the played animation (job.source.animation.index; all: the union of
+    // every animation's keyframes); {0, 0} without animations.
+    std::pair<float, float> animation_range() const;
+    // Playback: play from the time shown (from the start when at the rest pose or the end), pause.
+    void play(bool on);
+    // Shows time t (the scene posed at it; playing goes on from there).
+    void set_time(float t);
+    // Plays animation `index` (-1: all), from the start of its range while playing, else at the time shown.
+    void set_animation(int index);
+    // One step of playback after `seconds` of wall time: time += seconds * speed, wrapped to the
+    // start (loop) or stopped at the end. False when nothing moved (paused, no animation).
+    bool advance(double seconds);
 
     // The split view's divider, in framebuffer pixels.
     int divider_pixels() const;
