@@ -779,6 +779,8 @@ async function main() {
             const dir = writeFiles(files);
             if (!M.ccall('fresnel_open', 'number', ['number', 'string'], [app, `${dir}/${files[0].name}`])) fail(lastError());
         } else if (!M.ccall('fresnel_open', 'number', ['number', 'string'], [app, ''])) fail(lastError());  // the built-in demo
+        // A model opens at its rest pose: ?time= and ?animation= apply to it.
+        for (const [key, value] of urlSettings()) if (key.startsWith('animation.')) set(key, value);
         $('warnings').textContent = plain(M.UTF8ToString(M._fresnel_warnings(app)));
         $('warnings').hidden = !$('warnings').textContent;
         await ensureLighting();

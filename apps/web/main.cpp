@@ -108,7 +108,7 @@ struct App {
             for (const std::string& w : diag.lines()) warnings += w + "\n";
             if (s->key == "render.size")
                 emscripten_set_canvas_element_size(canvas.c_str(), job.output.width, job.output.height);
-            if (s->key == "variant" && scene) {  // KHR_materials_variants: the scene again with the variant's materials
+            if (s->key == "variant" && scene && !scene->material_variants.empty()) {  // KHR_materials_variants: the scene again with the variant's materials
                 Diagnostics load;
                 show(job, load);
             }

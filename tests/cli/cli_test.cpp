@@ -459,6 +459,49 @@ TEST_F(Cli, TraceAgreesWithRenderInTheFurnace) {
     }
 }
 
+// One job, one background: with an environment, render and trace both default to the blurred
+// environment (the same prefiltered level of the same bake), `--background environment` to the
+// sharp one. Compared over the top and bottom rows, which the model leaves uncovered.
+TEST_F(Cli, TraceAndRenderDrawTheSameBackground) {
+    const fs::path model = kShared / "assets" / "models" / "Duck" / "Duck.glb";
+    const fs::path env = kShared / "assets" / "env" / "studio_small_03_1k.hdr";
+    if (!fs::exists(model) || !fs::exists(env)) GTEST_SKIP() << "needs " << model << " and " << env;
+    auto band_psnr = [](const fresnel::Image8& a, const fresnel::Image8& b) {
+        double se = 0;
+        std::size_t n = 0;
+        for (int y = 0; y < a.height; ++y) {
+            if (y >= 8 && y < a.height - 8) continue;
+            for (int x = 0; x < a.width; ++x)
+                for (int c = 0; c < 3; ++c, ++n) {
+                    const double d = (double(a.at(x, y)[c]) - double(b.at(x, y)[c])) / 255.0;
+                    se += d * d;
+                }
+        }
+        return se > 0 ? 10.0 * std::log10(double(n) / se) : 99.0;
+    };
+    double same[2], crossed = 0;
+    fresnel::Image8 images[2][2];
+    const char* modes[2] = {"automatic", "environment"};
+    for (int m = 0; m < 2; ++m) {
+        for (int k = 0; k < 2; ++k) {
+            fs::path out = dir_ / (std::string(k ? "t_" : "r_") + modes[m] + ".png");
+            std::vector<std::string> args = {k ? "trace" : "render", model.string(), "--env", env.string(), "--size",
+                                             "128x96", "--background", modes[m], "-o", out.string()};
+            if (k) args.insert(args.end(), {"--spp", "4"});
+            Result r = run(args);
+            ASSERT_EQ(r.exit_code, 0) << show(r);
+            images[m][k] = fresnel::read_image8(out);
+        }
+        same[m] = band_psnr(images[m][0], images[m][1]);
+    }
+    crossed = band_psnr(images[0][0], images[1][1]);
+    std::printf("background render vs trace: blurred %.1f dB, sharp %.1f dB; blurred render vs sharp trace %.1f dB\n", same[0],
+                same[1], crossed);
+    EXPECT_GE(same[0], 45.0) << "the default (blurred) background";
+    EXPECT_GE(same[1], 33.0) << "the sharp background (the renderer's 256 cube against the 1k panorama)";
+    EXPECT_LT(crossed, same[0] - 5.0) << "blurred and sharp are different pictures";
+}
+
 TEST_F(Cli, TraceIsDeterministicAndReportsItsWork) {
     fs::path a = dir_ / "a.png", b = dir_ / "b.png", c = dir_ / "c.png";
     std::vector<std::string> args = {"trace", "--size", "64x48", "--spp", "2", "--max-bounces", "4", "--json", "-o"};

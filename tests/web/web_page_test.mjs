@@ -11,7 +11,9 @@
 //      tone mapping, exposure, camera, size) matches `fresnel render SCENE.fresnel.json` at >= 30 dB;
 //   7. a material edit changes the frame and reverting restores it; adding a light changes the
 //      frame and removing it restores it;
-//   8. every setting of the registry the page offers round-trips through its fresnel_set.
+//   8. every setting of the registry the page offers round-trips through its fresnel_set;
+//   9. an animated model opened at ?time= matches `fresnel render --time`; played, the page's clock
+//      moves the time and draws; paused, the frame matches `fresnel render` at the time reached.
 // Exit 77 (skipped) when build-web, Chromium, playwright-core or the shared assets are missing.
 // usage: node web_page_test.mjs WEB_DIR FRESNEL_EXE SHARED_DIR NODE_TOOLS_DIR OUT_DIR
 import { spawnSync } from 'node:child_process';
@@ -271,6 +273,42 @@ try {
             return { n, bad };
         });
         check(round.n >= 25 && !round.bad.length, `${round.n} registry settings round-trip through the page's set${round.bad.length ? ': ' + round.bad.join('; ') : ''}`);
+    }
+    // 9. Animation: CesiumMan opened at ?time=0.75 matches `fresnel render --time 0.75`; played, the
+    //    page's clock moves animation.time and draws; paused, the frame matches `fresnel render` at
+    //    the time the playback reached.
+    const walker = path.join(shared, 'assets/models/CesiumMan/CesiumMan.glb');
+    if (fs.existsSync(walker)) {
+        const animPage = await browser.newPage({ viewport: { width: 1000, height: 700 }, deviceScaleFactor: 1 });
+        animPage.on('pageerror', e => log.push(`[animation exception] ${e.message}`));
+        const animArgs = [walker, '--size', '256x192', '--yaw', '30', '--env', 'color:0.6,0.6,0.6', '--env-size', '64'];
+        const opened = await openPage(animPage, base, '?model=/assets/models/CesiumMan/CesiumMan.glb&time=0.75&size=256x192&yaw=30&env=color:0.6,0.6,0.6&env-size=64');
+        check(!opened.error, `CesiumMan at ?time=0.75 loads${opened.error ? ': ' + opened.error : ''}`);
+        if (!opened.error) {
+            const animShot = async file => {
+                const url = await animPage.evaluate(() => document.getElementById('canvas').toDataURL('image/png'));
+                fs.writeFileSync(path.join(outDir, file), Buffer.from(url.split(',')[1], 'base64'));
+                return path.join(outDir, file);
+            };
+            render(path.join(outDir, 'cli_walk.png'), ['--time', '0.75'], animArgs);
+            const still = await animPage.evaluate(() => ({ ...window.fresnel.playback(), panel: !document.getElementById('animation-panel').hidden }));
+            const pa = psnr(await animShot('web_walk.png'), path.join(outDir, 'cli_walk.png'));
+            check(pa >= 30 && !still.playing && still.panel && still.hi === 2,
+                  `?time=0.75 opens paused (${still.playing ? 'playing' : 'paused'}, range ${still.lo}..${still.hi}): ${pa.toFixed(2)} dB against render --time 0.75 (>= 30)`);
+            const before = await animPage.evaluate(() => window.fresnel.frames());
+            await animPage.evaluate(() => window.fresnel.play(true));
+            await animPage.waitForTimeout(1500);
+            const played = await animPage.evaluate(() => { window.fresnel.play(false); return { ...window.fresnel.playback(), frames: window.fresnel.frames() }; });
+            await animPage.evaluate(() => window.fresnel.draw());
+            const t = played.time;
+            render(path.join(outDir, 'cli_walk_played.png'), ['--time', String(t)], animArgs);
+            const pp = psnr(await animShot('web_walk_played.png'), path.join(outDir, 'cli_walk_played.png'));
+            check(played.frames - before >= 2 && Math.abs(t - 0.75) > 0.05 && t >= 0 && t <= 2 && pp >= 30,
+                  `playing drew ${played.frames - before} frames and reached t = ${t.toFixed(3)}; paused there: ${pp.toFixed(2)} dB against render --time (>= 30)`);
+        }
+        await animPage.close();
+    } else {
+        console.log(`skipped the animation checks: ${walker} is missing`);
     }
     if (failures) console.log(log.join('\n'));
 } finally {

@@ -12,6 +12,10 @@ TraceSettings JobInputs::settings(const ResolvedJob& job, TraceSettings base) co
     base.brdf = rs.brdf;
     base.brdf_lut = brdf_lut.pixels.empty() ? nullptr : &brdf_lut;
     base.env_background = rs.background_mode != RenderSettings::Background::Color;
+    if (blurred_background && !blurred_background->specular.levels.empty()) {
+        base.background_cube = &blurred_background->specular;
+        base.background_lod = rs.blur_roughness * float(blurred_background->specular.levels.size() - 1);  // the sky pass's u_lod
+    }
     return base;
 }
 
@@ -24,6 +28,8 @@ JobInputs load_job_inputs(const ResolvedJob& job) {
             throw Error(src.path.string(), "--env",
                         "a baked folder holds no panorama; trace needs the .hdr/.exr it was baked from");
         in.environment.emplace(ibl::load_panorama(src), rs.env_rotation_deg, rs.env_intensity);
+        if (rs.background_mode == RenderSettings::Background::Blurred)
+            in.blurred_background = ibl::load_or_bake(src, job.bake_options, {}, job.use_cache);
     }
     if (rs.energy_compensation) in.brdf_lut = ibl::load_or_bake_lut(job.bake_options, job.use_cache);
     return in;

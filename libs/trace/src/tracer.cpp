@@ -415,7 +415,11 @@ struct Integrator {
             Hit hit = bounce == 0 && first ? *first : scene.intersect(origin, dir, INFINITY, splitmix64(rng.next()), bounce == 0);
             if (!hit.valid()) {
                 if (bounce == 0) {
-                    if (env && settings.env_background) L += env->radiance(dir);
+                    if (env && settings.env_background)
+                        L += settings.background_cube
+                                 ? settings.background_cube->sample(env->to_environment(dir), settings.background_lod) *
+                                       env->intensity()
+                                 : env->radiance(dir);
                 } else if (env && !env_counted) {
                     L += beta * env->radiance(dir) * (transmitted ? 1.0f : power_heuristic(bsdf_pdf, env->pdf(dir)));
                 }

@@ -37,6 +37,7 @@ public:
     glm::vec3 to_environment(glm::vec3 world) const { return to_env_ * world; }
     glm::vec3 to_world(glm::vec3 env) const { return to_world_ * env; }
     const ImageF& panorama() const { return panorama_; }
+    float intensity() const { return intensity_; }
 
 private:
     ImageF panorama_;

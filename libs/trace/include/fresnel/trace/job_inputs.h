@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "fresnel/core/image.h"
+#include "fresnel/ibl/bake.h"
 #include "fresnel/job/job.h"
 #include "fresnel/trace/environment_light.h"
 #include "fresnel/trace/tracer.h"
@@ -14,10 +15,15 @@ namespace fresnel::trace {
 struct JobInputs {
     std::optional<EnvironmentLight> environment;  // none: the job has no image-based light
     ImageF brdf_lut;                              // empty: the job turns energy compensation off
+    // The environment's bake (as the rasteriser loads it, from the same cache) when the job's
+    // background is the blurred environment: camera rays that miss see its prefiltered level, as
+    // the rasteriser draws it (TraceSettings::background_cube).
+    std::optional<ibl::BakedIbl> blurred_background;
     const EnvironmentLight* light() const { return environment ? &*environment : nullptr; }
     // `base` (samples, bounces, seed, threads, ...) with what the job decides: the image size, the
     // BRDF's terms, the energy model (pointing at brdf_lut, so this must outlive the trace) and
-    // whether camera rays that miss see the environment (env and blur backgrounds; not a colour).
+    // whether camera rays that miss see the environment (env and blur backgrounds; not a colour),
+    // and for blur the prefiltered level the rasteriser shows.
     TraceSettings settings(const ResolvedJob& job, TraceSettings base) const;
 };
 

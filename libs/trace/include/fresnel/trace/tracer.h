@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "fresnel/core/image.h"
+#include "fresnel/ibl/cubemap.h"
 #include "fresnel/material/brdf_model.h"
 #include "fresnel/job/camera.h"
 #include "fresnel/job/lights.h"
@@ -48,6 +49,12 @@ struct TraceSettings {
     unsigned threads = 0;          // 0 = all cores
     bool env_visibility = true;    // false: environment light is never shadowed (real-time IBL)
     bool env_background = true;    // camera rays that miss see the environment (else coverage 0)
+    // Set (with env_background): camera rays that miss see this prefiltered cube (the environment's
+    // bake, in the environment's frame) at level of detail `background_lod`, times the environment's
+    // intensity: the rasteriser's blurred background (RenderSettings::Background::Blurred), so the
+    // two front ends draw one background. Null: the panorama itself (sharp).
+    const ibl::Cubemap* background_cube = nullptr;
+    float background_lod = 0.0f;
     int russian_roulette_start = 3;  // bounces before Russian roulette may end a path
     brdf::BrdfModel brdf;            // the BRDF's terms (`--brdf`), for every light and bounce
     // The BRDF table (ibl::compute_brdf_lut, the rasteriser's): set, every bounce applies the
