@@ -570,9 +570,34 @@ function play(on) {
     showPlayback();
 }
 
+// The file's parts that can be switched off (skinning, morphing, occlusion, material extensions):
+// a checkbox each, setting the registry's `disable` list (the model loads again without them).
+function buildFeatures(st) {
+    $('features-panel').hidden = !st.features.length;
+    const box = $('features');
+    box.replaceChildren();
+    for (const f of st.features) {
+        const label = document.createElement('label');
+        const input = document.createElement('input');
+        input.type = 'checkbox';
+        input.checked = f.on;
+        input.dataset.feature = f.name;
+        input.addEventListener('input', async () => {
+            const off = [...box.querySelectorAll('input')].filter(i => !i.checked).map(i => i.dataset.feature);
+            try { set('disable', off.length ? off.join(',') : 'none'); } catch (e) { showError(e.message); }
+            await draw();
+            syncPanel();
+        });
+        label.append(input, ` ${f.name.replace(/^KHR_materials_/, '')}`);
+        label.title = f.name;
+        box.append(label);
+    }
+}
+
 function syncPanel() {
     const st = state();
     buildAnimation(st);
+    buildFeatures(st);
     $('variant-label').hidden = !st.variants.length;
     if (st.variants.length && $('variant').options.length !== st.variants.length + 1) {
         $('variant').replaceChildren(new Option('(default materials)', ''));

@@ -6,6 +6,7 @@
 #include <emscripten/emscripten.h>
 #include <emscripten/html5.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -19,6 +20,7 @@
 #include "fresnel/core/error.h"
 #include "fresnel/gpu/context.h"
 #include "fresnel/gpu/device.h"
+#include "fresnel/job/features.h"
 #include "fresnel/job/job.h"
 #include "fresnel/job/orbit_controller.h"
 #include "fresnel/render/renderer.h"
@@ -108,6 +110,10 @@ struct App {
             for (const std::string& w : diag.lines()) warnings += w + "\n";
             if (s->key == "render.size")
                 emscripten_set_canvas_element_size(canvas.c_str(), job.output.width, job.output.height);
+            if (s->key == "disable" && scene) {  // parts of the file turned off (fresnel/job/features.h): loaded again without them
+                Diagnostics load;
+                show(job, load);
+            }
             if (s->key == "variant" && scene && !scene->material_variants.empty()) {  // KHR_materials_variants: the scene again with the variant's materials
                 Diagnostics load;
                 show(job, load);
@@ -261,6 +267,19 @@ struct App {
         out["animations"] = animations;
         out["posedOnGpu"] = posing.on_gpu();
         out["variants"] = variants;
+        // The parts of the file its switches turn off (the setting `disable`): what the scene
+        // holds, and what is off.
+        nlohmann::json features = nlohmann::json::array();
+        if (scene) {
+            std::vector<std::string> list = scene_features(*scene);
+            for (const std::string& f : job.source.disabled)
+                if (std::find(list.begin(), list.end(), f) == list.end()) list.push_back(f);
+            for (const std::string& f : list)
+                features.push_back({{"name", f},
+                                    {"on", std::find(job.source.disabled.begin(), job.source.disabled.end(), f) ==
+                                               job.source.disabled.end()}});
+        }
+        out["features"] = features;
         return out.dump();
     }
 

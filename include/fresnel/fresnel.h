@@ -59,12 +59,14 @@
 #include "fresnel/gpu/resources.h"
 
 #include "fresnel/job/camera.h"
+#include "fresnel/job/features.h"
 #include "fresnel/job/render_settings.h"
 #include "fresnel/job/job.h"
 #include "fresnel/job/lights.h"
 #include "fresnel/job/orbit_controller.h"
 #include "fresnel/render/limits.h"
 #include "fresnel/render/renderer.h"
+#include "fresnel/render/scene_posing.h"
 #include "fresnel/job/scene_file.h"
 #include "fresnel/job/settings.h"
 

@@ -36,7 +36,7 @@ struct PyScene {
 using ScenePtr = std::shared_ptr<PyScene>;
 
 // Settings a scene is loaded with (fresnel/job/job.h's Source): they are given to load().
-const char* const kLoadSettings[] = {"variant", "animation.time", "animation.index", "poseSkins", "objNormals", "allowExternalFiles", "maxMemory"};
+const char* const kLoadSettings[] = {"variant", "animation.time", "animation.index", "disable", "poseSkins", "objNormals", "allowExternalFiles", "maxMemory"};
 
 // The job a call renders: `job` (else the scene's own), the keywords applied, the scene's source.
 Job effective_job(const PyScene& s, const py::object& job, const py::kwargs& kwargs) {

@@ -268,6 +268,9 @@ try {
                 try { window.fresnel.setOnly(s.key, s.example); } catch (e) { bad.push(`${s.key}: ${e.message}`); continue; }
                 const got = window.fresnel.state().settings[s.key];
                 if (got !== s.example) bad.push(`${s.key}: set ${s.example}, reads ${got}`);
+                // Back to the default: each setting's example alone (a variant the model lacks
+                // would make the next reload of the model, `disable`'s, fail).
+                try { window.fresnel.setOnly(s.key, s.default); } catch (e) { bad.push(`${s.key} back to ${s.default}: ${e.message}`); }
                 ++n;
             }
             return { n, bad };

@@ -79,6 +79,8 @@ bool Viewer::load_job(Job job, const std::string& label) {
         state_.original_materials = state_.scene->materials;
         state_.materials_edited = false;
         state_.job = job;
+        loaded_source_ = job.source;
+        loaded_source_.animation = {};
         state_.opened = path;
         if (state_.job.source.models.empty() && is_gltf(state_.job.source.model)) {
             fs::path p(state_.job.source.model);

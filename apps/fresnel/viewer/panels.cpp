@@ -6,7 +6,9 @@
 #include <algorithm>
 
 #include "fresnel/gpu/device.h"
+#include "fresnel/job/features.h"
 #include "fresnel/job/orbit_controller.h"
+#include "fresnel/job/settings.h"
 #include "fresnel/viewer/files.h"
 #include "setting_widgets.h"
 #include "viewer_app.h"
@@ -61,6 +63,7 @@ void Viewer::draw_gui() {
     if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) draw_file_panel();
     if (state_.animated() && ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen)) draw_animation_panel();
     if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) draw_camera_panel();
+    if (state_.scene && ImGui::CollapsingHeader("Features")) draw_features_panel();
     if (ImGui::CollapsingHeader("Environment")) draw_environment_panel();
     draw_output_panels();
     if (state_.scene && ImGui::CollapsingHeader("Scene")) draw_scene_tree();
@@ -114,12 +117,7 @@ void Viewer::draw_file_panel() {
                 if (ImGui::Selectable(n.c_str(), n == current)) chosen = n;
             ImGui::EndCombo();
         }
-        if (chosen != current) {  // the scene again with the variant's materials; the view stays
-            Job next = state_.job;
-            next.source.variant = chosen;
-            const bool playing = state_.playback.playing;
-            if (load_job(std::move(next), state_.opened)) state_.playback.playing = playing;
-        }
+        if (chosen != current) state_.job.source.variant = chosen;  // reloaded with the variant's materials (reload_if_needed)
     }
     ImGui::TextDisabled("drop a model, a scene file or an environment onto the window");
     ImGui::InputText("##scene-file", &state_.scene_save_path);
@@ -191,6 +189,48 @@ void Viewer::draw_camera_panel() {
     ImGui::TextDisabled("left drag: orbit; right/middle or shift+left: pan; wheel: dolly");
 }
 
+// Switches, as the Khronos Sample Viewer's: image-based light, the file's punctual lights,
+// shadows (settings of their own), and the parts of the file a job can turn off (the setting
+// `disable`: skinning, morphing, occlusion, each material extension the file uses), which reload
+// the scene without them (fresnel/job/features.h), as `render --disable` loads it.
+void Viewer::draw_features_panel() {
+    using Kind = Job::Environment::Kind;
+    Job& job = state_.job;
+    bool ibl = job.environment.kind != Kind::None;
+    if (ImGui::Checkbox("image-based light", &ibl)) {
+        if (!ibl) {
+            environment_before_off_ = job.environment;
+            job.environment.kind = Kind::None;
+        } else {
+            job.environment = environment_before_off_;
+            if (job.environment.kind == Kind::None) job.environment.kind = Kind::Automatic;
+        }
+    }
+    setting_widget(job, "sceneLights", "punctual lights (the file's)");
+    setting_widget(job, "render.shadows");
+    std::vector<std::string> features = scene_features(*state_.scene);
+    for (const std::string& f : job.source.disabled)
+        if (std::find(features.begin(), features.end(), f) == features.end()) features.push_back(f);
+    if (features.empty()) ImGui::TextDisabled("the file has no skins, morph targets, occlusion or material extensions");
+    std::optional<std::vector<std::string>> next;
+    for (const std::string& f : features) {
+        const auto at = std::find(job.source.disabled.begin(), job.source.disabled.end(), f);
+        bool on = at == job.source.disabled.end();
+        const std::string label = f.starts_with("KHR_materials_") ? f.substr(14) : f;
+        if (ImGui::Checkbox(label.c_str(), &on)) {
+            next = job.source.disabled;
+            if (on) next->erase(next->begin() + (at - job.source.disabled.begin()));
+            else next->push_back(f);
+        }
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.c_str());
+    }
+    if (next) {  // the scene again without them (reload_if_needed); the view and the playback stay
+        std::string list;
+        for (const std::string& f : *next) list += (list.empty() ? "" : ",") + f;
+        settings::set(job, "disable", list.empty() ? std::string("none") : list, "--disable");
+    }
+}
+
 void Viewer::draw_environment_panel() {
     using Kind = Job::Environment::Kind;
     Job& job = state_.job;
@@ -198,6 +238,20 @@ void Viewer::draw_environment_panel() {
     combo<Kind>("light", e.kind,
                 {{Kind::Automatic, "automatic"}, {Kind::Studio, "studio"}, {Kind::File, "file"},
                  {Kind::Color, "colour"}, {Kind::None, "none (no IBL)"}});
+    // Presets: the built-in studio, the environments beside the model, the recent ones.
+    const std::string shown = e.kind == Kind::File ? fs::path(e.path).filename().string() : e.kind == Kind::Studio ? "studio" : "";
+    if (ImGui::BeginCombo("preset", shown.empty() ? "(choose)" : shown.c_str())) {
+        for (const std::string& p : state_.environment_presets()) {
+            const bool studio = p == "studio";
+            const std::string label = studio ? "studio (built in)" : fs::path(p).filename().string() + "##" + p;
+            if (ImGui::Selectable(label.c_str(), studio ? e.kind == Kind::Studio : e.kind == Kind::File && e.path == p)) {
+                if (studio) e.kind = Kind::Studio;
+                else state_.open_environment(p);
+            }
+            if (!studio && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.c_str());
+        }
+        ImGui::EndCombo();
+    }
     if (e.kind == Kind::File) ImGui::TextWrapped("%s", e.path.empty() ? "(drop a .hdr/.exr)" : e.path.c_str());
     if (e.kind == Kind::Color) ImGui::ColorEdit3("colour", &e.color.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
     setting_widget(job, "environment.rotation");

@@ -99,6 +99,7 @@ int Viewer::loop(gui::Window& window) {
             if (moving()) spin();
             else spin_last_.reset();
             draw_gui();
+            reload_if_needed();
             sync_pose();
             ready = update_lighting();
             draw_scene();
@@ -196,6 +197,25 @@ bool Viewer::update_lighting() {
     }
     if (key != failed_key_) failed_key_.clear();
     return !bake_ && key == lighting_key_;
+}
+
+// A change of what the scene is loaded with (variant, disabled parts, pose skins, OBJ normals,
+// the glTF scene: the job's Source but its animation, which is posed in place) from the panels or
+// a script's `set`: the scene again, the view and the playback kept. A failure (a variant the
+// file lacks) is shown and the loaded source stays.
+void Viewer::reload_if_needed() {
+    if (!state_.scene) return;
+    Job::Source wanted = state_.job.source;
+    wanted.animation = {};
+    if (wanted == loaded_source_) return;
+    const bool playing = state_.playback.playing;
+    if (load_job(state_.job, state_.opened)) {
+        state_.playback.playing = playing;
+        return;
+    }
+    const Job::Source::Animation animation = state_.job.source.animation;
+    state_.job.source = loaded_source_;
+    state_.job.source.animation = animation;
 }
 
 // The scene posed at the time the state shows (job.source.animation), when that changed.

@@ -75,6 +75,7 @@ private:
     void release_gpu();
     int loop(gui::Window& window);
     bool update_lighting();
+    void reload_if_needed();
     void sync_pose();
     void draw_scene();
     // Something moves by the clock: auto-rotation or animation playback.
@@ -96,6 +97,7 @@ private:
     void draw_gui();
     void draw_file_panel();
     void draw_animation_panel();
+    void draw_features_panel();
     void draw_camera_panel();
     void draw_environment_panel();
     void draw_output_panels();
@@ -117,6 +119,8 @@ private:
     std::unique_ptr<Renderer> renderer_;
     JobLighting lighting_;
     ScenePosing posing_;  // state_.scene posed in place at the state's time
+    Job::Source loaded_source_;               // what state_.scene was loaded with (its animation unset)
+    Job::Environment environment_before_off_;  // what the Features panel's image-based light switch turns back to
     static constexpr const char* kNoLighting = "(none yet)";
     std::string lighting_key_ = kNoLighting, failed_key_;
     std::unique_ptr<Bake> bake_;

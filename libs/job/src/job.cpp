@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <chrono>
 
+#include "fresnel/job/features.h"
 #include "fresnel/scene/gltf_loader.h"
 #include "fresnel/scene/obj_loader.h"
 #include "fresnel/scene/pose.h"
@@ -42,6 +43,7 @@ Scene load_rest_scene(const Job& job, Diagnostics& diag) {
     lo.pose_skins = job.source.pose_skins && !job.source.animation.posed();  // animated skins pose from the bind pose
     Scene scene = load_gltf(job.source.model, diag, lo);
     if (!job.source.variant.empty()) apply_material_variant(scene, find_material_variant(scene, job.source.variant));
+    disable_features(scene, job.source.disabled);
     return scene;
 }
 }  // namespace

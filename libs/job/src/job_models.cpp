@@ -39,6 +39,7 @@ Scene load_models(const Job& job, Diagnostics& diag) {
         one.source.pose_skins = job.source.pose_skins;
         one.source.max_memory_mib = job.source.max_memory_mib;
         one.source.animation = job.source.animation;
+        one.source.disabled = job.source.disabled;
         Scene scene = load_scene(one, diag);
         const std::string name = m.path.empty() ? std::string("demo") : m.path;
         for (const auto& o : m.materials) {

@@ -3,6 +3,8 @@
 // Long (~910 lines) by design: the table declares every setting once, in one place.
 #include "fresnel/job/settings.h"
 
+#include "fresnel/job/features.h"
+
 #include "fresnel/core/spelling.h"
 
 #include <algorithm>
@@ -416,6 +418,57 @@ std::vector<Setting> make_registry() {
             return v;
         };
         s.put = [](Job& j, const Value& v) { j.source.animation.index = v.unset ? -1 : int(v.number); };
+        r.push_back(s);
+    }
+    {
+        Setting s;
+        s.key = "disable";
+        s.flag = "--disable";
+        s.type = Type::Text;
+        s.doc = "Turn parts of the file off, comma-separated: skinning (the bind pose), morphing (no morph targets), "
+                "occlusion (occlusion textures unread) and material extensions (KHR_materials_clearcoat, or "
+                "clearcoat; fresnel info lists a file's); none: everything on";
+        s.front_ends = all;
+        s.syntax = "none or a comma-separated list of skinning, morphing, occlusion and KHR_materials_* extensions";
+        s.example = "skinning,KHR_materials_clearcoat";
+        auto parse = [](const std::string& t, std::string* why) {
+            std::vector<std::string> out;
+            if (t.empty() || t == "none") return out;
+            std::size_t start = 0;
+            while (start <= t.size()) {
+                std::size_t end = t.find(',', start);
+                if (end == std::string::npos) end = t.size();
+                const std::string term = t.substr(start, end - start);
+                const std::string name = feature_name(term);
+                if (name.empty()) {
+                    if (why) *why = "'" + term + "' is not one of skinning, morphing, occlusion or a material extension";
+                    return std::vector<std::string>{};
+                }
+                if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
+                start = end + 1;
+            }
+            std::vector<std::string> sorted;  // feature_names() order: one spelling of each list
+            for (const std::string& n : feature_names())
+                if (std::find(out.begin(), out.end(), n) != out.end()) sorted.push_back(n);
+            return sorted;
+        };
+        auto text = [](const std::vector<std::string>& list) {
+            std::string t;
+            for (const std::string& n : list) t += (t.empty() ? "" : ",") + n;
+            return t.empty() ? std::string("none") : t;
+        };
+        s.check = [parse](const std::string& t) {
+            std::string why;
+            parse(t, &why);
+            return why;
+        };
+        s.canonical = [parse, text](const std::string& t) { return text(parse(t, nullptr)); };
+        s.get = [text](const Job& j) {
+            Value v;
+            v.text = text(j.source.disabled);
+            return v;
+        };
+        s.put = [parse](Job& j, const Value& v) { j.source.disabled = parse(v.text, nullptr); };
         r.push_back(s);
     }
     r.push_back(boolean("poseSkins", "--pose-skins", false,

@@ -5,7 +5,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "fresnel/core/error.h"
+#include "fresnel/job/features.h"
 #include "fresnel/job/job.h"
+#include "fresnel/job/settings.h"
+#include "fresnel/scene/pose.h"
 #include "fresnel/scene/procedural.h"
 
 using namespace fresnel;
@@ -412,4 +415,52 @@ TEST(JobTest, ShadingModelNames) {
         EXPECT_EQ(parse_shading_model(shading_model_name(m)), m);
     EXPECT_EQ(parse_shading_model("ogl1-pixel"), ShadingModel::Ogl1Pixel);
     EXPECT_FALSE(parse_shading_model("phong").has_value());
+}
+
+// Parts of a file turned off (fresnel/job/features.h, the setting `disable`): what a scene holds,
+// how each is removed, and the setting's one spelling.
+TEST(Features, WhatASceneHoldsAndTurningItOff) {
+    Scene s = sphere_scene();
+    Primitive& p = s.meshes[0].primitives[0];
+    MorphTarget up;
+    up.positions.assign(p.positions.size(), glm::vec3(0.0f, 1.0f, 0.0f));
+    p.targets = {up};
+    const glm::vec3 base = p.positions[0];
+    s.meshes[0].weights = {0.5f};
+    apply_morph_weights(p, s.meshes[0].weights);  // as the loader applies the mesh's weights
+    s.skins.push_back(Skin{});
+    s.nodes[0].skin = 0;
+    Material m;
+    m.occlusion.texture = 0;
+    m.clearcoat.emplace();
+    s.materials = {m, Material{}};
+    s.extensions_used = {"KHR_materials_sheen", "KHR_texture_transform"};  // used by the file, held by no material
+    EXPECT_EQ(scene_features(s), (std::vector<std::string>{"skinning", "morphing", "occlusion", "KHR_materials_clearcoat",
+                                                            "KHR_materials_sheen"}));
+    disable_features(s, {"skinning", "morphing", "occlusion", "KHR_materials_clearcoat"});
+    EXPECT_EQ(s.nodes[0].skin, -1);
+    EXPECT_TRUE(p.targets.empty());
+    EXPECT_EQ(p.positions[0], base) << "back to the base shape";
+    EXPECT_FALSE(s.materials[0].occlusion.valid());
+    EXPECT_FALSE(s.materials[0].clearcoat.has_value());
+    EXPECT_EQ(scene_features(s), (std::vector<std::string>{"KHR_materials_sheen"}));
+    EXPECT_EQ(feature_name("clearcoat"), "KHR_materials_clearcoat");
+    EXPECT_EQ(feature_name("KHR_materials_unlit"), "KHR_materials_unlit");
+    EXPECT_EQ(feature_name("materials_clearcoat"), "");
+    EXPECT_EQ(feature_name("morphing"), "morphing");
+}
+
+TEST(Features, TheDisableSettingHasOneSpelling) {
+    Job job;
+    settings::set(job, "disable", "clearcoat,skinning,clearcoat", "--disable");
+    EXPECT_EQ(job.source.disabled, (std::vector<std::string>{"skinning", "KHR_materials_clearcoat"}));
+    EXPECT_EQ(settings::get(job, "disable"), "skinning,KHR_materials_clearcoat");
+    settings::set(job, "disable", "none", "--disable");
+    EXPECT_TRUE(job.source.disabled.empty());
+    try {
+        settings::set(job, "disable", "skinning,glow", "--disable");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("'glow' is not one of"), std::string::npos) << e.what();
+    }
 }

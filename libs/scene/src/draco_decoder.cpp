@@ -3,10 +3,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
+#include <functional>
+#include <memory>
 #include <limits>
 
 #include <draco/compression/config/compression_shared.h>
 #include <draco/compression/decode.h>
+#include <draco/compression/mesh/mesh_edgebreaker_decoder.h>
+#include <draco/compression/mesh/mesh_sequential_decoder.h>
 #include <draco/compression/point_cloud/point_cloud_decoder.h>
 #include <draco/core/varint_decoding.h>
 #include <draco/mesh/mesh.h>
@@ -81,6 +86,64 @@ bool read_stream_counts(const std::uint8_t* data, std::size_t size, StreamCounts
         return why = "truncated connectivity", false;
     out.points = encoded_vertices + split_symbols + new_vertices;
     return true;
+}
+// A Draco mesh decoder that checks what the stream's attribute headers ask for against the
+// load's memory budget before any attribute value is decoded: Draco sizes (and zero-fills) each
+// attribute's storage from the header's point count and its own component count (up to 255) and
+// data type, which the glTF accessors do not bound. PointCloudDecoder::DecodeAllAttributes runs
+// after every header was read and before the values are; the check throws there (through
+// `check`), which this keeps and the caller rethrows once Draco has returned.
+template <class Base>
+class BudgetedDecoder : public Base {
+public:
+    BudgetedDecoder(std::uint64_t values, std::function<void(std::size_t)> check)
+        : values_(values), check_(std::move(check)) {}
+    std::exception_ptr refused;
+
+protected:
+    bool DecodeAllAttributes() override {
+        const draco::PointCloud* pc = this->point_cloud();
+        std::uint64_t need = 0;
+        for (int i = 0; pc && i < pc->num_attributes(); ++i) {
+            const draco::PointAttribute* a = pc->attribute(i);
+            // The decoded values and Draco's integer copy of them (quantized attributes).
+            const std::uint64_t bytes = std::uint64_t(a->num_components()) *
+                                        (std::uint64_t(std::max(draco::DataTypeLength(a->data_type()), 1)) + 4);
+            need += values_ * bytes;
+        }
+        try {
+            check_(std::size_t(std::min<std::uint64_t>(need, SIZE_MAX)));
+        } catch (...) {
+            refused = std::current_exception();
+            return false;
+        }
+        return Base::DecodeAllAttributes();
+    }
+
+private:
+    std::uint64_t values_;  // a bound on the values an attribute can hold
+    std::function<void(std::size_t)> check_;
+};
+
+// Decodes the mesh stream with a BudgetedDecoder of its encoding; throws what the budget check threw.
+draco::StatusOr<std::unique_ptr<draco::Mesh>> decode_budgeted(draco::DecoderBuffer& buffer, std::uint64_t values,
+                                                              std::function<void(std::size_t)> check) {
+    draco::DecoderBuffer peek = buffer;
+    draco::DracoHeader h;
+    if (!draco::PointCloudDecoder::DecodeHeader(&peek, &h).ok()) return draco::Status(draco::Status::DRACO_ERROR, "no Draco header");
+    auto run = [&](auto decoder) -> draco::StatusOr<std::unique_ptr<draco::Mesh>> {
+        auto mesh = std::make_unique<draco::Mesh>();
+        draco::DecoderOptions options;
+        draco::Status status = decoder->Decode(options, &buffer, mesh.get());
+        if (decoder->refused) std::rethrow_exception(decoder->refused);
+        if (!status.ok()) return status;
+        return mesh;
+    };
+    if (h.encoder_method == draco::MESH_SEQUENTIAL_ENCODING)
+        return run(std::make_unique<BudgetedDecoder<draco::MeshSequentialDecoder>>(values, check));
+    if (h.encoder_method == draco::MESH_EDGEBREAKER_ENCODING)
+        return run(std::make_unique<BudgetedDecoder<draco::MeshEdgebreakerDecoder>>(values, check));
+    return draco::Status(draco::Status::DRACO_ERROR, "unknown encoding method");
 }
 }  // namespace
 
@@ -163,8 +226,9 @@ std::map<int, AccessorData> decode_draco_primitive(const JsonReader& r, const js
     auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
     if (!type.ok()) fail(ptr + "/bufferView", "not a Draco stream (" + type.status().error_msg_string() + ")");
     if (type.value() != draco::TRIANGULAR_MESH) fail(ptr + "/bufferView", "the Draco stream is not a triangle mesh");
-    draco::Decoder decoder;
-    auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
+    // An attribute holds at most a value per point or per corner.
+    const std::uint64_t values = std::max({std::uint64_t(points), counts.points, counts.faces * 3});
+    auto decoded = decode_budgeted(buffer, values, [&](std::size_t bytes) { accessors.check_budget(bytes, ptr); });
     if (!decoded.ok()) fail(ptr + "/bufferView", "cannot decode: " + decoded.status().error_msg_string());
     const draco::Mesh& mesh = *decoded.value();
 

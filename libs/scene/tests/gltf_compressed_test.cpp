@@ -27,7 +27,7 @@ using json = nlohmann::json;
 
 namespace {
 
-constexpr int FLOAT = 5126, UNSIGNED_SHORT = 5123, BYTE = 5120;
+constexpr int FLOAT = 5126, UNSIGNED_SHORT = 5123, UNSIGNED_INT = 5125, BYTE = 5120;
 
 void append(std::vector<std::uint8_t>& out, const void* p, std::size_t n) {
     auto b = static_cast<const std::uint8_t*>(p);
@@ -488,6 +488,72 @@ TEST(GltfDraco, WrongCountsAndIdsAreErrors) {
         Error e = load_error(j, junk);
         EXPECT_NE(e.reason().find("KHR_draco_mesh_compression: "), std::string::npos) << e.what();
     }
+}
+
+// The memory bomb: a stream whose own attribute headers ask for far more than the glTF
+// accessors describe (an attribute of 255 components the file never names, which Draco sizes
+// and zero-fills per point before reading a value). Refused by the memory budget before Draco
+// allocates it; the same file decodes under a budget that holds it.
+TEST(GltfDraco, TheStreamsOwnAttributesAreWithinTheBudget) {
+    const int n = 24;  // an n x n grid of quads: 2 n^2 triangles
+    draco::TriangleSoupMeshBuilder b;
+    b.Start(2 * n * n);
+    int pos = b.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+    int wide = b.AddAttribute(draco::GeometryAttribute::GENERIC, 255, draco::DT_UINT8);
+    std::vector<std::uint8_t> zeros(255, 0);
+    int face = 0;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const float c[4][3] = {{float(x), float(y), 0}, {float(x + 1), float(y), 0}, {float(x + 1), float(y + 1), 0},
+                                   {float(x), float(y + 1), 0}};
+            static const int kTriangles[2][3] = {{0, 1, 2}, {0, 2, 3}};
+            for (const int* t : kTriangles) {
+                b.SetAttributeValuesForFace(pos, draco::FaceIndex(face), c[t[0]], c[t[1]], c[t[2]]);
+                b.SetAttributeValuesForFace(wide, draco::FaceIndex(face), zeros.data(), zeros.data(), zeros.data());
+                ++face;
+            }
+        }
+    auto mesh = b.Finalize();
+    ASSERT_TRUE(mesh);
+    draco::Encoder enc;
+    enc.SetAttributeQuantization(draco::GeometryAttribute::POSITION, 14);
+    draco::EncoderBuffer out;
+    ASSERT_TRUE(enc.EncodeMeshToBuffer(*mesh, &out).ok());
+    draco::DecoderBuffer in;
+    in.Init(out.data(), out.size());
+    auto decoded = draco::Decoder().DecodeMeshFromBuffer(&in);
+    ASSERT_TRUE(decoded.ok());
+    const std::size_t points = decoded.value()->num_points(), faces = decoded.value()->num_faces();
+    std::vector<std::uint8_t> bin(out.data(), out.data() + out.size());
+    json j = base_doc();
+    j["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+    j["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+    j["buffers"] = {{{"byteLength", bin.size()}}};
+    j["bufferViews"] = {{{"buffer", 0}, {"byteLength", bin.size()}}};
+    j["accessors"] = {{{"componentType", FLOAT}, {"count", points}, {"type", "VEC3"}, {"min", {0, 0, 0}}, {"max", {n, n, 0}}},
+                      {{"componentType", UNSIGNED_INT}, {"count", faces * 3}, {"type", "SCALAR"}}};
+    json prim = {{"attributes", {{"POSITION", 0}}}, {"indices", 1}};
+    prim["extensions"]["KHR_draco_mesh_compression"] = {{"bufferView", 0},
+                                                        {"attributes", {{"POSITION", int(mesh->attribute(pos)->unique_id())}}}};
+    j["meshes"] = json::array({{{"primitives", json::array({prim})}}});
+    // What the accessors describe is small; the stream's 255-component attribute is not.
+    const std::size_t described = points * 3 * (sizeof(double) + 4) + faces * 3 * 16;
+    const std::size_t asked = points * 255 * 5;
+    ASSERT_GT(asked, 8 * described) << points << " points in " << bin.size() << " bytes";
+    GltfLoadOptions tight;
+    tight.max_geometry_bytes = described * 4;
+    Diagnostics d;
+    try {
+        load(j, bin, d, tight);
+        ADD_FAILURE() << "decoded " << asked << " bytes of attributes under a budget of " << tight.max_geometry_bytes;
+    } catch (const Error& e) {
+        EXPECT_EQ(e.where(), kDracoPtr) << e.what();
+        EXPECT_NE(e.reason().find("memory budget"), std::string::npos) << e.what();
+    }
+    GltfLoadOptions roomy;
+    roomy.max_geometry_bytes = asked * 2 + described * 4;
+    Scene s = load(j, bin, d, roomy);
+    EXPECT_EQ(s.meshes[0].primitives[0].triangle_count(), faces);
 }
 
 // ---- EXT_texture_webp and KHR_texture_basisu ------------------------------------------

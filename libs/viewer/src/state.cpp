@@ -152,6 +152,25 @@ std::string State::camera_label(int i) const {
     return "camera " + std::to_string(i) + (name.empty() ? "" : ": " + name);
 }
 
+std::vector<std::string> State::environment_presets() const {
+    std::vector<std::string> out = {"studio"};
+    auto add = [&](const std::string& p) {
+        if (std::find(out.begin(), out.end(), p) == out.end()) out.push_back(p);
+    };
+    if (!job.source.model.empty()) {
+        std::vector<std::string> beside;
+        std::error_code ec;
+        const fs::path folder = fs::path(job.source.model).parent_path();
+        for (fs::directory_iterator it(folder.empty() ? fs::path(".") : folder, ec), end; !ec && it != end; it.increment(ec))
+            if (is_environment(it->path())) beside.push_back((folder / it->path().filename()).string());
+        std::sort(beside.begin(), beside.end());
+        for (const std::string& p : beside) add(p);
+    }
+    for (const std::string& p : recent.paths())
+        if (is_environment(p)) add(p);
+    return out;
+}
+
 bool State::animated() const { return scene && !scene->animations.empty(); }
 
 std::pair<float, float> State::animation_range() const {

@@ -297,5 +297,23 @@ TEST(State, ChoosingAnAnimationTakesItsRange) {
     EXPECT_FLOAT_EQ(*s.job.source.animation.time, 0.0f);
 }
 
+TEST(State, EnvironmentPresetsAreTheStudioTheFilesBesideTheModelAndTheRecentOnes) {
+    const fs::path d = fresh_folder("presets");
+    for (const char* f : {"b.hdr", "a.exr", "model.glb", "notes.txt"}) std::ofstream(d / f) << "x";
+    fs::create_directories(d / "sky.baked");
+    std::ofstream(d / "sky.baked" / "manifest.json") << "{}";
+    State s;
+    s.job.source.model = (d / "model.glb").string();
+    s.recent.add("/elsewhere/night.exr");
+    s.recent.add((d / "b.hdr").string());  // beside the model too: listed once
+    s.recent.add("/elsewhere/car.glb");    // a model, not an environment
+    const std::vector<std::string> want = {"studio", (d / "a.exr").string(), (d / "b.hdr").string(),
+                                           (d / "sky.baked").string(), "/elsewhere/night.exr"};
+    EXPECT_EQ(s.environment_presets(), want);
+    State demo;  // the built-in demo: the studio and the recent ones
+    EXPECT_EQ(demo.environment_presets(), std::vector<std::string>{"studio"});
+    fs::remove_all(d);
+}
+
 }  // namespace
 }  // namespace fresnel::viewer

@@ -77,6 +77,9 @@ struct Job {
             bool operator==(const Animation&) const = default;
         };
         Animation animation;
+        // Parts of the file turned off at load (fresnel/job/features.h: skinning, morphing,
+        // occlusion, material extensions), in feature_names() order.
+        std::vector<std::string> disabled;
         // OBJ corners without `vn`: Groups honours `s` (the specification: none means flat),
         // Smooth gives them a normal per position whatever the groups (what OpenGL 1 viewers
         // such as rgl, and ogl1-ref, do); Auto is Smooth under Output::shading ogl1 or

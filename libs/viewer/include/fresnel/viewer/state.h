@@ -110,6 +110,9 @@ struct State {
     void load_recent();
     // `path` at the front of the recent list, written to recent_file when the job uses the cache.
     void remember(const std::string& path);
+    // The environment presets the panel offers: "studio" (built in), the environment files beside
+    // the model (.hdr, .exr and baked folders, by name), then the recent environments; each once.
+    std::vector<std::string> environment_presets() const;
     // The model PageUp (-1) or PageDown (+1) opens; nothing when no folder is being stepped.
     std::optional<std::string> step_folder(int delta) const;
 
