@@ -21,8 +21,8 @@ Runner add_view_command(CLI::App& app) {
                 "camera by itself, O opens the file browser, PageUp/PageDown step through the folder, Ctrl+C copies the\n"
                 "view as a render command, Ctrl+S saves it as a scene file, F12 saves a screenshot, F5 reloads the\n"
                 "shaders (--shaders), Space plays or pauses the animations (an animated file plays as it opens,\n"
-                "unless --time, --script or --screenshot is given), Tab hides the GUI, Escape quits. Drop a model, a\n"
-                "scene file or an environment on the window to open it (docs/view.md).\n");
+                "unless --time, --script or --screenshot is given), Tab hides the GUI, Escape or Q quits. Drop a model,\n"
+                "a scene file or an environment on the window to open it (docs/view.md).\n");
     o->cmd = cmd;
     cmd->add_option("model", o->job->models,
                     "A model (.gltf, .glb, .obj), a scene file (.fresnel.json; flags given override it), or a folder "
@@ -31,7 +31,9 @@ Runner add_view_command(CLI::App& app) {
     cmd->add_option("--screenshot", o->screenshot,
                     "Write the frame as presented (the 3D view, without the GUI) to this PNG after --frames frames, then "
                     "exit 0");
-    cmd->add_flag("--with-gui", o->with_gui, "--screenshot: include the GUI drawn over the frame");
+    cmd->add_flag("--with-gui", o->with_gui,
+                  "--screenshot: the whole window as a user sees it, the side panel docked at the left and the model "
+                  "framed right of it");
     cmd->add_option("--shaders", o->shaders,
                     "Development: read the shader files from this folder (a copy of the source's shaders/) instead "
                     "of the built-in ones; F5 reloads them, a compile error is shown and the running shaders stay");

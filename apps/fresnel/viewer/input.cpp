@@ -29,7 +29,7 @@ bool Viewer::handle_input() {
         if (io.MouseClicked[0] && std::abs(x - float(state_.divider_pixels())) <= 6.0f * to_pixels) dragging_divider_ = true;
         if (!io.MouseDown[0]) dragging_divider_ = false;
         if (dragging_divider_) {
-            state_.split_pos = std::clamp(io.MousePos.x / float(std::max(win.width, 1)), 0.0f, 1.0f);
+            state_.split_pos = std::clamp(state_.in_view({io.MousePos.x, 0.0f}).x / float(state_.view_points().x), 0.0f, 1.0f);
             return true;
         }
     }
@@ -68,7 +68,7 @@ bool Viewer::handle_input() {
         if (window_->key_pressed(gui::Key::F12)) state_.screenshot_requested = true, changed = true;
         if (window_->key_pressed(gui::Key::O)) state_.browser_open = true, changed = true;
         if (window_->key_pressed(gui::Key::C, /*ctrl=*/true)) copy_command_line(), changed = true;
-        if (window_->key_pressed(gui::Key::Escape)) window_->request_close();
+        if (window_->key_pressed(gui::Key::Escape) || window_->key_pressed(gui::Key::Q)) window_->request_close();
         if (window_->key_pressed(gui::Key::Tab)) state_.gui_visible = !state_.gui_visible, changed = true;
         if (window_->key_pressed(gui::Key::S, /*ctrl=*/true)) save_scene(state_.scene_save_path), changed = true;
         if (window_->key_pressed(gui::Key::A)) state_.spin_camera = !state_.spin_camera, changed = true;

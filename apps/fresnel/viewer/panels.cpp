@@ -39,17 +39,41 @@ bool combo(const char* label, E& value, const std::vector<std::pair<E, std::stri
 
 void Viewer::draw_gui() {
     draw_gizmos();
+    const gui::Size win = window_->window_size();
     if (state_.split) {  // the divider, over the frame and under the panels
-        gui::Size win = window_->window_size();
-        float x = state_.split_pos * float(win.width);
+        float x = state_.view_left + state_.split_pos * float(state_.view_points().x);
         ImDrawList* d = ImGui::GetBackgroundDrawList();
         d->AddLine(ImVec2(x, 0.0f), ImVec2(x, float(win.height)), IM_COL32(255, 255, 255, 200), 2.0f);
     }
-    if (!state_.gui_visible) return;
-    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowBgAlpha(0.8f);
-    ImGui::Begin("fresnel view (Tab hides)");
+    if (!state_.gui_visible) {
+        state_.view_left = 0.0f;
+        return;
+    }
+    // Interactive, in a window wide enough: the panel is a side bar docked at the left, its width
+    // the user's (dragged at its right edge, kept in the ImGui settings file), and the 3D view is
+    // the rest of the window (State::view_left). Scripts, --screenshot and narrow windows keep the
+    // view the whole window (the size --size and a script's screenshots mean) with the panel over it.
+    const bool docked = dock_panel_ && win.width >= kMinDockedWindow;
+    if (docked) {
+        ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
+        ImGui::SetNextWindowSize(ImVec2(kPanelWidth, float(win.height)), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowSizeConstraints(ImVec2(kMinPanelWidth, float(win.height)),
+                                            ImVec2(std::max(kMinPanelWidth, 0.45f * float(win.width)), float(win.height)));
+        ImGui::SetNextWindowBgAlpha(1.0f);
+    } else {
+        ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowSize(ImVec2(kPanelWidth, 0), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowBgAlpha(0.8f);
+    }
+    const bool open = ImGui::Begin(docked ? "fresnel view (Tab hides)##docked" : "fresnel view (Tab hides)", nullptr,
+                                   docked ? ImGuiWindowFlags_NoMove : 0);
+    state_.view_left = docked && open ? ImGui::GetWindowPos().x + ImGui::GetWindowWidth() : 0.0f;
+    if (!open) {  // collapsed to its title bar
+        ImGui::End();
+        return;
+    }
+    // Labels keep about 11 characters' room, so none is cut at 800x600 or on high-DPI screens.
+    ImGui::PushItemWidth(-ImGui::GetFontSize() * 11.0f);
     if (!state_.error.empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.4f, 0.35f, 1.0f));
         ImGui::TextWrapped("%s", state_.error.c_str());
@@ -73,14 +97,16 @@ void Viewer::draw_gui() {
         const glm::ivec2 fb = state_.framebuffer;
         ImGui::Text("%dx%d pixels, frame %.1f ms (CPU, draw + finish)", fb.x, fb.y, frame_ms_);
         if (gpu_ms_ >= 0.0) ImGui::Text("GPU %.2f ms (timer query)", gpu_ms_);
-        else ImGui::TextDisabled("GPU time: this context has no timer queries (OpenGL ES 3.0)");
+        else FRESNEL_HINT("GPU time: this context has no timer queries (OpenGL ES 3.0)");
         ImGui::Text("resident memory %.1f MiB, texture memory %.1f MiB", double(resident_kb()) / 1024.0,
                     double(renderer_->texture_bytes()) / (1024.0 * 1024.0));
         ImGui::Text("%d draw calls, %zu triangles, %zu programs", stats_.draw_calls, stats_.triangles,
                     renderer_->program_count());
         ImGui::TextWrapped("%s", window_->context().renderer().c_str());
     }
-    if (!state_.status.empty()) ImGui::TextDisabled("%s", state_.status.c_str());
+    if (ImGui::CollapsingHeader("Help")) draw_help_panel();
+    if (!state_.status.empty()) FRESNEL_HINT("%s", state_.status.c_str());
+    ImGui::PopItemWidth();
     ImGui::End();
     if (state_.browser_open) draw_browser();
 }
@@ -119,7 +145,7 @@ void Viewer::draw_file_panel() {
         }
         if (chosen != current) state_.job.source.variant = chosen;  // reloaded with the variant's materials (reload_if_needed)
     }
-    ImGui::TextDisabled("drop a model, a scene file or an environment onto the window");
+    FRESNEL_HINT("drop a model, a scene file or an environment onto the window");
     ImGui::InputText("##scene-file", &state_.scene_save_path);
     ImGui::SameLine();
     if (ImGui::Button("Save scene (Ctrl+S)")) save_scene(state_.scene_save_path);
@@ -155,7 +181,39 @@ void Viewer::draw_animation_panel() {
     ImGui::SameLine();
     ImGui::Checkbox("loop", &state_.playback.loop);
     if (a.posed()) ImGui::Text("%.3f s of %.3f s%s", double(a.at()), double(hi), posing_.on_gpu() ? "" : ", posed on the CPU");
-    else ImGui::TextDisabled("rest pose (the file's nodes, no animation applied)");
+    else FRESNEL_HINT("rest pose (the file's nodes, no animation applied)");
+}
+
+// The mouse and the keys (as `view --help` lists them).
+void Viewer::draw_help_panel() {
+    static const char* const kKeys[][2] = {
+        {"left drag", "orbit (on a light's handle: move it)"},
+        {"left click", "select what is under the mouse"},
+        {"right/middle drag, shift+left", "pan"},
+        {"wheel", "dolly"},
+        {"F / R", "frame all / reset the camera"},
+        {"A", "auto-rotate the camera"},
+        {"Space", "play / pause the animations"},
+        {"O", "file browser"},
+        {"PageUp / PageDown", "previous / next model of the folder"},
+        {"Ctrl+C", "copy the view as a render command"},
+        {"Ctrl+S", "save the view as a scene file"},
+        {"F12", "screenshot of the 3D view"},
+        {"F5", "reload the shaders (--shaders)"},
+        {"Tab", "hide / show this panel"},
+        {"Escape, Q", "quit"},
+    };
+    if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingStretchProp)) {
+        for (const auto& k : kKeys) {
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(k[0]);
+            ImGui::TableNextColumn();
+            ImGui::TextWrapped("%s", k[1]);
+        }
+        ImGui::EndTable();
+    }
+    FRESNEL_HINT("drop a model, a scene file or an environment on the window (docs/view.md)");
 }
 
 void Viewer::draw_camera_panel() {
@@ -175,7 +233,7 @@ void Viewer::draw_camera_panel() {
     if (!c.scene_camera) {
         setting_widget(state_.job, "camera.yaw");
         setting_widget(state_.job, "camera.pitch");
-        float k = distance_k(c, std::max(state_.framebuffer.x, 1), std::max(state_.framebuffer.y, 1));
+        float k = distance_k(c, state_.view_pixels().x, state_.view_pixels().y);
         if (ImGui::DragFloat("distance K", &k, 0.01f, 0.01f, 1e4f, "%.3f")) c.distance_k = std::max(k, 0.01f);
         setting_widget(state_.job, "camera.fov");
         if (c.target) ImGui::Text("target %.3f %.3f %.3f (panned)", c.target->x, c.target->y, c.target->z);
@@ -186,7 +244,7 @@ void Viewer::draw_camera_panel() {
     if (ImGui::Checkbox("auto-rotate (A)", &state_.spin_camera) && state_.spin_camera) spin_last_.reset();
     if (ImGui::Button("Copy as command line (Ctrl+C)")) copy_command_line();
     if (!state_.command_line.empty()) ImGui::TextWrapped("%s", state_.command_line.c_str());
-    ImGui::TextDisabled("left drag: orbit; right/middle or shift+left: pan; wheel: dolly");
+    FRESNEL_HINT("left drag: orbit; right/middle or shift+left: pan; wheel: dolly");
 }
 
 // Switches, as the Khronos Sample Viewer's: image-based light, the file's punctual lights,
@@ -211,7 +269,7 @@ void Viewer::draw_features_panel() {
     std::vector<std::string> features = scene_features(*state_.scene);
     for (const std::string& f : job.source.disabled)
         if (std::find(features.begin(), features.end(), f) == features.end()) features.push_back(f);
-    if (features.empty()) ImGui::TextDisabled("the file has no skins, morph targets, occlusion or material extensions");
+    if (features.empty()) FRESNEL_HINT("the file has no skins, morph targets, occlusion or material extensions");
     std::optional<std::vector<std::string>> next;
     for (const std::string& f : features) {
         const auto at = std::find(job.source.disabled.begin(), job.source.disabled.end(), f);
@@ -282,7 +340,7 @@ void Viewer::draw_output_panels() {
             // The right half's output settings, through the registry on a job holding them.
             Job right = state_.job;
             right.output = state_.split_output;
-            ImGui::TextDisabled("right of the divider:");
+            FRESNEL_HINT("right of the divider:");
             ImGui::PushID("right");
             for (const char* key : {"render.debug", "render.toneMapping", "render.exposure", "render.energyCompensation"})
                 setting_widget(right, key);
@@ -309,7 +367,7 @@ void Viewer::draw_browser() {
     std::error_code ec;
     std::vector<fs::directory_entry> entries;
     for (fs::directory_iterator it(browser_dir, ec), end; !ec && it != end; it.increment(ec)) entries.push_back(*it);
-    if (ec) ImGui::TextDisabled("%s", ec.message().c_str());
+    if (ec) FRESNEL_HINT("%s", ec.message().c_str());
     std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
         bool da = is_folder(a.path()), db = is_folder(b.path());
         return da != db ? da : a.path().filename() < b.path().filename();

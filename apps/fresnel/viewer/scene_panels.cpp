@@ -12,6 +12,7 @@
 #include "fresnel/material/properties.h"
 #include "fresnel/viewer/files.h"
 #include "fresnel/viewer/geometry.h"
+#include "setting_widgets.h"
 #include "viewer_app.h"
 
 namespace fresnel::cli::view {
@@ -27,7 +28,11 @@ const char* light_type_name(Light::Type t) {
 void Viewer::draw_gizmos() {
     if (!state_.last_camera || !state_.scene) return;
     const CameraSetup& camera = *state_.last_camera;
-    auto to_window = [&](glm::vec3 p) { return viewer::to_window(camera, state_.window, p); };
+    auto to_window = [&](glm::vec3 p) -> std::optional<glm::vec2> {  // the 3D view's points to the window's
+        auto v = viewer::to_window(camera, state_.view_points(), p);
+        if (v) v->x += state_.view_left;
+        return v;
+    };
     const Bounds& bounds = state_.bounds;
     const std::vector<NodeInstance>& instances = state_.resolved.instances;
     const std::optional<PickHit>& picked = state_.picked;
@@ -75,7 +80,7 @@ void Viewer::draw_lights_panel() {
     ImGui::SameLine();
     ImGui::Checkbox("gizmos", &state_.show_gizmos);
     if (state_.resolved.default_lights)
-        ImGui::TextDisabled("default key + fill lights (the scene has none; adding one replaces them)");
+        FRESNEL_HINT("default key + fill lights (the scene has none; adding one replaces them)");
     const float r = viewer::handle_radius(state_.bounds);
     if (ImGui::Button("+ directional")) state_.add_light(Light::Type::Directional);
     ImGui::SameLine();
@@ -122,7 +127,7 @@ void Viewer::draw_lights_panel() {
         ImGui::PopID();
     }
     if (remove >= 0) state_.remove_light(remove);
-    ImGui::TextDisabled("drag a handle in the view to move a light");
+    FRESNEL_HINT("drag a handle in the view to move a light");
 }
 
 // One node of the scene tree: a visibility box, its children, its mesh's primitives.
@@ -172,7 +177,7 @@ void Viewer::draw_scene_tree() {
         ImGui::SameLine();
         if (ImGui::SmallButton("clear")) state_.picked.reset();
     } else {
-        ImGui::TextDisabled("click the model to select a primitive");
+        FRESNEL_HINT("click the model to select a primitive");
     }
     const int index = state_.resolved.scene_index >= 0 ? state_.resolved.scene_index : s.default_scene;
     if (index >= 0 && std::size_t(index) < s.scenes.size())
@@ -254,7 +259,7 @@ void Viewer::draw_material_editor() {
         {"occlusion", &m.occlusion}, {"emissive", &m.emissive}};
     for (const auto& [name, slot] : slots) {
         if (!slot->valid()) continue;
-        ImGui::TextDisabled("%s texture %d (uv%d)", name, slot->texture, slot->tex_coord);
+        FRESNEL_HINT("%s texture %d (uv%d)", name, slot->texture, slot->tex_coord);
         if (auto t = renderer_->texture_preview(slot->texture); t && t->width > 0 && t->height > 0) {
             const float h = 64.0f, w = std::min(h * float(t->width) / float(t->height), 256.0f);
             ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(t->id)), ImVec2(w, h));
@@ -273,7 +278,7 @@ void Viewer::draw_material_editor() {
     }
     if (e) posing_.keep_materials();  // the playback keeps the edits
     if (materials_edited_)
-        ImGui::TextDisabled("edits: in a saved scene (as overrides) and saved to glTF below; not in the command line");
+        FRESNEL_HINT("edits: in a saved scene (as overrides) and saved to glTF below; not in the command line");
     if (scene_ && job_.source.models.empty() && is_gltf(job_.source.model)) {
         ImGui::InputText("##model-file", &model_save_path_);
         ImGui::SameLine();

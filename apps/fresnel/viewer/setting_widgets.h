@@ -3,9 +3,19 @@
 // label, range (its slider range), unit, choices and tooltip come from its declaration, and its
 // value goes through settings::get / settings::set as in every other front end, so the panels
 // hold no per-setting ranges or names of their own.
+#include <imgui.h>
+
 #include <string_view>
 
 #include "fresnel/job/job.h"
+
+// A greyed hint, wrapped at the panel's edge (never cut): ImGui::TextDisabled's arguments.
+#define FRESNEL_HINT(...)              \
+    do {                               \
+        ImGui::PushTextWrapPos(0.0f);  \
+        ImGui::TextDisabled(__VA_ARGS__); \
+        ImGui::PopTextWrapPos();       \
+    } while (0)
 
 namespace fresnel::cli::view {
 

@@ -7,16 +7,18 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 
+#include "fresnel/core/atomic_file.h"
 #include "fresnel/gpu/device.h"
 #include "fresnel/ibl/bake.h"
 
 namespace fresnel::cli {
 namespace view {
 
-Image8 read_frame(int width, int height, bool alpha) {
+Image8 read_frame(int x0, int width, int height, bool alpha) {
     gpu::Device device;
-    std::vector<std::uint8_t> px = device.read_default_rgba8(0, 0, width, height);
+    std::vector<std::uint8_t> px = device.read_default_rgba8(x0, 0, width, height);
     Image8 img(width, height, alpha ? 4 : 3);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
@@ -49,6 +51,15 @@ int Viewer::run() {
     gui::Window window(window_size_.width, window_size_.height, "fresnel view", context_options(*options_.job));
     window_ = &window;
     renderer_ = std::make_unique<Renderer>(window.context());
+    // Interactive windows, and --screenshot --with-gui (the window as a user sees it).
+    dock_panel_ = (options_.script.empty() && !options_.frames && options_.screenshot.empty()) || options_.with_gui;
+    ImGui::GetStyle().Colors[ImGuiCol_PopupBg].w = 1.0f;  // drop-downs and menus opaque over the frame
+    if (dock_panel_ && state_.job.environment.use_cache) {  // the panel's width, kept between sessions
+        imgui_ini_ = (ibl::cache_root() / "viewer-imgui.ini").string();
+        std::ifstream in(imgui_ini_, std::ios::binary);
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (!text.empty() && text.size() < (1u << 20)) ImGui::LoadIniSettingsFromMemory(text.data(), text.size());
+    }
     if (!options_.shaders.empty()) renderer_->set_shader_folder(options_.shaders);
     int rc = kExitBadInput;
     try {
@@ -57,8 +68,26 @@ int Viewer::run() {
         release_gpu();
         throw;
     }
+    if (!imgui_ini_.empty()) {  // the layout as it is at the end
+        ImGui::GetIO().WantSaveIniSettings = true;
+        save_gui_layout();
+    }
     release_gpu();
     return rc;
+}
+
+// The panel's layout (ImGui's settings), written whole or not at all when ImGui asks, best
+// effort (the layout is a convenience, never an error).
+void Viewer::save_gui_layout() {
+    ImGuiIO& io = ImGui::GetIO();
+    if (imgui_ini_.empty() || !io.WantSaveIniSettings) return;
+    io.WantSaveIniSettings = false;
+    try {
+        std::error_code ec;
+        std::filesystem::create_directories(std::filesystem::path(imgui_ini_).parent_path(), ec);
+        write_file_atomically(imgui_ini_, std::string_view(ImGui::SaveIniSettingsToMemory()));
+    } catch (const std::exception&) {
+    }
 }
 
 // GL objects go before the window (and its context) does.
@@ -121,8 +150,11 @@ int Viewer::loop(gui::Window& window) {
         if (batch && ready && ready_frames >= frames_wanted) {
             if (options_.with_gui) window.end_frame();
             if (!options_.screenshot.empty()) {
-                write_png(options_.screenshot, read_frame(fb.x, fb.y, state_.last_transparent));
-                std::fprintf(stderr, "fresnel: wrote %s (%dx%d)\n", options_.screenshot.c_str(), fb.x, fb.y);
+                // With the GUI: the whole window; without: the 3D view.
+                const int x0 = options_.with_gui ? 0 : state_.view_left_pixels();
+                const int w = options_.with_gui ? fb.x : state_.view_pixels().x;
+                write_png(options_.screenshot, read_frame(x0, w, fb.y, state_.last_transparent));
+                std::fprintf(stderr, "fresnel: wrote %s (%dx%d)\n", options_.screenshot.c_str(), w, fb.y);
             }
             if (!options_.with_gui) window.end_frame();
             window.swap_buffers();
@@ -132,7 +164,7 @@ int Viewer::loop(gui::Window& window) {
             state_.screenshot_requested = false;
             std::string path = screenshot_name();
             try {
-                write_png(path, read_frame(fb.x, fb.y, state_.last_transparent));
+                write_png(path, read_frame(state_.view_left_pixels(), state_.view_pixels().x, fb.y, state_.last_transparent));
                 state_.status = "saved " + path;
                 std::fprintf(stderr, "fresnel: wrote %s\n", path.c_str());
             } catch (const std::exception& e) {
@@ -141,6 +173,7 @@ int Viewer::loop(gui::Window& window) {
         }
         window.end_frame();
         window.swap_buffers();
+        save_gui_layout();
         --redraw;
     }
     return kExitOk;
@@ -247,9 +280,17 @@ void Viewer::draw_scene() {
         return;
     }
     RenderSettings rs = lighting_.settings(state_.resolved);
-    rs.width = fb.x;
-    rs.height = fb.y;
+    const glm::ivec2 view = state_.view_pixels();
+    const int left = state_.view_left_pixels();
+    rs.width = view.x;
+    rs.height = view.y;
     rs.gpu_animation = posing_.gpu_animation();
+    if (left > 0) {  // under the docked panel: the panel's colour, not last frame's pixels
+        gpu::Device device;
+        device.bind_framebuffer(nullptr);
+        device.viewport(0, 0, fb.x, fb.y);
+        device.clear(glm::vec4(0.06f, 0.06f, 0.06f, 1.0f));
+    }
     // GL errors pending from the GUI's last frame (ImGui's desktop GL backend on an ES
     // context, e.g. glPolygonMode) are not this frame's: clear them first.
     std::string gui_errors = gpu::Device().take_errors();
@@ -261,14 +302,14 @@ void Viewer::draw_scene() {
     // GPU time by a timer query, where the context has them (OpenGL 3.3, not ES 3.0).
     if (!timer_ && window_->context().capabilities().timer_queries) timer_ = std::make_unique<gpu::TimerQuery>();
     if (timer_) timer_->begin();
-    renderer_->draw(state_.resolved.camera, state_.resolved.lights, rs, RenderTarget::default_framebuffer(0, 0), &stats_);
+    renderer_->draw(state_.resolved.camera, state_.resolved.lights, rs, RenderTarget::default_framebuffer(left, 0), &stats_);
     if (state_.split) {  // the same frame with the right side's settings, over the right of the divider
         RenderSettings right = rs;
         right.debug = state_.split_output.debug;
         right.tone_mapper = state_.split_output.tone_mapper;
         right.exposure_ev = state_.split_output.exposure_ev;
         right.energy_compensation = state_.split_output.energy_compensation;
-        RenderTarget target = RenderTarget::default_framebuffer(0, 0);
+        RenderTarget target = RenderTarget::default_framebuffer(left, 0);
         int x = state_.divider_pixels();
         target.scissor = RenderTarget::Rect{x, 0, fb.x - x, fb.y};
         FrameStats more;
@@ -290,8 +331,8 @@ void Viewer::draw_scene() {
 
 void Viewer::screenshot(const std::string& path) {
     const glm::ivec2 fb = state_.framebuffer;
-    write_png(path, read_frame(fb.x, fb.y, state_.last_transparent));
-    std::fprintf(stderr, "fresnel: wrote %s (%dx%d)\n", path.c_str(), fb.x, fb.y);
+    write_png(path, read_frame(state_.view_left_pixels(), state_.view_pixels().x, fb.y, state_.last_transparent));
+    std::fprintf(stderr, "fresnel: wrote %s (%dx%d)\n", path.c_str(), state_.view_pixels().x, fb.y);
 }
 
 void Viewer::set_material_field(Material& material, const std::string& field, const std::vector<float>& values) {

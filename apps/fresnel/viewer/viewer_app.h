@@ -45,8 +45,8 @@ struct Bake {
 };
 
 // The frame in the window's back buffer as `fresnel render` writes it (rows top to bottom;
-// RGB, or RGBA for transparent frames).
-Image8 read_frame(int width, int height, bool alpha);
+// RGB, or RGBA for transparent frames): `width` x `height` pixels from column `x`.
+Image8 read_frame(int x, int width, int height, bool alpha);
 // Resident memory of this process (VmRSS), kB; -1 when unknown.
 long resident_kb();
 
@@ -73,6 +73,7 @@ public:
 private:
     // viewer_app.cpp
     void release_gpu();
+    void save_gui_layout();
     int loop(gui::Window& window);
     bool update_lighting();
     void reload_if_needed();
@@ -98,6 +99,7 @@ private:
     void draw_file_panel();
     void draw_animation_panel();
     void draw_features_panel();
+    void draw_help_panel();
     void draw_camera_panel();
     void draw_environment_panel();
     void draw_output_panels();
@@ -119,6 +121,11 @@ private:
     std::unique_ptr<Renderer> renderer_;
     JobLighting lighting_;
     ScenePosing posing_;  // state_.scene posed in place at the state's time
+    // The side panel docks at the left of interactive windows (not under a script or --screenshot).
+    bool dock_panel_ = false;
+    static constexpr float kPanelWidth = 320.0f, kMinPanelWidth = 240.0f;
+    static constexpr int kMinDockedWindow = 560;  // points: narrower windows keep the panel floating
+    std::string imgui_ini_;  // where ImGui keeps the panel's layout (the cache folder), or empty
     Job::Source loaded_source_;               // what state_.scene was loaded with (its animation unset)
     Job::Environment environment_before_off_;  // what the Features panel's image-based light switch turns back to
     static constexpr const char* kNoLighting = "(none yet)";

@@ -52,6 +52,7 @@ int glfw_key(Key k) {
         case Key::A: return GLFW_KEY_A;
         case Key::F5: return GLFW_KEY_F5;
         case Key::Space: return GLFW_KEY_SPACE;
+        case Key::Q: return GLFW_KEY_Q;
     }
     return GLFW_KEY_UNKNOWN;
 }

@@ -30,12 +30,27 @@ void State::start_with(const std::string& model) {
 
 Job State::shown_job() const {
     Job j = job;
-    j.output.width = std::max(framebuffer.x, 1);
-    j.output.height = std::max(framebuffer.y, 1);
+    const glm::ivec2 v = view_pixels();
+    j.output.width = v.x;
+    j.output.height = v.y;
     return j;
 }
 
-OrbitViewport State::viewport() const { return OrbitViewport{bounds, std::max(framebuffer.x, 1), std::max(framebuffer.y, 1)}; }
+int State::view_left_pixels() const {
+    if (view_left <= 0.0f || window.x <= 0) return 0;
+    return std::clamp(int(std::lround(view_left * float(framebuffer.x) / float(window.x))), 0, std::max(framebuffer.x - 1, 0));
+}
+glm::ivec2 State::view_pixels() const {
+    return {std::max(framebuffer.x - view_left_pixels(), 1), std::max(framebuffer.y, 1)};
+}
+glm::ivec2 State::view_points() const {
+    return {std::max(int(std::lround(float(window.x) - view_left)), 1), std::max(window.y, 1)};
+}
+
+OrbitViewport State::viewport() const {
+    const glm::ivec2 v = view_pixels();
+    return OrbitViewport{bounds, v.x, v.y};
+}
 
 void State::orbit_camera_now() {
     if (job.camera.scene_camera && last_camera) job.camera = orbit_from_setup(*last_camera, bounds, last_camera->yfov_deg);
@@ -56,7 +71,7 @@ void State::spin(double seconds) {
 void State::pick_at(glm::vec2 point) {
     picked.reset();
     if (!scene || !last_camera) return;
-    picked = viewer::pick_at(*scene, resolved.instances, *last_camera, window, point);
+    picked = viewer::pick_at(*scene, resolved.instances, *last_camera, view_points(), in_view(point));
     if (picked) {
         const Primitive& p = scene->meshes[std::size_t(picked->mesh)].primitives[std::size_t(picked->primitive)];
         if (p.material >= 0) edit_material = p.material;
@@ -109,12 +124,12 @@ void State::remove_light(int index) {
 bool State::drag_lights(glm::vec2 mouse, bool clicked, bool down) {
     if (!gui_visible || !show_gizmos) return false;
     if (clicked) {
-        dragging_light = last_camera ? nearest_handle(job.lights.extra, bounds, *last_camera, window, mouse) : -1;
+        dragging_light = last_camera ? nearest_handle(job.lights.extra, bounds, *last_camera, view_points(), in_view(mouse)) : -1;
         if (dragging_light >= 0) selected_light = dragging_light;
     }
     if (!down) dragging_light = -1;
     if (dragging_light < 0 || dragging_light >= int(job.lights.extra.size())) return false;
-    std::optional<Ray> ray = last_camera ? window_ray(*last_camera, window, mouse) : std::nullopt;
+    std::optional<Ray> ray = last_camera ? window_ray(*last_camera, view_points(), in_view(mouse)) : std::nullopt;
     if (ray) drag_light(job.lights.extra[std::size_t(dragging_light)], *ray, bounds, *last_camera);
     return true;
 }
@@ -136,7 +151,10 @@ void State::remember(const std::string& path) {
 
 std::optional<std::string> State::step_folder(int delta) const { return viewer::step_folder(folder_models, opened, delta); }
 
-int State::divider_pixels() const { return std::clamp(int(split_pos * float(framebuffer.x) + 0.5f), 0, framebuffer.x); }
+int State::divider_pixels() const {
+    const int left = view_left_pixels();
+    return std::clamp(left + int(split_pos * float(view_pixels().x) + 0.5f), left, framebuffer.x);
+}
 
 std::string State::node_label(int n) const {
     const Node& node = scene->nodes[std::size_t(n)];

@@ -15,7 +15,7 @@ struct Size {
 };
 
 // Keys the viewer binds (GLFW's codes inside).
-enum class Key { F, R, PageUp, PageDown, F12, Escape, C, O, Tab, S, A, F5, Space };
+enum class Key { F, R, PageUp, PageDown, F12, Escape, C, O, Tab, S, A, F5, Space, Q };
 
 class Window {
 public:

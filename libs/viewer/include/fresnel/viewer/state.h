@@ -33,6 +33,10 @@ struct State {
     bool last_transparent = false;
     glm::ivec2 framebuffer{0};  // pixels
     glm::ivec2 window{0};       // points (ImGui's coordinates; differs on high-DPI screens)
+    // The 3D view: the window right of `view_left` (points; the side panel's right edge when it
+    // is docked at the left, else 0). The frame, the camera's aspect, picking, the light handles
+    // and the split view's divider all live in it, so the panel never covers the framed model.
+    float view_left = 0.0f;
 
     // --- files ---
     std::string opened;            // the model or scene file shown ("" for the demo)
@@ -76,8 +80,14 @@ struct State {
     // opens as one: first_scene_file) and PageUp/PageDown step through the folder; a model
     // steps through its siblings. Sets the browser's folder.
     void start_with(const std::string& model_or_folder);
-    // The job as the window shows it: at the framebuffer's size.
+    // The job as the window shows it: at the 3D view's size in pixels.
     Job shown_job() const;
+    // The 3D view: its left edge and size in framebuffer pixels, its size in window points, and
+    // a window point in the view's points (from its top left).
+    int view_left_pixels() const;
+    glm::ivec2 view_pixels() const;
+    glm::ivec2 view_points() const;
+    glm::vec2 in_view(glm::vec2 window_point) const { return window_point - glm::vec2(view_left, 0.0f); }
     OrbitViewport viewport() const;
     // Orbiting, panning or dollying away from a file's camera starts from where it looks.
     void orbit_camera_now();
@@ -131,7 +141,7 @@ struct State {
     // start (loop) or stopped at the end. False when nothing moved (paused, no animation).
     bool advance(double seconds);
 
-    // The split view's divider, in framebuffer pixels.
+    // The split view's divider, in framebuffer pixels (split_pos is 0..1 of the 3D view's width).
     int divider_pixels() const;
     // The scene tree's and the camera menu's names (need a scene).
     std::string node_label(int node) const;
