@@ -53,6 +53,18 @@ function urlSettings() {
     }
     return out;
 }
+// The canvas fills the window beside the panel, in device pixels, and follows resizes — unless a
+// size was asked for (?size=, or a scene file's render.size), which the canvas then keeps.
+let fitWindow = !params.has('size') && !params.has('render.size') && !params.has('scene');
+function fitCanvas() {
+    canvas.classList.toggle('fit', fitWindow);
+    if (!fitWindow || !app) return;
+    const r = $('view').getBoundingClientRect(), dpr = window.devicePixelRatio || 1;
+    const w = Math.max(16, Math.round(r.width * dpr)), h = Math.max(16, Math.round(r.height * dpr));
+    if (w === canvas.width && h === canvas.height) return;
+    try { set('size', `${w}x${h}`); } catch (e) { showError(e.message); return; }
+    if (frames > 0) scheduleDraw();  // before the first frame, the load draws at this size
+}
 function set(key, value) {
     if (!M.ccall('fresnel_set', 'number', ['number', 'string', 'string'], [app, key, String(value)]))
         throw new Error(lastError());
@@ -232,6 +244,8 @@ async function openSceneFiles(scene, files) {
 }
 // Loads the scene file at `path` (in the page's file system) and draws it.
 async function openScenePath(path, afterOpen) {
+    fitWindow = false;  // the scene file's size
+    canvas.classList.remove('fit');
     status(`loading ${baseName(path)}…`);
     await paint();
     if (!M.ccall('fresnel_open_scene', 'number', ['number', 'string'], [app, path])) throw new Error(lastError());
@@ -695,10 +709,15 @@ function bindPanel() {
         buildMaterial(materials());
         scheduleDraw();
     });
-    const pickFiles = id => $(id).addEventListener('change', async e => { try { await openFiles(await readPicked(e.target.files)); } catch (err) { showError(err.message); } });
-    for (const id of ['scene-file', 'scene-folder', 'bake-folder', 'bake-files']) pickFiles(id);
-    $('model-file').addEventListener('change', async e => { try { await openFiles(await readPicked(e.target.files)); } catch (err) { showError(err.message); } });
-    $('env-file').addEventListener('change', async e => { try { await openFiles(await readPicked(e.target.files)); } catch (err) { showError(err.message); } });
+    // One way in: files (a model with its files, an environment, a scene file with its files, a
+    // bake folder's files) or a folder; openFiles tells them apart.
+    for (const id of ['open-files', 'open-folder'])
+        $(id).addEventListener('change', async e => {
+            try { await openFiles(await readPicked(e.target.files)); } catch (err) { showError(err.message); }
+            e.target.value = '';
+        });
+    $('open').addEventListener('click', () => $('open-files').click());
+    $('open-dir').addEventListener('click', () => $('open-folder').click());
     $('screenshot').addEventListener('click', screenshot);
     $('frame-all').addEventListener('click', () => { M._fresnel_frame_all(app); scheduleDraw(); });
 
@@ -727,6 +746,7 @@ function bindPanel() {
     });
     canvas.addEventListener('wheel', e => { e.preventDefault(); M._fresnel_dolly(app, -Math.sign(e.deltaY)); scheduleDraw(); }, { passive: false });
     const view = $('view');
+    new ResizeObserver(fitCanvas).observe(view);
     view.addEventListener('dragover', e => { e.preventDefault(); view.classList.add('dragging'); });
     view.addEventListener('dragleave', () => view.classList.remove('dragging'));
     view.addEventListener('drop', async e => {
@@ -744,6 +764,10 @@ async function main() {
     });
     app = M.ccall('fresnel_create', 'number', ['string'], ['#canvas']);
     const err = lastError();
+    if (err && !document.createElement('canvas').getContext('webgl2')) {  // say what to do, not only what failed
+        $('no-webgl').hidden = false;
+        $('no-webgl-reason').textContent = `(${err})`;
+    }
     $('gl-info').textContent = M.UTF8ToString(M._fresnel_info(app));
     const gl = canvas.getContext('webgl2'), dbg = gl && gl.getExtension('WEBGL_debug_renderer_info');
     if (dbg) $('gl-info').textContent += ` | ${gl.getParameter(dbg.UNMASKED_RENDERER_WEBGL)}`;
@@ -760,6 +784,7 @@ async function main() {
     };
     try { lightParams(); } catch (e) { fail(e.message); }
     bindPanel();
+    fitCanvas();
     const redraw = async () => { await draw(); syncPanel(); };
     window.fresnel = { set: (k, v) => { set(k, v); return redraw(); }, openFiles, openUrl, openScene, draw, drawNow, screenshot,
                        state, materials, materialProperties, setMaterial: (i, k, v) => { setMaterial(i, k, v); return draw(); },

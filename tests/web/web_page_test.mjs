@@ -13,7 +13,8 @@
 //      frame and removing it restores it;
 //   8. every setting of the registry the page offers round-trips through its fresnel_set;
 //   9. an animated model opened at ?time= matches `fresnel render --time`; played, the page's clock
-//      moves the time and draws; paused, the frame matches `fresnel render` at the time reached.
+//      moves the time and draws; paused, the frame matches `fresnel render` at the time reached;
+//  10. without ?size= the canvas fills the window beside the panel and follows a resize.
 // Exit 77 (skipped) when build-web, Chromium, playwright-core or the shared assets are missing.
 // usage: node web_page_test.mjs WEB_DIR FRESNEL_EXE SHARED_DIR NODE_TOOLS_DIR OUT_DIR
 import { spawnSync } from 'node:child_process';
@@ -146,7 +147,7 @@ try {
                                 [before, done], { timeout: 60000, polling: 50 });
         return p.evaluate(() => window.fresnel.error());
     };
-    const bakeError = await pick(page, '#bake-files', bakedFiles, 'return !s.environment.endsWith(".hdr")');
+    const bakeError = await pick(page, '#open-files', bakedFiles, 'return !s.environment.endsWith(".hdr")');
     await canvasPng(path.join(outDir, 'web_baked.png'));
     const pb = psnr(path.join(outDir, 'web_baked.png'), path.join(outDir, 'cli.png'));
     const bakedEnv = await page.evaluate(() => window.fresnel.state().environment);
@@ -251,7 +252,7 @@ try {
 
         // The scene file picked with the files it names (without their folder): found by name.
         await scenePage.evaluate(() => window.fresnel.set('yaw', 120));
-        const pickError = await pick(scenePage, '#scene-file', [path.join(sceneDir, 'helmet.fresnel.json'), path.join(sceneDir, 'DamagedHelmet.glb'), ...bakedFiles],
+        const pickError = await pick(scenePage, '#open-files', [path.join(sceneDir, 'helmet.fresnel.json'), path.join(sceneDir, 'DamagedHelmet.glb'), ...bakedFiles],
                                      'return s.settings["camera.yaw"] === "-35"');
         const pp = psnr(await shot('web_scene_picked.png'), path.join(outDir, 'cli_scene.png'));
         check(!pickError && pp >= 30, `the scene file picked with its files: ${pp.toFixed(2)} dB against fresnel render SCENE.fresnel.json${pickError ? ': ' + pickError : ''}`);
@@ -312,6 +313,29 @@ try {
         await animPage.close();
     } else {
         console.log(`skipped the animation checks: ${walker} is missing`);
+    }
+    // 10. Without ?size= the canvas fills the window beside the panel, in device pixels, and
+    //     follows a resize; the page has one Open control (files, or a folder) and no WebGL notice.
+    {
+        const fitPage = await browser.newPage({ viewport: { width: 1000, height: 700 }, deviceScaleFactor: 1 });
+        const opened = await openPage(fitPage, base, '?model=/assets/models/BoxTextured/BoxTextured.glb&env=color:0.5,0.5,0.5&env-size=64');
+        const size = async () => fitPage.evaluate(() => {
+            const c = document.getElementById('canvas'), v = document.getElementById('view').getBoundingClientRect();
+            return { w: c.width, h: c.height, vw: Math.round(v.width), vh: Math.round(v.height), setting: window.fresnel.state().settings['render.size'],
+                     opens: document.querySelectorAll('#panel input[type=file]').length, notice: !document.getElementById('no-webgl').hidden };
+        });
+        const a = await size();
+        await fitPage.setViewportSize({ width: 900, height: 600 });
+        await fitPage.waitForFunction(() => document.getElementById('canvas').height === 600, null, { timeout: 20000, polling: 50 }).catch(() => {});
+        const frames0 = await fitPage.evaluate(() => window.fresnel.frames());
+        await fitPage.waitForTimeout(500);
+        const b = await size();
+        const drew = (await fitPage.evaluate(() => window.fresnel.frames())) >= frames0;
+        check(!opened.error && a.w === a.vw && a.h === a.vh && a.setting === `${a.w}x${a.h}` && b.w === b.vw && b.h === 600 && b.w < a.w &&
+              drew && a.opens === 2 && !a.notice,
+              `the canvas fills the window beside the panel: ${a.w}x${a.h} in a 1000x700 window, ${b.w}x${b.h} after a resize to 900x600 ` +
+              `(render.size ${b.setting}); ${a.opens} file inputs (files, folder) behind one Open group`);
+        await fitPage.close();
     }
     if (failures) console.log(log.join('\n'));
 } finally {
