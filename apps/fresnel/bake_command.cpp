@@ -51,7 +51,7 @@ Runner add_bake_command(CLI::App& app) {
     auto o = std::make_shared<BakeCommandOptions>();
     CLI::App* cmd = app.add_subcommand("bake", "Precompute image-based lighting of an environment into a folder");
     cmd->footer("Examples:\n"
-                "  fresnel bake sky.hdr -o sky.ibl                            # then: fresnel render model.glb --env sky.ibl\n");
+                "  fresnel bake sky.hdr -o sky.ibl                # then: fresnel render model.glb --env sky.ibl\n");
     cmd->add_option("env", o->env, "Equirectangular .hdr/.exr, color:R,G,B or studio")->required();
     cmd->add_option("-o,--output", o->output, "Output folder (created)")->required();
     cmd->add_option("--size", o->bake.size, "Specular cube face size, power of two")->capture_default_str();

@@ -724,7 +724,7 @@ Runner add_batch_command(CLI::App& app) {
     cmd->footer("Examples:\n"
                 "  fresnel batch models/ --out thumbs --size 256             # a thumbnail of every model\n"
                 "  fresnel batch jobs.jsonl --out renders --jobs 2 --json    # one JSON line per job\n"
-                "  fresnel batch jobs.jsonl --out out --shard auto --resume  # one shard of a Slurm or Kubernetes array\n");
+                "  fresnel batch jobs.jsonl --out out --shard auto --resume  # a shard of a Slurm/Kubernetes array\n");
     cmd->add_option("jobs", o->jobs,
                     "A .jsonl file (one job a line: a scene file, a model, or a model with scene-file keys inline, "
                     "plus \"output\" and \"sweep\") or a folder of models (.gltf, .glb, .obj and .fresnel.json "

@@ -42,6 +42,20 @@ const std::atomic<bool>& InterruptGuard::requested() const { return g_interrupt_
 void print_error(const Error& e) { std::fprintf(stderr, "fresnel: error: %s\n", e.what()); }
 void print_error(const std::string& m) { std::fprintf(stderr, "fresnel: error: %s\n", m.c_str()); }
 
+std::string human_bytes(std::uintmax_t bytes) {
+    char buf[32];
+    if (bytes < 1024) {
+        std::snprintf(buf, sizeof buf, "%ju B", bytes);
+        return buf;
+    }
+    const char* units[] = {"KiB", "MiB", "GiB", "TiB"};
+    double v = double(bytes) / 1024.0;
+    int u = 0;
+    while (v >= 1024.0 && u < 3) v /= 1024.0, ++u;
+    std::snprintf(buf, sizeof buf, v < 10.0 ? "%.2f %s" : v < 100.0 ? "%.1f %s" : "%.0f %s", v, units[u]);
+    return buf;
+}
+
 void print_warnings(const Diagnostics& d) {
     auto lines = d.lines();
     for (const auto& l : lines) std::fprintf(stderr, "fresnel: warning: %s\n", l.c_str());

@@ -2,6 +2,7 @@
 // Helpers shared by the subcommands: exit codes, error and warning printing.
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <string>
 
 #include "fresnel/core/error.h"
@@ -39,5 +40,8 @@ public:
 
 // The lower-case extension of a path (".png").
 std::string lower_extension(const std::string& path);
+
+// A byte count for people: "812 B", "35.2 KiB", "3.81 MiB", "1.20 GiB".
+std::string human_bytes(std::uintmax_t bytes);
 
 }  // namespace fresnel::cli

@@ -206,6 +206,19 @@ void fit_pbr_materials(Scene& scene, bool quiet, bool bake) {
     }
 }
 
+// Each file of the set convert committed, with its size, and the total.
+void print_written(const std::vector<fs::path>& files) {
+    std::uintmax_t total = 0;
+    for (const fs::path& f : files) {
+        std::error_code ec;
+        const std::uintmax_t size = fs::file_size(f, ec);
+        if (ec) continue;
+        total += size;
+        std::fprintf(stderr, "  %s  %s\n", human_bytes(size).c_str(), f.string().c_str());
+    }
+    if (files.size() > 1) std::fprintf(stderr, "  %s  in %zu files\n", human_bytes(total).c_str(), files.size());
+}
+
 int run_convert(const ConvertOptions& o) {
     const std::string in_ext = lower_ext(o.input), out_ext = lower_ext(o.output);
     const bool in_obj = in_ext == ".obj", out_obj = out_ext == ".obj";
@@ -220,9 +233,12 @@ int run_convert(const ConvertOptions& o) {
     Diagnostics diagnostics;
     if (!in_obj && !out_obj && !o.rewrite) {
         // glTF -> glTF: the file as it is, in the other container (scene_writer.h's copy_gltf).
-        copy_gltf(o.input, o.output, diagnostics, o.allow_external_files);
+        const std::vector<fs::path> written = copy_gltf(o.input, o.output, diagnostics, o.allow_external_files);
         print_warnings(diagnostics);
-        if (!o.quiet) std::fprintf(stderr, "fresnel: convert: wrote %s: %s as it is, in a new container\n", o.output.c_str(), o.input.c_str());
+        if (!o.quiet) {
+            std::fprintf(stderr, "fresnel: convert: wrote %s: %s as it is, in a new container\n", o.output.c_str(), o.input.c_str());
+            print_written(written);
+        }
         return kExitOk;
     }
     Scene scene;
@@ -236,12 +252,13 @@ int run_convert(const ConvertOptions& o) {
         scene = load_gltf(o.input, diagnostics, opts);
     }
     to_metallic_roughness_all(scene, diagnostics, o.input);
+    std::vector<fs::path> written;
     if (out_obj) {
         fit_pbr_materials(scene, o.quiet, !o.no_diffuse_bake);
-        write_obj(scene, o.output, diagnostics);
+        written = write_obj(scene, o.output, diagnostics);
     } else {
         if (in_obj) fit_phong_materials(scene, o.quiet, *fit::parse_match(o.match), diagnostics, o.input);
-        write_gltf(scene, o.output, diagnostics);
+        written = write_gltf(scene, o.output, diagnostics);
     }
     print_warnings(diagnostics);
     // What was written, whole (the set is committed together: fresnel/core/atomic_file.h).
@@ -252,12 +269,11 @@ int run_convert(const ConvertOptions& o) {
             triangles += (p.indices.empty() ? p.positions.size() : p.indices.size()) / 3;
         }
     for (const SceneImage& i : scene.images) images += i.valid();
-    if (!o.quiet)
-        std::fprintf(stderr, "fresnel: convert: wrote %s: %zu meshes (%zu primitives, %zu triangles), %zu materials, %zu images%s\n",
-                     o.output.c_str(), scene.meshes.size(), primitives, triangles, scene.materials.size(), images,
-                     out_obj                                    ? " (+ .mtl and the image files beside it)"
-                     : out_ext == ".gltf" && primitives + images ? " (+ .bin and the image files beside it)"
-                                                                  : "");
+    if (!o.quiet) {
+        std::fprintf(stderr, "fresnel: convert: wrote %s: %zu meshes (%zu primitives, %zu triangles), %zu materials, %zu images\n",
+                     o.output.c_str(), scene.meshes.size(), primitives, triangles, scene.materials.size(), images);
+        print_written(written);
+    }
     return kExitOk;
 }
 

@@ -3,6 +3,8 @@
 // shows), and how they become a fresnel::Job, alone or over a scene file.
 #include "job_options.h"
 
+#include "help_format.h"
+
 #include <unistd.h>
 
 #include <cmath>
@@ -141,9 +143,10 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
     for (const settings::Setting& s : settings::all()) {
         if (!s.offered(settings::kCli) || s.flag.empty() || (!raster && !s.offered(settings::kTrace))) continue;
         using settings::Type;
+        const std::string group = help_group(s.key);
         if (s.type == Type::Bool) {
             std::string help = s.doc + (s.negated_flag ? ": off" : ": on") + " [" + s.key + "]";
-            cmd->add_flag(s.flag, opts.switches[s.key], help);
+            cmd->add_flag(s.flag, opts.switches[s.key], help)->group(group);
         } else {
             // Choices and texts list their values in the doc already; numbers say their range.
             const bool listed = s.type == Type::Choice || s.type == Type::Text;
@@ -153,20 +156,24 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
             opt->default_str(value.empty() ? settings::default_text(s) : value);
             const char* names[] = {"", "INT", "NUMBER", "X,Y,Z", "WxH", "NAME", "TEXT"};
             opt->type_name(names[int(s.type)]);
+            opt->group(group);
         }
-        for (const auto& shortcut : s.shortcuts) cmd->add_flag(shortcut.flag, opts.switches[shortcut.flag], shortcut.doc);
+        for (const auto& shortcut : s.shortcuts)
+            cmd->add_flag(shortcut.flag, opts.switches[shortcut.flag], shortcut.doc)->group(group);
     }
     cmd->get_option("--camera")->excludes("--yaw")->excludes("--pitch")->excludes("--distance")->excludes("--fov")->excludes("--target");
     cmd->add_option("--light", opts.lights,
                     "Add a light: dir:AZIMUTH,ELEVATION,LUX[,R,G,B] (arriving from that direction), "
                     "point:X,Y,Z,CANDELA[,R,G,B] or spot:X,Y,Z,AZIMUTH,ELEVATION,CANDELA,INNER,OUTER[,R,G,B] "
                     "(shining as a dir light from AZIMUTH,ELEVATION; cone half-angles in degrees); repeatable. "
-                    "Replaces a scene file's \"lights\"");
+                    "Replaces a scene file's \"lights\"")
+        ->group("Lights");
     if (raster) {
-        cmd->add_flag("--gl-debug", opts.gl_debug, "Request a debug GL context and print KHR_debug messages");
+        cmd->add_flag("--gl-debug", opts.gl_debug, "Request a debug GL context and print KHR_debug messages")->group("Graphics API");
         cmd->add_option("--gl", opts.gl, "Graphics API: gl33 (OpenGL 3.3 core) or es3 (OpenGL ES 3.0; same pictures)")
             ->capture_default_str()
-            ->check(CLI::IsMember({"gl33", "es3"}));
+            ->check(CLI::IsMember({"gl33", "es3"}))
+            ->group("Graphics API");
     }
 }
 

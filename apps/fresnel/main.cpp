@@ -8,6 +8,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "help_format.h"
 #include "huge_pages.h"
 #include "usage_errors.h"
 
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
     CLI::App app{"fresnel: physically based rendering of glTF 2.0 models", "fresnel"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "fresnel " + std::string(fresnel::version()));
+    app.formatter(fresnel::cli::wrapping_formatter());  // inherited by the commands added below
     auto render = fresnel::cli::add_render_command(app);
     auto info = fresnel::cli::add_info_command(app);
     auto bake = fresnel::cli::add_bake_command(app);
@@ -26,6 +28,7 @@ int main(int argc, char** argv) {
     auto convert = fresnel::cli::add_convert_command(app);
     auto view = fresnel::cli::add_view_command(app);
     auto settings = fresnel::cli::add_settings_command(app);
+    auto help = fresnel::cli::add_help_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -46,6 +49,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("convert")) return convert();
         if (app.got_subcommand("view")) return view();
         if (app.got_subcommand("settings")) return settings();
+        if (app.got_subcommand("help")) return help();
     } catch (const fresnel::Error& e) {
         fresnel::cli::print_error(e);
         return fresnel::cli::kExitBadInput;

@@ -138,7 +138,7 @@ Runner add_trace_command(CLI::App& app) {
         "trace", "Path-trace a glTF model (or the built-in demo) on the CPU: the ground truth for render");
     cmd->footer("Examples:\n"
                 "  fresnel trace model.glb -o ref.exr --spp 256 --env sky.hdr # ground truth for render's image\n"
-                "  fresnel trace model.glb -o t.png --time-limit 30 --json    # what 30 s reach; Ctrl+C keeps what is done\n");
+                "  fresnel trace model.glb -o t.png --time-limit 30 --json    # what 30 s reach (Ctrl+C keeps it)\n");
     add_model_and_output(cmd, *o);
     cmd->add_option("--spp", o->spp, "Samples (camera paths) per pixel")->capture_default_str()->check(CLI::Range(1, 1 << 20));
     cmd->add_option("--max-bounces,--bounces", o->max_bounces,

@@ -64,6 +64,53 @@ TEST_F(Cli, HelpExitsZero) {
     EXPECT_NE(r.out.find("--json"), std::string::npos) << show(r);
 }
 
+// Every --help is grouped by topic and wrapped at 100 columns; `fresnel help COMMAND` is the
+// same text; an unknown topic is a usage error that names the nearest command.
+TEST_F(Cli, HelpIsGroupedWrappedAndReachableByHelp) {
+    const std::vector<std::string> commands = {"render", "info", "bake", "compare", "trace", "batch",
+                                               "fit", "convert", "view", "settings", "help"};
+    for (const std::string& c : commands) {
+        Result r = run({c, "--help"});
+        ASSERT_EQ(r.exit_code, 0) << c << show(r);
+        std::istringstream lines(r.out);
+        for (std::string line; std::getline(lines, line);) EXPECT_LE(line.size(), 100u) << c << ": " << line;
+        if (c == "help") continue;
+        Result h = run({"help", c});
+        EXPECT_EQ(h.exit_code, 0) << show(h);
+        EXPECT_EQ(h.out, r.out) << c;
+    }
+    Result r = run({"render", "--help"});
+    for (const char* group : {"\nCamera:\n", "\nModel:\n", "\nAnimation:\n", "\nLights:\n", "\nEnvironment and background:\n",
+                              "\nOutput:\n", "\nGraphics API:\n"})
+        EXPECT_NE(r.out.find(group), std::string::npos) << group << r.out;
+    Result top = run({"--help"});
+    for (std::istringstream lines(top.out); !lines.eof();) {
+        std::string line;
+        std::getline(lines, line);
+        EXPECT_LE(line.size(), 100u) << line;
+    }
+    Result bad = run({"help", "rendr"});
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("did you mean 'render'"), std::string::npos) << show(bad);
+    // One meaning per flag name: view's "exit after N frames" is --exit-after; --frames is render's.
+    Result view = run({"view", "--help"});
+    EXPECT_NE(view.out.find("--exit-after"), std::string::npos);
+    EXPECT_EQ(view.out.find("\n  --frames"), std::string::npos) << view.out;
+}
+
+// convert says what it wrote: each file of the set with its size.
+TEST_F(Cli, ConvertListsTheFilesItWrote) {
+    const fs::path model = kShared / "assets" / "models" / "Duck" / "Duck.glb";
+    if (!fs::exists(model)) GTEST_SKIP() << "needs " << model;
+    Result r = run({"convert", model.string(), (dir_ / "duck.gltf").string()});
+    ASSERT_EQ(r.exit_code, 0) << show(r);
+    for (const char* f : {"duck.gltf", "duck.bin"}) {
+        const std::string line_end = (dir_ / f).string() + "\n";
+        EXPECT_NE(r.err.find(line_end), std::string::npos) << f << show(r);
+    }
+    EXPECT_NE(r.err.find(" KiB  in 2 files"), std::string::npos) << show(r);  // the GLB's texture stays in the .bin
+}
+
 // --version prints the version written once in CMakeLists.txt (project(VERSION)).
 TEST_F(Cli, VersionIsTheProjectVersion) {
     Result r = run({"--version"});

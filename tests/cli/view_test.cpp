@@ -219,7 +219,7 @@ TEST_F(View, ScreenshotThroughTheFilesCameraEqualsRender) {
 
 TEST_F(View, GuiIsDrawnOverTheFrame) {
     fs::path plain = dir_ / "plain.png", gui = dir_ / "gui.png";
-    std::vector<std::string> args = {"view", "--size", "320x240", "--frames", "2", "--screenshot"};
+    std::vector<std::string> args = {"view", "--size", "320x240", "--exit-after", "2", "--screenshot"};
     auto a = args, b = args;
     a.push_back(plain.string());
     b.insert(b.end(), {gui.string(), "--with-gui"});
@@ -842,7 +842,7 @@ TEST_F(View, BadModelExitsOneWithTheLoadersError) {
 TEST_F(View, BadEnvironmentExitsOne) {
     fs::path bad = dir_ / "sky.hdr";
     std::ofstream(bad) << "not a radiance file";
-    Result r = run({"view", "--env", bad.string(), "--size", "64x48", "--frames", "1"}, true);
+    Result r = run({"view", "--env", bad.string(), "--size", "64x48", "--exit-after", "1"}, true);
     EXPECT_EQ(r.exit_code, 1) << r.err;
     EXPECT_NE(r.err.find("sky.hdr"), std::string::npos) << r.err;
 }
@@ -850,12 +850,12 @@ TEST_F(View, BadEnvironmentExitsOne) {
 TEST_F(View, FolderOpensItsFirstModel) {
     fs::path folder = kShared / "assets/models";
     if (!fs::exists(folder)) GTEST_SKIP() << "needs " << folder;
-    Result r = run({"view", folder.string(), "--size", "64x48", "--frames", "1", "--no-ibl"}, true);
+    Result r = run({"view", folder.string(), "--size", "64x48", "--exit-after", "1", "--no-ibl"}, true);
     EXPECT_EQ(r.exit_code, 0) << r.err;
 }
 
 TEST_F(View, UsageErrorsExitTwoBeforeOpeningAWindow) {
-    Result r = run({"view", "--size", "12x", "--frames", "1"}, false);  // no display needed
+    Result r = run({"view", "--size", "12x", "--exit-after", "1"}, false);  // no display needed
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
 }

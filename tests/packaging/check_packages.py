@@ -182,7 +182,7 @@ if xvfb and os.path.exists(fresnel):
     if number:
         for api in ("gl33", "es3"):
             runs.append((f"view on {api} under Xvfb",
-                         [fresnel, "view", "--frames", "2", "--size", "64x48", "--gl", api], {"DISPLAY": ":" + number}))
+                         [fresnel, "view", "--exit-after", "2", "--size", "64x48", "--gl", api], {"DISPLAY": ":" + number}))
 else:
     print("(no Xvfb: the viewer's libraries are checked as linked only)")
 

@@ -193,6 +193,13 @@ void FileSet::stage(const fs::path& path, std::string_view text) {
     stage(path, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
 }
 
+std::vector<fs::path> FileSet::paths() const {
+    std::vector<fs::path> out;
+    out.reserve(entries_.size());
+    for (const Entry& e : entries_) out.push_back(e.destination);
+    return out;
+}
+
 void FileSet::commit() {
     if (committed_) return;
     std::error_code ec;

@@ -53,7 +53,8 @@ std::string mime_of(const std::vector<std::uint8_t>& b) {
 
 }  // namespace
 
-void copy_gltf(const fs::path& source, const fs::path& dest, Diagnostics& diagnostics, bool allow_external_files) {
+std::vector<fs::path> copy_gltf(const fs::path& source, const fs::path& dest, Diagnostics& diagnostics,
+                                bool allow_external_files) {
     const std::string src_name = source.string(), dst_name = dest.string();
     const bool in_glb = lower(source.extension().string()) == ".glb", out_glb = lower(dest.extension().string()) == ".glb";
     // The whole file through the loader first: what the loader refuses is not copied.
@@ -260,6 +261,7 @@ void copy_gltf(const fs::path& source, const fs::path& dest, Diagnostics& diagno
         files.stage(dest, doc.dump(2) + "\n");
     }
     files.commit();
+    return files.paths();
 }
 
 }  // namespace fresnel

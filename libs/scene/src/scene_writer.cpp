@@ -286,7 +286,7 @@ int wrap_enum(Wrap w) { return w == Wrap::ClampToEdge ? gltf_code::kClampToEdge 
 }  // namespace
 
 
-void write_gltf(const Scene& in, const fs::path& path, Diagnostics& diagnostics) {
+std::vector<fs::path> write_gltf(const Scene& in, const fs::path& path, Diagnostics& diagnostics) {
     // Primitives whose material needs a tangent space get MikkTSpace tangents, on a copy.
     std::optional<Scene> with_tangents;
     for (std::size_t mi = 0; mi < in.meshes.size(); ++mi)
@@ -518,6 +518,7 @@ void write_gltf(const Scene& in, const fs::path& path, Diagnostics& diagnostics)
         files.stage(path, doc.dump(2) + "\n");
     }
     files.commit();
+    return files.paths();
 }
 
 // ---- OBJ/MTL -------------------------------------------------------------------------------
@@ -550,7 +551,8 @@ std::string mtl_name(const Material& m, std::size_t i) {
 }
 }  // namespace
 
-void write_obj(const Scene& scene, const fs::path& path, Diagnostics& diagnostics, const ObjWriteOptions& options) {
+std::vector<fs::path> write_obj(const Scene& scene, const fs::path& path, Diagnostics& diagnostics,
+                                const ObjWriteOptions& options) {
     const std::string stem = path.stem().string();
     const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     std::string mtl, obj = "# written by fresnel convert\nmtllib " + stem + ".mtl\n";
@@ -637,6 +639,7 @@ void write_obj(const Scene& scene, const fs::path& path, Diagnostics& diagnostic
     files.stage(folder / (stem + ".mtl"), mtl);
     files.stage(path, obj);
     files.commit();
+    return files.paths();
 }
 
 

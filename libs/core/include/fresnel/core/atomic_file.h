@@ -56,6 +56,8 @@ public:
     // True when `path` is already staged (two names for one file count as one).
     bool staged(const std::filesystem::path& path) const;
     void commit();
+    // The destinations staged, in order (after commit(): the files written).
+    std::vector<std::filesystem::path> paths() const;
 
 private:
     struct Entry {

@@ -28,8 +28,9 @@
 namespace fresnel {
 
 // `.glb` writes a binary container; anything else a .gltf with `<stem>.bin` and
-// `<stem>_imageN.png` beside it.
-void write_gltf(const Scene& scene, const std::filesystem::path& path, Diagnostics& diagnostics);
+// `<stem>_imageN.png` beside it. Every writer here returns the files it wrote (one set,
+// committed together).
+std::vector<std::filesystem::path> write_gltf(const Scene& scene, const std::filesystem::path& path, Diagnostics& diagnostics);
 
 // glTF -> glTF as the file is, in the container `dest` names (.gltf or .glb): the JSON key by
 // key (animations, skins, morph targets, cameras, lights, extras, every name, unknown
@@ -40,16 +41,16 @@ void write_gltf(const Scene& scene, const std::filesystem::path& path, Diagnosti
 // files beside a .gltf (copied when the folder changes). Converting the result again gives
 // the same JSON and bytes. The source is loaded first (what the loader refuses is refused);
 // the new files are one set, committed together. Throws fresnel::Error.
-void copy_gltf(const std::filesystem::path& source, const std::filesystem::path& dest, Diagnostics& diagnostics,
-               bool allow_external_files = false);
+std::vector<std::filesystem::path> copy_gltf(const std::filesystem::path& source, const std::filesystem::path& dest,
+                                             Diagnostics& diagnostics, bool allow_external_files = false);
 
 struct ObjWriteOptions {
     bool pbr_keys = true;  // Pr/Pm from the metallic-roughness factors, beside the Phong keys
 };
 // Writes path (.obj), `<stem>.mtl` and `<stem>_imageN.png` beside it. Materials without a
 // `phong` block get the naive Kd = base colour, Ks 0.04 (converters fill `phong` first).
-void write_obj(const Scene& scene, const std::filesystem::path& path, Diagnostics& diagnostics,
-               const ObjWriteOptions& options = {});
+std::vector<std::filesystem::path> write_obj(const Scene& scene, const std::filesystem::path& path, Diagnostics& diagnostics,
+                                             const ObjWriteOptions& options = {});
 
 // Material edits written back into the glTF file they came from, losslessly: `source`
 // (.gltf or .glb) is written to `dest` (the same container; may be `source` itself) with the
