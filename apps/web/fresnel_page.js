@@ -613,6 +613,13 @@ function syncPanel() {
     buildAnimation(st);
     buildFeatures(st);
     $('variant-label').hidden = !st.variants.length;
+    // The file's cameras, and the orbit camera.
+    $('camera-label').hidden = !st.cameras.length;
+    if (st.cameras.length && $('camera-select').options.length !== st.cameras.length + 1) {
+        $('camera-select').replaceChildren(new Option('orbit camera', 'orbit'));
+        st.cameras.forEach((name, i) => $('camera-select').add(new Option(`${i}: ${name}`, String(i))));
+        showSetting($('camera-select'), st.settings['camera.index']);
+    }
     if (st.variants.length && $('variant').options.length !== st.variants.length + 1) {
         $('variant').replaceChildren(new Option('(default materials)', ''));
         for (const v of st.variants) $('variant').add(new Option(v, v));

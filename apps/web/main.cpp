@@ -267,6 +267,11 @@ struct App {
         out["animations"] = animations;
         out["posedOnGpu"] = posing.on_gpu();
         out["variants"] = variants;
+        nlohmann::json cameras = nlohmann::json::array();  // the file's cameras (the page's camera picker)
+        if (scene)
+            for (std::size_t i = 0; i < scene->cameras.size(); ++i)
+                cameras.push_back(scene->cameras[i].name.empty() ? "camera " + std::to_string(i) : scene->cameras[i].name);
+        out["cameras"] = cameras;
         // The parts of the file its switches turn off (the setting `disable`): what the scene
         // holds, and what is off.
         nlohmann::json features = nlohmann::json::array();

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_harness.h"
+#include "gltf_builders.h"
 #include "fresnel/core/image.h"
 #include "fresnel/core/metrics.h"
 
@@ -497,6 +498,44 @@ TEST_F(View, SwitchingPartsOfTheFileOffEqualsRender) {
     EXPECT_GE(psnr("on.png", "r-on.png"), 40.0);
     EXPECT_GE(psnr("off.png", "r-off.png"), 40.0);
     EXPECT_LT(psnr("on.png", "off.png"), 42.0);  // the coats go (38 dB at this size: the spheres are small)
+}
+
+// The variants picker's way (the job's variant changed, the scene loaded again): a script's
+// `set variant blue` shows what `render --variant blue` renders, and another picture than the
+// default materials; a variant the file lacks is reported and the scene stays.
+TEST_F(View, VariantsSwitchAsRenderShowsThem) {
+    nlohmann::json doc = fresnel::test::uv_sphere_gltf(32, 16, {{"name", "red"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.9, 0.1, 0.1, 1}}}}});
+    doc["materials"].push_back({{"name", "blue"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.1, 0.2, 0.9, 1}}}}});
+    doc["extensionsUsed"] = {"KHR_materials_variants"};
+    doc["extensions"]["KHR_materials_variants"]["variants"] = {{{"name", "red"}}, {{"name", "blue"}}};
+    doc["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]["mappings"] = {
+        {{"material", 1}, {"variants", {1}}}};
+    const fs::path model = dir_ / "variants.gltf";
+    std::ofstream(model) << doc.dump();
+    std::ofstream(dir_ / "v.txt") << "screenshot " << (dir_ / "default.png").string() << "\n"
+                                     "set variant blue\n"
+                                     "wait 1\n"
+                                     "screenshot " << (dir_ / "blue.png").string() << "\n"
+                                     "set variant green\n"
+                                     "wait 1\n"
+                                     "screenshot " << (dir_ / "still.png").string() << "\n"
+                                     "print\n"
+                                     "quit\n";
+    Result v = run({"view", model.string(), "--size", "160x120", "--script", (dir_ / "v.txt").string()}, true);
+    EXPECT_EQ(v.exit_code, 1) << v.err;  // the variant that did not load
+    EXPECT_NE(v.err.find("green"), std::string::npos) << v.err;  // the loader's message names it
+    auto psnr = [&](const char* x, const char* y) {
+        return fresnel::compare_images(fresnel::read_image8(dir_ / x), fresnel::read_image8(dir_ / y), false).psnr_db;
+    };
+    ASSERT_EQ(run({"render", model.string(), "--size", "160x120", "--variant", "blue", "-o", (dir_ / "r-blue.png").string()}, false)
+                  .exit_code,
+              0);
+    std::printf("variant blue: view vs render %.1f dB, against the default %.1f dB\n", psnr("blue.png", "r-blue.png"),
+                psnr("blue.png", "default.png"));
+    EXPECT_GE(psnr("blue.png", "r-blue.png"), 40.0);
+    EXPECT_LT(psnr("blue.png", "default.png"), 25.0);
+    EXPECT_GE(psnr("still.png", "blue.png"), 60.0) << "a variant the file lacks leaves the scene as it was";
+    EXPECT_NE(last_command_line(v.out).find("--variant blue"), std::string::npos) << v.out;
 }
 
 // A soak: 100 models opened in a row in one session; resident memory after the 100th is

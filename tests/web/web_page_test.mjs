@@ -314,6 +314,28 @@ try {
     } else {
         console.log(`skipped the animation checks: ${walker} is missing`);
     }
+    // 9b. The file's cameras in the camera picker: choosing one shows what `render --camera N` renders.
+    const camModel = path.join(shared, 'assets/models/Cameras/Cameras.gltf');
+    if (fs.existsSync(camModel)) {
+        const camPage = await browser.newPage({ viewport: { width: 1000, height: 700 }, deviceScaleFactor: 1 });
+        const opened = await openPage(camPage, base, '?model=/assets/models/Cameras/Cameras.gltf&size=256x192&env=color:0.5,0.5,0.5&env-size=64');
+        if (!opened.error) {
+            const names = await camPage.evaluate(() => window.fresnel.state().cameras);
+            const before = await camPage.evaluate(() => window.fresnel.frames());
+            await camPage.selectOption('#camera-select', '0');
+            await camPage.waitForFunction(n => window.fresnel.frames() > n, before, { timeout: 20000, polling: 50 }).catch(() => {});
+            const url = await camPage.evaluate(() => document.getElementById('canvas').toDataURL('image/png'));
+            fs.writeFileSync(path.join(outDir, 'web_camera0.png'), Buffer.from(url.split(',')[1], 'base64'));
+            render(path.join(outDir, 'cli_camera0.png'), ['--camera', '0'], [camModel, '--size', '256x192', '--env', 'color:0.5,0.5,0.5', '--env-size', '64']);
+            const pc = psnr(path.join(outDir, 'web_camera0.png'), path.join(outDir, 'cli_camera0.png'));
+            const setting = await camPage.evaluate(() => window.fresnel.state().settings['camera.index']);
+            check(names.length >= 1 && setting === '0' && pc >= 30,
+                  `the camera picker lists the file's ${names.length} camera(s); camera 0 chosen: ${pc.toFixed(2)} dB against render --camera 0`);
+        } else {
+            check(false, `Cameras.gltf loads: ${opened.error}`);
+        }
+        await camPage.close();
+    }
     // 10. Without ?size= the canvas fills the window beside the panel, in device pixels, and
     //     follows a resize; the page has one Open control (files, or a folder) and no WebGL notice.
     {

@@ -249,6 +249,7 @@ void Viewer::reload_if_needed() {
     const Job::Source::Animation animation = state_.job.source.animation;
     state_.job.source = loaded_source_;
     state_.job.source.animation = animation;
+    if (!options_.script.empty()) automation_.mark_failed();  // a script's `set` that did not load: exit 1, as open and env
 }
 
 // The scene posed at the time the state shows (job.source.animation), when that changed.
