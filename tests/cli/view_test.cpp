@@ -188,6 +188,10 @@ exit $rc
         return fresnel::compare_images(fresnel::read_image8(dir_ / "view.png"), fresnel::read_image8(screenshot), false)
             .psnr_db;
     }
+    // PSNR of two 8-bit images over every pixel (paths relative to dir_, or absolute).
+    double psnr(const fs::path& a, const fs::path& b) const {
+        return fresnel::compare_images(fresnel::read_image8(dir_ / a), fresnel::read_image8(dir_ / b), false).psnr_db;
+    }
     std::string display_prefix_;
     fs::path dir_;
 };
@@ -382,9 +386,6 @@ TEST_F(View, ScriptedSessionKeepsTheSceneOnBadFiles) {
     ASSERT_EQ(ra.exit_code, 0) << ra.err;
     ASSERT_EQ(rc.exit_code, 0) << rc.err;
     for (const char* f : {"a.png", "b.png", "c.png", "d.png"}) ASSERT_TRUE(fs::exists(dir_ / f)) << f << r.err;
-    auto psnr = [&](const char* x, const char* y) {
-        return fresnel::compare_images(fresnel::read_image8(dir_ / x), fresnel::read_image8(dir_ / y), false).psnr_db;
-    };
     EXPECT_GE(psnr("a.png", "ra.png"), 40.0);
     EXPECT_GE(psnr("b.png", "ra.png"), 40.0);  // the broken file left the helmet
     EXPECT_GE(psnr("c.png", "rc.png"), 40.0);
@@ -409,9 +410,6 @@ TEST_F(View, ShadowsToggleLive) {
     Result r = run({"view", model.string(), "--size", "200x150", "--env", "none", "--script", (dir_ / "s.txt").string()},
                    true);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    auto psnr = [&](const char* x, const char* y) {
-        return fresnel::compare_images(fresnel::read_image8(dir_ / x), fresnel::read_image8(dir_ / y), false).psnr_db;
-    };
     for (const char* mode : {"soft", "off", "hard"}) {
         const std::string rendered = std::string("r-") + mode + ".png";
         Result rr = run({"render", model.string(), "--size", "200x150", "--env", "none", "--yaw", "20", "--pitch", "30",
@@ -449,9 +447,6 @@ TEST_F(View, AnimationPlaybackShowsWhatRenderPosesAtTheSameTime) {
     const float t = std::stof(line.substr(line.find("--time ") + 7));
     EXPECT_GT(t, 0.5f) << "the playback did not move: " << line;
     EXPECT_LE(t, 2.0f) << line;  // CesiumMan's walk lasts 2 s and loops
-    auto psnr = [&](const fs::path& x, const fs::path& y) {
-        return fresnel::compare_images(fresnel::read_image8(x), fresnel::read_image8(y), false).psnr_db;
-    };
     std::vector<std::string> at = {"render", model.string(), "--size", "200x150", "--time", "0.5", "-o",
                                    (dir_ / "r-half.png").string()};
     ASSERT_EQ(run(at, false).exit_code, 0);
@@ -488,9 +483,6 @@ TEST_F(View, SwitchingPartsOfTheFileOffEqualsRender) {
                                      "quit\n";
     Result v = run({"view", model.string(), "--size", "200x150", "--script", (dir_ / "f.txt").string()}, true);
     ASSERT_EQ(v.exit_code, 0) << v.err;
-    auto psnr = [&](const char* x, const char* y) {
-        return fresnel::compare_images(fresnel::read_image8(dir_ / x), fresnel::read_image8(dir_ / y), false).psnr_db;
-    };
     ASSERT_EQ(run({"render", model.string(), "--size", "200x150", "-o", (dir_ / "r-on.png").string()}, false).exit_code, 0);
     ASSERT_EQ(run({"render", model.string(), "--size", "200x150", "--disable", "clearcoat", "-o", (dir_ / "r-off.png").string()},
                   false).exit_code, 0);
@@ -524,9 +516,6 @@ TEST_F(View, VariantsSwitchAsRenderShowsThem) {
     Result v = run({"view", model.string(), "--size", "160x120", "--script", (dir_ / "v.txt").string()}, true);
     EXPECT_EQ(v.exit_code, 1) << v.err;  // the variant that did not load
     EXPECT_NE(v.err.find("green"), std::string::npos) << v.err;  // the loader's message names it
-    auto psnr = [&](const char* x, const char* y) {
-        return fresnel::compare_images(fresnel::read_image8(dir_ / x), fresnel::read_image8(dir_ / y), false).psnr_db;
-    };
     ASSERT_EQ(run({"render", model.string(), "--size", "160x120", "--variant", "blue", "-o", (dir_ / "r-blue.png").string()}, false)
                   .exit_code,
               0);

@@ -193,6 +193,29 @@ Setting integer(std::string key, std::string flag, std::string unit, double lo, 
                         front_ends, std::move(field));
 }
 
+// An index into the file's lists (a scene, an animation) held as -1 for `none` ("default", "all").
+Setting index_or_none(std::string key, std::string flag, std::string none, std::string doc, unsigned front_ends,
+                      std::function<int&(Job&)> field) {
+    Setting s;
+    s.key = std::move(key);
+    s.flag = std::move(flag);
+    s.type = Type::Int;
+    s.min = 0;
+    s.max = 1 << 20;
+    s.none = std::move(none);
+    s.doc = std::move(doc);
+    s.front_ends = front_ends;
+    s.get = [field](const Job& j) {
+        const int index = field(const_cast<Job&>(j));
+        Value v;
+        v.unset = index < 0;
+        v.number = std::max(index, 0);
+        return v;
+    };
+    s.put = [field](Job& j, const Value& v) { field(j) = v.unset ? -1 : int(v.number); };
+    return s;
+}
+
 Setting boolean(std::string key, std::string flag, bool negated, std::string doc, unsigned front_ends,
                 std::function<bool&(Job&)> field) {
     Setting s;
@@ -342,25 +365,9 @@ std::vector<Setting> make_registry() {
     }
 
     // --- the scene ---
-    {
-        Setting s;
-        s.key = "scene";
-        s.flag = "--scene";
-        s.type = Type::Int;
-        s.min = 0;
-        s.max = 1 << 20;
-        s.none = "default";
-        s.doc = "The glTF scene to show (default: the file's `scene`)";
-        s.front_ends = kCli | kTrace | kWeb;  // a scene file gives each model's "scene"
-        s.get = [](const Job& j) {
-            Value v;
-            v.unset = j.source.scene < 0;
-            v.number = std::max(j.source.scene, 0);
-            return v;
-        };
-        s.put = [](Job& j, const Value& v) { j.source.scene = v.unset ? -1 : int(v.number); };
-        r.push_back(s);
-    }
+    r.push_back(index_or_none("scene", "--scene", "default", "The glTF scene to show (default: the file's `scene`)",
+                              kCli | kTrace | kWeb,  // a scene file gives each model's "scene"
+                              [](Job& j) -> int& { return j.source.scene; }));
     {
         Setting s;
         s.key = "variant";
@@ -400,26 +407,10 @@ std::vector<Setting> make_registry() {
         };
         r.push_back(s);
     }
-    {
-        Setting s;
-        s.key = "animation.index";
-        s.flag = "--animation";
-        s.type = Type::Int;
-        s.min = 0;
-        s.max = 1 << 20;
-        s.none = "all";
-        s.doc = "Play only animation K (0-based; fresnel info lists them; all: every animation). Alone it poses the "
-                "scene at time 0";
-        s.front_ends = all;
-        s.get = [](const Job& j) {
-            Value v;
-            v.unset = j.source.animation.index < 0;
-            v.number = std::max(j.source.animation.index, 0);
-            return v;
-        };
-        s.put = [](Job& j, const Value& v) { j.source.animation.index = v.unset ? -1 : int(v.number); };
-        r.push_back(s);
-    }
+    r.push_back(index_or_none("animation.index", "--animation", "all",
+                              "Play only animation K (0-based; fresnel info lists them; all: every animation). Alone "
+                              "it poses the scene at time 0",
+                              all, [](Job& j) -> int& { return j.source.animation.index; }));
     {
         Setting s;
         s.key = "disable";

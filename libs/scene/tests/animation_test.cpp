@@ -182,6 +182,27 @@ Scene test_scene() {
     return s;
 }
 
+// test_scene's triangle skinned to joint node 1 (the third vertex with weight `w2`), and
+// animation 0 turning the joint from 0 to 90 degrees about +Z over 2 s.
+Scene skinned_scene(float w2) {
+    Scene s = test_scene();
+    Primitive& p = s.meshes[0].primitives[0];
+    p.joints = {glm::uvec4(0), glm::uvec4(0), glm::uvec4(0)};
+    p.weights = {glm::vec4(1, 0, 0, 0), glm::vec4(1, 0, 0, 0), glm::vec4(w2, 0, 0, 0)};
+    s.nodes[0].skin = 0;
+    Skin skin;
+    skin.joints = {1};
+    skin.inverse_bind = {glm::mat4(1.0f)};
+    s.skins.push_back(skin);
+    Animation a;
+    std::vector<float> rot = quat_z(0);
+    for (float c : quat_z(90)) rot.push_back(c);
+    a.samplers.push_back(make(Interpolation::Linear, {0, 2}, rot, 4));
+    a.channels = {{0, 1, AnimationPath::Rotation, ""}};
+    s.animations.push_back(a);
+    return s;
+}
+
 }  // namespace
 
 TEST(AnimationPose, AnimateSetsTrsAndLocalMatrix) {
@@ -265,21 +286,7 @@ TEST(AnimationPose, MorphRenormalisesNormalsAndRegeneratesFlatOnes) {
 }
 
 TEST(AnimationPose, SkinFollowsTheAnimatedJoint) {
-    Scene s = test_scene();
-    Primitive& p = s.meshes[0].primitives[0];
-    p.joints = {glm::uvec4(0), glm::uvec4(0), glm::uvec4(0)};
-    p.weights = {glm::vec4(1, 0, 0, 0), glm::vec4(1, 0, 0, 0), glm::vec4(0.5f, 0, 0, 0)};
-    s.nodes[0].skin = 0;
-    Skin skin;
-    skin.joints = {1};
-    skin.inverse_bind = {glm::mat4(1.0f)};
-    s.skins.push_back(skin);
-    Animation a;
-    std::vector<float> rot = quat_z(0);
-    for (float c : quat_z(90)) rot.push_back(c);
-    a.samplers.push_back(make(Interpolation::Linear, {0, 2}, rot, 4));
-    a.channels = {{0, 1, AnimationPath::Rotation, ""}};
-    s.animations.push_back(a);
+    Scene s = skinned_scene(0.5f);
     Scene posed = animated_scene(s, 0, 2.0f);  // the joint turned 90 degrees about +Z
     const Node& n = posed.nodes[0];
     ASSERT_TRUE(n.world_space_mesh);
@@ -301,23 +308,11 @@ TEST(AnimationPose, SkinFollowsTheAnimatedJoint) {
 // A skinned, morphing, moving scene posed again and again in place (ScenePoser) is at every
 // time what animated_scene makes from the rest pose, and goes back to the rest pose exactly.
 TEST(ScenePoser, PosesInPlaceAsAnimatedSceneDoesAndRestsAgain) {
-    Scene s = test_scene();
-    Primitive& p = s.meshes[0].primitives[0];
-    p.joints = {glm::uvec4(0), glm::uvec4(0), glm::uvec4(0)};
-    p.weights = {glm::vec4(1, 0, 0, 0), glm::vec4(1, 0, 0, 0), glm::vec4(1, 0, 0, 0)};
-    s.nodes[0].skin = 0;
-    Skin skin;
-    skin.joints = {1};
-    skin.inverse_bind = {glm::mat4(1.0f)};
-    s.skins.push_back(skin);
-    Animation turn, morph;
-    std::vector<float> rot = quat_z(0);
-    for (float c : quat_z(90)) rot.push_back(c);
-    turn.samplers.push_back(make(Interpolation::Linear, {0, 2}, rot, 4));
-    turn.channels = {{0, 1, AnimationPath::Rotation, ""}};
+    Scene s = skinned_scene(1.0f);  // animation 0 turns the joint; animation 1 morphs the triangle
+    Animation morph;
     morph.samplers.push_back(make(Interpolation::Linear, {0, 1}, {0, 0, 1, 0.5f}, 2));
     morph.channels = {{0, 0, AnimationPath::Weights, ""}};
-    s.animations = {turn, morph};
+    s.animations.push_back(morph);
     const Scene rest = s;
     ScenePoser poser(s);
     for (int index : {-1, 0, 1, -1})
