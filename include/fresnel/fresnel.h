@@ -80,5 +80,6 @@
 #include "fresnel/viewer/geometry.h"
 #include "fresnel/viewer/script.h"
 #include "fresnel/viewer/state.h"
+#include "fresnel/viewer/thumbnails.h"
 
 #include "fresnel/shaders/shaders.h"

@@ -4,12 +4,16 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <future>
 
 #include "fresnel/gpu/device.h"
 #include "fresnel/job/features.h"
 #include "fresnel/job/orbit_controller.h"
 #include "fresnel/job/settings.h"
 #include "fresnel/viewer/files.h"
+#include "fresnel/viewer/thumbnails.h"
 #include "setting_widgets.h"
 #include "viewer_app.h"
 
@@ -247,6 +251,31 @@ void Viewer::draw_camera_panel() {
     FRESNEL_HINT("left drag: orbit; right/middle or shift+left: pan; wheel: dolly");
 }
 
+unsigned Viewer::thumbnail(const std::string& preset) {
+    auto [it, added] = thumbnails_.try_emplace(preset);
+    Thumbnail& t = it->second;
+    if (added)
+        t.pending = std::async(std::launch::async, [preset] {
+            struct Wake {  // draw again when it is ready (or failed)
+                ~Wake() { gui::Window::wake(); }
+            } wake;
+            return viewer::environment_thumbnail(preset, 96);
+        });
+    if (t.pending.valid() && t.pending.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+        try {
+            const Image8 rgb = t.pending.get();
+            std::vector<std::uint8_t> rgba(std::size_t(rgb.width) * std::size_t(rgb.height) * 4, 255);
+            for (std::size_t i = 0; i < std::size_t(rgb.width) * std::size_t(rgb.height); ++i)
+                for (int c = 0; c < 3; ++c) rgba[i * 4 + std::size_t(c)] = rgb.pixels[i * 3 + std::size_t(c)];
+            t.texture = gpu::Texture::create_2d(rgb.width, rgb.height, gpu::TextureFormat::RGBA8, rgba.data(), false);
+            t.texture.set_sampler(gpu::SamplerState::clamped(Filter::Linear));
+        } catch (const std::exception&) {
+            t.failed = true;  // no picture (a folder without previews, a file that does not read)
+        }
+    }
+    return t.texture ? t.texture.id() : 0u;
+}
+
 // Switches, as the Khronos Sample Viewer's: image-based light, the file's punctual lights,
 // shadows (settings of their own), and the parts of the file a job can turn off (the setting
 // `disable`: skinning, morphing, occlusion, each material extension the file uses), which reload
@@ -298,11 +327,19 @@ void Viewer::draw_environment_panel() {
                  {Kind::Color, "colour"}, {Kind::None, "none (no IBL)"}});
     // Presets: the built-in studio, the environments beside the model, the recent ones.
     const std::string shown = e.kind == Kind::File ? fs::path(e.path).filename().string() : e.kind == Kind::Studio ? "studio" : "";
-    if (ImGui::BeginCombo("preset", shown.empty() ? "(choose)" : shown.c_str())) {
+    if (ImGui::BeginCombo("preset", shown.empty() ? "(choose)" : shown.c_str(), ImGuiComboFlags_HeightLarge)) {
+        const float h = ImGui::GetTextLineHeightWithSpacing() * 1.6f;
         for (const std::string& p : state_.environment_presets()) {
             const bool studio = p == "studio";
             const std::string label = studio ? "studio (built in)" : fs::path(p).filename().string() + "##" + p;
-            if (ImGui::Selectable(label.c_str(), studio ? e.kind == Kind::Studio : e.kind == Kind::File && e.path == p)) {
+            if (unsigned id = thumbnail(p)) {  // the picture, then the name
+                ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(id)), ImVec2(2.0f * h, h));
+            } else {
+                ImGui::Dummy(ImVec2(2.0f * h, h));
+            }
+            ImGui::SameLine();
+            if (ImGui::Selectable(label.c_str(), studio ? e.kind == Kind::Studio : e.kind == Kind::File && e.path == p,
+                                  0, ImVec2(0.0f, h))) {
                 if (studio) e.kind = Kind::Studio;
                 else state_.open_environment(p);
             }

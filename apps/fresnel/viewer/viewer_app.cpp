@@ -92,6 +92,7 @@ void Viewer::save_gui_layout() {
 
 // GL objects go before the window (and its context) does.
 void Viewer::release_gpu() {
+    thumbnails_.clear();  // their textures (and any picture still being made)
     timer_.reset();
     renderer_.reset();
     window_ = nullptr;

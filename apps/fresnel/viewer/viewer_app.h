@@ -36,6 +36,14 @@
 
 namespace fresnel::cli::view {
 
+// An environment preset's picture (fresnel/viewer/thumbnails.h), made on a worker thread and
+// uploaded when ready; `failed` when it could not be made (no picture is shown).
+struct Thumbnail {
+    std::future<Image8> pending;
+    gpu::Texture texture;
+    bool failed = false;
+};
+
 // An environment bake running on a worker thread.
 struct Bake {
     std::string key;
@@ -100,6 +108,8 @@ private:
     void draw_animation_panel();
     void draw_features_panel();
     void draw_help_panel();
+    // The preset's thumbnail texture (GL name), 0 while it is being made or when there is none.
+    unsigned thumbnail(const std::string& preset);
     void draw_camera_panel();
     void draw_environment_panel();
     void draw_output_panels();
@@ -127,6 +137,7 @@ private:
     static constexpr int kMinDockedWindow = 560;  // points: narrower windows keep the panel floating
     std::string imgui_ini_;  // where ImGui keeps the panel's layout (the cache folder), or empty
     Job::Source loaded_source_;               // what state_.scene was loaded with (its animation unset)
+    std::map<std::string, Thumbnail> thumbnails_;  // by preset
     Job::Environment environment_before_off_;  // what the Features panel's image-based light switch turns back to
     static constexpr const char* kNoLighting = "(none yet)";
     std::string lighting_key_ = kNoLighting, failed_key_;
