@@ -165,3 +165,19 @@ def test_with_material_and_pose(helmet, shared):
     assert len(man.animations) == 1
     posed = man.pose(0.5)
     assert not np.array_equal(fresnel.render(man, size=(48, 48)), fresnel.render(posed, size=(48, 48)))
+
+
+def test_load_at_a_time_equals_render_time(exe, shared, tmp_path):
+    """The animation time is a load setting (the registry's animation.time): the scene posed at it
+    renders as `fresnel render --time` does, and another time is another picture."""
+    model = shared / "assets" / "models" / "CesiumMan" / "CesiumMan.glb"
+    if not model.exists():
+        pytest.skip(f"{model} is absent")
+    out = tmp_path / "walk.png"
+    run_cli(exe, "render", str(model), "-o", str(out), "--size", "160x120", "--time", "0.75", "--posing", "cpu")
+    job = fresnel.Job(**SMALL)
+    posed = fresnel.render(fresnel.load(model, time=0.75), job)
+    assert psnr(posed, fresnel.read(out)[:, :, :3]) >= 60
+    assert psnr(posed, fresnel.render(fresnel.load(model, time=1.5), job)) < 35
+    with pytest.raises(fresnel.Error):
+        fresnel.render(fresnel.load(model), fresnel.Job(time=1.0, **SMALL))  # a load setting: given to load()
