@@ -440,7 +440,11 @@ void write_exr(const fs::path& path, const ImageF& image) {
             file.setFrameBuffer(px.data(), 1, std::size_t(image.width));
             file.writePixels(image.height);
         } catch (const std::exception& e) {
-            throw Error(path.string(), "", std::string("cannot write OpenEXR: ") + e.what());
+            // OpenEXR's message names the temporary file: say the file the user asked for.
+            std::string why = e.what();
+            for (std::size_t at; (at = why.find(tmp.string())) != std::string::npos;)
+                why.replace(at, tmp.string().size(), path.string());
+            throw Error(path.string(), "", "cannot write OpenEXR: " + why);
         }
     });
 #endif
