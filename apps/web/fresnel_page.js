@@ -584,6 +584,39 @@ function play(on) {
     showPlayback();
 }
 
+// Environment presets: the built-in studio and every environment opened on this page, each a
+// button with its picture (fresnel_env_thumbnail: the panorama box-filtered, exposed, tone
+// mapped); a click makes it the environment.
+const envPresets = ['studio'];
+function rememberEnvironment(path) {
+    if (path && !envPresets.includes(path) && /\.(hdr|exr)$/i.test(path)) envPresets.push(path);
+}
+function buildEnvPresets(st) {
+    const box = $('env-presets');
+    const current = st.environment;
+    for (const preset of envPresets) {
+        let b = [...box.children].find(c => c.dataset.preset === preset);
+        if (!b) {
+            b = document.createElement('button');
+            b.dataset.preset = preset;
+            const c = document.createElement('canvas');
+            c.width = 96;
+            c.height = 48;
+            const ptr = M.ccall('fresnel_env_thumbnail', 'number', ['number', 'string', 'number'], [app, preset, 96]);
+            if (ptr) c.getContext('2d').putImageData(new ImageData(new Uint8ClampedArray(M.HEAPU8.buffer, ptr, 96 * 48 * 4).slice(), 96, 48), 0, 0);
+            b.append(c, preset === 'studio' ? 'studio' : baseName(preset));
+            b.title = preset === 'studio' ? 'the built-in studio' : plain(preset);
+            b.addEventListener('click', async () => {
+                try { set('env', preset); } catch (e) { showError(e.message); return; }
+                await draw();
+                syncPanel();
+            });
+            box.append(b);
+        }
+        b.classList.toggle('current', current === preset);
+    }
+}
+
 // The file's parts that can be switched off (skinning, morphing, occlusion, material extensions):
 // a checkbox each, setting the registry's `disable` list (the model loads again without them).
 function buildFeatures(st) {
@@ -610,6 +643,8 @@ function buildFeatures(st) {
 
 function syncPanel() {
     const st = state();
+    rememberEnvironment(st.environment);
+    buildEnvPresets(st);
     buildAnimation(st);
     buildFeatures(st);
     $('variant-label').hidden = !st.variants.length;

@@ -20,6 +20,7 @@
 #include "fresnel/core/error.h"
 #include "fresnel/gpu/context.h"
 #include "fresnel/gpu/device.h"
+#include "fresnel/ibl/environment.h"
 #include "fresnel/job/features.h"
 #include "fresnel/job/job.h"
 #include "fresnel/job/orbit_controller.h"
@@ -360,6 +361,25 @@ struct App {
     }
 
     OrbitViewport viewport() const { return {resolved.bounds, job.output.width, job.output.height}; }
+
+    // The picture of an environment preset for the page's list (ibl::panorama_thumbnail): "studio",
+    // or a panorama in the page's file system. RGBA, `width` x width / 2, in `thumb`.
+    std::vector<std::uint8_t> thumb;
+    void thumbnail(const std::string& preset, int width) {
+        ImageF pano;
+        if (preset == "studio") {
+            pano = ibl::make_studio_panorama(256);
+        } else {
+            ibl::EnvironmentSource source;
+            source.kind = ibl::EnvironmentSource::Kind::File;
+            source.path = preset;
+            pano = ibl::load_panorama(source);
+        }
+        const Image8 rgb = ibl::panorama_thumbnail(pano, width);
+        thumb.assign(std::size_t(rgb.width) * std::size_t(rgb.height) * 4, 255);
+        for (std::size_t i = 0; i < std::size_t(rgb.width) * std::size_t(rgb.height); ++i)
+            for (int c = 0; c < 3; ++c) thumb[i * 4 + std::size_t(c)] = rgb.pixels[i * 3 + std::size_t(c)];
+    }
 };
 
 // Runs `fn`, keeping its error message for fresnel_error(); 1 when it worked.
@@ -495,6 +515,12 @@ EMSCRIPTEN_KEEPALIVE int fresnel_bake(App* app, const char* source, const char* 
         }, /*use_cache=*/false);
         fresnel::ibl::save_baked(baked, out_dir, o, /*previews=*/false);
     });
+}
+// An environment preset's picture (App::thumbnail): RGBA bytes, `width` x width / 2; null when
+// it cannot be made (fresnel_error says why).
+EMSCRIPTEN_KEEPALIVE const std::uint8_t* fresnel_env_thumbnail(App* app, const char* preset, int width) {
+    if (!app || width < 2 || width > 512) return nullptr;
+    return guarded(app, [&] { app->thumbnail(preset, width); }) ? app->thumb.data() : nullptr;
 }
 // The orbit camera as "yaw pitch" degrees (for the page's URL and panel).
 EMSCRIPTEN_KEEPALIVE const char* fresnel_camera(App* app) {

@@ -336,6 +336,35 @@ try {
         }
         await camPage.close();
     }
+    // 9c. Environment presets: the studio and the environment the URL opened, each a button with
+    //     its picture; a click on the studio shows what `render --env studio` renders.
+    {
+        const envPage = await browser.newPage({ viewport: { width: 1000, height: 700 }, deviceScaleFactor: 1 });
+        const opened = await openPage(envPage, base, '?model=/assets/models/BoxTextured/BoxTextured.glb&env=/assets/env/studio_small_03_1k.hdr&size=256x192&yaw=30');
+        if (!opened.error) {
+            const presets = await envPage.evaluate(() => [...document.querySelectorAll('#env-presets button')].map(b => {
+                const px = b.querySelector('canvas').getContext('2d').getImageData(0, 0, 96, 48).data;
+                let lo = 255, hi = 0;
+                for (let i = 0; i < px.length; i += 4) { lo = Math.min(lo, px[i + 1]); hi = Math.max(hi, px[i + 1]); }
+                return { preset: b.dataset.preset, current: b.classList.contains('current'), spread: hi - lo };
+            }));
+            const before = await envPage.evaluate(() => window.fresnel.frames());
+            await envPage.click('#env-presets button[data-preset="studio"]');
+            await envPage.waitForFunction(n => window.fresnel.frames() > n && window.fresnel.state().environment === 'studio', before,
+                                          { timeout: 60000, polling: 50 }).catch(() => {});
+            const url = await envPage.evaluate(() => document.getElementById('canvas').toDataURL('image/png'));
+            fs.writeFileSync(path.join(outDir, 'web_preset_studio.png'), Buffer.from(url.split(',')[1], 'base64'));
+            const box = path.join(shared, 'assets/models/BoxTextured/BoxTextured.glb');
+            render(path.join(outDir, 'cli_preset_studio.png'), [], [box, '--env', 'studio', '--size', '256x192', '--yaw', '30']);
+            const ps = psnr(path.join(outDir, 'web_preset_studio.png'), path.join(outDir, 'cli_preset_studio.png'));
+            check(presets.length === 2 && presets[0].preset === 'studio' && presets[1].current && presets.every(p => p.spread > 30) && ps >= 30,
+                  `environment presets: ${presets.map(p => `${p.preset.split('/').pop()} (picture spread ${p.spread}${p.current ? ', current' : ''})`).join(', ')}; ` +
+                  `the studio clicked: ${ps.toFixed(2)} dB against render --env studio`);
+        } else {
+            check(false, `the presets page loads: ${opened.error}`);
+        }
+        await envPage.close();
+    }
     // 10. Without ?size= the canvas fills the window beside the panel, in device pixels, and
     //     follows a resize; the page has one Open control (files, or a folder) and no WebGL notice.
     {

@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <sstream>
 
+#include "fresnel/core/color.h"
 #include "fresnel/core/error.h"
 #include "fresnel/ibl/cubemap.h"
 
@@ -105,6 +106,41 @@ ImageF load_panorama(const EnvironmentSource& s, const ImageLimits& limits) {
     for (float& v : img.pixels)
         if (!std::isfinite(v) || v < 0) v = 0;  // hostile or broken pixels must not poison the bake
     return img;
+}
+
+Image8 panorama_thumbnail(const ImageF& pano, int width) {
+    width = std::max(width, 2);
+    const int height = std::max(width / 2, 1);
+    Image8 out(width, height, 3);
+    if (pano.width <= 0 || pano.height <= 0) return out;
+    std::vector<glm::vec3> box(std::size_t(width) * std::size_t(height), glm::vec3(0.0f));
+    double luminance_sum = 0.0;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            // The panorama's pixels under this one (at least one).
+            const int x0 = x * pano.width / width, x1 = std::max(x0 + 1, (x + 1) * pano.width / width);
+            const int y0 = y * pano.height / height, y1 = std::max(y0 + 1, (y + 1) * pano.height / height);
+            glm::dvec3 sum(0.0);
+            for (int v = y0; v < y1; ++v)
+                for (int u = x0; u < x1; ++u) {
+                    const float* p = pano.at(u, v);
+                    const glm::dvec3 c(p[0], p[1], p[2]);
+                    if (std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z)) sum += glm::max(c, glm::dvec3(0.0));
+                }
+            const glm::vec3 c = glm::vec3(sum / double((x1 - x0) * (y1 - y0)));
+            box[std::size_t(y) * std::size_t(width) + std::size_t(x)] = c;
+            luminance_sum += 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+        }
+    const double mean = luminance_sum / double(box.size());
+    const float exposure = mean > 0.0 ? float(0.18 / mean) : 1.0f;
+    for (std::size_t i = 0; i < box.size(); ++i) {
+        const glm::vec3 c = box[i] * exposure;
+        for (int k = 0; k < 3; ++k) {
+            const float mapped = c[k] / (1.0f + c[k]);
+            out.pixels[i * 3 + std::size_t(k)] = std::uint8_t(std::lround(std::clamp(linear_to_srgb(mapped), 0.0f, 1.0f) * 255.0f));
+        }
+    }
+    return out;
 }
 
 }  // namespace fresnel::ibl

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "fresnel/core/error.h"
+#include "fresnel/ibl/environment.h"
 #include "fresnel/viewer/thumbnails.h"
 
 namespace fresnel::viewer {
@@ -24,7 +25,7 @@ TEST(Thumbnails, APanoramaKeepsItsLayoutAndIsExposed) {
             p[3] = 1.0f;
         }
     pano.pixels[0] = std::nanf("");
-    const Image8 t = panorama_thumbnail(pano, 16);
+    const Image8 t = ibl::panorama_thumbnail(pano, 16);
     ASSERT_EQ(t.width, 16);
     ASSERT_EQ(t.height, 8);
     ASSERT_EQ(t.channels, 3);
@@ -37,7 +38,7 @@ TEST(Thumbnails, APanoramaKeepsItsLayoutAndIsExposed) {
     // Exposed to a mean luminance of 0.18, whatever the panorama's scale: the same picture at a
     // tenth of the radiance.
     for (float& v : pano.pixels) v *= 0.1f;
-    const Image8 dim = panorama_thumbnail(pano, 16);
+    const Image8 dim = ibl::panorama_thumbnail(pano, 16);
     for (std::size_t i = 3; i < t.pixels.size(); ++i) EXPECT_NEAR(int(dim.pixels[i]), int(t.pixels[i]), 1) << i;
 }
 

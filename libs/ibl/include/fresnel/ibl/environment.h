@@ -32,4 +32,10 @@ ImageF make_uniform_panorama(glm::vec3 color, int width = 64);
 // Loads the panorama of a source (files through read_image_float, with limits).
 ImageF load_panorama(const EnvironmentSource& source, const ImageLimits& limits = {});
 
+// A small picture of a panorama (linear RGBA floats, any size; alpha unused) for lists of
+// environments (the viewer's and the page's presets): box-filtered to `width` x width / 2,
+// exposed so that its mean luminance is 0.18, tone mapped (x / (1 + x)) and sRGB-encoded: RGB,
+// rows top to bottom; non-finite texels count as black.
+Image8 panorama_thumbnail(const ImageF& panorama, int width = 96);
+
 }  // namespace fresnel::ibl

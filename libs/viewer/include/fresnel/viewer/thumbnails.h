@@ -10,11 +10,8 @@ namespace fresnel::viewer {
 // studio), an .hdr/.exr panorama, or a `fresnel bake` folder (its preview of the specular cube's
 // sharpest level when the bake wrote previews; none otherwise). Box-filtered to `width` x
 // width / 2, exposed so that its mean luminance is 0.18, tone mapped (x / (1 + x)) and
-// sRGB-encoded: RGB, rows top to bottom. Throws fresnel::Error when the file does not read or a
-// baked folder holds no preview.
+// sRGB-encoded (ibl::panorama_thumbnail): RGB, rows top to bottom. Throws fresnel::Error when the
+// file does not read or a baked folder holds no preview.
 Image8 environment_thumbnail(const std::string& preset, int width = 96);
-
-// `panorama` (linear RGBA floats, any size; alpha unused) as such a picture.
-Image8 panorama_thumbnail(const ImageF& panorama, int width = 96);
 
 }  // namespace fresnel::viewer
