@@ -131,7 +131,11 @@ int Viewer::loop(gui::Window& window) {
             draw_gui();
             reload_if_needed();
             sync_pose();
+            const bool baking = bake_ != nullptr;
             ready = update_lighting();
+            // The bake ended in this frame, whose panel was drawn before: draw a few more, or its
+            // progress bar would stay until the next input.
+            if (baking && !bake_) redraw = std::max(redraw, 3);
             draw_scene();
         } catch (const std::exception& e) {  // never die on input: show it, keep the window
             state_.error = e.what();
