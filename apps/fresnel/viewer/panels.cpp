@@ -294,7 +294,7 @@ void Viewer::draw_features_panel() {
         }
     }
     setting_widget(job, "sceneLights", "punctual lights (the file's)");
-    setting_widget(job, "render.shadows");
+    setting_widget(job, "render.shadows", "shadows##features");  // the Environment panel has one too
     std::vector<std::string> features = scene_features(*state_.scene);
     for (const std::string& f : job.source.disabled)
         if (std::find(features.begin(), features.end(), f) == features.end()) features.push_back(f);
@@ -303,7 +303,7 @@ void Viewer::draw_features_panel() {
     for (const std::string& f : features) {
         const auto at = std::find(job.source.disabled.begin(), job.source.disabled.end(), f);
         bool on = at == job.source.disabled.end();
-        const std::string label = f.starts_with("KHR_materials_") ? f.substr(14) : f;
+        const std::string label = (f.starts_with("KHR_materials_") ? f.substr(14) : f) + "##feature";
         if (ImGui::Checkbox(label.c_str(), &on)) {
             next = job.source.disabled;
             if (on) next->erase(next->begin() + (at - job.source.disabled.begin()));
