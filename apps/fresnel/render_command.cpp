@@ -143,12 +143,9 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
 
     // Scene (at rest: posed below, frame by frame), then the rules of docs/shading.md's
     // "Lighting rules" (fresnel/job/job.h).
-    job.source.animation = {};
     auto t_load = Clock::now();
-    Scene scene = load_scene(job, diag);
+    Scene scene = load_rest_scene(job, diag);
     double load_ms = ms_since(t_load);
-    job.source.animation = animation;
-    if (animated) check_animation(job, scene, diag);
     ResolvedJob resolved = resolve(job, scene, &diag);
     print_warnings(diag);
     const std::string model_name = o.models.empty() ? std::string("demo") : o.models[0];

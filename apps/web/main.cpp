@@ -152,10 +152,7 @@ struct App {
     }
 
     void show(const Job& j, Diagnostics& diag) {
-        Job rest = j;  // loaded at rest, posed at the job's time by pose()
-        rest.source.animation = {};
-        auto s = std::make_unique<Scene>(load_scene(rest, diag));
-        check_animation(j, *s, diag);
+        auto s = std::make_unique<Scene>(load_rest_scene(j, diag));  // posed at the job's time by pose()
         ResolvedJob r = resolve(j, *s);
         renderer->set_scene(*s, r.scene_index);
         posing.reset(*s);

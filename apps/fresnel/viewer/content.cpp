@@ -65,10 +65,7 @@ bool Viewer::load_job(Job job, const std::string& label) {
     bool uploading = false;
     try {
         Diagnostics diag;
-        Job rest = job;  // loaded at rest, posed by sync_pose()
-        rest.source.animation = {};
-        auto scene = std::make_unique<Scene>(load_scene(rest, diag));
-        check_animation(job, *scene, diag);
+        auto scene = std::make_unique<Scene>(load_rest_scene(job, diag));  // posed by sync_pose()
         ResolvedJob resolved = resolve(job, *scene);  // e.g. --camera or --scene out of range
         uploading = true;
         renderer_->set_scene(*scene, resolved.scene_index);

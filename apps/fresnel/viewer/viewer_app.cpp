@@ -264,7 +264,7 @@ void Viewer::sync_pose() {
     std::optional<float> t;
     if (a.posed() && state_.animated()) t = a.at();
     try {
-        posing_.show(*renderer_, a.index, t, resolve(state_.job, *state_.scene).scene_index);
+        posing_.show(*renderer_, a.index, t, state_.job.source.scene);  // resolve()'s scene_index
     } catch (const std::exception& e) {  // an animation index the file lacks: the rest pose
         state_.error = e.what();
         state_.job.source.animation = {};

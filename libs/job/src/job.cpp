@@ -25,7 +25,9 @@ std::size_t mib_bytes(float mib) {
 }  // namespace
 
 namespace {
-Scene load_rest_scene(const Job& job, Diagnostics& diag) {
+void check_animation(const Job& job, const Scene& scene, Diagnostics& diag);
+
+Scene load_unposed(const Job& job, Diagnostics& diag) {
     if (!job.source.models.empty()) return load_models(job, diag);
     if (job.source.model.empty()) return make_demo_scene();
     if (is_obj_path(job.source.model)) {
@@ -49,7 +51,7 @@ Scene load_rest_scene(const Job& job, Diagnostics& diag) {
 }  // namespace
 
 Scene load_scene(const Job& job, Diagnostics& diag) {
-    Scene scene = load_rest_scene(job, diag);
+    Scene scene = load_unposed(job, diag);
     const Job::Source::Animation& a = job.source.animation;
     if (a.posed() && job.source.models.empty()) {  // several models: each was posed as it loaded
         check_animation(job, scene, diag);
@@ -58,6 +60,7 @@ Scene load_scene(const Job& job, Diagnostics& diag) {
     return scene;
 }
 
+namespace {
 void check_animation(const Job& job, const Scene& scene, Diagnostics& diag) {
     const Job::Source::Animation& a = job.source.animation;
     if (!a.posed()) return;
@@ -67,6 +70,15 @@ void check_animation(const Job& job, const Scene& scene, Diagnostics& diag) {
                     "the file has " + std::to_string(scene.animations.size()) + " animations");
     if (scene.animations.empty())
         diag.warn(name, "--time", "the file has no animations; rendering its rest pose posed on the CPU");
+}
+}  // namespace
+
+Scene load_rest_scene(const Job& job, Diagnostics& diag) {
+    Job rest = job;
+    rest.source.animation = {};
+    Scene scene = load_scene(rest, diag);
+    check_animation(job, scene, diag);
+    return scene;
 }
 
 ResolvedJob resolve(const Job& job, const Scene& scene, Diagnostics* diag) {

@@ -169,13 +169,14 @@ struct Job {
 // Loads the job's scene: its glTF file (warnings into `diag`; throws fresnel::Error) or the demo;
 // with Source::models, every visible model merged into one scene (load_models); posed at
 // Source::animation when it asks for a time (on the CPU, fresnel/scene/pose.h). Front ends that
-// pose the scene themselves (a frame sequence, the viewer's playback) load it with the
-// animation unset and pose it with a ScenePoser.
+// pose the scene themselves load it with load_rest_scene.
 Scene load_scene(const Job& job, Diagnostics& diag);
 
-// Source::animation asked of `scene` (loaded at rest): throws fresnel::Error (the model's file)
-// for an animation index the file lacks, warns when the file has no animations.
-void check_animation(const Job& job, const Scene& scene, Diagnostics& diag);
+// The job's scene at rest, for front ends that pose it themselves (a frame sequence, the
+// viewer's and the page's playback: fresnel/render/scene_posing.h): load_scene with the
+// animation unset, the job's Source::animation checked against it (an animation index the file
+// lacks throws fresnel::Error naming the file; a file without animations warns).
+Scene load_rest_scene(const Job& job, Diagnostics& diag);
 
 // Source::models: each visible model loaded (through load_scene), its material overrides
 // applied, put under a root with its transform. Throws fresnel::Error (the model's file).
