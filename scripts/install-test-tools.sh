@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the independent readers and validators some tests use to check our files, into
-# build/node-tools (never into the repository), from npm: ktx-parse (KTX2), ajv (JSON Schema:
+# build/node-tools (never into the repository), from npm: ktx-parse (KTX2), three (its Basis Universal
+# transcoder: the reference for our KTX2 decoders), ajv (JSON Schema:
 # docs/scene.schema.json), js-yaml and kubernetes-models (docs/batch.md's Kubernetes manifest),
 # gltf-validator (the Khronos glTF-Validator, for the glTF files `fresnel convert` writes),
 # playwright-core (drives Debian's Chromium for the web page's test; the driver only, it downloads no browser).
@@ -12,7 +13,7 @@ playwright=1.65.1
 if command -v node >/dev/null 2>&1 && ! node -e 'process.exit(+process.versions.node.split(".")[0] >= 20 ? 0 : 1)' 2>/dev/null; then
   playwright=1.61.1
 fi
-want=(ktx-parse@0.7 ajv@8 js-yaml@4 kubernetes-models@4 gltf-validator@2.0.0-dev.3.10 playwright-core@$playwright)
+want=(ktx-parse@0.7 three@0.187 ajv@8 js-yaml@4 kubernetes-models@4 gltf-validator@2.0.0-dev.3.10 playwright-core@$playwright)
 missing=()
 for p in "${want[@]}"; do
   [[ -d $dir/node_modules/${p%@*} ]] || missing+=("$p")

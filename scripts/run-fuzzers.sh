@@ -7,7 +7,7 @@ set -euo pipefail
 build=$1; seconds=$2; shift 2
 root=$(cd "$(dirname "$0")/.." && pwd)
 shared="$root/../shared"
-targets=("$@"); [[ ${#targets[@]} -eq 0 ]] && targets=(gltf obj image hdr exr scene_file meshopt draco webp)
+targets=("$@"); [[ ${#targets[@]} -eq 0 ]] && targets=(gltf obj image hdr exr scene_file meshopt draco webp ktx2)
 for t in "${targets[@]}"; do
   work="$root/fuzz/work/$t"; findings="$root/fuzz/findings/$t"
   mkdir -p "$work" "$findings"
@@ -18,6 +18,7 @@ for t in "${targets[@]}"; do
       obj) mkdir -p "$work.seeds"; find "$shared/assets/obj" \( -name '*.obj' -o -name '*.mtl' \) -exec cp -n {} "$work.seeds/" \; ; seeds+=("$work.seeds");;
       image) mkdir -p "$work.seeds"; find "$shared/assets/models" -name '*.png' -size -200k -exec cp -n {} "$work.seeds/" \; ; find "$shared/assets/models" -name '*.jpg' -size -200k -exec cp -n {} "$work.seeds/" \; ; seeds+=("$work.seeds");;
       hdr) mkdir -p "$work.seeds"; for f in "$shared"/assets/env/*.hdr; do dd if="$f" of="$work.seeds/$(basename "$f")" bs=1 skip=2 count=200000 status=none || true; done; seeds+=("$work.seeds");;
+      ktx2) seeds+=("$shared/assets/ktx2");;
       exr) mkdir -p "$work.seeds"; for f in "$shared"/assets/env/*.exr; do tail -c +5 "$f" > "$work.seeds/$(basename "$f")"; done; seeds+=("$work.seeds");;
     esac
   fi

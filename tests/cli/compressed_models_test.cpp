@@ -244,16 +244,16 @@ TEST(MaterialVariantsCli, InfoListsVariantsAndExtensionsRenderSelects) {
     // A required extension fresnel lacks: info still describes the file (render refuses it).
     {
         nlohmann::json j = nlohmann::json::parse(slurp(model));
-        j["extensionsRequired"] = {"KHR_texture_basisu"};
-        j["extensionsUsed"].push_back("KHR_texture_basisu");
-        fs::path req = dir / "requires_basisu.gltf";
+        j["extensionsRequired"] = {"EXT_texture_avif"};
+        j["extensionsUsed"].push_back("EXT_texture_avif");
+        fs::path req = dir / "requires_avif.gltf";
         std::ofstream(req) << j.dump();
         Result r = exec(FRESNEL_EXE, {"info", req.string()}, dir / "info_required.txt");
         EXPECT_EQ(r.exit_code, 0) << r.out;
-        EXPECT_NE(r.out.find("KHR_texture_basisu (required): warning: not supported"), std::string::npos) << r.out;
+        EXPECT_NE(r.out.find("EXT_texture_avif (required): warning: not supported"), std::string::npos) << r.out;
         r = exec(FRESNEL_EXE, {"render", req.string(), "-o", (dir / "req.png").string(), "--size", "8x8"}, dir / "req.log");
         EXPECT_EQ(r.exit_code, 1) << r.out;
-        EXPECT_NE(r.out.find("KHR_texture_basisu"), std::string::npos) << r.out;
+        EXPECT_NE(r.out.find("EXT_texture_avif"), std::string::npos) << r.out;
     }
 
     // The centre pixel follows the variant.

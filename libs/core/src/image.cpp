@@ -25,6 +25,7 @@
 
 #include "fresnel/core/atomic_file.h"
 #include "fresnel/core/error.h"
+#include "fresnel/core/ktx2.h"
 #include "radiance_hdr.h"
 
 namespace fresnel {
@@ -62,6 +63,17 @@ void check_size(const std::string& name, long long w, long long h, int bytes_per
 
 bool peek_image_size(std::span<const std::uint8_t> bytes, int& width, int& height) {
     if (bytes.size() > std::size_t(INT32_MAX)) return false;
+    if (ktx2::is_ktx2(bytes)) {
+        try {
+            const ImageLimits any{INT32_MAX, SIZE_MAX};
+            const ktx2::Header h = ktx2::read_header(bytes, "", any);
+            width = h.width;
+            height = h.height;
+            return true;
+        } catch (const Error&) {
+            return false;
+        }
+    }
     // PNG: read IHDR ourselves. stb refuses to even report the size of images whose
     // decoded size passes 1 GiB, and we want to name the size and our limit instead.
     static const std::uint8_t png_sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
@@ -135,6 +147,7 @@ void check_plausible_size(std::span<const std::uint8_t> bytes, const std::string
 Image8 decode_image8(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits) {
     if (bytes.empty()) throw Error(name, "", "image data is empty");
     if (bytes.size() > std::size_t(INT32_MAX)) throw Error(name, "", "image data is too large");
+    if (ktx2::is_ktx2(bytes)) return ktx2::decode8(bytes, name, limits);
     if (Image8 jpeg; decode_jpeg_turbo(bytes, name, limits, jpeg)) return jpeg;
     int w = 0, h = 0;
     if (!peek_image_size(bytes, w, h))
@@ -351,11 +364,20 @@ bool is_exr(std::span<const std::uint8_t> bytes) {
 bool is_radiance_hdr(std::span<const std::uint8_t> bytes) { return bytes.size() >= 2 && bytes[0] == '#' && bytes[1] == '?'; }
 }  // namespace
 
-bool is_linear_image(std::span<const std::uint8_t> bytes) { return is_exr(bytes) || is_radiance_hdr(bytes); }
+bool is_linear_image(std::span<const std::uint8_t> bytes) {
+    if (is_exr(bytes) || is_radiance_hdr(bytes)) return true;
+    if (!ktx2::is_ktx2(bytes)) return false;
+    try {
+        return ktx2::read_header(bytes, "", ImageLimits{INT32_MAX, SIZE_MAX}).hdr();
+    } catch (const Error&) {
+        return false;
+    }
+}
 
 ImageF decode_image_float(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits) {
     if (is_exr(bytes)) return decode_exr(bytes, name, limits);
     if (is_radiance_hdr(bytes)) return decode_hdr(bytes, name, limits);
+    if (ktx2::is_ktx2(bytes)) return ktx2::decode_float(bytes, name, limits);
     // 8-bit formats: values / 255 (no transfer curve applied).
     Image8 img = decode_image8(bytes, name, limits);
     ImageF out(img.width, img.height);

@@ -7,6 +7,7 @@
 
 #include "fresnel/core/atomic_file.h"
 #include "fresnel/core/error.h"
+#include "fresnel/core/ktx2.h"
 #include "fresnel/core/version.h"
 
 namespace fresnel::ibl {
@@ -15,7 +16,6 @@ namespace fs = std::filesystem;
 namespace {
 constexpr std::uint8_t kIdentifier[12] = {0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A};
 constexpr std::uint32_t kVkR16G16B16A16Sfloat = 97;
-constexpr std::uint32_t kVkR32G32B32A32Sfloat = 109;
 
 struct Writer {
     std::vector<std::uint8_t> out;
@@ -115,66 +115,26 @@ void write_ktx2(const fs::path& path, int width, int height, int faces,
     write_file_atomically(path, std::span<const std::uint8_t>(w.out));  // whole or absent; throws naming `path`
 }
 
-struct Reader {
-    std::vector<std::uint8_t> bytes;
-    std::string file;
-    std::uint64_t get(std::size_t at, int n) const {
-        if (at + std::size_t(n) > bytes.size()) throw Error(file, "byte " + std::to_string(at), "unexpected end of file");
-        std::uint64_t v = 0;
-        for (int i = n - 1; i >= 0; --i) v = (v << 8) | bytes[at + std::size_t(i)];
-        return v;
-    }
-};
-
 struct Ktx2Image {
     int width = 0, height = 0, faces = 1, levels = 1;
     std::vector<std::vector<std::vector<float>>> data;  // [level][face] RGBA floats
 };
 
+// Read through fresnel/core/ktx2.h, the one KTX2 reader: RGBA16F/32F as written above, and the
+// other formats it decodes (a UASTC HDR cube map, say).
 Ktx2Image read_ktx2(const fs::path& path) {
-    Reader r{read_file_bytes(path, std::size_t(1) << 31), path.string()};
-    if (r.bytes.size() < 80 || std::memcmp(r.bytes.data(), kIdentifier, 12) != 0)
-        throw Error(r.file, "byte 0", "not a KTX 2.0 file");
-    std::uint32_t format = std::uint32_t(r.get(12, 4));
-    if (format != kVkR16G16B16A16Sfloat && format != kVkR32G32B32A32Sfloat)
-        throw Error(r.file, "byte 12", "unsupported vkFormat " + std::to_string(format) + " (RGBA16F or RGBA32F only)");
+    const ImageLimits limits{16384, std::size_t(1) << 31};
+    const std::vector<std::uint8_t> bytes = read_file_bytes(path, limits.max_decoded_bytes);
+    const ktx2::Header h = ktx2::read_header(bytes, path.string(), limits);
+    if (h.layers > 1) throw Error(path.string(), "byte 32", "only 2D and cube images without layers are supported");
     Ktx2Image img;
-    img.width = int(r.get(20, 4));
-    img.height = int(r.get(24, 4));
-    std::uint32_t depth = std::uint32_t(r.get(28, 4)), layers = std::uint32_t(r.get(32, 4));
-    img.faces = int(r.get(36, 4));
-    img.levels = std::max(1, int(r.get(40, 4)));
-    if (r.get(44, 4) != 0) throw Error(r.file, "byte 44", "supercompressed KTX2 is not supported");
-    if (depth > 1 || layers > 1 || (img.faces != 1 && img.faces != 6))
-        throw Error(r.file, "byte 28", "only 2D and cube images without layers are supported");
-    if (img.width < 1 || img.height < 1 || img.width > 16384 || img.height > 16384 || img.levels > 15)
-        throw Error(r.file, "byte 20", "image size out of range");
-    int texel = format == kVkR16G16B16A16Sfloat ? 8 : 16;
-    img.data.resize(std::size_t(img.levels));
-    for (int l = 0; l < img.levels; ++l) {
-        std::size_t entry = 80 + std::size_t(l) * 24;
-        std::uint64_t off = r.get(entry, 8), len = r.get(entry + 8, 8);
-        int lw = std::max(1, img.width >> l), lh = std::max(1, img.height >> l);
-        std::uint64_t need = std::uint64_t(lw) * std::uint64_t(lh) * std::uint64_t(texel) * std::uint64_t(img.faces);
-        if (len != need || off > r.bytes.size() || len > r.bytes.size() - off)
-            throw Error(r.file, "byte " + std::to_string(entry), "level " + std::to_string(l) + " data out of range");
-        const std::uint8_t* p = r.bytes.data() + off;
-        img.data[std::size_t(l)].resize(std::size_t(img.faces));
-        for (int f = 0; f < img.faces; ++f) {
-            auto& out = img.data[std::size_t(l)][std::size_t(f)];
-            out.resize(std::size_t(lw) * lh * 4);
-            for (std::size_t i = 0; i < out.size(); ++i) {
-                if (texel == 8) {
-                    Imath::half h;
-                    h.setBits(std::uint16_t(p[0] | (p[1] << 8)));
-                    out[i] = float(h);
-                    p += 2;
-                } else {
-                    std::memcpy(&out[i], p, 4);
-                    p += 4;
-                }
-            }
-        }
+    img.width = h.width;
+    img.height = h.height;
+    img.faces = h.faces;
+    img.levels = h.levels;
+    for (int l = 0; l < h.levels; ++l) {
+        auto& faces = img.data.emplace_back();
+        for (ImageF& f : ktx2::decode_level_float(bytes, l, path.string(), limits)) faces.push_back(std::move(f.pixels));
     }
     return img;
 }

@@ -499,10 +499,10 @@ std::vector<Setting> make_registry() {
         s.key = "environment";
         s.flag = "--env";
         s.type = Type::Text;
-        s.doc = "Image-based light: an equirectangular .hdr/.exr, a folder made by `fresnel bake`, color:R,G,B "
+        s.doc = "Image-based light: an equirectangular .hdr/.exr/.ktx2, a folder made by `fresnel bake`, color:R,G,B "
                 "(linear), studio (built in), none, or automatic (studio unless the scene or --light brings lights)";
         s.front_ends = all;
-        s.syntax = "automatic, studio, none, color:R,G,B (linear, >= 0) or a file (.hdr, .exr, a folder made by "
+        s.syntax = "automatic, studio, none, color:R,G,B (linear, >= 0) or a file (.hdr, .exr, .ktx2, a folder made by "
                    "fresnel bake)";
         s.check = check_environment;
         s.example = "color:0.5,0.25,1";

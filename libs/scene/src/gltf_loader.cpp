@@ -40,7 +40,7 @@ const std::vector<std::string>& supported_gltf_extensions() {
         "EXT_meshopt_compression", "KHR_draco_mesh_compression", "EXT_texture_webp", "KHR_materials_variants",
         "KHR_animation_pointer", "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_dispersion",
         "KHR_node_visibility", "KHR_materials_anisotropy", "KHR_materials_iridescence", "EXT_mesh_gpu_instancing",
-        "KHR_materials_diffuse_transmission", "KHR_materials_diffuse_roughness",
+        "KHR_materials_diffuse_transmission", "KHR_materials_diffuse_roughness", "KHR_texture_basisu",
     };
     return list;
 }
@@ -374,9 +374,6 @@ private:
             if (!img.is_object()) r_.fail(ptr, "must be an object");
             SceneImage& out = scene_.images[i];
             out.name = r_.string(img, "name", ptr);
-            // KHR_texture_basisu: no Basis Universal transcoder in Debian 12; its textures
-            // fall back to their core source (load_samplers_and_textures warns).
-            if (uses("KHR_texture_basisu") && r_.string(img, "mimeType", ptr) == "image/ktx2") continue;
             bool has_uri = r_.has(img, "uri"), has_view = r_.has(img, "bufferView");
             if (has_uri && has_view) r_.fail(ptr, "has both uri and bufferView");
             if (has_uri) {
@@ -474,23 +471,19 @@ private:
             out.image = r_.index(t, "source", ptr, scene_.images.size(), "image");
             const json& ext = r_.object(t, "extensions", ptr);
             std::string ep = ptr + "/extensions/";
-            if (const json* w = r_.find(ext, "EXT_texture_webp")) {
-                int src = r_.index(*w, "source", ep + "EXT_texture_webp", scene_.images.size(), "image");
-                if (src < 0) warn(ep + "EXT_texture_webp", "EXT_texture_webp: no source; using the core source");
+            // EXT_texture_webp and KHR_texture_basisu (a KTX2 image: Basis Universal ETC1S or UASTC,
+            // decoded by fresnel/core/ktx2.h like any image) name an image that takes the place of
+            // the core source when it decoded; without one, the core source stays.
+            for (const char* name : {"EXT_texture_webp", "KHR_texture_basisu"}) {
+                const json* e = r_.find(ext, name);
+                if (!e) continue;
+                const std::string xp = ep + name, x = name;
+                int src = r_.index(*e, "source", xp, scene_.images.size(), "image");
+                if (src < 0) warn(xp, x + ": no source; using the core source");
                 else if (scene_.images[std::size_t(src)].valid() || !opt_.decode_images || out.image < 0) out.image = src;
-                else warn(ep + "EXT_texture_webp", "EXT_texture_webp: image " + std::to_string(src) +
-                                                       " is not usable; using the core source");
+                else warn(xp, x + ": image " + std::to_string(src) + " is not usable; using the core source");
             }
-            if (r_.find(ext, "KHR_texture_basisu")) {
-                if (out.image >= 0)
-                    warn(ep + "KHR_texture_basisu", "KHR_texture_basisu: no Basis Universal decoder in this build; "
-                                                    "using the texture's core source");
-                else
-                    warn(ep + "KHR_texture_basisu", "KHR_texture_basisu: no Basis Universal decoder in this build and "
-                                                    "no core source; using a neutral texture");
-            } else if (out.image < 0) {
-                warn(ptr, "texture has no supported image source; using a neutral texture");
-            }
+            if (out.image < 0) warn(ptr, "texture has no supported image source; using a neutral texture");
             int s = r_.index(t, "sampler", ptr, samplers_.size(), "sampler");
             if (s >= 0) out.sampler = samplers_[std::size_t(s)];
             scene_.textures.push_back(out);

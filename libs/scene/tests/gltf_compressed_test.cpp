@@ -1,6 +1,6 @@
 // Tests of the glTF geometry and texture extensions on GLB files assembled in memory:
 // EXT_meshopt_compression, KHR_draco_mesh_compression (encoded here with the libraries'
-// own encoders), EXT_texture_webp, KHR_texture_basisu (no decoder: the core source) and
+// own encoders), EXT_texture_webp, KHR_texture_basisu (KTX2 in place of the core source) and
 // KHR_materials_variants. Corrupt compressed data (every truncation, wrong counts) must
 // give a fresnel::Error naming the extension and the glTF place, never a crash.
 #include <gtest/gtest.h>
@@ -9,6 +9,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -26,6 +29,7 @@ using namespace fresnel;
 using json = nlohmann::json;
 
 namespace {
+namespace fs = std::filesystem;
 
 constexpr int FLOAT = 5126, UNSIGNED_SHORT = 5123, UNSIGNED_INT = 5125, BYTE = 5120;
 
@@ -614,23 +618,54 @@ TEST(GltfTextureWebp, CorruptOrOversizedImagesWarnAndFallBack) {
     EXPECT_NE(warnings(d).find("outside"), std::string::npos) << warnings(d);
 }
 
-TEST(GltfTextureBasisu, NoDecoderUsesTheCoreSourceWithAWarning) {
-    auto webp = webp_2x2();  // stands in for a PNG: any image fresnel decodes
+std::vector<std::uint8_t> shared_ktx2(const char* name) {
+    const fs::path p = fs::path(FRESNEL_SHARED_DIR) / "assets" / "ktx2" / name;
+    std::ifstream in(p, std::ios::binary);
+    return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(GltfTextureBasisu, DecodesTheKtx2SourceInPlaceOfTheCoreSource) {
+    for (const char* file : {"kodim23_etc1s.ktx2", "kodim23_uastc_zstd_mips.ktx2"}) {
+        auto ktx2 = shared_ktx2(file);
+        if (ktx2.empty()) GTEST_SKIP() << "no ../shared/assets/ktx2";
+        json j = texture_doc(ktx2.size(), {{"source", 1}, {"extensions", {{"KHR_texture_basisu", {{"source", 0}}}}}},
+                             "image/ktx2");
+        j["images"].push_back({{"uri", "fallback.png"}});  // not read: the KTX2 image decoded
+        j["extensionsUsed"] = {"KHR_texture_basisu"};
+        j["extensionsRequired"] = {"KHR_texture_basisu"};
+        Diagnostics d;
+        Scene s = load(j, ktx2, d);
+        EXPECT_EQ(s.textures[0].image, 0) << file;
+        ASSERT_TRUE(s.images[0].valid()) << file << warnings(d);
+        EXPECT_EQ(s.images[0].pixels.width, 768);
+        EXPECT_EQ(s.images[0].pixels.height, 512);
+    }
+}
+
+TEST(GltfTextureBasisu, ABrokenKtx2FallsBackToTheCoreSourceWithAWarning) {
+    auto webp = webp_2x2();  // the core source: any image fresnel decodes
     json j = texture_doc(webp.size(), {{"source", 0}, {"extensions", {{"KHR_texture_basisu", {{"source", 1}}}}}},
                          "image/webp");
-    j["images"].push_back({{"uri", "missing.ktx2"}, {"mimeType", "image/ktx2"}});
+    j["buffers"][0]["byteLength"] = webp.size() + 100;
+    j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", webp.size()}, {"byteLength", 100}});
+    j["images"].push_back({{"bufferView", 1}, {"mimeType", "image/ktx2"}});
     j["extensionsUsed"] = {"KHR_texture_basisu"};
+    std::vector<std::uint8_t> bin = webp;
+    const std::uint8_t id[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
+    bin.insert(bin.end(), id, id + 12);
+    bin.resize(webp.size() + 100, 0);  // a KTX2 identifier, then a header of zeros
     Diagnostics d;
-    Scene s = load(j, webp, d);
+    Scene s = load(j, bin, d);
     EXPECT_EQ(s.textures[0].image, 0);
-    EXPECT_NE(warnings(d).find("KHR_texture_basisu: no Basis Universal decoder"), std::string::npos) << warnings(d);
+    EXPECT_TRUE(s.images[0].valid());
+    EXPECT_NE(warnings(d).find("KHR_texture_basisu: image 1 is not usable; using the core source"), std::string::npos)
+        << warnings(d);
+    EXPECT_NE(warnings(d).find("width 0"), std::string::npos) << warnings(d);
     j["textures"][0].erase("source");
     Diagnostics d2;
-    s = load(j, webp, d2);
-    EXPECT_EQ(s.textures[0].image, -1);
-    EXPECT_NE(warnings(d2).find("no core source"), std::string::npos) << warnings(d2);
-    j["extensionsRequired"] = {"KHR_texture_basisu"};
-    EXPECT_NE(load_error(j, webp).reason().find("KHR_texture_basisu"), std::string::npos);
+    s = load(j, bin, d2);
+    EXPECT_EQ(s.textures[0].image, 1);  // no core source: the (neutral) KTX2 image, with the decoder's warning
+    EXPECT_FALSE(s.images[1].valid());
 }
 
 // ---- KHR_materials_variants ----------------------------------------------------------
@@ -671,7 +706,7 @@ TEST(GltfExtensions, SupportClasses) {
     EXPECT_EQ(gltf_extension_support("EXT_meshopt_compression"), GltfExtensionSupport::Supported);
     EXPECT_EQ(gltf_extension_support("EXT_texture_webp"), GltfExtensionSupport::Supported);
     EXPECT_EQ(gltf_extension_support("KHR_materials_variants"), GltfExtensionSupport::Supported);
-    EXPECT_EQ(gltf_extension_support("KHR_texture_basisu"), GltfExtensionSupport::Unsupported);
+    EXPECT_EQ(gltf_extension_support("KHR_texture_basisu"), GltfExtensionSupport::Supported);
     EXPECT_EQ(gltf_extension_support("VENDOR_made_up"), GltfExtensionSupport::Unsupported);
 }
 

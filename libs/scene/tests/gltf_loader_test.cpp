@@ -1378,16 +1378,16 @@ TEST(GltfErrors, SparseIndexOutOfRange) {
 
 TEST(GltfErrors, UnsupportedRequiredExtension) {
     Doc doc;
-    doc.j["extensionsUsed"] = {"KHR_texture_transform", "KHR_texture_basisu"};
-    doc.j["extensionsRequired"] = {"KHR_texture_transform", "KHR_texture_basisu"};
+    doc.j["extensionsUsed"] = {"KHR_texture_transform", "EXT_texture_avif"};
+    doc.j["extensionsRequired"] = {"KHR_texture_transform", "EXT_texture_avif"};
     Error e = load_error(doc.gltf());
     EXPECT_EQ(e.where(), "/extensionsRequired/1") << e.what();
-    EXPECT_NE(e.reason().find("KHR_texture_basisu"), std::string::npos) << e.what();
+    EXPECT_NE(e.reason().find("EXT_texture_avif"), std::string::npos) << e.what();
     // Merely used (not required): a warning.
     doc.j["extensionsRequired"] = {"KHR_texture_transform"};
     Diagnostics d;
     Scene s = load(doc.gltf(), d);
-    EXPECT_TRUE(has_warning(d, "/extensionsUsed", "KHR_texture_basisu")) << all_warnings(d);
+    EXPECT_TRUE(has_warning(d, "/extensionsUsed", "EXT_texture_avif")) << all_warnings(d);
     EXPECT_EQ(s.extensions_required, (std::vector<std::string>{"KHR_texture_transform"}));
 }
 

@@ -29,7 +29,7 @@ bool is_gltf(const fs::path& p) {
 bool is_environment(const fs::path& p) {
     auto e = lower_extension(p);
     std::error_code ec;
-    return e == ".hdr" || e == ".exr" || (fs::is_directory(p, ec) && fs::exists(p / "manifest.json", ec));
+    return e == ".hdr" || e == ".exr" || e == ".ktx2" || (fs::is_directory(p, ec) && fs::exists(p / "manifest.json", ec));
 }
 
 bool is_folder(const fs::path& p) {

@@ -36,7 +36,8 @@ struct Image8 {
     const std::uint8_t* at(int x, int y) const { return &pixels[(std::size_t(y) * width + x) * channels]; }
 };
 
-// Decodes PNG/JPEG (and the other formats stb_image reads) from memory into
+// Decodes PNG/JPEG (and the other formats stb_image reads) and KTX2 (fresnel/core/ktx2.h: Basis
+// Universal ETC1S/UASTC, 8-bit RGB(A)) from memory into
 // 8-bit RGBA. `name` is used in error messages. Throws fresnel::Error.
 Image8 decode_image8(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits = {});
 
@@ -45,14 +46,14 @@ bool peek_image_size(std::span<const std::uint8_t> bytes, int& width, int& heigh
 
 // Reads an 8-bit image file (PNG, JPEG, ...) into RGBA.
 Image8 read_image8(const std::filesystem::path& path, const ImageLimits& limits = {});
-// Reads a float image: Radiance .hdr or OpenEXR .exr (RGB(A), any compression OpenEXR
-// supports); any other file is decoded as an 8-bit image, values / 255 (no transfer curve).
+// Reads a float image: Radiance .hdr, OpenEXR .exr (RGB(A), any compression OpenEXR
+// supports) or an HDR KTX2 (UASTC HDR, 16/32-bit float); any other file is decoded as an 8-bit image, values / 255 (no transfer curve).
 ImageF read_image_float(const std::filesystem::path& path, const ImageLimits& limits = {});
 
-// Decodes a float image from memory, by its magic bytes: OpenEXR, Radiance .hdr, else 8-bit
+// Decodes a float image from memory, by its magic bytes: OpenEXR, Radiance .hdr, KTX2, else 8-bit
 // formats as decode_image8, values / 255.
 ImageF decode_image_float(std::span<const std::uint8_t> bytes, const std::string& name, const ImageLimits& limits = {});
-// Whether `bytes` are an OpenEXR or Radiance HDR file: linear values, where the 8-bit formats
+// Whether `bytes` are an OpenEXR, Radiance HDR or HDR KTX2 file: linear values, where the 8-bit formats
 // decode_image_float reads hold display values / 255.
 bool is_linear_image(std::span<const std::uint8_t> bytes);
 

@@ -15,8 +15,9 @@ void write_ktx2_cube(const std::filesystem::path& path, const Cubemap& cube);
 // Writes a 2D RGBA float image as RGBA16F with one level.
 void write_ktx2_2d(const std::filesystem::path& path, const ImageF& image);
 
-// Reads files written by the functions above (any RGBA16F/RGBA32F uncompressed KTX2
-// cube or 2D). Throws fresnel::Error naming the file and byte offset on bad input.
+// Reads files written by the functions above, and any cube or 2D KTX2 that fresnel/core/ktx2.h
+// decodes (RGBA16F/32F, UASTC HDR, ...). Throws fresnel::Error naming the file and byte offset on
+// bad input.
 Cubemap read_ktx2_cube(const std::filesystem::path& path);
 ImageF read_ktx2_2d(const std::filesystem::path& path);
 
