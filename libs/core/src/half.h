@@ -1,8 +1,8 @@
 #pragma once
 // IEEE 754 half-precision (FP16) to float, exactly: every FP16 value is a float. Shared by the
 // KTX2 reader (16-bit float formats) and the ASTC HDR decoder.
-#include <bit>
 #include <cstdint>
+#include <cstring>
 
 namespace fresnel::detail {
 
@@ -14,7 +14,9 @@ inline float half_to_float(std::uint16_t h) {
     }
     const std::uint32_t bits = exp == 0x1F ? (sign | 0x7F800000u | man << 13)  // infinity, NaN
                                            : (sign | (exp + 112) << 23 | man << 13);
-    return std::bit_cast<float>(bits);
+    float f;
+    std::memcpy(&f, &bits, sizeof f);  // (std::bit_cast: not in the web build's libc++)
+    return f;
 }
 
 }  // namespace fresnel::detail

@@ -10,7 +10,6 @@
 #endif
 
 #include <algorithm>
-#include <bit>
 #include <cstring>
 #include <optional>
 
@@ -206,7 +205,7 @@ public:
                             } else {
                                 std::uint32_t bits = 0;
                                 for (int b = 3; b >= 0; --b) bits = (bits << 8) | image[at + std::size_t(b)];
-                                v = std::bit_cast<float>(bits);
+                                std::memcpy(&v, &bits, sizeof v);
                             }
                         }
                         out.hdr.pixels[p * 4 + std::size_t(k)] = v;
