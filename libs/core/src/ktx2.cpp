@@ -16,7 +16,7 @@
 
 #include "fresnel/core/basisu.h"
 #include "fresnel/core/error.h"
-#include "half.h"
+#include "float16.h"
 
 namespace fresnel::ktx2 {
 namespace {

@@ -1,4 +1,5 @@
 #pragma once
+// (Not "half.h": OpenEXR includes Imath's half.h by that name.)
 // IEEE 754 half-precision (FP16) to float, exactly: every FP16 value is a float. Shared by the
 // KTX2 reader (16-bit float formats) and the ASTC HDR decoder.
 #include <cstdint>
