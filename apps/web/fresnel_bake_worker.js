@@ -1,7 +1,8 @@
 // The page's environment bakes, off its thread: the same fresnel.wasm in a Web Worker bakes a
 // panorama (or the studio) as load_lighting() would and hands back the baked folder's files
 // (manifest.json, *.ktx2, irradiance_sh.json), which the page loads with load_baked().
-// Messages in: { name, bytes (null: the studio), size, samples }; out: { progress } while
+// Messages in: { name, bytes (null: the studio), size, samples, quick (the first frame's bake:
+// fewer irradiance and table samples too) }; out: { progress } while
 // baking, then { files: [{ name, bytes }] } or { error }.
 'use strict';
 importScripts('fresnel.js');
@@ -12,7 +13,7 @@ const ready = createFresnel({
 let count = 0;
 onmessage = async e => {
     const M = await ready;
-    const { name, bytes, size, samples } = e.data;
+    const { name, bytes, size, samples, quick } = e.data;
     const app = M.ccall('fresnel_create', 'number', ['string'], ['']);
     try {
         let source = 'studio';
@@ -22,7 +23,8 @@ onmessage = async e => {
             source = `${dir}/${name}`;
             M.FS.writeFile(source, bytes);
         }
-        if (!M.ccall('fresnel_bake', 'number', ['number', 'string', 'string', 'number', 'number'], [app, source, out, size, samples]))
+        if (!M.ccall('fresnel_bake', 'number', ['number', 'string', 'string', 'number', 'number', 'number'],
+                     [app, source, out, size, samples, quick ? 1 : 0]))
             throw new Error(M.UTF8ToString(M._fresnel_error(app)).replace(/\/files\/w\d+\//g, ''));
         const files = M.FS.readdir(out).filter(n => n !== '.' && n !== '..').map(n => ({ name: n, bytes: M.FS.readFile(`${out}/${n}`) }));
         M.FS.unlink && files.forEach(f => M.FS.unlink(`${out}/${f.name}`));

@@ -118,7 +118,15 @@ function drawNow() {
 // Environments bake in a Web Worker (fresnel_bake_worker.js) so that the page stays responsive;
 // without workers (or when the worker fails to start) they bake here, in fresnel_prepare.
 let worker = null;
+// One bake at a time: a bake asked for while another runs waits for it (the worker answers its
+// messages in order, through one onmessage).
+let workerQueue = Promise.resolve();
 function bakeInWorker(message) {
+    const p = workerQueue.then(() => bakeInWorkerNow(message));
+    workerQueue = p.catch(() => {});
+    return p;
+}
+function bakeInWorkerNow(message) {
     if (worker === null) {
         try { worker = new Worker('fresnel_bake_worker.js'); } catch (e) { worker = false; }
     }
@@ -132,7 +140,31 @@ function bakeInWorker(message) {
         worker.postMessage(message, message.bytes ? [message.bytes.buffer] : []);
     });
 }
+// Hands a worker's bake to fresnel: its folder (written under `tag`), or its error.
+function handBake(r, name, tag, provisional) {
+    const baked = (folder, error) =>
+        M.ccall('fresnel_baked', null, ['number', 'string', 'string', 'number'], [app, folder, error, provisional ? 1 : 0]);
+    if (!r) return baked('', 'the bake worker did not start');
+    if (r.error) return baked('', r.error.replace(/^[^:]*: /, ''));
+    const dir = writeFiles(r.files.map(f => ({ name: `${name}.${tag}/${f.name}`, bytes: f.bytes })));
+    baked(`${dir}/${name}.${tag}`, '');
+}
+// The full bake that replaces the first frame's quick one (a promise while it runs; see below).
+let refining = null;
+// The quick bake started before the model loads (bakeEarly): { source, bake (its promise) }.
+let early = null;
+// Starts the first frame's quick bake of `source` (studio, or a panorama in the page's file system:
+// what fresnel_pending_bake will name) in the worker while the model loads on the page's thread.
+function bakeEarly(source) {
+    const bytes = source === 'studio' ? null : M.FS.readFile(source).slice();
+    early = { source, bake: bakeInWorker({ name: source.split('/').pop(), bytes, ...QUICK_BAKE }) };
+}
+// The quick bake of the first frame: small cube faces and few samples (a tenth of the full bake's
+// time natively), so that the page shows the model lit by its environment seconds sooner.
+const QUICK_BAKE = { size: 32, samples: 64, quick: true };
 // Bakes what the next frame needs in the worker (if anything), and hands the result to fresnel.
+// The page's first frame is lit by a quick bake while the full one runs; it is drawn again when
+// the full bake arrives (`refining`, which main() waits for before window.fresnelReady).
 async function ensureLighting() {
     const pending = M.UTF8ToString(M._fresnel_pending_bake(app));
     if (!pending) return;
@@ -143,12 +175,35 @@ async function ensureLighting() {
     const bytes = source === 'studio' ? null : M.FS.readFile(source).slice();
     const name = source.split('/').pop();
     const t = performance.now();
-    const r = await bakeInWorker({ name, bytes, size: Number(size), samples: Number(samples) });
-    if (!r) { M.ccall('fresnel_baked', null, ['number', 'string', 'string'], [app, '', 'the bake worker did not start']); return; }
-    if (r.error) { M.ccall('fresnel_baked', null, ['number', 'string', 'string'], [app, '', r.error.replace(/^[^:]*: /, '')]); return; }
-    const dir = writeFiles(r.files.map(f => ({ name: `${name}.baked/${f.name}`, bytes: f.bytes })));
-    M.ccall('fresnel_baked', null, ['number', 'string', 'string'], [app, `${dir}/${name}.baked`, '']);
+    const full = { name, bytes, size: Number(size), samples: Number(samples) };
+    if (!window.fresnelReady && !refining && full.size > QUICK_BAKE.size) {
+        const quick = await (early && early.source === source ? early.bake : bakeInWorker({ name, bytes: bytes && bytes.slice(), ...QUICK_BAKE }));
+        if (quick && !quick.error) {
+            handBake(quick, name, 'quick', true);
+            console.log(`environment: quick bake in the worker ${Math.round(performance.now() - t)} ms`);
+            refining = bakeInWorker(full).then(r => {
+                handBake(r, name, 'baked', false);
+                console.log(`environment baked in the worker: ${Math.round(performance.now() - t)} ms`);
+                refining = null;
+            });
+            return;
+        }
+    }
+    handBake(await bakeInWorker(full), name, 'baked', false);
     console.log(`environment baked in the worker: ${Math.round(performance.now() - t)} ms`);
+}
+// After the first frame: waits for the full bake (when the first frame had the quick one) and
+// draws with it. window.fresnelFirstFrame: ms from navigation to the first frame.
+async function refineFirstFrame() {
+    window.fresnelFirstFrame = Math.round(performance.now());
+    if (!refining) return;
+    status('refining the environment…');
+    await refining;
+    try {
+        drawNow();
+    } catch (e) {
+        showError(e.message);
+    }
 }
 // Lets the page paint (status, progress) before a long synchronous step.
 const paint = () => new Promise(r => requestAnimationFrame(() => setTimeout(r, 0)));
@@ -850,6 +905,7 @@ async function main() {
                 for (const [key, value] of urlSettings()) set(key, value);
                 lightParams();
             });
+            await refineFirstFrame();
         } catch (e) {
             fail(e.message);
         }
@@ -861,8 +917,11 @@ async function main() {
         if (params.has('env') && /^(studio|none|auto)$|^color:/.test(params.get('env'))) set('env', params.get('env'));
         else if (params.has('env')) {
             status('loading the environment…');
-            set('env', await fetchEnvironment(params.get('env')));
+            const path = await fetchEnvironment(params.get('env'));
+            set('env', path);
+            if (isEnv(path)) bakeEarly(path);
         }
+        if (!params.has('env') || /^(studio|auto)$/.test(params.get('env'))) bakeEarly('studio');
         let model = params.get('model');
         if (model === null) model = (await fetch(DEFAULT_MODEL, { method: 'HEAD' }).then(r => r.ok, () => false)) ? DEFAULT_MODEL : '';
         status('loading the model…');
@@ -881,6 +940,7 @@ async function main() {
         drawNow();
         $('progress').hidden = true;
         syncPanel();
+        await refineFirstFrame();
         // An animated model plays as it opens (as in other glTF viewers), unless ?time= asked for a pose.
         if (!params.has('time') && !params.has('animation.time')) play(true);
     } catch (e) {

@@ -71,7 +71,7 @@ struct App {
     // Environments baked by the page's Web Worker (fresnel_bake there): lighting key -> the
     // baked folder, or the bake's error. `pending` is the key handed out by pending_bake().
     std::map<std::string, std::string> baked_folders, bake_errors;
-    std::string pending;
+    std::string pending, refining;
     std::vector<Material> loaded_materials;  // the scene's materials as loaded (the editor's "revert")
     Job::Environment environment_before_no_ibl;  // what `no-ibl 0` turns back to
 
@@ -350,7 +350,25 @@ struct App {
         return (e.kind == ibl::EnvironmentSource::Kind::File ? e.path.string() : std::string("studio")) + "\n" +
                std::to_string(resolved.bake_options.size) + "\n" + std::to_string(resolved.bake_options.samples);
     }
-    void baked(const std::string& folder, const std::string& bake_error) {
+    // The worker's result. `provisional`: a quick, small bake of `pending` that lights the page's
+    // first frame while the full bake runs (`refining` is then its key); the full bake's folder
+    // replaces it when it arrives (reloaded at the next frame), and a full bake that failed or was
+    // abandoned (no folder) forgets the quick one, so that the key bakes again when next asked.
+    void baked(const std::string& folder, const std::string& bake_error, bool provisional) {
+        if (provisional) {
+            if (pending.empty()) return;
+            if (bake_error.empty()) baked_folders[pending] = folder, refining = pending;
+            else bake_errors[pending] = bake_error;
+            pending.clear();
+            return;
+        }
+        if (pending.empty() && !refining.empty()) {
+            if (!folder.empty()) baked_folders[refining] = folder;
+            else baked_folders.erase(refining);
+            if (!folder.empty() && lighting_key == refining) lighting_key = "\n";  // reload it
+            refining.clear();
+            return;
+        }
         if (pending.empty()) return;
         if (bake_error.empty()) baked_folders[pending] = folder;
         else bake_errors[pending] = bake_error;
@@ -496,17 +514,20 @@ EMSCRIPTEN_KEEPALIVE const char* fresnel_pending_bake(App* app) {
     guarded(app, [&] { app->text = app->pending_bake(); });
     return app->text.c_str();
 }
-// The worker's result for the pending bake: the baked folder, or its error message.
-EMSCRIPTEN_KEEPALIVE void fresnel_baked(App* app, const char* folder, const char* error) {
-    if (app) app->baked(folder, error);
+// The worker's result for the pending bake: the baked folder, or its error message; `provisional`
+// (1): a quick bake lighting the first frame until the full one (see App::baked).
+EMSCRIPTEN_KEEPALIVE void fresnel_baked(App* app, const char* folder, const char* error, int provisional) {
+    if (app) app->baked(folder, error, provisional != 0);
 }
 // In the page's Web Worker: bakes `source` (a panorama file, or studio) as load_lighting() would,
-// without the cache, into `out_dir` (a folder load_baked() reads; no previews).
-EMSCRIPTEN_KEEPALIVE int fresnel_bake(App* app, const char* source, const char* out_dir, int size, int samples) {
+// without the cache, into `out_dir` (a folder load_baked() reads; no previews). `quick` (1): the
+// first frame's bake, with an eighth of the irradiance and table samples too.
+EMSCRIPTEN_KEEPALIVE int fresnel_bake(App* app, const char* source, const char* out_dir, int size, int samples, int quick) {
     return guarded(app, [&] {
         fresnel::ibl::BakeOptions o;
         o.size = size;
         o.samples = samples;
+        if (quick) o.irradiance_samples /= 8, o.lut_samples /= 8;
         auto baked = fresnel::ibl::load_or_bake(fresnel::ibl::parse_environment(source), o, [](double fraction) {
             EM_ASM({ if (Module.onBakeProgress) Module.onBakeProgress($0); }, fraction);
         }, /*use_cache=*/false);

@@ -2,7 +2,8 @@
 // driven by npm playwright-core (the driver only; no browser is downloaded):
 //   1. DamagedHelmet with studio_small_03 by URL parameters: the canvas read back matches
 //      `fresnel render` for the same camera and settings at >= 30 dB PSNR (`fresnel compare`);
-//   1b. the environment bakes in the page's Web Worker (the page's thread stays free);
+//   1b. the environment bakes in the page's Web Worker (the page's thread stays free); a quick bake,
+//      started while the model loads, lights the first frame, and the full bake the one compared;
 //   2. a broken file shows an error in the page, and the page keeps working (the next frame draws);
 //   3. debug channels switch (normal, basecolor): each matches `fresnel render --debug` at >= 30 dB;
 //   4. a .gltf by URL (its buffer and texture fetched beside it) matches `fresnel render` at >= 30 dB;
@@ -93,12 +94,18 @@ try {
     };
     const query = `?model=/assets/models/DamagedHelmet/DamagedHelmet.glb&env=/assets/env/studio_small_03_1k.hdr` +
                   `&size=${size}&yaw=${yaw}&pitch=${pitch}&tonemap=neutral`;
-    const { ms: firstFrameMs, error } = await openPage(page, base, query);
+    const { ms: firstFrameMs, error } = await openPage(page, base, query);  // the complete frame
     check(!error, `page loads DamagedHelmet + studio_small_03 (${firstFrameMs} ms to the first frame)${error ? ': ' + error : ''}`);
     if (error) throw new Error(log.join('\n'));
     console.log(`renderer: ${await page.evaluate(() => document.getElementById('gl-info').textContent)}`);
     const worker = log.find(l => /baked in the worker/.test(l));
     check(worker, `the environment baked in the page's Web Worker (${worker || 'no'})`);
+    // The first frame is lit by a quick bake started while the model loaded; the frame compared
+    // below (window.fresnelReady) is the one lit by the full bake.
+    const quick = log.find(l => /quick bake in the worker/.test(l));
+    const firstMs = await page.evaluate(() => window.fresnelFirstFrame || 0);
+    check(quick && firstMs > 0 && firstMs < firstFrameMs,
+          `a quick bake lit the first frame at ${firstMs} ms, before the complete frame (${quick || 'no quick bake'})`);
 
     await canvasPng(path.join(outDir, 'web.png'));
     const p = psnr(path.join(outDir, 'web.png'), path.join(outDir, 'cli.png'));
