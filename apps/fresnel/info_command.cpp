@@ -74,11 +74,13 @@ int run_info(const InfoOptions& o) {
         ObjLoadOptions oo;
         oo.allow_external_files = o.allow_external;
         oo.decode_images = false;  // counts and bounds need no pixels
+        oo.read_image_headers = true;  // formats and sizes do need the headers
         scene = load_obj(o.model, diag, oo);
     } else {
         GltfLoadOptions lo;
         lo.allow_external_files = o.allow_external;
         lo.decode_images = false;
+        lo.read_image_headers = true;
         lo.require_supported_extensions = false;  // describe the file even so (and list them below)
         scene = load_gltf(o.model, diag, lo);
     }
@@ -152,8 +154,22 @@ int run_info(const InfoOptions& o) {
         }
         j["material_list"].push_back(e);
     }
+    // Images: names (image_list), and what each holds with what it takes once loaded: RGBA8 with
+    // its mip chain (4/3 of the base level), as the renderer uploads it.
     j["image_list"] = nlohmann::json::array();
-    for (const SceneImage& im : scene.images) j["image_list"].push_back(im.name);
+    j["image_details"] = nlohmann::json::array();
+    std::size_t image_file_bytes = 0, image_memory_bytes = 0;
+    for (const SceneImage& im : scene.images) {
+        j["image_list"].push_back(im.name);
+        const std::size_t memory = std::size_t(im.header.width) * std::size_t(im.header.height) * 4 * 4 / 3;
+        j["image_details"].push_back({{"name", im.name}, {"format", im.header.format}, {"width", im.header.width},
+                                      {"height", im.header.height}, {"file_bytes", im.encoded_bytes},
+                                      {"memory_bytes", memory}});
+        image_file_bytes += im.encoded_bytes;
+        image_memory_bytes += memory;
+    }
+    j["image_file_bytes"] = image_file_bytes;
+    j["image_memory_bytes"] = image_memory_bytes;
     std::size_t geometry_bytes = 0;
     for (const auto& m : scene.meshes)
         for (const auto& p : m.primitives)
@@ -212,8 +228,15 @@ int run_info(const InfoOptions& o) {
                     m["double_sided"].get<bool>() ? ", double-sided" : "", m["unlit"].get<bool>() ? ", unlit" : "",
                     textures.empty() ? "none" : textures.c_str(), list(parts).c_str());
     }
-    for (std::size_t k = 0; k < scene.images.size(); ++k)
-        std::printf("  %-11s %zu %s\n", "image", k, scene.images[k].name.c_str());
+    if (!scene.images.empty())
+        std::printf("  %-11s %.2f MiB in files, %.2f MiB loaded (RGBA8 with mipmaps)\n", "textures",
+                    mib(j["image_file_bytes"].get<std::size_t>()), mib(j["image_memory_bytes"].get<std::size_t>()));
+    for (std::size_t k = 0; k < scene.images.size(); ++k) {
+        const SceneImage& im = scene.images[k];
+        std::string size = im.header.width > 0 ? std::to_string(im.header.width) + "x" + std::to_string(im.header.height) + ", " : "";
+        std::printf("  %-11s %zu %s: %s, %s%.2f MiB\n", "image", k, im.name.c_str(), im.header.format.c_str(), size.c_str(),
+                    mib(im.encoded_bytes));
+    }
     return kExitOk;
 }
 }  // namespace

@@ -137,6 +137,21 @@ TEST_F(Cli, InfoJsonCountsDamagedHelmet) {
     EXPECT_EQ(m.at("alpha_mode"), "OPAQUE");
     EXPECT_EQ(m.at("textures").size(), 5u) << m.dump();
     EXPECT_EQ(j.at("image_list").size(), 5u);
+    // Each image's format and size from its header, and what it takes in files and loaded.
+    const auto& images = j.at("image_details");
+    ASSERT_EQ(images.size(), 5u);
+    std::size_t in_files = 0;
+    for (const auto& im : images) {
+        EXPECT_EQ(im.at("format"), "JPEG") << im.dump();
+        EXPECT_EQ(im.at("width"), 2048) << im.dump();
+        EXPECT_EQ(im.at("height"), 2048) << im.dump();
+        EXPECT_EQ(im.at("memory_bytes").get<std::size_t>(), std::size_t(2048) * 2048 * 4 * 4 / 3) << im.dump();
+        in_files += im.at("file_bytes").get<std::size_t>();
+    }
+    EXPECT_EQ(j.at("image_file_bytes").get<std::size_t>(), in_files);
+    EXPECT_GT(in_files, std::size_t(3) << 20);  // the helmet's 3.6 MiB are mostly its textures
+    Result text = run({"info", model.string()});
+    EXPECT_NE(text.out.find("image       0 image 0: JPEG, 2048x2048, "), std::string::npos) << show(text);
     EXPECT_EQ(j.at("file_bytes").get<std::size_t>(), fs::file_size(model));
     EXPECT_GT(j.at("geometry_bytes").get<std::size_t>(), std::size_t(14556) * 12);
 }

@@ -93,6 +93,80 @@ bool peek_image_size(std::span<const std::uint8_t> bytes, int& width, int& heigh
 }
 
 namespace {
+bool is_exr(std::span<const std::uint8_t> bytes);
+bool is_radiance_hdr(std::span<const std::uint8_t> bytes);
+
+std::uint32_t le_bits(std::span<const std::uint8_t> b, std::size_t at, int n) {
+    std::uint32_t v = 0;
+    for (int i = n - 1; i >= 0; --i) v = (v << 8) | b[at + std::size_t(i)];
+    return v;
+}
+
+// WebP's canvas size (RFC 9649): the extended header (VP8X), or a lossless (VP8L) or lossy
+// (VP8) bitstream's own.
+bool peek_webp_size(std::span<const std::uint8_t> b, int& width, int& height) {
+    if (b.size() < 30) return false;
+    if (std::memcmp(b.data() + 12, "VP8X", 4) == 0) {
+        width = int(le_bits(b, 24, 3)) + 1, height = int(le_bits(b, 27, 3)) + 1;
+    } else if (std::memcmp(b.data() + 12, "VP8L", 4) == 0 && b[20] == 0x2F) {
+        const std::uint32_t bits = le_bits(b, 21, 4);
+        width = int(bits & 0x3FFF) + 1, height = int((bits >> 14) & 0x3FFF) + 1;
+    } else if (std::memcmp(b.data() + 12, "VP8 ", 4) == 0 && b[23] == 0x9D && b[24] == 0x01 && b[25] == 0x2A) {
+        width = int(le_bits(b, 26, 2) & 0x3FFF), height = int(le_bits(b, 28, 2) & 0x3FFF);
+    } else {
+        return false;
+    }
+    return width > 0 && height > 0;
+}
+
+std::string ktx2_format(const ktx2::Header& h) {
+    std::string f = "KTX2 ";
+    switch (h.encoding) {
+        case ktx2::Encoding::Etc1s: f += "ETC1S"; break;
+        case ktx2::Encoding::Uastc: f += "UASTC"; break;
+        case ktx2::Encoding::UastcHdr: f += "UASTC HDR"; break;
+        case ktx2::Encoding::Rgba8: f += h.channels == 4 ? "RGBA8" : "RGB8"; break;
+        case ktx2::Encoding::Rgba16f: f += h.channels == 4 ? "RGBA16F" : "RGB16F"; break;
+        case ktx2::Encoding::Rgba32f: f += h.channels == 4 ? "RGBA32F" : "RGB32F"; break;
+    }
+    if (h.supercompression == ktx2::Supercompression::Zstandard) f += " (Zstandard)";
+    if (h.supercompression == ktx2::Supercompression::Zlib) f += " (zlib)";
+    if (h.levels > 1) f += ", " + std::to_string(h.levels) + " levels";
+    return f;
+}
+}  // namespace
+
+ImageHeader peek_image_header(std::span<const std::uint8_t> bytes) {
+    ImageHeader h;
+    auto starts = [&](const char* magic, std::size_t n) { return bytes.size() >= n && std::memcmp(bytes.data(), magic, n) == 0; };
+    if (ktx2::is_ktx2(bytes)) {
+        h.format = "KTX2";
+        try {
+            const ktx2::Header k = ktx2::read_header(bytes, "", ImageLimits{INT32_MAX, SIZE_MAX});
+            h.format = ktx2_format(k);
+            h.width = k.width, h.height = k.height;
+        } catch (const Error&) {
+            h.format = "KTX2 (damaged header)";
+        }
+        return h;
+    }
+    if (starts("RIFF", 4) && bytes.size() >= 12 && std::memcmp(bytes.data() + 8, "WEBP", 4) == 0) {
+        h.format = "WebP";
+        if (!peek_webp_size(bytes, h.width, h.height)) h.width = h.height = 0;
+        return h;
+    }
+    if (starts("\x89PNG", 4)) h.format = "PNG";
+    else if (starts("\xFF\xD8\xFF", 3)) h.format = "JPEG";
+    else if (starts("GIF8", 4)) h.format = "GIF";
+    else if (starts("BM", 2)) h.format = "BMP";
+    else if (is_exr(bytes)) h.format = "OpenEXR";
+    else if (is_radiance_hdr(bytes)) h.format = "Radiance HDR";
+    else return h;
+    if (h.format == "OpenEXR" || !peek_image_size(bytes, h.width, h.height)) h.width = h.height = 0;
+    return h;
+}
+
+namespace {
 // Baseline and progressive 8-bit JPEG (YCbCr or greyscale) through libjpeg-turbo, about
 // three times faster than stb_image: the header is read and the size checked first,
 // then the pixels are decoded straight into the image. Returns false for what this

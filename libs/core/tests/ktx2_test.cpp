@@ -88,6 +88,23 @@ TEST(Ktx2Header, ReadsTheBasisUniversalFiles) {
     EXPECT_TRUE(h.hdr());
 }
 
+TEST(Ktx2Header, FresnelInfoNamesTheFormat) {
+    auto uastc = asset("kodim23_uastc_zstd_mips.ktx2");
+    SKIP_WITHOUT(uastc);
+    ImageHeader h = peek_image_header(uastc);
+    EXPECT_EQ(h.format, "KTX2 UASTC (Zstandard), 10 levels");
+    EXPECT_EQ(h.width, 768);
+    EXPECT_EQ(h.height, 512);
+    EXPECT_EQ(peek_image_header(asset("kodim23_etc1s.ktx2")).format, "KTX2 ETC1S");
+    EXPECT_EQ(peek_image_header(asset("desk_uastc_hdr_zstd.ktx2")).format, "KTX2 UASTC HDR (Zstandard)");
+    h = peek_image_header(read_bytes(kAssets / "kodim23.png"));
+    EXPECT_EQ(h.format, "PNG");
+    EXPECT_EQ(h.width, 768);
+    uastc.resize(60);  // the identifier, then a cut header
+    EXPECT_EQ(peek_image_header(uastc).format, "KTX2 (damaged header)");
+    EXPECT_EQ(peek_image_header(std::vector<std::uint8_t>{1, 2, 3}).format, "unknown");
+}
+
 TEST(Ktx2Decode, LdrFilesLookLikeTheirSourceImage) {
     auto etc1s = asset("kodim23_etc1s.ktx2");
     SKIP_WITHOUT(etc1s);

@@ -389,13 +389,13 @@ private:
                         continue;
                     }
                 }
-                if (!opt_.decode_images) continue;
+                if (!opt_.decode_images && !opt_.read_image_headers) continue;
                 encoded[i] = read_uri(uri, ptr + "/uri", opt_.image_limits.max_decoded_bytes);
             } else if (has_view) {
                 if (out.name.empty()) out.name = "image " + std::to_string(i);
                 int v = r_.index(img, "bufferView", ptr, views.size(), "bufferView");
                 if (!r_.has(img, "mimeType")) r_.fail(ptr + "/mimeType", "is required with bufferView");
-                if (!opt_.decode_images) continue;
+                if (!opt_.decode_images && !opt_.read_image_headers) continue;
                 try {
                     auto bytes = accessors.view_bytes(v, ptr + "/bufferView");
                     encoded[i].assign(bytes.begin(), bytes.end());
@@ -406,7 +406,10 @@ private:
             } else {
                 r_.fail(ptr, "has neither uri nor bufferView");
             }
-            account(encoded[i].size(), ptr);
+            out.header = peek_image_header(encoded[i]);
+            out.encoded_bytes = encoded[i].size();
+            if (!opt_.decode_images) encoded[i] = {};  // the header was all that was asked
+            account(out.encoded_bytes, ptr);
         }
         // Decode in parallel; a bad image becomes a warning and a neutral fallback.
         std::vector<std::string> errors(arr.size());

@@ -609,7 +609,7 @@ private:
 
     void decode_images() {
         const std::size_t n = scene_.images.size();
-        if (!opt_.decode_images || n == 0) return;
+        if ((!opt_.decode_images && !opt_.read_image_headers) || n == 0) return;
         std::vector<std::vector<std::uint8_t>> encoded(n);
         for (std::size_t i = 0; i < n; ++i) {
             try {
@@ -623,6 +623,9 @@ private:
             if (texture_bytes_ > opt_.max_total_bytes)
                 throw Error(image_where_[i].first, "line " + std::to_string(image_where_[i].second),
                             "textures exceed the limit of " + std::to_string(opt_.max_total_bytes) + " bytes");
+            scene_.images[i].header = peek_image_header(encoded[i]);
+            scene_.images[i].encoded_bytes = encoded[i].size();
+            if (!opt_.decode_images) encoded[i] = {};  // the header was all that was asked
         }
         std::vector<std::string> errors(n);
         parallel_for(

@@ -44,6 +44,15 @@ Image8 decode_image8(std::span<const std::uint8_t> bytes, const std::string& nam
 // Reads the dimensions without decoding; false if the header is not understood.
 bool peek_image_size(std::span<const std::uint8_t> bytes, int& width, int& height);
 
+// What an encoded image is, from its header alone (fresnel info): its format ("PNG", "JPEG",
+// "WebP", "KTX2 UASTC (Zstandard)", "Radiance HDR", ...; "unknown" when not recognised) and its
+// size (0 x 0 when the header does not say or is not understood).
+struct ImageHeader {
+    std::string format = "unknown";
+    int width = 0, height = 0;
+};
+ImageHeader peek_image_header(std::span<const std::uint8_t> bytes);
+
 // Reads an 8-bit image file (PNG, JPEG, ...) into RGBA.
 Image8 read_image8(const std::filesystem::path& path, const ImageLimits& limits = {});
 // Reads a float image: Radiance .hdr, OpenEXR .exr (RGB(A), any compression OpenEXR

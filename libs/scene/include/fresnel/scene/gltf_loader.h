@@ -29,6 +29,9 @@ struct GltfLoadOptions {
     int max_node_depth = 1024;
     ImageLimits image_limits{};
     bool decode_images = true;  // false: skip texture decoding (fresnel info)
+    // With decode_images false: still read each image's bytes for its header (SceneImage::header,
+    // encoded_bytes), as fresnel info lists formats and sizes.
+    bool read_image_headers = false;
     // false (fresnel info): an unsupported extension in extensionsRequired is a warning, not
     // an error, so the file can still be described.
     bool require_supported_extensions = true;

@@ -53,6 +53,9 @@ struct ObjLoadOptions {
     bool smooth_without_groups = false;
     ImageLimits image_limits{};
     bool decode_images = true;  // false: skip texture decoding (fresnel info)
+    // With decode_images false: still read each image's bytes for its header (SceneImage::header,
+    // encoded_bytes), as fresnel info lists formats and sizes.
+    bool read_image_headers = false;
     unsigned threads = 0;       // image decoding threads, 0 = hardware concurrency
 };
 

@@ -47,6 +47,10 @@ struct Texture {
 struct SceneImage {
     std::string name;  // URI or "image N" for diagnostics
     Image8 pixels;     // RGBA8; empty when the image could not be decoded (a warning was issued)
+    // What the file holds, from the encoded image's header (set when the loader read its bytes):
+    // format and size (peek_image_header), and its encoded size.
+    ImageHeader header;
+    std::size_t encoded_bytes = 0;
     bool valid() const { return pixels.width > 0; }
 };
 
