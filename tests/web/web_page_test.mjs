@@ -7,6 +7,7 @@
 //   2. a broken file shows an error in the page, and the page keeps working (the next frame draws);
 //   3. debug channels switch (normal, basecolor): each matches `fresnel render --debug` at >= 30 dB;
 //   4. a .gltf by URL (its buffer and texture fetched beside it) matches `fresnel render` at >= 30 dB;
+//      so does one whose texture is a KHR_texture_basisu KTX2 (UASTC with Zstandard);
 //   5. the debug channel list holds every `render --debug` name, the --brdf lists every term;
 //   6. a scene file by ?scene= (DamagedHelmet, a light, a `fresnel bake` folder as environment,
 //      tone mapping, exposure, camera, size) matches `fresnel render SCENE.fresnel.json` at >= 30 dB;
@@ -167,6 +168,38 @@ try {
     await canvasPng(path.join(outDir, 'web_gltf.png'));
     const g = psnr(path.join(outDir, 'web_gltf.png'), path.join(outDir, 'cli_gltf.png'));
     check(!gltfError && g >= 30, `${gltfRel} by URL (its .bin and .png fetched): ${g.toFixed(2)} dB against fresnel render${gltfError ? ': ' + gltfError : ''}`);
+    // A glTF whose texture is a KHR_texture_basisu KTX2 (UASTC, Zstandard: the page's own Zstandard
+    // decoder, since the web build has no libzstd) renders as fresnel render draws it.
+    const ktx2 = path.join(shared, 'assets/ktx2/kodim23_uastc_zstd_mips.ktx2');
+    if (fs.existsSync(ktx2)) {
+        fs.copyFileSync(ktx2, path.join(sceneDir, 'kodim23.ktx2'));
+        const quad = Buffer.alloc(92);
+        [-1.5, -1, 0, 1.5, -1, 0, 1.5, 1, 0, -1.5, 1, 0, 0, 1, 1, 1, 1, 0, 0, 0].forEach((v, i) => quad.writeFloatLE(v, 4 * i));
+        [0, 1, 2, 0, 2, 3].forEach((v, i) => quad.writeUInt16LE(v, 80 + 2 * i));
+        const doc = {
+            asset: { version: '2.0' }, extensionsUsed: ['KHR_texture_basisu'], extensionsRequired: ['KHR_texture_basisu'],
+            scenes: [{ nodes: [0] }], nodes: [{ mesh: 0 }],
+            buffers: [{ byteLength: 92, uri: 'data:application/octet-stream;base64,' + quad.toString('base64') }],
+            bufferViews: [{ buffer: 0, byteLength: 48 }, { buffer: 0, byteOffset: 48, byteLength: 32 }, { buffer: 0, byteOffset: 80, byteLength: 12 }],
+            accessors: [{ bufferView: 0, componentType: 5126, count: 4, type: 'VEC3', min: [-1.5, -1, 0], max: [1.5, 1, 0] },
+                        { bufferView: 1, componentType: 5126, count: 4, type: 'VEC2' }, { bufferView: 2, componentType: 5123, count: 6, type: 'SCALAR' }],
+            meshes: [{ primitives: [{ attributes: { POSITION: 0, TEXCOORD_0: 1 }, indices: 2, material: 0 }] }],
+            materials: [{ pbrMetallicRoughness: { baseColorTexture: { index: 0 }, metallicFactor: 0 } }],
+            images: [{ uri: 'kodim23.ktx2', mimeType: 'image/ktx2' }],
+            textures: [{ extensions: { KHR_texture_basisu: { source: 0 } } }],
+        };
+        const quadPath = path.join(sceneDir, 'ktx2quad.gltf');
+        fs.writeFileSync(quadPath, JSON.stringify(doc));
+        render(path.join(outDir, 'cli_ktx2.png'), [], [quadPath, '--env', env, '--size', size, '--yaw', String(yaw), '--pitch', String(pitch)]);
+        const quadError = await page.evaluate(async u => {
+            try { await window.fresnel.openUrl(u); return ''; } catch (e) { return e.message; }
+        }, '/test/scene/ktx2quad.gltf');
+        const quadWarnings = await page.evaluate(() => document.getElementById('warnings').textContent);
+        await canvasPng(path.join(outDir, 'web_ktx2.png'));
+        const k = psnr(path.join(outDir, 'web_ktx2.png'), path.join(outDir, 'cli_ktx2.png'));
+        check(!quadError && !/basisu|ktx2/i.test(quadWarnings) && k >= 30,
+              `a KHR_texture_basisu UASTC+Zstandard texture: ${k.toFixed(2)} dB against fresnel render${quadError ? ': ' + quadError : ''}${quadWarnings ? ' (warnings: ' + quadWarnings + ')' : ''}`);
+    }
 
     // The panel's lists: every --debug channel of `fresnel render --help`, every --brdf term.
     const lists = await page.evaluate(() => Object.fromEntries(['debug', 'brdf-D', 'brdf-G', 'brdf-F', 'brdf-diffuse']
