@@ -7,7 +7,7 @@ set -euo pipefail
 build=$1; seconds=$2; shift 2
 root=$(cd "$(dirname "$0")/.." && pwd)
 shared="$root/../shared"
-targets=("$@"); [[ ${#targets[@]} -eq 0 ]] && targets=(gltf obj image hdr exr scene_file meshopt draco webp ktx2)
+targets=("$@"); [[ ${#targets[@]} -eq 0 ]] && targets=(gltf obj image hdr exr scene_file meshopt draco webp ktx2 zstd)
 for t in "${targets[@]}"; do
   work="$root/fuzz/work/$t"; findings="$root/fuzz/findings/$t"
   mkdir -p "$work" "$findings"
