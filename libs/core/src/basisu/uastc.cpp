@@ -17,51 +17,12 @@
 
 #include "fresnel/core/basisu.h"
 #include "fresnel/core/error.h"
+#include "astc_partition.h"
 
 namespace fresnel::basisu {
 namespace {
 
-// ---- ASTC partition patterns (KDFS "Partition pattern generation") ----------------------------
-
-constexpr std::uint32_t partition_hash(std::uint32_t p) {
-    p ^= p >> 15;
-    p -= p << 17;
-    p += p << 7;
-    p += p << 4;
-    p ^= p >> 5;
-    p += p << 16;
-    p ^= p >> 7;
-    p ^= p >> 3;
-    p ^= p << 6;
-    p ^= p >> 17;
-    return p;
-}
-
-// The subset of texel (x, y) of a 2D block of fewer than 31 texels, for `count` (2 or 3) subsets.
-constexpr int astc_partition(int seed, int x, int y, int count) {
-    x <<= 1;  // small block
-    y <<= 1;
-    seed += (count - 1) * 1024;
-    const std::uint32_t r = partition_hash(std::uint32_t(seed));
-    int s[8] = {};
-    for (int i = 0; i < 8; ++i) s[i] = int((r >> (4 * i)) & 0xF);  // seed1..seed8
-    for (int& v : s) v *= v;
-    int sh1, sh2;
-    if (seed & 1) {
-        sh1 = (seed & 2) ? 4 : 5;
-        sh2 = count == 3 ? 6 : 5;
-    } else {
-        sh1 = count == 3 ? 6 : 5;
-        sh2 = (seed & 2) ? 4 : 5;
-    }
-    for (int i = 0; i < 8; ++i) s[i] >>= (i % 2 == 0) ? sh1 : sh2;
-    // z = 0 in 2D, so seed9..seed12 drop out; with at most 3 subsets d is 0.
-    const int a = int((std::uint32_t(s[0] * x + s[1] * y) + (r >> 14)) & 0x3F);
-    const int b = int((std::uint32_t(s[2] * x + s[3] * y) + (r >> 10)) & 0x3F);
-    const int c = count < 3 ? 0 : int((std::uint32_t(s[4] * x + s[5] * y) + (r >> 6)) & 0x3F);
-    if (a >= b && a >= c) return 0;
-    return b >= c ? 1 : 2;
-}
+// ---- UASTC partition patterns (ASTC seeds: astc_partition.h) ------------------------------------
 
 // A UASTC partition pattern: each texel's subset, and each subset's anchor texel (the first
 // texel of the subset in raster order), whose weight is stored with one bit less.
@@ -76,7 +37,7 @@ constexpr std::array<Pattern, N> make_patterns(const std::array<std::uint16_t, N
     for (std::size_t p = 0; p < N; ++p) {
         bool seen[3] = {};
         for (int t = 0; t < 16; ++t) {
-            const int s = astc_partition(seeds[p], t % 4, t / 4, count);
+            const int s = astc_select_partition(seeds[p], t % 4, t / 4, count, /*small_block=*/true);
             out[p].subset[std::size_t(t)] = std::uint8_t(s);
             if (!seen[s]) out[p].anchor[std::size_t(s)] = std::uint8_t(t);
             seen[s] = true;

@@ -15,6 +15,7 @@
 
 #include "fresnel/core/basisu.h"
 #include "fresnel/core/error.h"
+#include "astc_partition.h"
 #include "float16.h"
 
 namespace fresnel::basisu {
@@ -407,44 +408,6 @@ std::uint16_t interpolate(int e0, int e1, bool hdr, int w) {
     return f >= 0x7C00 ? 0x7BFF : std::uint16_t(f);  // +Inf or NaN becomes the largest finite value
 }
 
-std::uint32_t hash52(std::uint32_t p) {
-    p ^= p >> 15;
-    p -= p << 17;
-    p += p << 7;
-    p += p << 4;
-    p ^= p >> 5;
-    p += p << 16;
-    p ^= p >> 7;
-    p ^= p >> 3;
-    p ^= p << 6;
-    p ^= p >> 17;
-    return p;
-}
-
-// "Partition Pattern Generation" for a 2D block (z = 0).
-int select_partition(int seed, int x, int y, int partitions, bool small_block) {
-    if (small_block) x <<= 1, y <<= 1;
-    seed += (partitions - 1) * 1024;
-    const std::uint32_t rnum = hash52(std::uint32_t(seed));
-    int s[8];
-    for (int i = 0; i < 8; ++i) s[i] = int((rnum >> (4 * i)) & 0xF), s[i] *= s[i];
-    int sh1, sh2;
-    if (seed & 1) sh1 = (seed & 2) ? 4 : 5, sh2 = partitions == 3 ? 6 : 5;
-    else sh1 = partitions == 3 ? 6 : 5, sh2 = (seed & 2) ? 4 : 5;
-    for (int i = 0; i < 8; ++i) s[i] >>= (i & 1) ? sh2 : sh1;
-    // seed9..seed12 multiply z, which is 0 in 2D.
-    int a = (s[0] * x + s[1] * y + int(rnum >> 14)) & 0x3F;
-    int b = (s[2] * x + s[3] * y + int(rnum >> 10)) & 0x3F;
-    int c = (s[4] * x + s[5] * y + int(rnum >> 6)) & 0x3F;
-    int d = (s[6] * x + s[7] * y + int(rnum >> 2)) & 0x3F;
-    if (partitions < 4) d = 0;
-    if (partitions < 3) c = 0;
-    if (a >= b && a >= c && a >= d) return 0;
-    if (b >= c && b >= d) return 1;
-    if (c >= d) return 2;
-    return 3;
-}
-
 // --- One block -----------------------------------------------------------------------------
 
 using BlockTexels = std::uint16_t[kDim * kDim][4];  // FP16 RGBA, rows top to bottom
@@ -577,7 +540,7 @@ bool decode_block(const std::uint8_t* src, BlockTexels& out) {
                 auto at = [&](int gx, int gy) { return weights[(gy * gw + gx) * planes + pl]; };
                 w[pl] = (at(js, jt) * w00 + at(js1, jt) * w01 + at(js, jt1) * w10 + at(js1, jt1) * w11 + 8) >> 4;
             }
-            const EndpointPair& p = pairs[partitions > 1 ? select_partition(seed, x, y, partitions, true) : 0];
+            const EndpointPair& p = pairs[partitions > 1 ? astc_select_partition(seed, x, y, partitions, true) : 0];
             auto& texel = out[y * kDim + x];
             for (int c = 0; c < 4; ++c)
                 texel[c] = interpolate(p.e0[c], p.e1[c], p.hdr[c], w[c == plane1_component ? 1 : 0]);
