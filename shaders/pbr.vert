@@ -6,24 +6,33 @@ in vec2 a_uv0;
 in vec2 a_uv1;
 in vec4 a_color;
 #ifdef SKINNED
-// glTF skinning: joint matrices world[joint] * inverse_bind (at most MAX_JOINTS, which is
-// fresnel::kMaxShaderJoints); u_model is the node's world matrix, which vertices without
+// glTF skinning: joint matrices world[joint] * inverse_bind, read from an RGBA32F texture
+// (the renderer's joint texture: joint j's four columns are texels 4 (j % JOINTS_PER_ROW) + c
+// of row j / JOINTS_PER_ROW); u_model is the node's world matrix, which vertices without
 // weight follow (as fresnel::pose_skinned does).
-#define MAX_JOINTS 32
 in vec4 a_joints;  // joint indices as floats (exact below 2^24)
 in vec4 a_weights;
-uniform mat4 u_joints[MAX_JOINTS];
+uniform highp sampler2D u_joint_matrices;
+uniform int u_joint_count;  // the skin's joints: indices at or past it are ignored
+mat4 joint_matrix(int j) {
+    ivec2 at = ivec2(4 * (j % JOINTS_PER_ROW), j / JOINTS_PER_ROW);
+    return mat4(texelFetch(u_joint_matrices, at, 0), texelFetch(u_joint_matrices, at + ivec2(1, 0), 0),
+                texelFetch(u_joint_matrices, at + ivec2(2, 0), 0), texelFetch(u_joint_matrices, at + ivec2(3, 0), 0));
+}
 #endif
 #ifdef MORPH_TARGETS
-// Two morph targets (fresnel::kMaxShaderMorphTargets); u_morph_weights are the weights to
-// add to those the vertex data already holds (fresnel::Primitive::applied_weights).
-in vec3 a_morph_position0;
-in vec3 a_morph_normal0;
-in vec3 a_morph_tangent0;
-in vec3 a_morph_position1;
-in vec3 a_morph_normal1;
-in vec3 a_morph_tangent1;
-uniform float u_morph_weights[2];
+// Up to MAX_MORPH_TARGETS morph targets (fresnel::kMaxShaderMorphTargets) from the
+// primitive's RGBA32F texture array: layer u_morph_position_layer + k holds target k's
+// POSITION displacements (likewise NORMAL and TANGENT; -1: no target has them), vertex v at
+// texel (v % width, v / width). gl_VertexID is the vertex's index (glDrawElements) or its
+// number (glDrawArrays from 0). u_morph_weights (four to a vec4) are the weights to add to
+// those the vertex data already holds (fresnel::Primitive::applied_weights).
+uniform highp sampler2DArray u_morph_targets;
+uniform int u_morph_target_count;
+uniform int u_morph_position_layer;
+uniform int u_morph_normal_layer;
+uniform int u_morph_tangent_layer;
+uniform vec4 u_morph_weights[MAX_MORPH_TARGETS / 4];
 #endif
 
 #include "frame_block.glsl"  // u_view_projection
@@ -54,9 +63,20 @@ void main() {
     tangent = a_tangent.xyz;
 #endif
 #ifdef MORPH_TARGETS
-    position += u_morph_weights[0] * a_morph_position0 + u_morph_weights[1] * a_morph_position1;
-    normal += u_morph_weights[0] * a_morph_normal0 + u_morph_weights[1] * a_morph_normal1;
-    tangent += u_morph_weights[0] * a_morph_tangent0 + u_morph_weights[1] * a_morph_tangent1;
+    {
+        int width = textureSize(u_morph_targets, 0).x;
+        ivec2 at = ivec2(gl_VertexID % width, gl_VertexID / width);
+        for (int k = 0; k < u_morph_target_count; ++k) {
+            float w = u_morph_weights[k / 4][k % 4];
+            if (w == 0.0) continue;
+            if (u_morph_position_layer >= 0)
+                position += w * texelFetch(u_morph_targets, ivec3(at, u_morph_position_layer + k), 0).xyz;
+            if (u_morph_normal_layer >= 0)
+                normal += w * texelFetch(u_morph_targets, ivec3(at, u_morph_normal_layer + k), 0).xyz;
+            if (u_morph_tangent_layer >= 0)
+                tangent += w * texelFetch(u_morph_targets, ivec3(at, u_morph_tangent_layer + k), 0).xyz;
+        }
+    }
 #endif
     mat4 model = u_model;
     mat3 normal_matrix = u_normal_matrix;
@@ -67,8 +87,8 @@ void main() {
     for (int c = 0; c < 4; ++c) {
         int j = int(a_joints[c] + 0.5);
         float w = a_weights[c];
-        if (w != 0.0 && j >= 0 && j < MAX_JOINTS) {
-            skin += w * u_joints[j];
+        if (w != 0.0 && j >= 0 && j < u_joint_count) {
+            skin += w * joint_matrix(j);
             weight_sum += w;
         }
     }

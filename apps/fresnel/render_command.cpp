@@ -170,11 +170,9 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
     upload_ms += ms_since(t_gpu);
     ScenePosing posing;  // the frame drawn is `scene`, posed in place
     posing.reset(scene, o.posing == "gpu");
-    if (animated && o.posing == "gpu" && !posing.on_gpu()) {
+    if (std::string why; animated && o.posing == "gpu" && !posing.on_gpu() && !gpu_animatable(scene, &why)) {
         Diagnostics note;
-        note.warn(model_name, "--posing gpu",
-                  "a skin has more than " + std::to_string(kMaxGpuSkinJoints) + " joints or a primitive more than " +
-                      std::to_string(kMaxGpuMorphTargets) + " morph targets; posing on the CPU");
+        note.warn(model_name, "--posing gpu", why + "; posing on the CPU");
         print_warnings(note);
     }
     const int frames = o.turntable > 0 ? o.turntable : o.frames.value_or(1);
@@ -274,8 +272,9 @@ Runner add_render_command(CLI::App& app) {
                     "Write N frames from --time (default 0) at --fps, numbered as --turntable's: OUT-000.png ...")
         ->check(CLI::Range(1, 100000));
     cmd->add_option("--posing", o->posing,
-                    "Where animated frames are skinned and morphed: gpu (vertex shader; skins of up to 32 joints, "
-                    "2 morph targets a primitive, else the CPU) or cpu (the reference)")
+                    "Where animated frames are skinned and morphed: gpu (vertex shader; skins of up to " +
+                        std::to_string(kMaxGpuSkinJoints) + " joints, " + std::to_string(kMaxGpuMorphTargets) +
+                        " morph targets a primitive, else the CPU) or cpu (the reference)")
         ->capture_default_str()
         ->check(CLI::IsMember({"gpu", "cpu"}));
     cmd->add_flag("--json", o->json, "Print timings, camera and counts as one JSON line");

@@ -14,7 +14,7 @@
 //   7. a material edit changes the frame and reverting restores it; adding a light changes the
 //      frame and removing it restores it;
 //   8. every setting of the registry the page offers round-trips through its fresnel_set;
-//   9. an animated model opened at ?time= matches `fresnel render --time`; played, the page's clock
+//   9. an animated model opened at ?time= is posed on the GPU and matches `fresnel render --time`; played, the page's clock
 //      moves the time and draws; paused, the frame matches `fresnel render` at the time reached;
 //  10. without ?size= the canvas fills the window beside the panel and follows a resize.
 // Exit 77 (skipped) when build-web, Chromium, playwright-core or the shared assets are missing.
@@ -339,6 +339,9 @@ try {
             const pa = psnr(await animShot('web_walk.png'), path.join(outDir, 'cli_walk.png'));
             check(pa >= 30 && !still.playing && still.panel && still.hi === 2,
                   `?time=0.75 opens paused (${still.playing ? 'playing' : 'paused'}, range ${still.lo}..${still.hi}): ${pa.toFixed(2)} dB against render --time 0.75 (>= 30)`);
+            // WebGL 2 poses it in the vertex shader (joint matrices read from a float texture), not on the CPU.
+            const posedOnGpu = await animPage.evaluate(() => window.fresnel.state().posedOnGpu);
+            check(posedOnGpu === true, `CesiumMan is posed on the GPU (posedOnGpu: ${posedOnGpu})`);
             const before = await animPage.evaluate(() => window.fresnel.frames());
             await animPage.evaluate(() => window.fresnel.play(true));
             await animPage.waitForTimeout(1500);

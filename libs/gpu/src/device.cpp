@@ -64,6 +64,7 @@ void Device::bind_texture(int unit, const Texture& t) {
     GLenum target = GL_TEXTURE_2D;
     if (t.kind() == Texture::Kind::Cube) target = GL_TEXTURE_CUBE_MAP;
     if (t.kind() == Texture::Kind::Tex2DMultisample) target = GL_TEXTURE_2D_MULTISAMPLE;
+    if (t.kind() == Texture::Kind::Tex2DArray) target = GL_TEXTURE_2D_ARRAY;
     glBindTexture(target, t.id());
 }
 

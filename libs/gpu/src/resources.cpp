@@ -252,8 +252,54 @@ void Texture::upload_cube_face(int face, int level, int size, const float* rgba)
     glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
 }
 
+Texture Texture::create_data_2d(int width, int height, const float* rgba) {
+    Texture t;
+    t.width_ = width;
+    t.height_ = height;
+    t.format_ = TextureFormat::RGBA32F;
+    glGenTextures(1, &t.id_);
+    glBindTexture(GL_TEXTURE_2D, t.id_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, rgba);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    t.linear_ = set_filters(GL_TEXTURE_2D, t.format_, Filter::Nearest, MipmapMode::None, Filter::Nearest);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    t.bytes_ = texels(width, height, false) * texel_bytes(t.format_);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    return t;
+}
+
+Texture Texture::create_data_2d_array(int width, int height, int layers, const float* rgba) {
+    Texture t;
+    t.width_ = width;
+    t.height_ = height;
+    t.layers_ = layers;
+    t.kind_ = Kind::Tex2DArray;
+    t.format_ = TextureFormat::RGBA32F;
+    glGenTextures(1, &t.id_);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, t.id_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA32F, width, height, layers, 0, GL_RGBA, GL_FLOAT, rgba);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, 0);
+    t.linear_ = set_filters(GL_TEXTURE_2D_ARRAY, t.format_, Filter::Nearest, MipmapMode::None, Filter::Nearest);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    t.bytes_ = texels(width, height, false) * std::size_t(std::max(layers, 0)) * texel_bytes(t.format_);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+    return t;
+}
+
+void Texture::update_2d(int x, int y, int width, int height, const void* data) {
+    glBindTexture(GL_TEXTURE_2D, id_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    const FormatInfo fi = info(format_);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, x, y, width, height, fi.format, fi.type, data);
+    glBindTexture(GL_TEXTURE_2D, 0);
+}
+
 void Texture::set_sampler(const SamplerState& s) {
-    GLenum target = kind_ == Kind::Cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
+    GLenum target = kind_ == Kind::Cube ? GL_TEXTURE_CUBE_MAP : kind_ == Kind::Tex2DArray ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D;
     glBindTexture(target, id_);
     linear_ = set_filters(target, format_, s.min_filter, s.mipmap, s.mag_filter);
     glTexParameteri(target, GL_TEXTURE_WRAP_S, gl_wrap(s.wrap_s));
@@ -384,13 +430,10 @@ Program::Program(const std::string& name, const std::string& vs, const std::stri
     id_ = glCreateProgram();
     glAttachShader(id_, v);
     glAttachShader(id_, f);
-    // Fixed attribute locations shared by every mesh shader.
-    // Skinning (6, 7) and two morph targets' displacements (8 .. 13) follow; 14 of the 16
-    // attributes OpenGL ES 3.0 guarantees.
-    const char* attributes[] = {"a_position", "a_normal", "a_tangent", "a_uv0", "a_uv1", "a_color", "a_joints", "a_weights",
-                                "a_morph_position0", "a_morph_normal0", "a_morph_tangent0",
-                                "a_morph_position1", "a_morph_normal1", "a_morph_tangent1"};
-    for (unsigned i = 0; i < 14; ++i) glBindAttribLocation(id_, i, attributes[i]);
+    // Fixed attribute locations shared by every mesh shader, skinning's (6, 7) last: 8 of the 16
+    // attributes OpenGL ES 3.0 guarantees (morph targets are read from a texture).
+    const char* attributes[] = {"a_position", "a_normal", "a_tangent", "a_uv0", "a_uv1", "a_color", "a_joints", "a_weights"};
+    for (unsigned i = 0; i < 8; ++i) glBindAttribLocation(id_, i, attributes[i]);
     glLinkProgram(id_);
     glDeleteShader(v);
     glDeleteShader(f);

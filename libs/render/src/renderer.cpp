@@ -49,10 +49,7 @@ enum class TextureUnit : int {
     IrradianceEnvironment = 15,
 };
 
-enum Attr : unsigned {
-    kPosition = 0, kNormal, kTangent, kUv0, kUv1, kColor, kJoints, kWeights,
-    kMorphPosition0, kMorphNormal0, kMorphTangent0,  // target k at kMorphPosition0 + 3k (gpu::Program's names)
-};
+enum Attr : unsigned { kPosition = 0, kNormal, kTangent, kUv0, kUv1, kColor, kJoints, kWeights };  // gpu::Program's names
 
 struct GpuPrimitive {
     gpu::VertexArray vao;
@@ -66,19 +63,27 @@ struct GpuPrimitive {
     glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  // the POSITION box (shadow maps' fit)
     std::size_t triangles = 0;
     // GPU animation inputs (used with RenderSettings::gpu_animation): JOINTS_0/WEIGHTS_0, and
-    // the displacements of up to kMaxShaderMorphTargets targets with the weights they hold.
+    // the displacements of up to kMaxShaderMorphTargets targets (morph_texture: a layer per
+    // target and attribute, vertex v at texel (v % width, v / width); the first layer of the
+    // POSITION, NORMAL and TANGENT ones, -1 where no target has that attribute) with the
+    // weights the vertex data holds.
     bool has_skin = false;
     int morph_targets = 0;
-    std::array<float, kMaxShaderMorphTargets> applied_weights{};
+    std::vector<float> applied_weights;
+    gpu::Texture morph_texture;
+    int morph_position_layer = -1, morph_normal_layer = -1, morph_tangent_layer = -1;
 };
 
 struct Draw {
     const GpuPrimitive* prim;
     glm::mat4 model;
     float depth;  // view-space distance, for sorting blended draws
-    const std::vector<glm::mat4>* joints = nullptr;  // skinned on the GPU by these joint matrices
-    bool morph = false;                              // morphed on the GPU by these weight changes:
-    std::array<float, kMaxShaderMorphTargets> morph_weights{};
+    // Skinned on the GPU by these joint matrices, which joint_texture holds this frame.
+    const std::vector<glm::mat4>* joints = nullptr;
+    const gpu::Texture* joint_texture = nullptr;
+    // Morphed on the GPU by the weight changes from Renderer::Impl::morph_weights[morph_weights]
+    // on (prim->morph_targets of them, four to a vec4); -1: not morphed.
+    int morph_weights = -1;
     std::uint32_t sequence = 0;  // scene order: ties in the depth sort keep it
 };
 
@@ -103,6 +108,10 @@ struct Renderer::Impl {
     enum ProgramFamily { kLegacyPrograms = 1, kBrdfPrograms, kOutputPrograms, kShadowPrograms };
     std::vector<Draw> opaque_draws, blended_draws, transmissive_draws;  // a frame's, storage kept
     SkinMatrices skin_pose;  // GPU animation's joint matrices, storage kept
+    // Per skin of the scene, its joint matrices as pbr.vert reads them (joint_texture_size),
+    // refreshed every frame drawn with GPU animation (upload_joints); empty past the limit.
+    std::vector<gpu::Texture> joint_textures;
+    std::vector<glm::vec4> morph_weights;  // the frame's draws' morph weight changes, storage kept
     const Scene* scene = nullptr;
     int scene_index = -1;
     std::vector<NodeInstance> instances;
@@ -274,8 +283,108 @@ struct Renderer::Impl {
         return *white_map;
     }
 
+    // Where joint j's four columns lie in a skin's joint texture: texels 4 (j % kJointsPerRow)
+    // to 4 (j % kJointsPerRow) + 3 of row j / kJointsPerRow (pbr.vert's joint_matrix).
+    static glm::ivec2 joint_texture_size(std::size_t joints) {
+        const int n = int(joints);
+        return {4 * std::min(n, kJointsPerRow), (n + kJointsPerRow - 1) / kJointsPerRow};
+    }
+    // Writes a skin's joint matrices into its texture: whole rows, then the last one's start
+    // (a glm::mat4 is its four columns, the four texels, in order). Nothing is allocated.
+    static void upload_joints(gpu::Texture& texture, std::span<const glm::mat4> joints) {
+        const int n = int(joints.size());
+        const int rows = n / kJointsPerRow, rest = n % kJointsPerRow;
+        if (rows > 0) texture.update_2d(0, 0, 4 * kJointsPerRow, rows, joints.data());
+        if (rest > 0) texture.update_2d(0, rows, 4 * rest, 1, joints.data() + std::size_t(rows) * kJointsPerRow);
+    }
+
+    // A primitive's morph targets for the GPU (the layers of GpuPrimitive::morph_texture): up to
+    // kMaxShaderMorphTargets targets of up to kMaxShaderMorphVertices vertices, and not where
+    // flat normals were generated (they follow the faces, which only the CPU path recomputes).
+    // A layer per target for each attribute some target has (zero where a target lacks it).
+    // The texture itself is made by the first frame that morphs the primitive on the GPU
+    // (upload_morph_texture): CPU posing, which gives the renderer every frame's posed scene,
+    // and still frames never pay for it.
+    static void plan_morph_targets(const Primitive& p, GpuPrimitive& g) {
+        const std::size_t n = p.positions.size(), count = p.targets.size();
+        if (count == 0 || count > std::size_t(kMaxShaderMorphTargets) || p.generated_normals || n == 0 ||
+            n > std::size_t(kMaxShaderMorphVertices))
+            return;
+        using Attribute = std::vector<glm::vec3> MorphTarget::*;
+        const Attribute attributes[3] = {&MorphTarget::positions, &MorphTarget::normals, &MorphTarget::tangents};
+        int* firsts[3] = {&g.morph_position_layer, &g.morph_normal_layer, &g.morph_tangent_layer};
+        int layers = 0;
+        for (int a = 0; a < 3; ++a)
+            for (const MorphTarget& t : p.targets)
+                if ((t.*attributes[a]).size() == n) {
+                    *firsts[a] = layers;
+                    layers += int(count);
+                    break;
+                }
+        if (layers == 0) return;  // no target moves anything
+        g.morph_targets = int(count);
+        g.applied_weights.assign(count, 0.0f);
+        std::copy_n(p.applied_weights.begin(), std::min(count, p.applied_weights.size()), g.applied_weights.begin());
+    }
+    // Fills GpuPrimitive::morph_texture as plan_morph_targets laid it out (vertex v of a layer at
+    // texel (v % width, v / width), width kMorphTextureWidth at most).
+    static void upload_morph_texture(const Primitive& p, GpuPrimitive& g) {
+        const std::size_t n = p.positions.size(), count = std::size_t(g.morph_targets);
+        using Attribute = std::vector<glm::vec3> MorphTarget::*;
+        const Attribute attributes[3] = {&MorphTarget::positions, &MorphTarget::normals, &MorphTarget::tangents};
+        const int firsts[3] = {g.morph_position_layer, g.morph_normal_layer, g.morph_tangent_layer};
+        const int layers = int(count) * int((firsts[0] >= 0) + (firsts[1] >= 0) + (firsts[2] >= 0));
+        const int width = int(std::min<std::size_t>(n, kMorphTextureWidth));
+        const int height = int((n + std::size_t(width) - 1) / std::size_t(width));
+        const std::size_t layer_texels = std::size_t(width) * std::size_t(height);
+        std::vector<float> texels(layer_texels * std::size_t(layers) * 4, 0.0f);
+        for (int a = 0; a < 3; ++a) {
+            if (firsts[a] < 0) continue;
+            for (std::size_t k = 0; k < count && k < p.targets.size(); ++k) {
+                const std::vector<glm::vec3>& d = p.targets[k].*attributes[a];
+                if (d.size() != n) continue;
+                float* layer = &texels[(std::size_t(firsts[a]) + k) * layer_texels * 4];
+                for (std::size_t v = 0; v < n; ++v) std::copy_n(&d[v].x, 3, layer + 4 * v);
+            }
+        }
+        g.morph_texture = gpu::Texture::create_data_2d_array(width, height, layers, texels.data());
+    }
+
+    // The units of the vertex shader's textures (the joint matrices, the morph targets): the
+    // last two of the combined units, past every fragment shader's (unit_limit keeps them free).
+    int joint_unit() const { return context.capabilities().max_texture_units - 1; }
+    int morph_unit() const { return context.capabilities().max_texture_units - 2; }
+    // Binds a draw's GPU animation inputs and sets their uniforms on `prog` (in use). After the
+    // fragment's textures are bound: creating a texture (white_texture) unbinds the active unit.
+    void bind_animation(const gpu::Program& prog, const Draw& d) {
+        if (d.joint_texture) {
+            device.bind_texture(joint_unit(), *d.joint_texture);
+            prog.set("u_joint_matrices", joint_unit());
+            prog.set("u_joint_count", int(d.joints->size()));
+        }
+        if (d.morph_weights >= 0) {
+            const GpuPrimitive& p = *d.prim;
+            device.bind_texture(morph_unit(), p.morph_texture);
+            prog.set("u_morph_targets", morph_unit());
+            prog.set("u_morph_target_count", p.morph_targets);
+            prog.set("u_morph_position_layer", p.morph_position_layer);
+            prog.set("u_morph_normal_layer", p.morph_normal_layer);
+            prog.set("u_morph_tangent_layer", p.morph_tangent_layer);
+            prog.set("u_morph_weights", std::span<const glm::vec4>(&morph_weights[std::size_t(d.morph_weights)],
+                                                                   std::size_t(p.morph_targets + 3) / 4));
+        }
+    }
+
     void upload(const Scene& s) {
         meshes.clear();
+        joint_textures.clear();
+        for (const Skin& skin : s.skins)
+            if (!skin.joints.empty() && skin.joints.size() <= std::size_t(kMaxShaderJoints)) {
+                const glm::ivec2 size = joint_texture_size(skin.joints.size());
+                joint_textures.push_back(gpu::Texture::create_data_2d(size.x, size.y, nullptr));
+            } else {
+                joint_textures.emplace_back();
+            }
         textures.clear();
         material_buffers.clear();
         material_buffers.resize(s.materials.size() + 1);
@@ -306,23 +415,7 @@ struct Renderer::Impl {
                     add(kWeights, p.weights.data(), p.weights.size(), 4);
                     g.has_skin = true;
                 }
-                // Morph targets on the GPU: up to two, and not where flat normals were generated
-                // (they follow the faces, which only the CPU path recomputes).
-                if (!p.targets.empty() && p.targets.size() <= std::size_t(kMaxShaderMorphTargets) && !p.generated_normals) {
-                    std::vector<glm::vec3> zeros(p.positions.size(), glm::vec3(0.0f));
-                    for (std::size_t k = 0; k < std::size_t(kMaxShaderMorphTargets); ++k) {
-                        const MorphTarget* t = k < p.targets.size() ? &p.targets[k] : nullptr;
-                        auto pick = [&](const std::vector<glm::vec3>* a) {
-                            return a && a->size() == p.positions.size() ? a->data() : zeros.data();
-                        };
-                        unsigned base = kMorphPosition0 + 3 * unsigned(k);
-                        add(Attr(base), pick(t ? &t->positions : nullptr), p.positions.size(), 3);
-                        add(Attr(base + 1), pick(t ? &t->normals : nullptr), p.positions.size(), 3);
-                        add(Attr(base + 2), pick(t ? &t->tangents : nullptr), p.positions.size(), 3);
-                        g.applied_weights[k] = k < p.applied_weights.size() ? p.applied_weights[k] : 0.0f;
-                    }
-                    g.morph_targets = int(p.targets.size());
-                }
+                plan_morph_targets(p, g);
                 if (!p.indices.empty()) {
                     std::vector<std::uint32_t> sorted;
                     const std::vector<std::uint32_t>* indices = &p.indices;
@@ -651,8 +744,10 @@ struct Renderer::Impl {
     }
 
     // The texture units a draw may use (RenderSettings::max_texture_units).
+    // Two of the combined units stay for the vertex shader's textures (joint_unit, morph_unit).
     int unit_limit(const RenderSettings& settings) const {
-        const int limit = context.capabilities().max_fragment_texture_units;
+        const gpu::Capabilities& caps = context.capabilities();
+        const int limit = std::min(caps.max_fragment_texture_units, caps.max_texture_units - 2);
         return settings.max_texture_units > 0 ? std::clamp(settings.max_texture_units, 16, limit) : limit;
     }
     // The units a glTF draw of `features` takes besides its maps, as draw_primitive packs them:
@@ -799,7 +894,9 @@ struct Renderer::Impl {
         for (const Draw& d : opaque_draws) {
             mix(&d.prim, sizeof d.prim);
             mix(&d.model, sizeof d.model);
-            if (d.morph) mix(d.morph_weights.data(), sizeof d.morph_weights);
+            if (d.morph_weights >= 0)
+                mix(&morph_weights[std::size_t(d.morph_weights)],
+                    std::size_t(d.prim->morph_targets + 3) / 4 * sizeof(glm::vec4));
             if (d.joints) mix(d.joints->data(), d.joints->size() * sizeof(glm::mat4));
             if (d.prim->material >= 0) {  // what a masked material casts (the viewer edits materials)
                 const Material& m = scene->materials[std::size_t(d.prim->material)];
@@ -879,7 +976,7 @@ struct Renderer::Impl {
                     if (base) features |= feature::HasUv0 | feature::BaseColorMap;
                 }
                 if (d.joints) features |= feature::Skinned;
-                if (d.morph) features |= feature::MorphTargets;
+                if (d.morph_weights >= 0) features |= feature::MorphTargets;
                 const gpu::Program& prog =
                     shaders.get_keyed("pbr.vert", "shadow.frag", {kShadowPrograms, features, -1, 0}, [&] {
                         std::vector<std::string> defines = feature_defines(features);
@@ -892,8 +989,6 @@ struct Renderer::Impl {
                 prog.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(d.model)));
                 prog.set("u_handedness", 1.0f);
                 prog.set("u_point_size", 1.0f);
-                if (d.joints) prog.set("u_joints", std::span<const glm::mat4>(*d.joints));
-                if (d.morph) prog.set("u_morph_weights", std::span<const float>(d.morph_weights));
                 if (features & feature::AlphaMask) {
                     prog.set("u_base_color_factor", m.base_color_factor);
                     prog.set("u_alpha_cutoff", m.alpha_cutoff);
@@ -903,6 +998,7 @@ struct Renderer::Impl {
                         prog.set("u_base_color_transform", m.base_color.transform);
                     }
                 }
+                bind_animation(prog, d);
                 device.draw(p.vao, gpu::Primitive::Triangles, p.count, p.indexed);
                 ++stats.draw_calls;
             }
@@ -1041,7 +1137,7 @@ struct Renderer::Impl {
         if (settings.debug != DebugChannel::None) raw |= feature::DebugView;
         if (settings.environment) raw |= feature::UseIbl;
         if (d.joints) raw |= feature::Skinned;
-        if (d.morph) raw |= feature::MorphTargets;
+        if (d.morph_weights >= 0) raw |= feature::MorphTargets;
 
         // Texture units are packed per draw: the maps the variant reads take units 0, 1, ... in
         // MaterialMap order, then the opaque scene (transmission), the split-sum table, the
@@ -1140,8 +1236,6 @@ struct Renderer::Impl {
         float det = glm::determinant(glm::mat3(d.model));
         prog.set("u_handedness", det < 0 ? -1.0f : 1.0f);
         prog.set("u_point_size", 1.0f);
-        if (d.joints) prog.set("u_joints", std::span<const glm::mat4>(*d.joints));
-        if (d.morph) prog.set("u_morph_weights", std::span<const float>(d.morph_weights));
         // The transmission pass writes linear radiance (Khronos' LINEAR_OUTPUT: no exposure either;
         // the tone mapper and encoding are the frame variant's).
         prog.set("u_exposure", linear_pass ? 1.0f : exposure_scale(settings.exposure_ev));
@@ -1186,6 +1280,7 @@ struct Renderer::Impl {
         assert(next_unit <= unit_limit(settings));  // fixed_units counts what this packs
         bind_material_block(p.material, mu);
         set_material_samplers(prog, map_units);
+        bind_animation(prog, d);
 
         submit(p, m, det, stats);
         if (shared_footprint) ++stats.shared_footprint_draws;
@@ -1209,13 +1304,29 @@ void Renderer::update_transforms() {
     if (impl_->scene) impl_->instances = flatten(*impl_->scene, impl_->scene_index);
 }
 
-bool gpu_animatable(const Scene& scene) {
-    for (const auto& s : scene.skins)
-        if (s.joints.size() > std::size_t(kMaxShaderJoints)) return false;
-    for (const auto& m : scene.meshes)
-        for (const auto& p : m.primitives)
-            if (p.targets.size() > std::size_t(kMaxShaderMorphTargets) || (!p.targets.empty() && p.generated_normals))
-                return false;
+bool gpu_animatable(const Scene& scene, std::string* why) {
+    auto no = [why](std::string reason) {
+        if (why) *why = std::move(reason);
+        return false;
+    };
+    for (std::size_t i = 0; i < scene.skins.size(); ++i)
+        if (scene.skins[i].joints.size() > std::size_t(kMaxShaderJoints))
+            return no("skin " + std::to_string(i) + " has " + std::to_string(scene.skins[i].joints.size()) +
+                      " joints (the GPU poses up to " + std::to_string(kMaxShaderJoints) + ")");
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+        for (std::size_t k = 0; k < scene.meshes[m].primitives.size(); ++k) {
+            const Primitive& p = scene.meshes[m].primitives[k];
+            if (p.targets.empty()) continue;
+            const std::string name = "mesh " + std::to_string(m) + " primitive " + std::to_string(k);
+            if (p.targets.size() > std::size_t(kMaxShaderMorphTargets))
+                return no(name + " has " + std::to_string(p.targets.size()) + " morph targets (the GPU poses up to " +
+                          std::to_string(kMaxShaderMorphTargets) + ")");
+            if (p.positions.size() > std::size_t(kMaxShaderMorphVertices))
+                return no(name + " has morph targets and " + std::to_string(p.positions.size()) +
+                          " vertices (the GPU morphs up to " + std::to_string(kMaxShaderMorphVertices) + ")");
+            if (p.generated_normals)
+                return no(name + " has morph targets and generated flat normals (which follow the morphed faces)");
+        }
     return true;
 }
 
@@ -1229,6 +1340,9 @@ std::size_t Renderer::texture_bytes() const {
                                   &m.charlie_lut, &m.lut_texture})
         n += t->bytes();
     if (m.white_map) n += m.white_map->bytes();
+    for (const gpu::Texture& t : m.joint_textures) n += t.bytes();
+    for (const auto& mesh : m.meshes)
+        for (const GpuPrimitive& p : mesh) n += p.morph_texture.bytes();
     return n;
 }
 void Renderer::set_shader_folder(const std::string& folder) { impl_->shaders.set_source_folder(folder); }
@@ -1318,28 +1432,55 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
         opaque.clear();
         blended.clear();
         transmissive.clear();
-        // GPU animation: joint matrices from the nodes' current world matrices (storage kept).
-        if (settings.gpu_animation) skin_matrices(r.scene->nodes, r.scene->skins, r.skin_pose, kMaxShaderJoints);
+        // GPU animation: joint matrices from the nodes' current world matrices (storage kept),
+        // written into each skin's texture.
+        r.morph_weights.clear();
+        if (settings.gpu_animation) {
+            skin_matrices(r.scene->nodes, r.scene->skins, r.skin_pose, kMaxShaderJoints);
+            for (std::size_t i = 0; i < r.skin_pose.skins.size() && i < r.joint_textures.size(); ++i) {
+                const std::vector<glm::mat4>& joints = r.skin_pose.skins[i];
+                gpu::Texture& texture = r.joint_textures[i];
+                if (!joints.empty() && texture &&
+                    Impl::joint_texture_size(joints.size()) == glm::ivec2(texture.width(), texture.height()))
+                    Impl::upload_joints(texture, joints);
+                else r.skin_pose.skins[i].clear();  // a skin edited since set_scene: drawn unskinned
+            }
+        }
         const std::vector<std::vector<glm::mat4>>& skins = r.skin_pose.skins;
         for (const auto& inst : r.instances) {
             const Node& node = r.scene->nodes[std::size_t(inst.node)];
             if (node.mesh < 0 || !inst.visible) continue;
             const Mesh& mesh = r.scene->meshes[std::size_t(node.mesh)];
-            for (const auto& p : r.meshes[std::size_t(node.mesh)]) {
+            std::vector<GpuPrimitive>& gpu_mesh = r.meshes[std::size_t(node.mesh)];
+            for (std::size_t k = 0; k < gpu_mesh.size(); ++k) {
+                GpuPrimitive& p = gpu_mesh[k];
                 glm::mat4 model = node.world_space_mesh ? glm::mat4(1.0f) : inst.world;
                 glm::vec4 c = cam.view * model * glm::vec4(p.center, 1.0f);
                 Draw d{&p, model, std::isnan(c.z) ? 0.0f : -c.z};  // a NaN would break the sort's ordering
                 d.sequence = std::uint32_t(opaque.size() + blended.size() + transmissive.size());
                 if (settings.gpu_animation && !node.world_space_mesh) {
                     if (p.has_skin && node.skin >= 0 && std::size_t(node.skin) < skins.size() &&
-                        !skins[std::size_t(node.skin)].empty())
+                        !skins[std::size_t(node.skin)].empty()) {
                         d.joints = &skins[std::size_t(node.skin)];
-                    const std::vector<float>& weights = node.weights.empty() ? mesh.weights : node.weights;
-                    for (int k = 0; k < p.morph_targets; ++k) {
-                        float w = std::size_t(k) < weights.size() ? weights[std::size_t(k)] : 0.0f;
-                        d.morph_weights[std::size_t(k)] = w - p.applied_weights[std::size_t(k)];
-                        d.morph = d.morph || d.morph_weights[std::size_t(k)] != 0.0f;
+                        d.joint_texture = &r.joint_textures[std::size_t(node.skin)];
                     }
+                    // The weight changes, four to a vec4, appended to the frame's list where one is not zero.
+                    const std::vector<float>& weights = node.weights.empty() ? mesh.weights : node.weights;
+                    const std::size_t first = r.morph_weights.size();
+                    bool morphed = false;
+                    for (int k = 0; k < p.morph_targets; ++k) {
+                        const float w = std::size_t(k) < weights.size() ? weights[std::size_t(k)] : 0.0f;
+                        const float change = w - p.applied_weights[std::size_t(k)];
+                        if (k % 4 == 0) r.morph_weights.emplace_back(0.0f);
+                        r.morph_weights.back()[k % 4] = change;
+                        morphed = morphed || change != 0.0f;
+                    }
+                    if (morphed && !p.morph_texture && k < mesh.primitives.size())
+                        Impl::upload_morph_texture(mesh.primitives[k], p);  // the first frame that morphs it
+                    if (morphed && p.morph_texture) d.morph_weights = int(first);
+                    else r.morph_weights.resize(first);
+                    stats.gpu_skinned_draws += d.joints != nullptr;
+                    stats.gpu_morphed_draws += d.morph_weights >= 0;
                 }
                 const Material* m = p.material >= 0 ? &r.scene->materials[std::size_t(p.material)] : nullptr;
                 if (m && is_transmissive(*m) && material_shading(settings.shading, *m) == ShadingModel::Gltf)

@@ -101,6 +101,8 @@ std::vector<std::string> feature_defines(FeatureMask mask) {
     for (const auto& f : kFeatures)
         if (mask & f.bit) out.emplace_back(f.define);
     out.push_back("MAX_LIGHTS " + std::to_string(kMaxShaderLights));
+    if (mask & Skinned) out.push_back("JOINTS_PER_ROW " + std::to_string(kJointsPerRow));
+    if (mask & MorphTargets) out.push_back("MAX_MORPH_TARGETS " + std::to_string(kMaxShaderMorphTargets));
     return out;
 }
 

@@ -54,7 +54,7 @@ std::string assemble_shader(const std::string& file, const std::vector<std::stri
                                                  : "#version 300 es\n"
                                                    "precision highp float;\nprecision highp int;\n"
                                                    "precision highp sampler2D;\nprecision highp samplerCube;\n"
-                                                   "precision highp sampler2DShadow;\n";
+                                                   "precision highp sampler2DShadow;\nprecision highp sampler2DArray;\n";
     for (const auto& d : defines) out += "#define " + d + "\n";
     std::set<std::string> included;
     std::vector<std::string> stack;

@@ -51,15 +51,16 @@ TEST(AssembleShader, VersionLinePerTarget) {
 TEST(AssembleShader, DefinesFollowTheVersionInOrder) {
     std::string s = assemble_shader("pbr.frag", {"HAS_NORMAL", "MAX_LIGHTS 4", "USE_IBL"}, GlslTarget::Es30);
     auto l = lines(s);
-    ASSERT_GE(l.size(), 9u);
+    ASSERT_GE(l.size(), 10u);
     EXPECT_EQ(l[0], "#version 300 es");
     // The ES preamble: default precisions, samplers included (both dialects then agree).
     EXPECT_EQ(l[1], "precision highp float;");
     EXPECT_EQ(l[4], "precision highp samplerCube;");
     EXPECT_EQ(l[5], "precision highp sampler2DShadow;");  // the shadow atlas (shadows.glsl)
-    EXPECT_EQ(l[6], "#define HAS_NORMAL");
-    EXPECT_EQ(l[7], "#define MAX_LIGHTS 4");
-    EXPECT_EQ(l[8], "#define USE_IBL");
+    EXPECT_EQ(l[6], "precision highp sampler2DArray;");   // morph targets (pbr.vert): no default in ES
+    EXPECT_EQ(l[7], "#define HAS_NORMAL");
+    EXPECT_EQ(l[8], "#define MAX_LIGHTS 4");
+    EXPECT_EQ(l[9], "#define USE_IBL");
     // lights.glsl's own default (#ifndef MAX_LIGHTS) comes after, so the define wins.
     EXPECT_LT(s.find("#define MAX_LIGHTS 4"), s.find("#ifndef MAX_LIGHTS"));
 }

@@ -46,8 +46,8 @@ enum : FeatureMask {
     SheenColorMap = 1u << 23,           // KHR_materials_sheen sheenColorTexture
     SheenRoughnessMap = 1u << 24,       // KHR_materials_sheen sheenRoughnessTexture
     // Animation on the GPU (vertex shader only; RenderSettings::gpu_animation).
-    Skinned = 1u << 25,       // JOINTS_0 / WEIGHTS_0 by the joint matrices u_joints
-    MorphTargets = 1u << 26,  // two morph targets' displacements by u_morph_weights
+    Skinned = 1u << 25,       // JOINTS_0 / WEIGHTS_0 by the joint matrices of u_joint_matrices
+    MorphTargets = 1u << 26,  // the morph targets' displacements of u_morph_targets by u_morph_weights
     Sheen = 1u << 27,         // KHR_materials_sheen (Material::has_sheen)
     // KHR_materials_transmission (+ _volume, _dispersion): maps 13 and 14 (MaterialMap::Transmission,
     // ::Thickness) and the material model bit.
@@ -118,10 +118,20 @@ constexpr FeatureMask kMaps = all_map_bits();
 
 // Bound lights: the size of the shaders' light arrays (MAX_LIGHTS).
 constexpr int kMaxShaderLights = kMaxFrameLights;
-// GPU animation limits (pbr.vert's MAX_JOINTS and its two morph target attribute sets): a
-// skin with more joints, or a primitive with more morph targets, is posed on the CPU.
+// GPU animation limits: a skin with more joints, or a primitive with more morph targets
+// (or, morphed, more vertices), is posed on the CPU. pbr.vert reads joint matrices from a
+// texture of kJointsPerRow joints a row (4 RGBA32F texels each: 1024 texels wide, 16 rows at
+// the limit) and morph displacements from a 2D texture array of kMorphTextureWidth texels a
+// row, one layer per target and attribute (3 x 64 = 192 of the 256 layers OpenGL ES 3.0
+// guarantees); its weights are MAX_MORPH_TARGETS / 4 vec4 uniforms. 2048 is the texture size
+// OpenGL ES 3.0 guarantees.
 constexpr int kMaxShaderJoints = kMaxGpuSkinJoints;
 constexpr int kMaxShaderMorphTargets = kMaxGpuMorphTargets;
+constexpr int kJointsPerRow = 256;
+constexpr int kMorphTextureWidth = 2048;
+constexpr long long kMaxShaderMorphVertices = 2048LL * kMorphTextureWidth;
+static_assert(kMaxShaderJoints % kJointsPerRow == 0 && kMaxShaderJoints / kJointsPerRow <= 2048);
+static_assert(kMaxShaderMorphTargets % 4 == 0 && 3 * kMaxShaderMorphTargets <= 256);
 
 struct FeatureInfo {
     FeatureMask bit;
@@ -130,7 +140,8 @@ struct FeatureInfo {
 // Every feature bit in bit order (the bits of kAll; kReserved has none).
 std::span<const FeatureInfo> feature_table();
 
-// The #defines of a variant: one per set bit, in bit order, then "MAX_LIGHTS 16".
+// The #defines of a variant: one per set bit, in bit order, then "MAX_LIGHTS 16", and with
+// Skinned "JOINTS_PER_ROW 256", with MorphTargets "MAX_MORPH_TARGETS 64".
 std::vector<std::string> feature_defines(FeatureMask mask);
 
 // The variant the renderer draws with when a draw's raw description is `mask` (the

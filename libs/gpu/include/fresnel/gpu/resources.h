@@ -111,7 +111,7 @@ struct MipLevel {
 
 class Texture : public Handle {
 public:
-    enum class Kind { Tex2D, Cube, Tex2DMultisample };
+    enum class Kind { Tex2D, Cube, Tex2DMultisample, Tex2DArray };
     Texture() = default;
     // Uploads a 2D image (rows top to bottom as stored; data may be null). `mipmaps` generates the chain.
     static Texture create_2d(int width, int height, TextureFormat format, const void* data, bool mipmaps);
@@ -131,6 +131,17 @@ public:
     // filter of OpenGL 3.3 and ES 3.0), clamped to the edge.
     static Texture create_depth_2d(int width, int height);
     void upload_cube_face(int face, int level, int size, const float* rgba);
+    // Data textures: RGBA32F tables a shader reads texel by texel with texelFetch (joint
+    // matrices, morph target displacements), never filtered: one level, NEAREST (a float
+    // texture that filters linearly is incomplete on OpenGL ES 3.0 without
+    // OES_texture_float_linear), clamped. `rgba` (4 floats a texel, rows then layers) may be
+    // null. A 2D array has `layers` layers (GL_MAX_ARRAY_TEXTURE_LAYERS: 256 or more on
+    // OpenGL 3.3 and ES 3.0); sides up to GL_MAX_TEXTURE_SIZE (2048 or more).
+    static Texture create_data_2d(int width, int height, const float* rgba);
+    static Texture create_data_2d_array(int width, int height, int layers, const float* rgba);
+    // Replaces a rectangle of level 0 of a 2D texture in place (glTexSubImage2D: nothing is
+    // allocated again), `data` tightly packed in the texture's format.
+    void update_2d(int x, int y, int width, int height, const void* data);
     // Where the format cannot filter linearly (RGBA32F on OpenGL ES 3.0 without
     // OES_texture_float_linear, where a LINEAR float texture is incomplete and samples as zero),
     // LINEAR filters become NEAREST: filters_linearly() tells which one the texture got.
@@ -144,6 +155,7 @@ public:
     ~Texture();
     int width() const { return width_; }
     int height() const { return height_; }
+    int layers() const { return layers_; }  // a 2D array's; 1 for the others
     Kind kind() const { return kind_; }
     TextureFormat format() const { return format_; }
     // The texel storage it was created with: every mip level, face and sample (what the
@@ -152,7 +164,7 @@ public:
 
 private:
     std::size_t bytes_ = 0;
-    int width_ = 0, height_ = 0;
+    int width_ = 0, height_ = 0, layers_ = 1;
     Kind kind_ = Kind::Tex2D;
     TextureFormat format_ = TextureFormat::RGBA8;
     bool linear_ = true;  // the magnification filter set: LINEAR (else NEAREST)

@@ -26,8 +26,9 @@ class Context;
 
 
 // Whether every skin and morphed primitive of `scene` fits RenderSettings::gpu_animation's
-// limits (otherwise pose it on the CPU: fresnel::animated_scene).
-bool gpu_animatable(const Scene& scene);
+// limits (kMaxGpuSkinJoints, kMaxGpuMorphTargets: fresnel/render/limits.h); otherwise pose it
+// on the CPU (fresnel::animated_scene), and `why` (if given) names the first that does not.
+bool gpu_animatable(const Scene& scene, std::string* why = nullptr);
 
 // Where a frame goes. Every frame is drawn into the renderer's own multisampled HDR target;
 // the output pass (resolve, un-premultiply, NaN check) then writes it to the offscreen
@@ -65,6 +66,10 @@ struct FrameStats {
     // Shadow maps drawn this frame (RenderSettings::shadows): 0 when the frame has none or kept
     // the last frame's, whose lights, casters and view gave the same maps.
     int shadow_tiles_drawn = 0;
+    // Primitives skinned and morphed by the vertex shader this frame (RenderSettings::gpu_animation;
+    // a scene past gpu_animatable's limits is drawn as uploaded, to be posed on the CPU).
+    int gpu_skinned_draws = 0;
+    int gpu_morphed_draws = 0;
 };
 
 class Renderer {
@@ -103,8 +108,9 @@ public:
 
     // Number of shader variants compiled so far (they are cached by feature set).
     std::size_t program_count() const;
-    // Bytes of texel storage the renderer holds on the GPU: the scene's textures, the
-    // environment's maps and tables, and the render targets (textures; renderbuffers aside).
+    // Bytes of texel storage the renderer holds on the GPU: the scene's textures (and its
+    // joint and morph target tables), the environment's maps and tables, and the render
+    // targets (textures; renderbuffers aside).
     std::size_t texture_bytes() const;
 
     // The uploaded texture of the scene's texture `texture` (for a GUI's thumbnails): the
