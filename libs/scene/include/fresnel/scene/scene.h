@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -51,6 +52,8 @@ struct SceneImage {
     // format and size (peek_image_header), and its encoded size.
     ImageHeader header;
     std::size_t encoded_bytes = 0;
+    SceneImage() = default;
+    SceneImage(std::string image_name, Image8 image) : name(std::move(image_name)), pixels(std::move(image)) {}
     bool valid() const { return pixels.width > 0; }
 };
 
