@@ -220,6 +220,28 @@ Scene large_scene() {
     return s;
 }
 
+// The scene at time `t` of animation 0 drawn twice: posed on the CPU (animated_scene), and at rest
+// with the pose applied by the vertex shader (gpu_animation); each frame's stats kept.
+struct PosedFrames {
+    Image8 cpu, gpu;
+    FrameStats cpu_stats, gpu_stats;
+};
+PosedFrames render_posed(Renderer& renderer, const Scene& rest, float t, const CameraSetup& cam,
+                         const std::vector<LightInstance>& lights, const RenderSettings& rs) {
+    PosedFrames f;
+    Scene cpu = animated_scene(rest, 0, t);
+    renderer.set_scene(cpu);
+    f.cpu = to_image8(renderer.render(cam, lights, rs, &f.cpu_stats), false);
+    Scene gpu = rest;
+    renderer.set_scene(gpu);
+    animate(gpu, 0, t);
+    renderer.update_transforms();
+    RenderSettings grs = rs;
+    grs.gpu_animation = true;
+    f.gpu = to_image8(renderer.render(cam, lights, grs, &f.gpu_stats), false);
+    return f;
+}
+
 }  // namespace
 
 TEST(AnimationGpu, SkinningAndMorphingAgreeWithTheCpuReference) {
@@ -247,19 +269,9 @@ TEST(AnimationGpu, SkinningAndMorphingAgreeWithTheCpuReference) {
     Image8 bind = to_image8(renderer.render(cam, lights, rs), false);
     for (float t : {0.3f, 0.8f}) {
         SCOPED_TRACE("t = " + std::to_string(t));
-        Scene cpu = animated_scene(rest, 0, t);
-        renderer.set_scene(cpu);
-        FrameStats cs;
-        Image8 cpu_image = to_image8(renderer.render(cam, lights, rs, &cs), false);
-
-        Scene gpu = rest;
-        renderer.set_scene(gpu);
-        animate(gpu, 0, t);
-        renderer.update_transforms();
-        RenderSettings grs = rs;
-        grs.gpu_animation = true;
-        FrameStats gs;
-        Image8 gpu_image = to_image8(renderer.render(cam, lights, grs, &gs), false);
+        const PosedFrames f = render_posed(renderer, rest, t, cam, lights, rs);
+        const Image8 &cpu_image = f.cpu, &gpu_image = f.gpu;
+        const FrameStats &cs = f.cpu_stats, &gs = f.gpu_stats;
         EXPECT_EQ(gs.gl_errors, "");
         EXPECT_EQ(gs.triangles, cs.triangles);
 
@@ -330,19 +342,9 @@ void check_large_scene(gpu::Api api) {
         Image8 bind = to_image8(renderer.render(cam, lights, crs), false);
         for (float t : {0.3f, 0.8f}) {
             SCOPED_TRACE(std::string(view) + ", t = " + std::to_string(t));
-            Scene cpu = animated_scene(rest, 0, t);
-            renderer.set_scene(cpu);
-            FrameStats cs;
-            Image8 cpu_image = to_image8(renderer.render(cam, lights, crs, &cs), false);
-
-            Scene gpu = rest;
-            renderer.set_scene(gpu);
-            animate(gpu, 0, t);
-            renderer.update_transforms();
-            RenderSettings grs = crs;
-            grs.gpu_animation = true;
-            FrameStats gs;
-            Image8 gpu_image = to_image8(renderer.render(cam, lights, grs, &gs), false);
+            const PosedFrames f = render_posed(renderer, rest, t, cam, lights, crs);
+            const Image8 &cpu_image = f.cpu, &gpu_image = f.gpu;
+            const FrameStats &cs = f.cpu_stats, &gs = f.gpu_stats;
             EXPECT_EQ(gs.gl_errors, "");
             EXPECT_EQ(gs.gpu_skinned_draws, 1) << "the 320-joint skin was not posed on the GPU";
             EXPECT_EQ(gs.gpu_morphed_draws, 1) << "the 64 morph targets were not posed on the GPU";
