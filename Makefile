@@ -60,7 +60,7 @@ $(ASAN_BUILD)/CMakeCache.txt:
 # tests) and the fuzz-regression replayers; no viewer, and -O1 -g1 (CMakeLists.txt) to keep CI short.
 ASAN_TARGETS := core_test scene_test viewer_test obj_loader_test gltf_compressed_test mesh_ops_test scene_file_test fresnel \
                 replay_gltf replay_obj replay_image replay_hdr replay_exr replay_scene_file replay_meshopt \
-                replay_draco replay_webp
+                replay_draco replay_webp replay_ktx2 replay_zstd ktx2_test basisu_modes_test zstd_decoder_test
 asan: $(ASAN_BUILD)/CMakeCache.txt
 	@grep -qx 'FRESNEL_WERROR:BOOL=$(FRESNEL_WERROR)' $(ASAN_BUILD)/CMakeCache.txt || cmake -S . -B $(ASAN_BUILD) -DFRESNEL_WERROR=$(FRESNEL_WERROR)
 	cmake --build $(ASAN_BUILD) -j $(JOBS) --target $(ASAN_TARGETS)
