@@ -36,8 +36,17 @@ uniform vec4 u_morph_weights[MAX_MORPH_TARGETS / 4];
 #endif
 
 #include "frame_block.glsl"  // u_view_projection
+#ifdef INSTANCED
+// One draw of many placements of the primitive (the renderer's instanced batches): each
+// instance's model matrix and its normal matrix are per-instance attributes (locations 8..11,
+// 12..14, fixed by gpu::Program), in place of u_model and u_normal_matrix. The batch's
+// placements share one handedness (u_handedness).
+in mat4 a_instance_model;
+in mat3 a_instance_normal;
+#else
 uniform mat4 u_model;
 uniform mat3 u_normal_matrix;   // inverse transpose of the model's upper 3x3
+#endif
 uniform float u_handedness;     // sign of det(model): mirrors flip the bitangent
 uniform float u_point_size;
 #ifdef SHADOW_PASS
@@ -78,8 +87,13 @@ void main() {
         }
     }
 #endif
+#ifdef INSTANCED
+    mat4 model = a_instance_model;
+    mat3 normal_matrix = a_instance_normal;
+#else
     mat4 model = u_model;
     mat3 normal_matrix = u_normal_matrix;
+#endif
     float handedness = u_handedness;
 #ifdef SKINNED
     mat4 skin = mat4(0.0);

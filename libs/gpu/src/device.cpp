@@ -68,18 +68,30 @@ void Device::bind_texture(int unit, const Texture& t) {
     glBindTexture(target, t.id());
 }
 
-void Device::draw(const VertexArray& vao, Primitive mode, int count, bool indexed) {
-    GLenum m = GL_TRIANGLES;
+namespace {
+GLenum gl_mode(Primitive mode) {
     switch (mode) {
-        case Primitive::Points: m = GL_POINTS; break;
-        case Primitive::Lines: m = GL_LINES; break;
-        case Primitive::LineLoop: m = GL_LINE_LOOP; break;
-        case Primitive::LineStrip: m = GL_LINE_STRIP; break;
-        case Primitive::Triangles: m = GL_TRIANGLES; break;
+        case Primitive::Points: return GL_POINTS;
+        case Primitive::Lines: return GL_LINES;
+        case Primitive::LineLoop: return GL_LINE_LOOP;
+        case Primitive::LineStrip: return GL_LINE_STRIP;
+        case Primitive::Triangles: return GL_TRIANGLES;
     }
+    return GL_TRIANGLES;
+}
+}  // namespace
+
+void Device::draw(const VertexArray& vao, Primitive mode, int count, bool indexed) {
     glBindVertexArray(vao.id());
-    if (indexed) glDrawElements(m, count, GL_UNSIGNED_INT, nullptr);
-    else glDrawArrays(m, 0, count);
+    if (indexed) glDrawElements(gl_mode(mode), count, GL_UNSIGNED_INT, nullptr);
+    else glDrawArrays(gl_mode(mode), 0, count);
+    glBindVertexArray(0);
+}
+
+void Device::draw_instanced(const VertexArray& vao, Primitive mode, int count, bool indexed, int instances) {
+    glBindVertexArray(vao.id());
+    if (indexed) glDrawElementsInstanced(gl_mode(mode), count, GL_UNSIGNED_INT, nullptr, instances);
+    else glDrawArraysInstanced(gl_mode(mode), 0, count, instances);
     glBindVertexArray(0);
 }
 

@@ -17,6 +17,13 @@ Buffer::Buffer(BufferKind kind, const void* data, std::size_t bytes) : kind_(kin
     glBufferData(target, GLsizeiptr(bytes), data, GL_STATIC_DRAW);
     glBindBuffer(target, 0);
 }
+void Buffer::replace(const void* data, std::size_t bytes) {
+    const GLenum target = kind_ == BufferKind::Index ? GL_ELEMENT_ARRAY_BUFFER : GL_ARRAY_BUFFER;
+    if (kind_ == BufferKind::Index) glBindVertexArray(0);
+    glBindBuffer(target, id_);
+    glBufferData(target, GLsizeiptr(bytes), data, GL_STREAM_DRAW);
+    glBindBuffer(target, 0);
+}
 Buffer::~Buffer() {
     if (id_) glDeleteBuffers(1, &id_);
 }
@@ -46,6 +53,17 @@ void VertexArray::set_attribute(unsigned location, const Buffer& buffer, int com
     glBindBuffer(GL_ARRAY_BUFFER, buffer.id());
     glEnableVertexAttribArray(location);
     glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+void VertexArray::set_instance_attribute(unsigned location, const Buffer& buffer, int components, std::size_t stride,
+                                         std::size_t offset) {
+    glBindVertexArray(id_);
+    glBindBuffer(GL_ARRAY_BUFFER, buffer.id());
+    glEnableVertexAttribArray(location);
+    glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, GLsizei(stride),
+                          reinterpret_cast<const void*>(offset));
+    glVertexAttribDivisor(location, 1);
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
@@ -430,10 +448,14 @@ Program::Program(const std::string& name, const std::string& vs, const std::stri
     id_ = glCreateProgram();
     glAttachShader(id_, v);
     glAttachShader(id_, f);
-    // Fixed attribute locations shared by every mesh shader, skinning's (6, 7) last: 8 of the 16
-    // attributes OpenGL ES 3.0 guarantees (morph targets are read from a texture).
+    // Fixed attribute locations shared by every mesh shader, skinning's (6, 7) after the
+    // vertex's own, then instanced draws' per-instance matrices: the model (a mat4 at 8..11) and
+    // its normal matrix (a mat3 at 12..14): 15 of the 16 attributes OpenGL ES 3.0 guarantees
+    // (morph targets are read from a texture).
     const char* attributes[] = {"a_position", "a_normal", "a_tangent", "a_uv0", "a_uv1", "a_color", "a_joints", "a_weights"};
     for (unsigned i = 0; i < 8; ++i) glBindAttribLocation(id_, i, attributes[i]);
+    glBindAttribLocation(id_, kInstanceModelLocation, "a_instance_model");
+    glBindAttribLocation(id_, kInstanceNormalLocation, "a_instance_normal");
     glLinkProgram(id_);
     glDeleteShader(v);
     glDeleteShader(f);

@@ -72,7 +72,19 @@ struct GpuPrimitive {
     std::vector<float> applied_weights;
     gpu::Texture morph_texture;
     int morph_position_layer = -1, morph_normal_layer = -1, morph_tangent_layer = -1;
+    // Instanced batches' placements (Renderer::Impl::upload_instances): made by the first batch
+    // drawn, the VAO's per-instance attributes pointing into it, refilled by every batch.
+    mutable gpu::Buffer instance_buffer;
+    mutable bool instance_attributes = false;  // the VAO's per-instance attributes point into it
 };
+
+// An instanced batch's per-instance attributes (pbr.vert's a_instance_model, a_instance_normal).
+struct InstanceRecord {
+    glm::mat4 model;
+    glm::mat3 normal;  // inverse transpose of the model's upper 3x3
+};
+static_assert(sizeof(InstanceRecord) == 25 * sizeof(float));
+constexpr std::size_t kInstanceNormalOffset = 16 * sizeof(float);
 
 struct Draw {
     const GpuPrimitive* prim;
@@ -85,6 +97,12 @@ struct Draw {
     // on (prim->morph_targets of them, four to a vec4); -1: not morphed.
     int morph_weights = -1;
     std::uint32_t sequence = 0;  // scene order: ties in the depth sort keep it
+    bool mirrored = false;       // det(model) < 0: clockwise triangles face front
+    // An instanced batch (RenderSettings::instancing): `instances` placements of the primitive
+    // (0: this draw's `model` alone), their matrices Renderer::Impl::instance_data[instance_first]
+    // on; `model` is the first one's.
+    int instances = 0;
+    std::uint32_t instance_first = 0;
 };
 
 gpu::Primitive to_gpu(Topology t) {
@@ -107,6 +125,10 @@ struct Renderer::Impl {
     // besides the mesh variants: no strings are built per draw.
     enum ProgramFamily { kLegacyPrograms = 1, kBrdfPrograms, kOutputPrograms, kShadowPrograms };
     std::vector<Draw> opaque_draws, blended_draws, transmissive_draws;  // a frame's, storage kept
+    // The frame's opaque draws in view, batched (batch_draws), and one shadow tile's; the
+    // placements of their instanced batches. Storage kept.
+    std::vector<Draw> visible_draws, shadow_draws;
+    std::vector<InstanceRecord> instance_data;
     SkinMatrices skin_pose;  // GPU animation's joint matrices, storage kept
     // Per skin of the scene, its joint matrices as pbr.vert reads them (joint_texture_size),
     // refreshed every frame drawn with GPU animation (upload_joints); empty past the limit.
@@ -915,13 +937,14 @@ struct Renderer::Impl {
     // Whether a draw's box (its model's POSITION box) can touch a tile: not when all eight
     // corners lie beyond one of the tile's clip planes. Skinned draws always can (joints move them).
     static bool may_cast(const Draw& d, const ShadowTile& tile) {
-        if (d.joints) return true;
-        const glm::mat4 m = tile.view_projection * d.model;
+        return d.joints || !box_outside(tile.view_projection * d.model, d.prim->bounds_min, d.prim->bounds_max);
+    }
+    // Whether the box [lo, hi] lies outside the clip volume of `m` (clip space from the box's
+    // space): all eight corners beyond one of its planes.
+    static bool box_outside(const glm::mat4& m, glm::vec3 lo, glm::vec3 hi) {
         int outside[6] = {0, 0, 0, 0, 0, 0};
         for (int i = 0; i < 8; ++i) {
-            const glm::vec3 p(i & 1 ? d.prim->bounds_max.x : d.prim->bounds_min.x,
-                              i & 2 ? d.prim->bounds_max.y : d.prim->bounds_min.y,
-                              i & 4 ? d.prim->bounds_max.z : d.prim->bounds_min.z);
+            const glm::vec3 p(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
             const glm::vec4 c = m * glm::vec4(p, 1.0f);
             outside[0] += c.x < -c.w;
             outside[1] += c.x > c.w;
@@ -931,14 +954,80 @@ struct Renderer::Impl {
             outside[5] += c.z > c.w;
         }
         for (int k = 0; k < 6; ++k)
-            if (outside[k] == 8) return false;
-        return true;
+            if (outside[k] == 8) return true;
+        return false;
+    }
+
+    // Whether a draw may share an instanced draw with other placements of its primitive: one
+    // placement, not skinned or morphed, a glTF-shaded material that neither blends (blended
+    // draws go far to near) nor transmits (transmission reads the model's scale from u_model).
+    bool batchable(const Draw& d, const RenderSettings& s) const {
+        if (d.joints || d.morph_weights >= 0 || d.instances > 0) return false;
+        static const Material kDefaultMaterial{};
+        const Material& m = d.prim->material >= 0 ? scene->materials[std::size_t(d.prim->material)] : kDefaultMaterial;
+        return m.alpha_mode != AlphaMode::Blend && !is_transmissive(m) &&
+               material_shading(s.shading, m) == ShadingModel::Gltf;
+    }
+    // `out` (emptied first): the draws of `in` that `keep` accepts, in material, primitive and
+    // scene order, and with RenderSettings::instancing the placements of one primitive that
+    // can share a draw (batchable, one handedness) as one instanced draw, their matrices
+    // appended to instance_data.
+    template <class Keep>
+    void batch_draws(const std::vector<Draw>& in, Keep keep, const RenderSettings& s, std::vector<Draw>& out) {
+        out.clear();
+        for (const Draw& d : in)
+            if (keep(d)) out.push_back(d);
+        std::sort(out.begin(), out.end(), [](const Draw& a, const Draw& b) {
+            if (a.prim->material != b.prim->material) return a.prim->material < b.prim->material;
+            if (a.prim != b.prim) return std::less<const GpuPrimitive*>()(a.prim, b.prim);
+            if (a.mirrored != b.mirrored) return b.mirrored;
+            return a.sequence < b.sequence;
+        });
+        if (!s.instancing) return;
+        std::size_t w = 0;
+        for (std::size_t i = 0; i < out.size();) {
+            std::size_t j = i + 1;
+            if (batchable(out[i], s))
+                while (j < out.size() && out[j].prim == out[i].prim && out[j].mirrored == out[i].mirrored &&
+                       batchable(out[j], s))
+                    ++j;
+            Draw d = out[i];
+            if (j - i >= 2) {
+                d.instances = int(j - i);
+                d.instance_first = std::uint32_t(instance_data.size());
+                for (std::size_t k = i; k < j; ++k)
+                    instance_data.push_back({out[k].model, glm::inverseTranspose(glm::mat3(out[k].model))});
+            }
+            out[w++] = d;
+            i = j;
+        }
+        out.resize(w);
+    }
+    // Fills the primitive's instance buffer with an instanced draw's placements (made, and the
+    // VAO's per-instance attributes set, on the first).
+    void upload_instances(const Draw& d) {
+        const GpuPrimitive& p = *d.prim;
+        const void* data = &instance_data[d.instance_first];
+        const std::size_t bytes = std::size_t(d.instances) * sizeof(InstanceRecord);
+        if (p.instance_attributes) {
+            p.instance_buffer.replace(data, bytes);
+            return;
+        }
+        p.instance_buffer = gpu::Buffer(gpu::BufferKind::Vertex, data, bytes);
+        gpu::VertexArray& vao = const_cast<gpu::VertexArray&>(p.vao);  // the renderer's own (meshes)
+        for (unsigned c = 0; c < 4; ++c)
+            vao.set_instance_attribute(gpu::kInstanceModelLocation + c, p.instance_buffer, 4, sizeof(InstanceRecord),
+                                       c * 4 * sizeof(float));
+        for (unsigned c = 0; c < 3; ++c)
+            vao.set_instance_attribute(gpu::kInstanceNormalLocation + c, p.instance_buffer, 3, sizeof(InstanceRecord),
+                                       kInstanceNormalOffset + c * 3 * sizeof(float));
+        p.instance_attributes = true;
     }
 
     // Draws the planned maps: every opaque and alpha-masked draw's depth into each tile
     // (blended and transmissive ones cast none, as they let light through), both faces, with a
     // slope-scaled bias. After pack_frame: pbr.vert's frame block must be bound.
-    void draw_shadow_maps(FrameStats& stats) {
+    void draw_shadow_maps(const RenderSettings& settings, FrameStats& stats) {
         const ShadowPlan& plan = shadow_plan;
         if (plan.atlas_width != shadow_atlas_w || plan.atlas_height != shadow_atlas_h) {
             shadow_atlas = gpu::Texture::create_depth_2d(plan.atlas_width, plan.atlas_height);
@@ -961,9 +1050,12 @@ struct Renderer::Impl {
         stats.shadow_tiles_drawn = int(plan.tiles.size());
         for (const ShadowTile& tile : plan.tiles) {
             device.viewport(tile.rect.x, tile.rect.y, tile.rect.z, tile.rect.w);
-            for (const Draw& d : opaque_draws) {
+            batch_draws(
+                opaque_draws,
+                [&](const Draw& d) { return d.prim->topology == Topology::Triangles && may_cast(d, tile); }, settings,
+                shadow_draws);
+            for (const Draw& d : shadow_draws) {
                 const GpuPrimitive& p = *d.prim;
-                if (p.topology != Topology::Triangles || !may_cast(d, tile)) continue;
                 const Material& m = p.material >= 0 ? scene->materials[std::size_t(p.material)] : kDefaultMaterial;
                 FeatureMask features = 0;
                 const gpu::Texture* base = nullptr;
@@ -977,6 +1069,7 @@ struct Renderer::Impl {
                 }
                 if (d.joints) features |= feature::Skinned;
                 if (d.morph_weights >= 0) features |= feature::MorphTargets;
+                if (d.instances > 0) features |= feature::Instanced;
                 const gpu::Program& prog =
                     shaders.get_keyed("pbr.vert", "shadow.frag", {kShadowPrograms, features, -1, 0}, [&] {
                         std::vector<std::string> defines = feature_defines(features);
@@ -985,8 +1078,10 @@ struct Renderer::Impl {
                     });
                 prog.use();
                 prog.set("u_light_view_projection", tile.view_projection);
-                prog.set("u_model", d.model);
-                prog.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(d.model)));
+                if (d.instances == 0) {
+                    prog.set("u_model", d.model);
+                    prog.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(d.model)));
+                }
                 prog.set("u_handedness", 1.0f);
                 prog.set("u_point_size", 1.0f);
                 if (features & feature::AlphaMask) {
@@ -999,7 +1094,14 @@ struct Renderer::Impl {
                     }
                 }
                 bind_animation(prog, d);
-                device.draw(p.vao, gpu::Primitive::Triangles, p.count, p.indexed);
+                if (d.instances > 0) {
+                    upload_instances(d);
+                    device.draw_instanced(p.vao, gpu::Primitive::Triangles, p.count, p.indexed, d.instances);
+                    ++stats.instanced_draws;
+                    stats.instances_drawn += std::size_t(d.instances);
+                } else {
+                    device.draw(p.vao, gpu::Primitive::Triangles, p.count, p.indexed);
+                }
                 ++stats.draw_calls;
             }
         }
@@ -1030,7 +1132,8 @@ struct Renderer::Impl {
     // Draws a primitive whose program and material are bound: culling by the material's sides
     // and the winding that the model matrix's determinant `det` keeps or mirrors, blending for
     // BLEND materials (no depth writes), and the frame's counts.
-    void submit(const GpuPrimitive& p, const Material& m, float det, FrameStats& stats) {
+    void submit(const Draw& d, const Material& m, float det, FrameStats& stats) {
+        const GpuPrimitive& p = *d.prim;
         gpu::PipelineState state;
         state.cull = m.double_sided ? gpu::Cull::None : gpu::Cull::Back;
         state.front_ccw = det >= 0;
@@ -1039,9 +1142,16 @@ struct Renderer::Impl {
             state.depth_write = false;
         }
         device.apply(state);
-        device.draw(p.vao, to_gpu(p.topology), p.count, p.indexed);
+        if (d.instances > 0) {
+            upload_instances(d);
+            device.draw_instanced(p.vao, to_gpu(p.topology), p.count, p.indexed, d.instances);
+            ++stats.instanced_draws;
+            stats.instances_drawn += std::size_t(d.instances);
+        } else {
+            device.draw(p.vao, to_gpu(p.topology), p.count, p.indexed);
+        }
         ++stats.draw_calls;
-        stats.triangles += p.triangles;
+        stats.triangles += p.triangles * std::size_t(std::max(1, d.instances));
     }
 
     // One primitive in a legacy model (legacy.vert / legacy.frag, ShadingModel in renderer.h)
@@ -1112,7 +1222,8 @@ struct Renderer::Impl {
                 prog.set("u_irradiance_env", int(TextureUnit::IrradianceEnvironment));
             }
         }
-        submit(p, m, glm::determinant(glm::mat3(d.model)), stats);
+        assert(d.instances == 0);  // batch_draws batches glTF-shaded draws only
+        submit(d, m, glm::determinant(glm::mat3(d.model)), stats);
     }
 
     void draw_primitive(const Draw& d, const CameraSetup& cam, const std::vector<LightInstance>& lights,
@@ -1138,6 +1249,7 @@ struct Renderer::Impl {
         if (settings.environment) raw |= feature::UseIbl;
         if (d.joints) raw |= feature::Skinned;
         if (d.morph_weights >= 0) raw |= feature::MorphTargets;
+        if (d.instances > 0) raw |= feature::Instanced;
 
         // Texture units are packed per draw: the maps the variant reads take units 0, 1, ... in
         // MaterialMap order, then the opaque scene (transmission), the split-sum table, the
@@ -1180,6 +1292,8 @@ struct Renderer::Impl {
         features = canonical_features(raw);
         // alpha_packs found every texture it names usable, so none went missing above.
         assert(in_alpha == bool(features & feature::MetallicRoughnessInAlpha));
+        // batch_draws batches what the variant can draw instanced.
+        assert(d.instances == 0 || (features & feature::Instanced));
         auto settle_maps = [&] {
             for (int i = 0; i < kMaterialMapCount; ++i) {
                 // A map the variant samples but the material lacks reads the white texture: x * 1.0 = x.
@@ -1230,9 +1344,10 @@ struct Renderer::Impl {
             });
         }();
         prog.use();
-        prog.set("u_model", d.model);
-        glm::mat3 normal_matrix = glm::inverseTranspose(glm::mat3(d.model));
-        prog.set("u_normal_matrix", normal_matrix);
+        if (d.instances == 0) {
+            prog.set("u_model", d.model);
+            prog.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(d.model)));
+        }
         float det = glm::determinant(glm::mat3(d.model));
         prog.set("u_handedness", det < 0 ? -1.0f : 1.0f);
         prog.set("u_point_size", 1.0f);
@@ -1282,7 +1397,7 @@ struct Renderer::Impl {
         set_material_samplers(prog, map_units);
         bind_animation(prog, d);
 
-        submit(p, m, det, stats);
+        submit(d, m, det, stats);
         if (shared_footprint) ++stats.shared_footprint_draws;
         if (in_alpha) ++stats.alpha_packed_draws;
     }
@@ -1458,6 +1573,7 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
                 glm::vec4 c = cam.view * model * glm::vec4(p.center, 1.0f);
                 Draw d{&p, model, std::isnan(c.z) ? 0.0f : -c.z};  // a NaN would break the sort's ordering
                 d.sequence = std::uint32_t(opaque.size() + blended.size() + transmissive.size());
+                d.mirrored = glm::determinant(glm::mat3(model)) < 0.0f;
                 if (settings.gpu_animation && !node.world_space_mesh) {
                     if (p.has_skin && node.skin >= 0 && std::size_t(node.skin) < skins.size() &&
                         !skins[std::size_t(node.skin)].empty()) {
@@ -1500,12 +1616,27 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
         r.plan_frame_shadows(cam, lights, settings);
         r.pack_frame(cam, lights, settings);
         const std::uint64_t shadow_key = r.frame_shadows > 0 ? r.shadow_inputs_key() : 0;
+        r.instance_data.clear();
         if (r.frame_shadows > 0 && (shadow_key != r.shadow_key || !r.shadow_atlas)) {
-            r.draw_shadow_maps(stats);
+            r.draw_shadow_maps(settings, stats);
             r.shadow_key = shadow_key;
             r.device.bind_framebuffer(&r.targets->msaa_fb);
             r.device.viewport(0, 0, w, h);
         }
+        // The frame draws what its view sees (the shadow maps above saw every caster): the opaque
+        // draws batched (batch_draws), the blended and transmissive ones in their order.
+        const glm::mat4 view_projection = cam.projection * cam.view;
+        auto in_view = [&](const Draw& d) {
+            // Skinned and morphed draws move off their boxes: always drawn.
+            const bool seen = !settings.frustum_culling || d.joints || d.morph_weights >= 0 ||
+                              !Impl::box_outside(view_projection * d.model, d.prim->bounds_min, d.prim->bounds_max);
+            stats.culled_draws += !seen;
+            return seen;
+        };
+        r.batch_draws(opaque, in_view, settings, r.visible_draws);
+        const std::vector<Draw>& opaque_visible = r.visible_draws;
+        std::erase_if(blended, [&](const Draw& d) { return !in_view(d); });
+        std::erase_if(transmissive, [&](const Draw& d) { return !in_view(d); });
         r.transmission_ready = false;
         if (!transmissive.empty() && settings.debug == DebugChannel::None) {
             // The transmission pass: what the transmissive primitives refract (everything else,
@@ -1518,7 +1649,7 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
             if (settings.environment && settings.background_mode != RenderSettings::Background::Color)
                 r.draw_sky(cam, settings, true);
             r.linear_pass = true;
-            for (const auto& d : opaque) r.draw_primitive(d, cam, lights, settings, stats);
+            for (const auto& d : opaque_visible) r.draw_primitive(d, cam, lights, settings, stats);
             for (const auto& d : blended) r.draw_primitive(d, cam, lights, settings, stats);
             r.linear_pass = false;
             if (samples > 1) r.device.blit_color(r.transmission_msaa_fb, r.transmission_fb, size, size);
@@ -1527,7 +1658,7 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
             r.device.bind_framebuffer(&r.targets->msaa_fb);
             r.device.viewport(0, 0, w, h);
         }
-        for (const auto& d : opaque) r.draw_primitive(d, cam, lights, settings, stats);
+        for (const auto& d : opaque_visible) r.draw_primitive(d, cam, lights, settings, stats);
         for (const auto& d : transmissive) r.draw_primitive(d, cam, lights, settings, stats);
         for (const auto& d : blended) r.draw_primitive(d, cam, lights, settings, stats);
     }

@@ -51,6 +51,7 @@ constexpr FeatureInfo kFeatures[] = {
     {DetailSharedFootprint, "DETAIL_SHARED_FOOTPRINT"},
     {MetallicRoughnessInAlpha, "METALLIC_ROUGHNESS_IN_ALPHA"},
     {DiffuseRoughnessMap, "HAS_DIFFUSE_ROUGHNESS_MAP"},
+    {Instanced, "INSTANCED"},
 };
 constexpr bool table_is_kall_in_bit_order() {
     FeatureMask seen = 0;
@@ -138,6 +139,7 @@ FeatureMask canonical_features(FeatureMask m) {
         if ((m & needs) != needs || (m & (SpecularGlossiness | AlphaMask | AlphaBlend | DebugView)))
             m &= ~MetallicRoughnessInAlpha;
     }
+    if (m & (Skinned | MorphTargets | Transmission)) m &= ~Instanced;
     return m;
 }
 
@@ -152,7 +154,8 @@ std::vector<FeatureMask> all_feature_sets() {
     // 39, 40 and 41, below) instead of 2^43.
     std::vector<FeatureMask> out;
     constexpr FeatureMask kLow = (FeatureMask(1) << 23) - 1;
-    const FeatureMask animation[] = {0, Skinned, MorphTargets, Skinned | MorphTargets};
+    // Instancing (bit 43) excludes skinning and morphing: one more choice of that group.
+    const FeatureMask animation[] = {0, Skinned, MorphTargets, Skinned | MorphTargets, Instanced};
     const FeatureMask sheen[] = {0, Sheen, Sheen | SheenColorMap | SheenRoughnessMap};
     const FeatureMask transmission[] = {0, Transmission, Transmission | TransmissionMap | ThicknessMap};
     const FeatureMask anisotropy[] = {0, Anisotropy, Anisotropy | AnisotropyMap};

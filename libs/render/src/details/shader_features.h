@@ -93,8 +93,13 @@ enum : FeatureMask {
     // KHR_materials_diffuse_roughness's map 20 (MaterialMap::DiffuseRoughness). The lobe itself
     // has no model bit: every lit variant shades it where the factor (a uniform) is positive.
     DiffuseRoughnessMap = FeatureMask(1) << 42,
+    // Many placements of one primitive in one draw (INSTANCED: pbr.vert reads each instance's
+    // model and normal matrices from per-instance attributes; the renderer's instanced batches,
+    // RenderSettings::instancing). Not with skinning, morphing or transmission (which reads the
+    // model's scale from u_model): those draw one placement at a time.
+    Instanced = FeatureMask(1) << 43,
 };
-constexpr int kCount = 43;
+constexpr int kCount = 44;
 constexpr int kFirstMap = 12;
 constexpr int kMapCount = 21;
 // Bit positions below kCount that no feature uses (none now).
@@ -174,7 +179,8 @@ std::vector<std::string> feature_defines(FeatureMask mask);
 //    and normal maps (after the rules above).
 //  - the metallic-roughness in alpha channels needs the metallic-roughness, base colour and
 //    normal maps (and the emissive map with the occlusion in the metallic-roughness texture),
-//    and neither specular-glossiness, an alpha mode nor the debug view.
+//    and neither specular-glossiness, an alpha mode nor the debug view;
+//  - instancing is dropped with skinning, morph targets or transmission.
 // Normal maps and the anisotropy map are never stood in for: a flat normal texel is not
 // exactly (0, 0, 1), a white anisotropy texel is direction (1, 1).
 FeatureMask canonical_features(FeatureMask mask);

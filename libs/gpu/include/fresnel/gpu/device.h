@@ -43,6 +43,9 @@ public:
     void apply(const PipelineState& state);
     void bind_texture(int unit, const Texture& texture);
     void draw(const VertexArray& vao, Primitive mode, int count, bool indexed);
+    // `instances` copies of the same draw (glDraw*Instanced; the VAO's per-instance attributes
+    // step once per copy: VertexArray::set_instance_attribute).
+    void draw_instanced(const VertexArray& vao, Primitive mode, int count, bool indexed, int instances);
     // Draws a full-screen triangle (the vertex shader makes positions from gl_VertexID).
     void draw_fullscreen();
     void blit_color(const Framebuffer& src, const Framebuffer& dst, int width, int height);

@@ -46,6 +46,9 @@ public:
     Buffer& operator=(Buffer&&) noexcept = default;
     ~Buffer();
     BufferKind kind() const { return kind_; }
+    // Replaces the whole contents with `bytes` bytes (new storage: draws already submitted keep
+    // reading the old; a per-frame stream, as the renderer's instance matrices).
+    void replace(const void* data, std::size_t bytes);
 
 private:
     BufferKind kind_ = BufferKind::Vertex;
@@ -69,6 +72,10 @@ private:
     std::size_t size_ = 0;
 };
 
+// The per-instance attributes of instanced mesh draws (Program binds them at link):
+// "a_instance_model" (mat4: locations 8..11) and "a_instance_normal" (mat3: 12..14).
+constexpr unsigned kInstanceModelLocation = 8, kInstanceNormalLocation = 12;
+
 // A vertex array: float attributes from buffers, optional index buffer (uint32).
 class VertexArray : public Handle {
 public:
@@ -78,6 +85,10 @@ public:
     ~VertexArray();
     // Binds `buffer` (tightly packed floats, `components` per vertex) to attribute `location`.
     void set_attribute(unsigned location, const Buffer& buffer, int components);
+    // Binds `components` floats at byte `offset` of each `stride`-byte record of `buffer` to
+    // attribute `location`, advanced once per instance (glVertexAttribDivisor 1: instanced draws).
+    void set_instance_attribute(unsigned location, const Buffer& buffer, int components, std::size_t stride,
+                                std::size_t offset);
     void set_indices(const Buffer& buffer);
 };
 

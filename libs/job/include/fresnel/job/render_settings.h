@@ -146,6 +146,15 @@ struct RenderSettings {
     // agrees with the Khronos references as well on average, docs/performance.md). false
     // reads the textures as stored (tests compare the two).
     bool pack_channels = true;
+    // Placements of one primitive with one material (repeated meshes of the scene graph,
+    // EXT_mesh_gpu_instancing's instances) drawn by one instanced draw, their model matrices as
+    // per-instance attributes (feature::Instanced), in the frame and in each shadow map; skinned,
+    // morphed, blended, transmissive and legacy-shaded draws go one at a time. The same image.
+    // false draws every placement on its own (tests compare the two).
+    bool instancing = true;
+    // Draws whose box lies outside the view (all eight corners beyond one clip plane) are not
+    // submitted; shadow maps still see them. false submits every draw (tests compare).
+    bool frustum_culling = true;
     // Texture units a draw may use: 0 is the context's fragment limit
     // (gpu::Capabilities::max_fragment_texture_units; OpenGL 3.3 and ES 3.0 guarantee 16), a
     // smaller value (at least 16) stands in for a smaller GPU (tests). A glTF draw takes one

@@ -70,6 +70,12 @@ struct FrameStats {
     // a scene past gpu_animatable's limits is drawn as uploaded, to be posed on the CPU).
     int gpu_skinned_draws = 0;
     int gpu_morphed_draws = 0;
+    // Instanced draws this frame (RenderSettings::instancing; the frame's and the shadow maps')
+    // and the placements they drew; placements left out of the frame because their boxes lie
+    // outside the view (RenderSettings::frustum_culling).
+    int instanced_draws = 0;
+    std::size_t instances_drawn = 0;
+    int culled_draws = 0;
 };
 
 class Renderer {
