@@ -91,7 +91,9 @@ glm::vec3 offset_ray(glm::vec3 p, glm::vec3 n) {
 // diffuse or glossy bounce far exceeds anyway, and one that stays in the caches (incoherent
 // reads of five 2048^2 maps were a quarter of the time).
 
-// One primitive instance in world space.
+// One primitive's triangles and vertex attributes: in world space for a mesh placed once, in
+// the mesh's own space for a mesh placed several times (a prototype that Embree instances; its
+// placements: Placement).
 struct Geometry {
     const Material* material = nullptr;
     int material_index = -1;  // the scene's material (-1: the default material)
@@ -102,7 +104,7 @@ struct Geometry {
     std::vector<glm::vec2> uv0, uv1;
     std::vector<glm::vec4> colors;
     std::vector<std::uint32_t> indices;  // 3 per triangle
-    bool mirrored = false;               // det(world) < 0: clockwise triangles face front
+    bool mirrored = false;               // det(world) < 0: clockwise triangles face front (prototypes: never)
     VertexInputs inputs;
     bool filtered = false;  // single-sided or not opaque: hits go through filter_hits
 
@@ -156,15 +158,41 @@ void filter_hits(const RTCFilterFunctionNArguments* args) {
             args->valid[i] = 0;
         } else if (m.alpha_mode == AlphaMode::Blend) {
             std::uint64_t seed = ctx->seed[RTCRayN_id(args->ray, args->N, i) & 7u];
-            std::uint64_t h = splitmix64(seed ^ splitmix64((std::uint64_t(RTCHitN_geomID(args->hit, args->N, i)) << 32) | prim));
+            std::uint64_t geom = RTCHitN_geomID(args->hit, args->N, i);
+            const unsigned inst = RTCHitN_instID(args->hit, args->N, i, 0);
+            if (inst != RTC_INVALID_GEOMETRY_ID) geom = splitmix64(geom ^ (std::uint64_t(inst) << 32));  // a placement's own
+            std::uint64_t h = splitmix64(seed ^ splitmix64((geom << 32) | prim));
             float u = float(h >> 40) * 0x1p-24f;
             if (u >= em.alpha) args->valid[i] = 0;
         }
     }
 }
 
+// One placement of a prototype (a mesh placed by several nodes): an Embree instance of the
+// prototype's scene. The hit's attributes are in the mesh's space; these take them to world space.
+struct Placement {
+    glm::mat4 world{1.0f};
+    glm::mat3 linear{1.0f}, normal_matrix{1.0f};
+    float handedness = 1.0f;  // sign of det(world): mirrors flip the bitangent
+    int node = -1;
+    const std::vector<std::unique_ptr<Geometry>>* geometries = nullptr;  // the prototype's, by geometry id
+};
+
+// The surface a hit lands on, in world space (Impl::surface): the geometry's material and
+// textures, the point, the geometric normal facing the front side (counter-clockwise, or
+// clockwise under a mirroring transform), the interpolated shading normal and, with tangents,
+// the tangent frame; the material inputs at the point (SurfacePoint, frame not yet set).
+struct SurfaceHit {
+    const Geometry* geometry = nullptr;
+    int node = -1;
+    glm::vec3 p{0.0f}, ng{0.0f, 0.0f, 1.0f}, ns{0.0f, 0.0f, 1.0f};
+    glm::vec3 tangent{1.0f, 0.0f, 0.0f}, bitangent{0.0f, 1.0f, 0.0f};
+    SurfacePoint sp;
+};
+
 struct Hit {
     unsigned geom = RTC_INVALID_GEOMETRY_ID, prim = 0;
+    unsigned inst = RTC_INVALID_GEOMETRY_ID;  // the placement (Impl::placements) when a prototype was hit
     float t = 0, u = 0, v = 0;
     glm::vec3 ng{0.0f};  // Embree's: counter-clockwise, unnormalised
     bool valid() const { return geom != RTC_INVALID_GEOMETRY_ID; }
@@ -177,12 +205,95 @@ struct TraceScene::Impl {
     RTCScene scene = nullptr;
     std::unique_ptr<SceneTextures> textures;
     std::vector<Material> materials;  // the scene's, occlusion maps removed
-    std::vector<std::unique_ptr<Geometry>> geometries;  // by Embree geometry id
+    std::vector<std::unique_ptr<Geometry>> geometries;  // by Embree geometry id (the top-level scene's)
+    // Meshes placed several times: each prototype's scene and geometries, and every placement
+    // by its instance's geometry id in the top-level scene (none there: an empty entry).
+    std::vector<RTCScene> prototype_scenes;
+    std::vector<std::unique_ptr<std::vector<std::unique_ptr<Geometry>>>> prototypes;
+    std::vector<Placement> placements;
     std::size_t triangles = 0;
+    std::size_t stored_triangles = 0;  // held once per prototype
     double build_ms = 0;
+
+    // One primitive's triangles at `world` (the identity: a prototype, in the mesh's own
+    // space), or nothing when it has none to trace.
+    std::unique_ptr<Geometry> make_geometry(const Primitive& prim, const glm::mat4& world, int node) const {
+        if (prim.topology != Topology::Triangles || prim.positions.empty()) return nullptr;
+        const glm::mat3 linear(world);
+        const glm::mat3 normal_matrix = glm::transpose(glm::inverse(linear));
+        const float det = glm::determinant(linear);
+        auto g = std::make_unique<Geometry>();
+        const bool own = prim.material >= 0 && prim.material < int(materials.size());
+        g->material = own ? &materials[std::size_t(prim.material)] : &kDefaultMaterial;
+        g->material_index = own ? prim.material : -1;
+        g->node = node;
+        g->textures = textures.get();
+        g->mirrored = det < 0.0f;
+        const std::size_t n = prim.positions.size();
+        g->positions.resize(n);
+        for (std::size_t i = 0; i < n; ++i) g->positions[i] = glm::vec3(world * glm::vec4(prim.positions[i], 1.0f));
+        if (prim.normals.size() == n) {
+            g->normals.resize(n);
+            for (std::size_t i = 0; i < n; ++i) g->normals[i] = unit_or(normal_matrix * prim.normals[i], glm::vec3(0, 0, 1));
+        }
+        g->inputs.has_uv0 = prim.uv0.size() == n;
+        g->inputs.has_uv1 = prim.uv1.size() == n;
+        g->inputs.has_tangent = prim.tangents.size() == n && !g->normals.empty();
+        if (g->inputs.has_tangent) {
+            g->tangents.resize(n);
+            g->bitangents.resize(n);
+            const float handedness = det < 0.0f ? -1.0f : 1.0f;
+            for (std::size_t i = 0; i < n; ++i) {
+                const glm::vec3 t = unit_or(linear * glm::vec3(prim.tangents[i]), glm::vec3(1, 0, 0));
+                const float w = prim.tangents[i].w * handedness;
+                g->tangents[i] = glm::vec4(t, w);
+                g->bitangents[i] = glm::cross(g->normals[i], t) * w;
+            }
+        }
+        if (g->inputs.has_uv0) g->uv0 = prim.uv0;
+        if (g->inputs.has_uv1) g->uv1 = prim.uv1;
+        if (prim.colors.size() == n) g->colors = prim.colors;
+        if (prim.indices.empty()) {
+            g->indices.resize(n / 3 * 3);
+            for (std::size_t i = 0; i < g->indices.size(); ++i) g->indices[i] = std::uint32_t(i);
+        } else {
+            g->indices.reserve(prim.indices.size() / 3 * 3);
+            for (std::size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
+                const std::uint32_t a = prim.indices[i], b = prim.indices[i + 1], c = prim.indices[i + 2];
+                if (a >= n || b >= n || c >= n) continue;
+                g->indices.insert(g->indices.end(), {a, b, c});
+            }
+        }
+        if (g->indices.empty()) return nullptr;
+        g->filtered = !g->material->double_sided || g->material->alpha_mode != AlphaMode::Opaque;
+        return g;
+    }
+    // Attaches `g`'s triangles to `target` (the top-level scene or a prototype's) and keeps it
+    // in `table` under its geometry id.
+    void attach(RTCScene target, std::unique_ptr<Geometry> g, std::vector<std::unique_ptr<Geometry>>& table) const {
+        const std::size_t n = g->positions.size(), tris = g->indices.size() / 3;
+        RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* vb = static_cast<float*>(
+            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), n));
+        for (std::size_t i = 0; i < n; ++i) std::copy_n(&g->positions[i].x, 3, vb + i * 3);
+        auto* ib = static_cast<std::uint32_t*>(
+            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), tris));
+        std::copy(g->indices.begin(), g->indices.end(), ib);
+        rtcSetGeometryUserData(geom, g.get());
+        if (g->filtered) {
+            rtcSetGeometryIntersectFilterFunction(geom, filter_hits);
+            rtcSetGeometryOccludedFilterFunction(geom, filter_hits);
+        }
+        rtcCommitGeometry(geom);
+        const unsigned id = rtcAttachGeometry(target, geom);
+        rtcReleaseGeometry(geom);
+        if (id >= table.size()) table.resize(id + 1);
+        table[id] = std::move(g);
+    }
 
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
+        for (RTCScene p : prototype_scenes) rtcReleaseScene(p);
         if (device) rtcReleaseDevice(device);
     }
 
@@ -209,6 +320,7 @@ struct TraceScene::Impl {
         rtcIntersect1(scene, &ctx.rtc, &rh);
         Hit h;
         h.geom = rh.hit.geomID;
+        h.inst = rh.hit.instID[0];
         h.prim = rh.hit.primID;
         h.t = rh.ray.tfar;
         h.u = rh.hit.u;
@@ -248,12 +360,55 @@ struct TraceScene::Impl {
         for (int i = 0; i < 8; ++i) {
             Hit& h = hits[i];
             h.geom = rh.hit.geomID[i];
+            h.inst = rh.hit.instID[0][i];
             h.prim = rh.hit.primID[i];
             h.t = rh.ray.tfar[i];
             h.u = rh.hit.u[i];
             h.v = rh.hit.v[i];
             h.ng = glm::vec3(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
         }
+    }
+
+    // The surface `hit` (valid) lands on, in world space. A prototype's attributes are taken
+    // there per vertex as the world-space build stores them (normals and tangents normalised,
+    // the bitangent from the world-space normal and tangent), then interpolated alike.
+    SurfaceHit surface(const Hit& hit) const {
+        SurfaceHit s;
+        const Placement* pl = hit.inst != RTC_INVALID_GEOMETRY_ID ? &placements[hit.inst] : nullptr;
+        const Geometry& g = pl ? *(*pl->geometries)[hit.geom] : *geometries[hit.geom];
+        s.geometry = &g;
+        s.node = pl ? pl->node : g.node;
+        const std::uint32_t* tri = &g.indices[std::size_t(hit.prim) * 3];
+        const float u = hit.u, v = hit.v, w0 = 1.0f - u - v;
+        const glm::vec3 p = w0 * g.positions[tri[0]] + u * g.positions[tri[1]] + v * g.positions[tri[2]];
+        s.p = pl ? glm::vec3(pl->world * glm::vec4(p, 1.0f)) : p;
+        const glm::vec3 ng = g.mirrored ? -hit.ng : hit.ng;  // Embree's: counter-clockwise, in the geometry's space
+        s.ng = glm::normalize(pl ? pl->normal_matrix * ng : ng);
+        s.sp = g.surface_point(hit.prim, u, v);
+        s.ns = s.ng;
+        glm::vec3 n[3], t[3], b[3];
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t i = tri[k];
+            if (!g.normals.empty()) n[k] = pl ? unit_or(pl->normal_matrix * g.normals[i], glm::vec3(0, 0, 1)) : g.normals[i];
+            if (!g.inputs.has_tangent) continue;
+            if (pl) {
+                t[k] = unit_or(pl->linear * glm::vec3(g.tangents[i]), glm::vec3(1, 0, 0));
+                b[k] = glm::cross(n[k], t[k]) * (g.tangents[i].w * pl->handedness);
+            } else {
+                t[k] = glm::vec3(g.tangents[i]);
+                b[k] = g.bitangents[i];
+            }
+        }
+        if (!g.normals.empty()) s.ns = unit_or(w0 * n[0] + u * n[1] + v * n[2], s.ng);
+        if (g.inputs.has_tangent) {
+            s.tangent = unit_or(w0 * t[0] + u * t[1] + v * t[2], glm::vec3(1, 0, 0));
+            s.bitangent = unit_or(w0 * b[0] + u * b[1] + v * b[2], glm::vec3(0, 1, 0));
+        }
+        return s;
+    }
+    static glm::vec3 unit_or(glm::vec3 v, glm::vec3 fallback) {
+        const float len = glm::length(v);
+        return len > 0 ? v / len : fallback;
     }
 
     bool occluded(glm::vec3 o, glm::vec3 d, float tfar, std::uint64_t seed) const {
@@ -278,7 +433,8 @@ struct TraceScene::Impl {
     }
 };
 
-TraceScene::TraceScene(const Scene& scene, const std::vector<NodeInstance>& instances) : impl_(std::make_unique<Impl>()) {
+TraceScene::TraceScene(const Scene& scene, const std::vector<NodeInstance>& instances, const TraceSceneOptions& options)
+    : impl_(std::make_unique<Impl>()) {
     auto t0 = Clock::now();
     Impl& im = *impl_;
     im.device = rtcNewDevice(nullptr);
@@ -291,91 +447,66 @@ TraceScene::TraceScene(const Scene& scene, const std::vector<NodeInstance>& inst
     im.materials = scene.materials;
     for (Material& m : im.materials) m.occlusion = TextureSlot{};
 
-    for (const NodeInstance& inst : instances) {
+    // A mesh that several visible nodes place (EXT_mesh_gpu_instancing's instances, repeated
+    // parts, a scene file's copies) is built once in its own space and placed by Embree
+    // instances (options.instancing); every other one is built in world space.
+    std::vector<int> placements(scene.meshes.size(), 0);
+    auto placed = [&](const NodeInstance& inst) {  // the node's mesh, or -1 when it places none
         const Node& node = scene.nodes[std::size_t(inst.node)];
-        if (node.mesh < 0 || node.mesh >= int(scene.meshes.size()) || !inst.visible) continue;
-        glm::mat4 world = node.world_space_mesh ? glm::mat4(1.0f) : inst.world;
-        glm::mat3 linear(world);
-        glm::mat3 normal_matrix = glm::transpose(glm::inverse(linear));
-        float det = glm::determinant(linear);
-        for (const Primitive& prim : scene.meshes[std::size_t(node.mesh)].primitives) {
-            if (prim.topology != Topology::Triangles || prim.positions.empty()) continue;
-            auto g = std::make_unique<Geometry>();
-            g->material = prim.material >= 0 && prim.material < int(im.materials.size())
-                              ? &im.materials[std::size_t(prim.material)]
-                              : &kDefaultMaterial;
-            g->material_index = prim.material >= 0 && prim.material < int(im.materials.size()) ? prim.material : -1;
-            g->node = inst.node;
-            g->textures = im.textures.get();
-            g->mirrored = det < 0.0f;
-            const std::size_t n = prim.positions.size();
-            g->positions.resize(n);
-            for (std::size_t i = 0; i < n; ++i) g->positions[i] = glm::vec3(world * glm::vec4(prim.positions[i], 1.0f));
-            if (prim.normals.size() == n) {
-                g->normals.resize(n);
-                for (std::size_t i = 0; i < n; ++i) {
-                    glm::vec3 nn = normal_matrix * prim.normals[i];
-                    float len = glm::length(nn);
-                    g->normals[i] = len > 0 ? nn / len : glm::vec3(0, 0, 1);
+        return node.mesh < 0 || node.mesh >= int(scene.meshes.size()) || !inst.visible ? -1 : node.mesh;
+    };
+    for (const NodeInstance& inst : instances)
+        if (const int mesh = placed(inst); mesh >= 0 && !scene.nodes[std::size_t(inst.node)].world_space_mesh)
+            ++placements[std::size_t(mesh)];
+    // Per mesh placed several times: its prototype's geometries and triangles (built on first use).
+    std::vector<std::vector<std::unique_ptr<Geometry>>*> prototype_of(scene.meshes.size(), nullptr);
+    std::vector<RTCScene> prototype_scene_of(scene.meshes.size(), nullptr);
+    std::vector<std::size_t> prototype_triangles(scene.meshes.size(), 0);
+    for (const NodeInstance& inst : instances) {
+        const int mesh = placed(inst);
+        if (mesh < 0) continue;
+        const std::vector<Primitive>& prims = scene.meshes[std::size_t(mesh)].primitives;
+        const bool world_space = scene.nodes[std::size_t(inst.node)].world_space_mesh;
+        if (world_space || !options.instancing || placements[std::size_t(mesh)] < 2) {
+            for (const Primitive& prim : prims)
+                if (auto g = im.make_geometry(prim, world_space ? glm::mat4(1.0f) : inst.world, inst.node)) {
+                    im.triangles += g->indices.size() / 3;
+                    im.stored_triangles += g->indices.size() / 3;
+                    im.attach(im.scene, std::move(g), im.geometries);
                 }
-            }
-            g->inputs.has_uv0 = prim.uv0.size() == n;
-            g->inputs.has_uv1 = prim.uv1.size() == n;
-            g->inputs.has_tangent = prim.tangents.size() == n && !g->normals.empty();
-            if (g->inputs.has_tangent) {
-                g->tangents.resize(n);
-                g->bitangents.resize(n);
-                float handedness = det < 0.0f ? -1.0f : 1.0f;
-                for (std::size_t i = 0; i < n; ++i) {
-                    glm::vec3 t = linear * glm::vec3(prim.tangents[i]);
-                    float len = glm::length(t);
-                    t = len > 0 ? t / len : glm::vec3(1, 0, 0);
-                    float w = prim.tangents[i].w * handedness;
-                    g->tangents[i] = glm::vec4(t, w);
-                    g->bitangents[i] = glm::cross(g->normals[i], t) * w;
-                }
-            }
-            if (g->inputs.has_uv0) g->uv0 = prim.uv0;
-            if (g->inputs.has_uv1) g->uv1 = prim.uv1;
-            if (prim.colors.size() == n) g->colors = prim.colors;
-            if (prim.indices.empty()) {
-                g->indices.resize(n / 3 * 3);
-                for (std::size_t i = 0; i < g->indices.size(); ++i) g->indices[i] = std::uint32_t(i);
-            } else {
-                g->indices.reserve(prim.indices.size() / 3 * 3);
-                for (std::size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
-                    std::uint32_t a = prim.indices[i], b = prim.indices[i + 1], c = prim.indices[i + 2];
-                    if (a >= n || b >= n || c >= n) continue;
-                    g->indices.insert(g->indices.end(), {a, b, c});
-                }
-            }
-            const std::size_t tris = g->indices.size() / 3;
-            if (tris == 0) continue;
-            g->filtered = !g->material->double_sided || g->material->alpha_mode != AlphaMode::Opaque;
-
-            RTCGeometry geom = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-            auto* vb = static_cast<float*>(
-                rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), n));
-            for (std::size_t i = 0; i < n; ++i) {
-                vb[i * 3 + 0] = g->positions[i].x;
-                vb[i * 3 + 1] = g->positions[i].y;
-                vb[i * 3 + 2] = g->positions[i].z;
-            }
-            auto* ib = static_cast<std::uint32_t*>(
-                rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), tris));
-            std::copy(g->indices.begin(), g->indices.end(), ib);
-            rtcSetGeometryUserData(geom, g.get());
-            if (g->filtered) {
-                rtcSetGeometryIntersectFilterFunction(geom, filter_hits);
-                rtcSetGeometryOccludedFilterFunction(geom, filter_hits);
-            }
-            rtcCommitGeometry(geom);
-            unsigned id = rtcAttachGeometry(im.scene, geom);
-            rtcReleaseGeometry(geom);
-            if (id >= im.geometries.size()) im.geometries.resize(id + 1);
-            im.geometries[id] = std::move(g);
-            im.triangles += tris;
+            continue;
         }
+        if (!prototype_of[std::size_t(mesh)]) {
+            RTCScene prototype = rtcNewScene(im.device);
+            rtcSetSceneBuildQuality(prototype, RTC_BUILD_QUALITY_HIGH);
+            im.prototype_scenes.push_back(prototype);
+            im.prototypes.push_back(std::make_unique<std::vector<std::unique_ptr<Geometry>>>());
+            prototype_of[std::size_t(mesh)] = im.prototypes.back().get();
+            prototype_scene_of[std::size_t(mesh)] = prototype;
+            for (const Primitive& prim : prims)
+                if (auto g = im.make_geometry(prim, glm::mat4(1.0f), -1)) {
+                    prototype_triangles[std::size_t(mesh)] += g->indices.size() / 3;
+                    im.attach(prototype, std::move(g), *prototype_of[std::size_t(mesh)]);
+                }
+            rtcCommitScene(prototype);
+            im.stored_triangles += prototype_triangles[std::size_t(mesh)];
+        }
+        if (prototype_triangles[std::size_t(mesh)] == 0) continue;
+        RTCGeometry geom = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(geom, prototype_scene_of[std::size_t(mesh)]);
+        rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.world[0][0]);
+        rtcCommitGeometry(geom);
+        const unsigned id = rtcAttachGeometry(im.scene, geom);
+        rtcReleaseGeometry(geom);
+        if (id >= im.placements.size()) im.placements.resize(id + 1);
+        Placement& pl = im.placements[id];
+        pl.world = inst.world;
+        pl.linear = glm::mat3(inst.world);
+        pl.normal_matrix = glm::transpose(glm::inverse(pl.linear));
+        pl.handedness = glm::determinant(pl.linear) < 0.0f ? -1.0f : 1.0f;
+        pl.node = inst.node;
+        pl.geometries = prototype_of[std::size_t(mesh)];
+        im.triangles += prototype_triangles[std::size_t(mesh)];
     }
     rtcCommitScene(im.scene);
     RTCError err = rtcGetDeviceError(im.device);
@@ -385,6 +516,9 @@ TraceScene::TraceScene(const Scene& scene, const std::vector<NodeInstance>& inst
 
 TraceScene::~TraceScene() = default;
 std::size_t TraceScene::triangle_count() const { return impl_->triangles; }
+std::size_t TraceScene::stored_triangle_count() const { return impl_->stored_triangles; }
+std::size_t TraceScene::placement_count() const { return impl_->placements.size() - std::size_t(std::count_if(
+    impl_->placements.begin(), impl_->placements.end(), [](const Placement& p) { return p.geometries == nullptr; })); }
 double TraceScene::build_ms() const { return impl_->build_ms; }
 
 namespace {
@@ -426,27 +560,18 @@ struct Integrator {
                 break;
             }
             if (bounce == 0) covered = true;
-            const Geometry& g = *scene.geometries[hit.geom];
-            const std::uint32_t* tri = &g.indices[std::size_t(hit.prim) * 3];
-            const float u = hit.u, v = hit.v, w0 = 1.0f - u - v;
-            glm::vec3 p = w0 * g.positions[tri[0]] + u * g.positions[tri[1]] + v * g.positions[tri[2]];
-            glm::vec3 ng = glm::normalize(g.mirrored ? -hit.ng : hit.ng);
+            const SurfaceHit sh = scene.surface(hit);
+            const Geometry& g = *sh.geometry;
+            glm::vec3 p = sh.p;
+            glm::vec3 ng = sh.ng;
             glm::vec3 wo = -dir;
             bool back = glm::dot(ng, wo) < 0.0f;
-            SurfacePoint sp = g.surface_point(hit.prim, u, v);
+            SurfacePoint sp = sh.sp;
             if (bounce > 0) sp.lod = kSecondaryLod;
-            glm::vec3 ns = ng;
-            if (!g.normals.empty()) {
-                ns = w0 * g.normals[tri[0]] + u * g.normals[tri[1]] + v * g.normals[tri[2]];
-                float len = glm::length(ns);
-                ns = len > 0 ? ns / len : ng;
-            }
+            glm::vec3 ns = sh.ns;
             if (g.inputs.has_tangent) {
-                glm::vec3 t = w0 * glm::vec3(g.tangents[tri[0]]) + u * glm::vec3(g.tangents[tri[1]]) + v * glm::vec3(g.tangents[tri[2]]);
-                glm::vec3 b = w0 * g.bitangents[tri[0]] + u * g.bitangents[tri[1]] + v * g.bitangents[tri[2]];
-                float lt = glm::length(t), lb = glm::length(b);
-                sp.tangent = lt > 0 ? t / lt : glm::vec3(1, 0, 0);
-                sp.bitangent = lb > 0 ? b / lb : glm::vec3(0, 1, 0);
+                sp.tangent = sh.tangent;
+                sp.bitangent = sh.bitangent;
             }
             if (back) {  // double-sided back face: the flipped frame (pbr.frag's shading_frame)
                 ng = -ng;
@@ -740,17 +865,10 @@ SurfaceImages trace_surfaces(const TraceScene& tscene, const CameraSetup& camera
                 rays_of.ray(ndc, o, d);
                 Hit hit = scene.intersect(o, d, std::numeric_limits<float>::infinity(), 0, true);
                 if (!hit.valid()) continue;
-                const Geometry& g = *scene.geometries[hit.geom];
-                const std::uint32_t* tri = &g.indices[std::size_t(hit.prim) * 3];
-                const float u = hit.u, v = hit.v, w0 = 1.0f - u - v;
-                glm::vec3 p = w0 * g.positions[tri[0]] + u * g.positions[tri[1]] + v * g.positions[tri[2]];
-                glm::vec3 ng = glm::normalize(g.mirrored ? -hit.ng : hit.ng);
-                glm::vec3 ns = ng;
-                if (!g.normals.empty()) {
-                    ns = w0 * g.normals[tri[0]] + u * g.normals[tri[1]] + v * g.normals[tri[2]];
-                    float len = glm::length(ns);
-                    ns = len > 0 ? ns / len : ng;
-                }
+                const SurfaceHit sh = scene.surface(hit);
+                const Geometry& g = *sh.geometry;
+                const glm::vec3 p = sh.p;
+                glm::vec3 ng = sh.ng, ns = sh.ns;
                 if (glm::dot(ng, d) > 0.0f) {  // a back face (double-sided): the flipped frame, as shading sees it
                     ng = -ng;
                     ns = -ns;
@@ -763,12 +881,11 @@ SurfaceImages trace_surfaces(const TraceScene& tscene, const CameraSetup& camera
                     out.geometric_normal[i * 3 + std::size_t(c)] = ng[c];
                 }
                 if (!g.uv0.empty()) {
-                    glm::vec2 uv = w0 * g.uv0[tri[0]] + u * g.uv0[tri[1]] + v * g.uv0[tri[2]];
-                    out.uv[i * 2] = uv.x;
-                    out.uv[i * 2 + 1] = uv.y;
+                    out.uv[i * 2] = sh.sp.uv0.x;
+                    out.uv[i * 2 + 1] = sh.sp.uv0.y;
                 }
                 out.material[i] = g.material_index;
-                out.node[i] = g.node;
+                out.node[i] = sh.node;
             }
         },
         threads);

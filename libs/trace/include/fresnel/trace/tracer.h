@@ -76,15 +76,26 @@ struct TraceStats {
 // Called after every tile with the fraction of the work done (from worker threads).
 using TraceProgress = std::function<void(double fraction)>;
 
-// The scene as the tracer holds it: world-space triangles in an Embree BVH, their vertex
-// attributes, materials and the textures they read (decoded once). Build once, trace often.
+struct TraceSceneOptions {
+    // A mesh that several nodes place is held once, in its own space, and placed by Embree
+    // instances (EXT_mesh_gpu_instancing's instances, repeated parts, a scene file's copies):
+    // memory and build time per mesh, not per placement. false builds every placement in
+    // world space (tests compare the two).
+    bool instancing = true;
+};
+
+// The scene as the tracer holds it: triangles in an Embree BVH (in world space, or once per
+// mesh placed several times with an instance per placement), their vertex attributes,
+// materials and the textures they read (decoded once). Build once, trace often.
 class TraceScene {
 public:
-    TraceScene(const Scene& scene, const std::vector<NodeInstance>& instances);
+    TraceScene(const Scene& scene, const std::vector<NodeInstance>& instances, const TraceSceneOptions& options = {});
     ~TraceScene();
     TraceScene(const TraceScene&) = delete;
     TraceScene& operator=(const TraceScene&) = delete;
-    std::size_t triangle_count() const;
+    std::size_t triangle_count() const;         // every placement's
+    std::size_t stored_triangle_count() const;  // held: a mesh placed several times once
+    std::size_t placement_count() const;        // Embree instances (TraceSceneOptions::instancing)
     double build_ms() const;
 
     struct Impl;
