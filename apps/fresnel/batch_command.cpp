@@ -38,6 +38,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "fresnel/core/process_memory.h"
 #include "fresnel/gpu/context.h"
 #include "fresnel/ibl/bake.h"
 #include "fresnel/ibl/environment.h"
@@ -56,15 +57,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
-
-// The process's resident memory now, MiB (/proc/self/statm; 0 where there is none): each
-// result line carries it, so a leak per job shows as a climb (bench/batch_bench.py checks it).
-double resident_mib() {
-    std::ifstream in("/proc/self/statm");
-    double pages = 0, resident = 0;
-    if (!(in >> pages >> resident)) return 0.0;
-    return resident * double(::sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
-}
 
 constexpr std::size_t kMaxJobs = 10'000'000;  // a job list longer than this is refused
 
@@ -642,7 +634,7 @@ int run_batch(const BatchOptions& o, const CLI::App* cmd) {
             ++rendered;
         }
         t->r["total_ms"] = ms_since(t->t_job);
-        t->r["rss_mib"] = resident_mib();
+        t->r["rss_mib"] = resident_mib();  // a leak per job shows as a climb (bench/batch_bench.py)
         t->r["warnings"] = t->diag.lines();
         report(t->r, t->error.empty(), text);
         progress.job_done(!t->error.empty(), t->skip);

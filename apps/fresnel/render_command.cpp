@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "fresnel/core/process_memory.h"
 #include "fresnel/core/atomic_file.h"
 #include "cli_common.h"
 #include "commands.h"
@@ -168,6 +169,7 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
     RenderSettings rs = lighting.settings(resolved);
     renderer.set_scene(scene, resolved.scene_index);
     upload_ms += ms_since(t_gpu);
+    const double loaded_mib = resident_mib();  // the scene loaded and uploaded, before any frame
     ScenePosing posing;  // the frame drawn is `scene`, posed in place
     posing.reset(scene, o.posing == "gpu");
     if (std::string why; animated && o.posing == "gpu" && !posing.on_gpu() && !gpu_animatable(scene, &why)) {
@@ -234,9 +236,14 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
         j["frame_ms"] = frame_ms;
         j["total_ms"] = ms_since(t_start);
         j["draw_calls"] = stats.draw_calls;
+        j["instanced_draws"] = stats.instanced_draws;
+        j["instances_drawn"] = stats.instances_drawn;
+        j["culled_draws"] = stats.culled_draws;
         j["triangles"] = stats.triangles;
         j["programs"] = renderer.program_count();
         j["texture_bytes"] = renderer.texture_bytes();
+        j["rss_loaded_mib"] = loaded_mib;         // resident once loaded and uploaded
+        j["peak_rss_mib"] = peak_resident_mib();  // the most resident, frames included
         j["lights"] = resolved.lights.size();
         j["default_lights"] = resolved.default_lights;
         j["environment"] = environment ? environment->source : "none";

@@ -63,7 +63,7 @@ int run_trace(const TraceOptions& o, const CLI::App* cmd) {
     double env_ms = ms_since(t_env);
 
     auto t_build = Clock::now();
-    trace::TraceScene tscene(scene, resolved.instances);
+    trace::TraceScene tscene(scene, resolved.instances, trace::TraceSceneOptions{rs.instancing});
     double build_ms = ms_since(t_build);
 
     trace::TraceSettings ts;
@@ -120,6 +120,8 @@ int run_trace(const TraceOptions& o, const CLI::App* cmd) {
         j["trace_ms"] = stats.trace_ms;
         j["total_ms"] = ms_since(t_start);
         j["triangles"] = tscene.triangle_count();
+        j["stored_triangles"] = tscene.stored_triangle_count();  // a mesh placed several times once
+        j["placements"] = tscene.placement_count();             // Embree instances
         j["lights"] = resolved.lights.size();
         j["default_lights"] = resolved.default_lights;
         j["environment"] = resolved.environment ? resolved.environment->describe() : "none";

@@ -86,7 +86,7 @@ ScenePtr load(const py::object& path, const py::kwargs& kwargs) {
 const trace::TraceScene& trace_scene(PyScene& s, const ResolvedJob& r) {
     std::lock_guard<std::mutex> lock(s.mutex);
     auto& t = s.trace_scenes[r.scene_index];
-    if (!t) t = std::make_shared<trace::TraceScene>(*s.scene, r.instances);
+    if (!t) t = std::make_shared<trace::TraceScene>(*s.scene, r.instances, trace::TraceSceneOptions{r.settings.instancing});
     return *t;
 }
 

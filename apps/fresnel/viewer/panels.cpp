@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <future>
 
+#include "fresnel/core/process_memory.h"
 #include "fresnel/gpu/device.h"
 #include "fresnel/job/features.h"
 #include "fresnel/job/orbit_controller.h"
@@ -102,10 +103,12 @@ void Viewer::draw_gui() {
         ImGui::Text("%dx%d pixels, frame %.1f ms (CPU, draw + finish)", fb.x, fb.y, frame_ms_);
         if (gpu_ms_ >= 0.0) ImGui::Text("GPU %.2f ms (timer query)", gpu_ms_);
         else FRESNEL_HINT("GPU time: this context has no timer queries (OpenGL ES 3.0)");
-        ImGui::Text("resident memory %.1f MiB, texture memory %.1f MiB", double(resident_kb()) / 1024.0,
+        ImGui::Text("resident memory %.1f MiB, texture memory %.1f MiB", resident_mib(),
                     double(renderer_->texture_bytes()) / (1024.0 * 1024.0));
         ImGui::Text("%d draw calls, %zu triangles, %zu programs", stats_.draw_calls, stats_.triangles,
                     renderer_->program_count());
+        ImGui::Text("%d instanced (%zu placements), %d culled", stats_.instanced_draws, stats_.instances_drawn,
+                    stats_.culled_draws);
         ImGui::TextWrapped("%s", window_->context().renderer().c_str());
     }
     if (ImGui::CollapsingHeader("Help")) draw_help_panel();

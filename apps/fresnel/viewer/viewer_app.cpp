@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "fresnel/core/process_memory.h"
 #include "fresnel/core/atomic_file.h"
 #include "fresnel/gpu/device.h"
 #include "fresnel/ibl/bake.h"
@@ -27,13 +28,6 @@ Image8 read_frame(int x0, int width, int height, bool alpha) {
             for (int c = 0; c < img.channels; ++c) d[c] = s[c];
         }
     return img;
-}
-
-long resident_kb() {
-    std::ifstream in("/proc/self/status");
-    for (std::string line; std::getline(in, line);)
-        if (line.rfind("VmRSS:", 0) == 0) return std::atol(line.c_str() + 6);
-    return -1;
 }
 
 Viewer::Viewer(const ViewOptions& options, Job job, Job defaults, std::vector<viewer::Command> script)
@@ -356,7 +350,7 @@ std::string Viewer::stats() {
                   "\"buffers\":%d,\"vertex_arrays\":%d,\"textures\":%d,\"renderbuffers\":%d,"
                   "\"framebuffers\":%d,\"programs\":%d,\"shaders\":%d}}",
                   frame_ms_, gpu.c_str(), state_.framebuffer.x, state_.framebuffer.y, stats_.draw_calls, stats_.triangles,
-                  renderer_->program_count(), resident_kb(), renderer_->texture_bytes(), gl.total(), gl.buffers, gl.vertex_arrays,
+                  renderer_->program_count(), long(resident_mib() * 1024.0), renderer_->texture_bytes(), gl.total(), gl.buffers, gl.vertex_arrays,
                   gl.textures, gl.renderbuffers, gl.framebuffers, gl.programs, gl.shaders);
     return line;
 }

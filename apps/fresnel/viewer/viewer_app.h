@@ -55,8 +55,6 @@ struct Bake {
 // The frame in the window's back buffer as `fresnel render` writes it (rows top to bottom;
 // RGB, or RGBA for transparent frames): `width` x `height` pixels from column `x`.
 Image8 read_frame(int x, int width, int height, bool alpha);
-// Resident memory of this process (VmRSS), kB; -1 when unknown.
-long resident_kb();
 
 class Viewer : public viewer::AutomationHost {
 public:

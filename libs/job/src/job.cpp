@@ -184,6 +184,7 @@ ResolvedJob resolve(const Job& job, const Scene& scene, Diagnostics* diag) {
     rs.env_intensity = env.intensity;
     rs.env_rotation_deg = env.rotation_deg;
     rs.energy_compensation = out.energy_compensation;
+    rs.instancing = out.instancing;
     rs.shadows = out.shadows;
     rs.shadow_map_size = out.shadow_map_size;
     rs.shadow_cascades = out.shadow_cascades;

@@ -660,6 +660,11 @@ std::vector<Setting> make_registry() {
         s.old_names = {"energy-compensation"};
         r.push_back(s);
     }
+    r.push_back(boolean("render.instancing", "--no-instancing", true,
+                        "Repeated meshes (a mesh several nodes place, EXT_mesh_gpu_instancing, a scene file's copies) "
+                        "drawn with one instanced draw per primitive (render) and held once as Embree instances "
+                        "(trace): the same picture (false: every placement on its own, to compare)",
+                        raster | kTrace, [](Job& j) -> bool& { return j.output.instancing; }));
     r.push_back(choice(
         "render.shadows", "--shadows", {"off", "hard", "soft"},
         "Shadows of punctual lights: soft (a filtered edge, the default), hard (one filtered comparison) or off "

@@ -69,6 +69,9 @@ struct GpuPrimitive {
     // weights the vertex data holds.
     bool has_skin = false;
     int morph_targets = 0;
+    // Skinned or morphed, on the GPU or on the CPU (which moves the vertices, not the box): its
+    // POSITION box does not bound it, so it is never culled.
+    bool deformable = false;
     std::vector<float> applied_weights;
     gpu::Texture morph_texture;
     int morph_position_layer = -1, morph_normal_layer = -1, morph_tangent_layer = -1;
@@ -98,6 +101,9 @@ struct Draw {
     int morph_weights = -1;
     std::uint32_t sequence = 0;  // scene order: ties in the depth sort keep it
     bool mirrored = false;       // det(model) < 0: clockwise triangles face front
+    // Posed on the CPU in world space (Node::world_space_mesh): its POSITION box, which places
+    // the node's rest pose, does not bound what is drawn.
+    bool posed = false;
     // An instanced batch (RenderSettings::instancing): `instances` placements of the primitive
     // (0: this draw's `model` alone), their matrices Renderer::Impl::instance_data[instance_first]
     // on; `model` is the first one's.
@@ -438,6 +444,7 @@ struct Renderer::Impl {
                     g.has_skin = true;
                 }
                 plan_morph_targets(p, g);
+                g.deformable = g.has_skin || !p.targets.empty();
                 if (!p.indices.empty()) {
                     std::vector<std::uint32_t> sorted;
                     const std::vector<std::uint32_t>* indices = &p.indices;
@@ -937,7 +944,7 @@ struct Renderer::Impl {
     // Whether a draw's box (its model's POSITION box) can touch a tile: not when all eight
     // corners lie beyond one of the tile's clip planes. Skinned draws always can (joints move them).
     static bool may_cast(const Draw& d, const ShadowTile& tile) {
-        return d.joints || !box_outside(tile.view_projection * d.model, d.prim->bounds_min, d.prim->bounds_max);
+        return d.joints || d.posed || d.prim->deformable || !box_outside(tile.view_projection * d.model, d.prim->bounds_min, d.prim->bounds_max);
     }
     // Whether the box [lo, hi] lies outside the clip volume of `m` (clip space from the box's
     // space): all eight corners beyond one of its planes.
@@ -1574,6 +1581,7 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
                 Draw d{&p, model, std::isnan(c.z) ? 0.0f : -c.z};  // a NaN would break the sort's ordering
                 d.sequence = std::uint32_t(opaque.size() + blended.size() + transmissive.size());
                 d.mirrored = glm::determinant(glm::mat3(model)) < 0.0f;
+                d.posed = node.world_space_mesh;
                 if (settings.gpu_animation && !node.world_space_mesh) {
                     if (p.has_skin && node.skin >= 0 && std::size_t(node.skin) < skins.size() &&
                         !skins[std::size_t(node.skin)].empty()) {
@@ -1627,8 +1635,8 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
         // draws batched (batch_draws), the blended and transmissive ones in their order.
         const glm::mat4 view_projection = cam.projection * cam.view;
         auto in_view = [&](const Draw& d) {
-            // Skinned and morphed draws move off their boxes: always drawn.
-            const bool seen = !settings.frustum_culling || d.joints || d.morph_weights >= 0 ||
+            // Skinned, morphed and CPU-posed draws move off their boxes: always drawn.
+            const bool seen = !settings.frustum_culling || d.joints || d.morph_weights >= 0 || d.posed || d.prim->deformable ||
                               !Impl::box_outside(view_projection * d.model, d.prim->bounds_min, d.prim->bounds_max);
             stats.culled_draws += !seen;
             return seen;

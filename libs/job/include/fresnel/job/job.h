@@ -144,6 +144,9 @@ struct Job {
         bool float_output = false;
         DebugChannel debug = DebugChannel::None;
         bool energy_compensation = true;  // multiple-scattering compensation of the specular lobe
+        // Repeated meshes drawn instanced (RenderSettings::instancing) and traced as Embree
+        // instances (trace::TraceSceneOptions::instancing): the same picture, less work and memory.
+        bool instancing = true;
         Shadows shadows = Shadows::Soft;  // punctual lights' shadows in the rasteriser (RenderSettings)
         int shadow_map_size = 2048;
         int shadow_cascades = 2;
