@@ -77,6 +77,7 @@ bench: build
 	bench/trace_bench.sh $(BUILD)/bin/fresnel
 	python3 bench/batch_bench.py $(BUILD)/bin/fresnel $(CURDIR)/../shared
 	python3 bench/python_bench.py $(BUILD)/bin/fresnel $(BUILD) $(CURDIR)/../shared
+	python3 bench/scaling_bench.py $(BUILD)/bin/fresnel $(CURDIR)/../shared
 
 # Optional, not part of `make test`: raster vs `fresnel trace` per shared model x environment
 # (~10 min on 2 cores); writes docs/fidelity/ and the README's fidelity-report section.

@@ -110,6 +110,21 @@ int run_info(const InfoOptions& o) {
         j["bounds"] = {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}},
                        {"center", {b.center().x, b.center().y, b.center().z}}, {"radius", b.radius()}};
     }
+    // Meshes placed by several nodes (EXT_mesh_gpu_instancing's instances, repeated parts):
+    // held once, drawn instanced and traced as Embree instances (render.instancing).
+    std::vector<std::size_t> placements(scene.meshes.size(), 0);
+    std::size_t placed_triangles = 0;
+    for (const NodeInstance& inst : instances) {
+        const int mesh = scene.nodes[std::size_t(inst.node)].mesh;
+        if (mesh < 0 || std::size_t(mesh) >= scene.meshes.size() || !inst.visible) continue;
+        ++placements[std::size_t(mesh)];
+        for (const auto& p : scene.meshes[std::size_t(mesh)].primitives) placed_triangles += p.triangle_count();
+    }
+    j["placed_triangles"] = placed_triangles;  // every placement's
+    j["instanced_meshes"] = nlohmann::json::array();
+    for (std::size_t m = 0; m < placements.size(); ++m)
+        if (placements[m] >= 2)
+            j["instanced_meshes"].push_back({{"mesh", m}, {"name", scene.meshes[m].name}, {"placements", placements[m]}});
     j["skins"] = scene.skins.size();
     j["animations"] = nlohmann::json::array();
     for (const auto& a : scene.animations)
@@ -193,6 +208,13 @@ int run_info(const InfoOptions& o) {
     if (!b.empty)
         std::printf("  %-11s min (%g, %g, %g) max (%g, %g, %g)\n", "bounds", b.min.x, b.min.y, b.min.z, b.max.x, b.max.y,
                     b.max.z);
+    if (!j["instanced_meshes"].empty()) {
+        std::printf("  %-11s %s triangles over every placement\n", "placed", j["placed_triangles"].dump().c_str());
+        for (const auto& m : j["instanced_meshes"])
+            std::printf("  %-11s mesh %zu %s: %zu placements (drawn instanced)\n", "instanced", m["mesh"].get<std::size_t>(),
+                        m["name"].get<std::string>().empty() ? "(unnamed)" : m["name"].get<std::string>().c_str(),
+                        m["placements"].get<std::size_t>());
+    }
     std::printf("  %-11s %zu\n", "skins", scene.skins.size());
     std::printf("  %-11s %zu\n", "animations", scene.animations.size());
     for (std::size_t k = 0; k < scene.animations.size(); ++k) {

@@ -57,6 +57,10 @@ def test_instances_render_and_trace_as_nodes(tmp_path):
     assert np.allclose(a, b, atol=1e-5)
     ids = fresnel.surfaces(instanced, job)["node"]
     assert len(set(np.unique(ids)) - {-1}) == 3  # three instances, three nodes
+    # One instanced draw and three Embree instances, or every placement on its own: the same picture.
+    flat = fresnel.Job(size=(160, 120), pitch=20, yaw=15, render_instancing=False)
+    assert np.array_equal(fresnel.render(instanced, flat), fresnel.render(instanced, job))
+    assert np.allclose(fresnel.trace(instanced, flat, spp=4, radiance=True), a, atol=1e-5)
 
 
 def test_convert_keeps_the_extension(exe, tmp_path):
