@@ -23,6 +23,7 @@
 #include "fresnel/render/renderer.h"
 #include "fresnel/scene/pose.h"
 #include "fresnel/scene/procedural.h"
+#include "headless_context.h"
 
 using namespace fresnel;
 
@@ -297,14 +298,11 @@ namespace {
 // CPU posing, shaded and in the tangent debug view (which shows the morphed tangents), on
 // OpenGL 3.3 and on OpenGL ES 3.0 (the web page's WebGL 2 dialect: highp samplers in the vertex shader).
 void check_large_scene(gpu::Api api) {
-    std::unique_ptr<gpu::Context> context;
-    try {
-        gpu::ContextOptions options;
-        options.api = api;
-        context = gpu::create_headless_context(options);
-    } catch (const Error& e) {
-        GTEST_SKIP() << "no GL context: " << e.what();
-    }
+    gpu::ContextOptions options;
+    options.api = api;
+    std::string why;
+    const std::unique_ptr<gpu::Context> context = test_support::try_headless_context(why, options);
+    if (!context) GTEST_SKIP() << "no GL context: " << why;
     const char* dialect = api == gpu::Api::OpenGLES30 ? "ES 3.0" : "GL 3.3";
     const Scene rest = large_scene();
     ASSERT_EQ(rest.skins[0].joints.size(), std::size_t(kJoints));

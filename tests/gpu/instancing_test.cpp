@@ -18,6 +18,7 @@
 #include "fresnel/job/lights.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/scene/procedural.h"
+#include "headless_context.h"
 
 using namespace fresnel;
 
@@ -130,14 +131,11 @@ float max_difference(const ImageF& a, const ImageF& b) {
 }
 
 void check(gpu::Api api) {
-    std::unique_ptr<gpu::Context> context;
-    try {
-        gpu::ContextOptions options;
-        options.api = api;
-        context = gpu::create_headless_context(options);
-    } catch (const Error& e) {
-        GTEST_SKIP() << "no GL context: " << e.what();
-    }
+    gpu::ContextOptions options;
+    options.api = api;
+    std::string why;
+    const std::unique_ptr<gpu::Context> context = test_support::try_headless_context(why, options);
+    if (!context) GTEST_SKIP() << "no GL context: " << why;
     const char* dialect = api == gpu::Api::OpenGLES30 ? "ES 3.0" : "GL 3.3";
     const Scene scene = placed_scene();
     const CameraSetup whole = orbit_camera(scene_bounds(scene, flatten(scene)), {}, 160, 120);
