@@ -4,6 +4,7 @@
 // Phong by least squares over light and view directions); the writers are
 // fresnel/scene/scene_writer.h. Each material's residual is printed (stderr).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -74,9 +75,38 @@ void fit_phong_materials(Scene& scene, bool quiet, fit::Match match, Diagnostics
     }
 }
 
+// A copy of texture `texture` whose RGB is the stored texels re-encoded as sRGB: a metallic-
+// roughness slot (decoded from sRGB) then reads the values a specular-glossiness material reads
+// as stored, as the Khronos Sample Renderer does and `render` by default (--sg-textures). One copy
+// per texture (`copies`); -1 stays -1, and a texture without an image is kept as it is.
+int srgb_encoded_copy(Scene& scene, int texture, std::map<int, int>& copies) {
+    if (texture < 0 || std::size_t(texture) >= scene.textures.size()) return texture;
+    if (auto it = copies.find(texture); it != copies.end()) return it->second;
+    const Texture tex = scene.textures[std::size_t(texture)];
+    if (tex.image < 0 || std::size_t(tex.image) >= scene.images.size() || !scene.images[std::size_t(tex.image)].valid())
+        return copies[texture] = texture;
+    SceneImage copy = scene.images[std::size_t(tex.image)];
+    copy.name += " (sRGB-encoded)";
+    copy.header = {};
+    copy.encoded_bytes = 0;
+    std::array<std::uint8_t, 256> encode{};
+    for (int v = 0; v < 256; ++v) encode[std::size_t(v)] = std::uint8_t(std::lround(255.0f * linear_to_srgb(float(v) / 255.0f)));
+    Image8& px = copy.pixels;
+    for (std::size_t i = 0; i < px.pixels.size(); ++i)
+        if (i % std::size_t(px.channels) < 3) px.pixels[i] = encode[px.pixels[i]];
+    scene.images.push_back(std::move(copy));
+    scene.textures.push_back({int(scene.images.size()) - 1, tex.sampler});
+    return copies[texture] = int(scene.textures.size()) - 1;
+}
+
 void to_metallic_roughness_all(Scene& scene, Diagnostics& d, const std::string& file) {
+    std::map<int, int> copies;
     for (Material& m : scene.materials) {
         if (!m.specular_glossiness) continue;
+        // The textures as render reads them by default: their RGB as stored (map_srgb).
+        SpecularGlossinessExt& sg = *m.specular_glossiness;
+        sg.diffuse_texture.texture = srgb_encoded_copy(scene, sg.diffuse_texture.texture, copies);
+        sg.specular_glossiness_texture.texture = srgb_encoded_copy(scene, sg.specular_glossiness_texture.texture, copies);
         bool lost = false;
         m = to_metallic_roughness(m, &lost);
         m.specular_glossiness.reset();

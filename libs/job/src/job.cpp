@@ -46,6 +46,9 @@ Scene load_unposed(const Job& job, Diagnostics& diag) {
     Scene scene = load_gltf(job.source.model, diag, lo);
     if (!job.source.variant.empty()) apply_material_variant(scene, find_material_variant(scene, job.source.variant));
     disable_features(scene, job.source.disabled);
+    if (job.source.sg_textures == Job::Source::SpecularGlossinessTextures::Khronos)
+        for (Material& m : scene.materials)
+            if (m.specular_glossiness) m.specular_glossiness->linear_textures = true;
     return scene;
 }
 }  // namespace

@@ -37,6 +37,7 @@ Scene load_models(const Job& job, Diagnostics& diag) {
         one.source.scene = m.scene;
         one.source.allow_external_files = job.source.allow_external_files;
         one.source.pose_skins = job.source.pose_skins;
+        one.source.sg_textures = job.source.sg_textures;
         one.source.max_memory_mib = job.source.max_memory_mib;
         one.source.animation = job.source.animation;
         one.source.disabled = job.source.disabled;

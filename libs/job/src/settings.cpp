@@ -467,6 +467,19 @@ std::vector<Setting> make_registry() {
                         "Sample Renderer's reference images show)",
                         all, [](Job& j) -> bool& { return j.source.pose_skins; }));
     r.push_back(choice(
+        "specularGlossinessTextures", "--sg-textures", {"khronos", "srgb"},
+        "KHR_materials_pbrSpecularGlossiness: read the diffuse and specular-glossiness textures' RGB as the Khronos "
+        "Sample Renderer does (khronos: as stored, the default, so the pictures agree) or as the extension's text "
+        "says (srgb: decoded from sRGB)",
+        all,
+        [](const Job& j) {
+            return std::string(j.source.sg_textures == Job::Source::SpecularGlossinessTextures::Srgb ? "srgb" : "khronos");
+        },
+        [](Job& j, const std::string& t) {
+            j.source.sg_textures = t == "srgb" ? Job::Source::SpecularGlossinessTextures::Srgb
+                                               : Job::Source::SpecularGlossinessTextures::Khronos;
+        }));
+    r.push_back(choice(
         "objNormals", "--obj-normals", {"auto", "groups", "smooth"},
         "OBJ corners without vn: groups (honour s; none means flat), smooth (a normal per position, as OpenGL 1 "
         "viewers do) or auto (smooth with the ogl1 shading models, groups otherwise)",

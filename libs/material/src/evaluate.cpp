@@ -42,8 +42,7 @@ public:
     std::optional<glm::vec4> sample(MaterialMap map) const {
         const TextureSlot* slot = material_map(m_, map);
         if (!slot || !map_usable(*slot, map, p_.inputs)) return std::nullopt;
-        const MaterialMapInfo& info = material_map_info(map);
-        const SampledTexture* tex = t_.get(slot->texture, info.srgb);
+        const SampledTexture* tex = t_.get(slot->texture, map_srgb(m_, map));
         if (!tex) return std::nullopt;
         // map_uv in the shader: the slot's UV set through its KHR_texture_transform.
         glm::vec2 uv = slot->tex_coord == 1 ? p_.uv1 : p_.uv0;
@@ -54,7 +53,7 @@ public:
         glm::vec2 dx = linear * (slot->tex_coord == 1 ? p_.duv1_dx : p_.duv0_dx);
         glm::vec2 dy = linear * (slot->tex_coord == 1 ? p_.duv1_dy : p_.duv0_dy);
         glm::vec2 size(float(tex->width()), float(tex->height()));
-        if (info.detail) {
+        if (material_map_info(map).detail) {
             // sample_detail_map: the renderer's anisotropic filter.
             const TextureSampler& s = tex->sampler();
             float most = detail_anisotropy(s.mag_filter, s.mip_filter, p_.max_anisotropy);
@@ -80,6 +79,13 @@ glm::vec3 perturb(glm::vec4 texel, float scale, const SurfacePoint& p) {
 }  // namespace
 
 const MaterialMapInfo& material_map_info(MaterialMap map) { return kMaps[int(map)]; }
+
+bool map_srgb(const Material& m, MaterialMap map) {
+    if (m.specular_glossiness && m.specular_glossiness->linear_textures &&
+        (map == MaterialMap::BaseColor || map == MaterialMap::SpecularGlossiness))
+        return false;
+    return material_map_info(map).srgb;
+}
 
 std::optional<glm::vec4> sample_material_map(const Material& material, const TextureSource& textures,
                                              const SurfacePoint& point, MaterialMap map) {

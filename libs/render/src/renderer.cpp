@@ -584,13 +584,14 @@ struct Renderer::Impl {
     // `occlusion`, the occlusion packed into the metallic-roughness texture (occlusion_packs)
     // or -1; `alpha`, the metallic-roughness texture in alpha channels (alpha_packs) or null,
     // under which the metallic-roughness map binds nothing.
-    static TextureKey map_key(const TextureSlot& slot, MaterialMap map, int occlusion, const AlphaPacking* alpha) {
+    static TextureKey map_key(const Material& m, const TextureSlot& slot, MaterialMap map, int occlusion,
+                              const AlphaPacking* alpha) {
         if (alpha && map == MaterialMap::BaseColor) return alpha->base_color;
         if (alpha && map == MaterialMap::Normal) return alpha->normal;
         if (alpha && occlusion >= 0 && map == MaterialMap::Emissive) return alpha->emissive;
         if (map == MaterialMap::MetallicRoughness)  // with the occlusion's R unless one texture has both
             return {slot.texture, false, occlusion >= 0 && occlusion != slot.texture ? occlusion : -1};
-        return {slot.texture, material_map_info(map).srgb};
+        return {slot.texture, map_srgb(m, map)};
     }
 
     // Creates the GL texture for `key` from the image and its CPU-built mip chain.
@@ -632,7 +633,7 @@ struct Renderer::Impl {
                 const TextureSlot* slot = material_map(m, map);
                 if (!slot || !usable(*slot) || (packed >= 0 && map == MaterialMap::Occlusion)) continue;
                 if (alpha && map == MaterialMap::MetallicRoughness) continue;
-                keys.push_back(map_key(*slot, map, packed, alpha ? &*alpha : nullptr));
+                keys.push_back(map_key(m, *slot, map, packed, alpha ? &*alpha : nullptr));
             }
         }
         std::sort(keys.begin(), keys.end());
@@ -1289,9 +1290,9 @@ struct Renderer::Impl {
             const MaterialMapInfo& info = material_map_info(map);
             if (map == MaterialMap::MetallicRoughness && in_alpha) continue;  // no texture of its own
             const TextureKey key =
-                map_key(*mu.maps[std::size_t(i)], map, (features & feature::OcclusionInMetallicRoughness) ? packed : -1,
+                map_key(m, *mu.maps[std::size_t(i)], map, (features & feature::OcclusionInMetallicRoughness) ? packed : -1,
                         in_alpha ? &*alpha : nullptr);
-            bound[i] = texture_for(*mu.maps[std::size_t(i)], info.srgb,
+            bound[i] = texture_for(*mu.maps[std::size_t(i)], key.srgb,
                                    info.detail ? Anisotropic::Shader : Anisotropic::Off,
                                    settings.anisotropy, &mu.block.maps[std::size_t(i)].anisotropy, key);
             if (!bound[i]) raw &= ~feature::map_bit(i);

@@ -15,7 +15,7 @@ SceneTextures::SceneTextures(const Scene& scene) {
             auto map = MaterialMap(i);
             const TextureSlot* slot = material_map(m, map);
             if (!slot || !slot->valid()) continue;
-            wanted.emplace_back(slot->texture, material_map_info(map).srgb);
+            wanted.emplace_back(slot->texture, map_srgb(m, map));
         }
     std::sort(wanted.begin(), wanted.end());
     wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());

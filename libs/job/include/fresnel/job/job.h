@@ -44,6 +44,9 @@ struct Job {
         int scene = -1;                     // scene index; -1 = the file's `scene`
         bool allow_external_files = false;  // URIs outside the model's folder (GltfLoadOptions)
         bool pose_skins = false;            // skinned meshes posed by their joints' rest transforms
+        // KHR_materials_pbrSpecularGlossiness textures' RGB: read as the Khronos Sample Renderer
+        // reads them (as stored) or as the extension says (decoded from sRGB).
+        enum class SpecularGlossinessTextures { Khronos, Srgb } sg_textures = SpecularGlossinessTextures::Khronos;
         float max_memory_mib = 0;           // a load's memory budget, MiB; 0 = automatic (GltfLoadOptions)
         // Several models composed into one scene (scene files): when not empty it replaces
         // `model` and `scene`; each is loaded as `model` would be and put under a root node

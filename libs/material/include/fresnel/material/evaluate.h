@@ -88,6 +88,10 @@ struct MaterialMapInfo {
     bool detail;
 };
 const MaterialMapInfo& material_map_info(MaterialMap map);
+// Whether material `m` reads map `map` decoded from sRGB: material_map_info(map).srgb, but
+// as stored for the diffuse and specular-glossiness maps of a specular-glossiness material
+// read as the Khronos Sample Renderer reads them (SpecularGlossinessExt::linear_textures).
+bool map_srgb(const Material& m, MaterialMap map);
 
 // The slot the rules read for `map`, or nullptr when this material has none there
 // (specular-glossiness reads its own maps instead of the metallic-roughness ones;

@@ -90,6 +90,10 @@ struct SpecularGlossinessExt {
     glm::vec3 specular_factor{1.0f};
     float glossiness_factor = 1.0f;
     TextureSlot specular_glossiness_texture;  // RGB specular (sRGB), A glossiness (linear)
+    // Read the two textures' RGB as stored, without sRGB decoding, as the Khronos Sample
+    // Renderer (1.1.0) does, against the extension's text (map_srgb in evaluate.h; the job's
+    // specularGlossinessTextures setting).
+    bool linear_textures = false;
 };
 
 // Shaded (transmission.h): KHR_materials_transmission, _volume, _dispersion; (evaluate.h)
