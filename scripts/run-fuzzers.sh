@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every libFuzzer target for SECONDS each, seeded from the regression corpus and,
 # when present, ../shared (assets and the broken-glTF corpus). New crashes land in
-# fuzz/findings/<target>/; copy minimised ones into fuzz/regressions/<target>/.
+# fuzz/findings/<target>/ with the run's whole log (log-<time>.txt: a finding's report, stack
+# and the input's path); copy minimised ones into fuzz/regressions/<target>/.
 # usage: scripts/run-fuzzers.sh BUILD_DIR SECONDS [TARGET...]
 set -euo pipefail
 build=$1; seconds=$2; shift 2
@@ -25,6 +26,16 @@ for t in "${targets[@]}"; do
   echo "== fuzz_$t for ${seconds}s"
   bin="$build/bin/fuzz_$t"
   [[ -x $bin ]] || { echo "missing $bin (build with make fuzz)"; exit 1; }
+  log="$findings/log-$(date +%Y%m%d-%H%M%S).txt"
+  status=0
   "$bin" "$work" "${seeds[@]}" -max_total_time="$seconds" -max_len=1048576 -rss_limit_mb=3072 \
-      -timeout=60 -artifact_prefix="$findings/" -print_final_stats=1 2>&1 | tail -25 || echo "fuzz_$t stopped with a finding (see $findings)"
+      -timeout=60 -artifact_prefix="$findings/" -print_final_stats=1 > "$log" 2>&1 || status=$?
+  # The end of the run, and a finding's report whole (from libFuzzer's or a sanitizer's first line).
+  tail -15 "$log"
+  if [[ $status -ne 0 ]]; then
+    echo "fuzz_$t stopped with a finding (exit $status; the whole log: $log):"
+    sed -n '/^==[0-9]*==\|^ERROR: libFuzzer\|^SUMMARY\|Deadly signal\|out-of-memory\|ALARM/,$p' "$log" | head -120
+  else
+    rm -f "$log"
+  fi
 done
