@@ -69,6 +69,17 @@ def scenes():
                             'extensions': {'KHR_materials_sheen': {
                                 'sheenColorFactor': [1.0, 1.0, 1.0], 'sheenColorTexture': {'index': 0},
                                 'sheenRoughnessFactor': 1.0, 'sheenRoughnessTexture': {'index': 1}}}}, ['stripes', 'ramp']),
+        # Clearcoat over sheen: the coat's Fresnel over the sheen layer over the base.
+        'sheen_clearcoat': ({'pbrMetallicRoughness': mr((0.05, 0.05, 0.3), 0.0, 0.9),
+                             'extensions': {'KHR_materials_sheen': {'sheenColorFactor': [1.0, 0.5, 0.2],
+                                                                    'sheenRoughnessFactor': 0.3},
+                                            'KHR_materials_clearcoat': {'clearcoatFactor': 1.0,
+                                                                        'clearcoatRoughnessFactor': 0.1}}}, []),
+        'sheen_clearcoat_rough': ({'pbrMetallicRoughness': mr((0.6, 0.6, 0.6), 0.0, 0.5),
+                                   'extensions': {'KHR_materials_sheen': {'sheenColorFactor': [0.3, 0.9, 0.4],
+                                                                          'sheenRoughnessFactor': 0.8},
+                                                  'KHR_materials_clearcoat': {'clearcoatFactor': 0.6,
+                                                                              'clearcoatRoughnessFactor': 0.4}}}, []),
         'anisotropy_metal': ({'pbrMetallicRoughness': mr((0.95, 0.9, 0.85), 1.0, 0.4),
                               'extensions': {'KHR_materials_anisotropy': {'anisotropyStrength': 0.8}}}, []),
         'anisotropy_textured': ({'pbrMetallicRoughness': mr((0.5, 0.2, 0.1), 0.0, 0.3),

@@ -54,6 +54,9 @@ const Case kCases[] = {
     {"sheen_velvet", {30.5, 32.5}},    // 31.69, 33.51
     {"sheen_rough", {29.5, 30.5}},     // 30.73, 31.72
     {"sheen_textured", {30.0, 29.5}},  // 30.95, 30.50
+    // Clearcoat over sheen (the coat's Fresnel over the sheen layer over the base).
+    {"sheen_clearcoat", {31.3, 32.1}},        // 32.34, 33.11
+    {"sheen_clearcoat_rough", {29.7, 30.8}},  // 30.72, 31.86
     {"anisotropy_metal", {38.0, 38.5}},     // 39.29, 39.74
     {"anisotropy_textured", {40.5, 39.0}},  // 41.59, 39.93
     // Without the film these spheres score 32.6 (metal) and 27.0 dB (dielectric) at the front:
