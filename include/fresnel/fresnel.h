@@ -19,6 +19,7 @@
 #include "fresnel/core/metrics.h"
 #include "fresnel/core/mipmap.h"
 #include "fresnel/core/parallel.h"
+#include "fresnel/core/process_memory.h"
 #include "fresnel/core/sampler.h"
 #include "fresnel/core/spelling.h"
 
