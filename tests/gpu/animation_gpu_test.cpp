@@ -298,12 +298,10 @@ namespace {
 // CPU posing, shaded and in the tangent debug view (which shows the morphed tangents), on
 // OpenGL 3.3 and on OpenGL ES 3.0 (the web page's WebGL 2 dialect: highp samplers in the vertex shader).
 void check_large_scene(gpu::Api api) {
-    gpu::ContextOptions options;
-    options.api = api;
     std::string why;
-    const std::unique_ptr<gpu::Context> context = test_support::try_headless_context(why, options);
+    const std::unique_ptr<gpu::Context> context = test_support::try_headless_context(why, api);
     if (!context) GTEST_SKIP() << "no GL context: " << why;
-    const char* dialect = api == gpu::Api::OpenGLES30 ? "ES 3.0" : "GL 3.3";
+    const char* dialect = gpu::api_name(api);
     const Scene rest = large_scene();
     ASSERT_EQ(rest.skins[0].joints.size(), std::size_t(kJoints));
     ASSERT_GT(rest.meshes[1].primitives[0].positions.size(), 2048u);

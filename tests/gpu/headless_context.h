@@ -18,4 +18,11 @@ inline std::unique_ptr<gpu::Context> try_headless_context(std::string& why, cons
     }
 }
 
+// The same for one API: OpenGL 3.3 core or OpenGL ES 3.0 (the web page's dialect).
+inline std::unique_ptr<gpu::Context> try_headless_context(std::string& why, gpu::Api api) {
+    gpu::ContextOptions options;
+    options.api = api;
+    return try_headless_context(why, options);
+}
+
 }  // namespace fresnel::test_support

@@ -131,12 +131,10 @@ float max_difference(const ImageF& a, const ImageF& b) {
 }
 
 void check(gpu::Api api) {
-    gpu::ContextOptions options;
-    options.api = api;
     std::string why;
-    const std::unique_ptr<gpu::Context> context = test_support::try_headless_context(why, options);
+    const std::unique_ptr<gpu::Context> context = test_support::try_headless_context(why, api);
     if (!context) GTEST_SKIP() << "no GL context: " << why;
-    const char* dialect = api == gpu::Api::OpenGLES30 ? "ES 3.0" : "GL 3.3";
+    const char* dialect = gpu::api_name(api);
     const Scene scene = placed_scene();
     const CameraSetup whole = orbit_camera(scene_bounds(scene, flatten(scene)), {}, 160, 120);
 
