@@ -362,3 +362,14 @@ float clearcoat_specular(vec3 nc, vec3 v, vec3 l, float alpha) {
     h = hl > 0.0 ? h / hl : nc;
     return n_dot_l * d_ggx(clamped_dot(nc, h), alpha) * v_smith_ggx_correlated(n_dot_l, clamped_dot(nc, v), alpha);
 }
+
+// Multiple-bounce ambient occlusion (Jimenez et al. 2016, "Practical Real-Time Strategies for
+// Accurate Indirect Occlusion", the GTAO fit): visibility `ao` of a surface of diffuse albedo
+// `albedo`, raised by the light its surroundings (taken to have the same albedo) send back.
+// 1 at ao = 1 for any albedo; fresnel::brdf::ao_multibounce.
+vec3 ao_multibounce(float ao, vec3 albedo) {
+    vec3 a = 2.0404 * albedo - 0.3324;
+    vec3 b = -4.7951 * albedo + 0.6417;
+    vec3 c = 2.7552 * albedo + 0.6903;
+    return max(vec3(ao), ((ao * a + b) * ao + c) * ao);
+}

@@ -6,6 +6,7 @@ in vec3 v_bitangent;
 in vec2 v_uv0;
 in vec2 v_uv1;
 in vec4 v_color;
+in vec4 v_occlusion;  // baked visibility: bent normal (xyz), visibility (w); (0, 0, 0, 1) without (pbr.vert)
 
 out vec4 frag_color;
 
@@ -66,6 +67,19 @@ void main() {
     f.n = m.normal;
     f.nc = m.clearcoat_normal;
     vec3 v = normalize(u_camera_position - v_position);
+    // Occlusion of indirect light: the material's occlusion texture and the baked visibility
+    // (`--ao baked`; front faces: it was measured over the front hemisphere) combined as the
+    // smaller of the two, so a crease both darken is not darkened twice. The diffuse share gets
+    // back the light its surroundings reflect (ao_multibounce); the diffuse irradiance is looked up
+    // along the bent normal, turned as the normal map turns the surface.
+    vec3 diffuse_occlusion = vec3(m.occlusion);
+    vec3 irradiance_normal = f.n;
+    if (v_occlusion.w < 1.0 && gl_FrontFacing) {
+        m.occlusion = min(m.occlusion, max(v_occlusion.w, 0.0));
+        diffuse_occlusion = ao_multibounce(m.occlusion, m.base_color.rgb);
+        vec3 turned = dot(v_occlusion.xyz, v_occlusion.xyz) > 1e-8 ? f.n + normalize(v_occlusion.xyz) - f.ng : f.n;
+        if (dot(turned, turned) > 1e-8) irradiance_normal = normalize(turned);
+    }
 
     vec3 color = vec3(0.0);
 #ifdef UNLIT
@@ -111,7 +125,7 @@ void main() {
     {
         // Split-sum image-based light, weighted as the glTF BRDF's dielectric/metal mix.
         vec3 r = reflect(-v, f.n);
-        vec3 diffuse = ibl_irradiance(f.n) * m.base_color.rgb;
+        vec3 diffuse = ibl_irradiance(irradiance_normal) * m.base_color.rgb;
         // KHR_materials_diffuse_roughness: the EON lobe's directional albedo at n.v relative to
         // Lambert's (brdf::eon_albedo_factor; 1 for a white surface and for roughness 0).
         diffuse *= eon_albedo_factor(m.base_color.rgb, m.diffuse_roughness, clamped_dot(f.n, v));
@@ -143,12 +157,8 @@ void main() {
             fresnel_metal = mix(fresnel_metal, film.metal, film.factor);
         }
 #endif
-#if defined(HAS_OCCLUSION_MAP) || defined(OCCLUSION_IN_METALLIC_ROUGHNESS)
-        float so = specular_occlusion(n_dot_v, m.occlusion, m.roughness);
-#else
-        const float so = 1.0;  // occlusion 1: specular_occlusion() is 1
-#endif
-        vec3 dielectric = diffuse * diffuse_weight * m.occlusion + specular * fresnel_dielectric * so;
+        float so = specular_occlusion(n_dot_v, m.occlusion, m.roughness);  // exactly 1 where occlusion is 1
+        vec3 dielectric = diffuse * diffuse_weight * diffuse_occlusion + specular * fresnel_dielectric * so;
         vec3 metal = specular * fresnel_metal * so;
         vec3 ibl = mix(dielectric, metal, m.metallic);
 #ifdef MATERIAL_SHEEN
@@ -159,9 +169,7 @@ void main() {
 #ifdef MATERIAL_CLEARCOAT
         // The coat reflects the prefiltered environment at its roughness; its Fresnel is cc_mix.
         vec3 coat = ibl_radiance(reflect(-v, f.nc), m.clearcoat_roughness);
-#if defined(HAS_OCCLUSION_MAP) || defined(OCCLUSION_IN_METALLIC_ROUGHNESS)
         coat *= specular_occlusion(cc_n_dot_v, m.occlusion, m.clearcoat_roughness);
-#endif
         ibl = mix(ibl, coat, cc_mix);
 #endif
         color += ibl;
@@ -186,7 +194,7 @@ void main() {
 #ifdef MATERIAL_DIFFUSE_TRANSMISSION
     ambient_albedo = mix(ambient_albedo, m.diffuse_transmission_color, m.diffuse_transmission);
 #endif
-    color += u_ambient * ambient_albedo * (1.0 - m.metallic) * m.occlusion;
+    color += u_ambient * ambient_albedo * (1.0 - m.metallic) * diffuse_occlusion;
 #ifdef MATERIAL_CLEARCOAT
     color += m.emissive * (1.0 - cc_mix);  // emission passes through the coat
 #else

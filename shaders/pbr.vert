@@ -47,6 +47,10 @@ in mat3 a_instance_normal;
 uniform mat4 u_model;
 uniform mat3 u_normal_matrix;   // inverse transpose of the model's upper 3x3
 #endif
+// Baked visibility of the environment (the renderer's vertex occlusion, `--ao baked`): the bent
+// normal in world space (xyz) and the cosine-weighted visibility (w). Draws without it leave
+// the array off and read the default (0, 0, 0, 1): visibility 1, no bent normal.
+in vec4 a_occlusion;
 uniform float u_handedness;     // sign of det(model): mirrors flip the bitangent
 uniform float u_point_size;
 #ifdef SHADOW_PASS
@@ -60,6 +64,7 @@ out vec3 v_bitangent;
 out vec2 v_uv0;
 out vec2 v_uv1;
 out vec4 v_color;
+out vec4 v_occlusion;
 
 void main() {
     vec3 position = a_position;
@@ -144,6 +149,7 @@ void main() {
 #else
     v_color = vec4(1.0);
 #endif
+    v_occlusion = a_occlusion;
     gl_PointSize = u_point_size;
 #ifdef SHADOW_PASS
     gl_Position = u_light_view_projection * world;

@@ -44,6 +44,7 @@
 #include "fresnel/ibl/environment.h"
 #include "fresnel/job/job.h"
 #include "fresnel/render/renderer.h"
+#include "fresnel/trace/job_inputs.h"
 #include "fresnel/job/scene_document.h"
 #include "fresnel/job/settings.h"
 #include "fresnel/scene/paths.h"
@@ -497,6 +498,32 @@ struct Worker {
     std::unique_ptr<Renderer> renderer;
     std::shared_ptr<const Scene> scene;  // what the renderer holds
     int scene_index = -2;
+    std::shared_ptr<const VertexOcclusion> occlusion;  // what the renderer holds (--ao baked)
+};
+
+// Baked occlusion (--ao baked) shared by the jobs that draw one loaded scene with the same
+// rays: baked once, while the scene is held (an entry whose scene is gone is dropped).
+class OcclusionCache {
+public:
+    std::shared_ptr<const VertexOcclusion> get(const Job& job, const std::shared_ptr<const Scene>& scene, int scene_index) {
+        if (job.output.ao != AmbientOcclusion::Baked) return nullptr;
+        std::lock_guard lock(mutex_);
+        std::erase_if(entries_, [](const Entry& e) { return e.scene.expired(); });
+        for (const Entry& e : entries_)
+            if (e.scene.lock() == scene && e.scene_index == scene_index && e.rays == job.output.ao_rays) return e.value;
+        auto value = std::make_shared<const VertexOcclusion>(*trace::job_vertex_occlusion(job, *scene, scene_index));
+        entries_.push_back({scene, scene_index, job.output.ao_rays, value});
+        return value;
+    }
+
+private:
+    struct Entry {
+        std::weak_ptr<const Scene> scene;
+        int scene_index = -1, rays = 0;
+        std::shared_ptr<const VertexOcclusion> value;
+    };
+    std::mutex mutex_;
+    std::vector<Entry> entries_;
 };
 
 int run_batch(const BatchOptions& o, const CLI::App* cmd) {
@@ -554,8 +581,10 @@ int run_batch(const BatchOptions& o, const CLI::App* cmd) {
         ResolvedJob resolved;
         std::shared_ptr<const ibl::BakedIbl> env;
         std::shared_ptr<const ImageF> lut;
+        std::shared_ptr<const VertexOcclusion> occlusion;  // --ao baked
         ImageF image;
     };
+    OcclusionCache occlusion_cache;
     auto failure = [](const BatchJob& b, const std::exception& e) {
         std::string what = e.what();
         return what.rfind(b.label, 0) == 0 ? what : b.label + ": " + what;
@@ -592,6 +621,11 @@ int run_batch(const BatchOptions& o, const CLI::App* cmd) {
             if (t->resolved.environment) t->env = caches.environment(t->resolved);
             if (t->resolved.needs_brdf_lut) t->lut = caches.brdf_lut(t->resolved);
             t->r["environment_ms"] = ms_since(t_env);
+            if (t->job.output.ao == AmbientOcclusion::Baked) {
+                auto t_ao = Clock::now();
+                t->occlusion = occlusion_cache.get(t->job, t->scene, t->resolved.scene_index);
+                t->r["ao_ms"] = ms_since(t_ao);
+            }
         } catch (const Error& e) {
             t->error = e.what();
         } catch (const std::bad_alloc&) {
@@ -661,11 +695,16 @@ int run_batch(const BatchOptions& o, const CLI::App* cmd) {
                         worker.renderer->set_scene(*t->scene, t->resolved.scene_index);
                         worker.scene = t->scene;
                         worker.scene_index = t->resolved.scene_index;
+                        worker.occlusion = nullptr;  // set_scene dropped it
 #ifdef __GLIBC__
                         // The previous model's images and meshes are freed by now (unless cached):
                         // give the pages back, so resident memory follows what is held.
                         ::malloc_trim(0);
 #endif
+                    }
+                    if (worker.occlusion != t->occlusion) {
+                        worker.renderer->set_vertex_occlusion(t->occlusion.get());
+                        worker.occlusion = t->occlusion;
                     }
                     t->r["upload_ms"] = ms_since(t_upload);
                     RenderSettings rs = t->resolved.settings;

@@ -26,6 +26,7 @@
 #include "fresnel/job/job.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/render/scene_posing.h"
+#include "fresnel/trace/job_inputs.h"
 #include "fresnel/job/scene_file.h"
 #include "fresnel/scene/pose.h"
 #include "command_line.h"
@@ -169,6 +170,20 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
     RenderSettings rs = lighting.settings(resolved);
     renderer.set_scene(scene, resolved.scene_index);
     upload_ms += ms_since(t_gpu);
+    // --ao baked: the tracer's rays at every vertex of the scene as drawn (each posed frame's own).
+    double ao_ms = 0.0;
+    std::size_t ao_vertices = 0;
+    std::optional<VertexOcclusion> occlusion;
+    auto bake_occlusion = [&] {
+        if (job.output.ao != AmbientOcclusion::Baked) return;
+        ProgressBar ao_bar("occlusion");
+        occlusion = trace::job_vertex_occlusion(job, scene, resolved.scene_index, [&](double f) { ao_bar.update(f); });
+        ao_bar.finish();
+        ao_ms += occlusion->bake_ms;
+        ao_vertices = occlusion->vertices;
+        renderer.set_vertex_occlusion(&*occlusion);
+    };
+    if (!animated) bake_occlusion();
     const double loaded_mib = resident_mib();  // the scene loaded and uploaded, before any frame
     ScenePosing posing;  // the frame drawn is `scene`, posed in place
     posing.reset(scene, o.posing == "gpu");
@@ -191,6 +206,7 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
             auto t_upload = Clock::now();
             posing.show(renderer, animation.index, t, resolved.scene_index);
             upload_ms += ms_since(t_upload);
+            bake_occlusion();
             rs.gpu_animation = posing.gpu_animation();
             frame_job = resolve(job, scene);  // the lights and the file's cameras follow their nodes
         }
@@ -239,6 +255,12 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
         j["instanced_draws"] = stats.instanced_draws;
         j["instances_drawn"] = stats.instances_drawn;
         j["culled_draws"] = stats.culled_draws;
+        j["ao"] = ambient_occlusion_name(job.output.ao);
+        if (occlusion) {
+            j["ao_ms"] = ao_ms;  // every bake: the trace scene's build and the rays
+            j["ao_vertices"] = ao_vertices;
+            j["ao_rays"] = occlusion->rays_per_vertex;
+        }
         j["triangles"] = stats.triangles;
         j["programs"] = renderer.program_count();
         j["texture_bytes"] = renderer.texture_bytes();

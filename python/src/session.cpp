@@ -185,6 +185,14 @@ private:
                 renderer_->set_scene(*scene->scene, r.scene_index);
                 scene_ = scene->scene;
                 scene_index_ = r.scene_index;
+                occlusion_rays_ = 0;  // set_scene dropped it
+            }
+            // render_ao="baked": baked once per scene and ray count (the scene's pose when baked).
+            const int ao_rays = j.output.ao == AmbientOcclusion::Baked ? j.output.ao_rays : 0;
+            if (ao_rays != occlusion_rays_) {
+                const auto occlusion = trace::job_vertex_occlusion(j, *scene->scene, r.scene_index);
+                renderer_->set_vertex_occlusion(occlusion ? &*occlusion : nullptr);
+                occlusion_rays_ = ao_rays;
             }
             auto t0 = std::chrono::steady_clock::now();
             stats_ = FrameStats{};
@@ -214,6 +222,7 @@ private:
     std::unique_ptr<Renderer> renderer_;
     std::shared_ptr<const Scene> scene_;  // uploaded; kept alive while the renderer draws it
     int scene_index_ = -1;
+    int occlusion_rays_ = 0;  // the renderer's baked occlusion: its rays per vertex, 0 when none
     std::deque<std::pair<std::string, std::shared_ptr<JobLighting>>> lighting_;
     FrameStats stats_;
     double frame_ms_ = 0.0;

@@ -67,6 +67,11 @@ void VertexArray::set_instance_attribute(unsigned location, const Buffer& buffer
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
+void VertexArray::disable_attribute(unsigned location) {
+    glBindVertexArray(id_);
+    glDisableVertexAttribArray(location);
+    glBindVertexArray(0);
+}
 void VertexArray::set_indices(const Buffer& buffer) {
     glBindVertexArray(id_);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffer.id());
@@ -450,12 +455,13 @@ Program::Program(const std::string& name, const std::string& vs, const std::stri
     glAttachShader(id_, f);
     // Fixed attribute locations shared by every mesh shader, skinning's (6, 7) after the
     // vertex's own, then instanced draws' per-instance matrices: the model (a mat4 at 8..11) and
-    // its normal matrix (a mat3 at 12..14): 15 of the 16 attributes OpenGL ES 3.0 guarantees
-    // (morph targets are read from a texture).
+    // its normal matrix (a mat3 at 12..14), and the baked occlusion (15): the 16 attributes
+    // OpenGL ES 3.0 guarantees (morph targets are read from a texture).
     const char* attributes[] = {"a_position", "a_normal", "a_tangent", "a_uv0", "a_uv1", "a_color", "a_joints", "a_weights"};
     for (unsigned i = 0; i < 8; ++i) glBindAttribLocation(id_, i, attributes[i]);
     glBindAttribLocation(id_, kInstanceModelLocation, "a_instance_model");
     glBindAttribLocation(id_, kInstanceNormalLocation, "a_instance_normal");
+    glBindAttribLocation(id_, kOcclusionLocation, "a_occlusion");
     glLinkProgram(id_);
     glDeleteShader(v);
     glDeleteShader(f);

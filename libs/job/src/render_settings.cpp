@@ -73,6 +73,13 @@ const char* shadows_name(Shadows shadows) {
     return "soft";
 }
 
+std::optional<AmbientOcclusion> parse_ambient_occlusion(const std::string& name) {
+    if (name == "off") return AmbientOcclusion::Off;
+    if (name == "baked") return AmbientOcclusion::Baked;
+    return std::nullopt;
+}
+const char* ambient_occlusion_name(AmbientOcclusion ao) { return ao == AmbientOcclusion::Baked ? "baked" : "off"; }
+
 ShadingModel material_shading(ShadingModel frame, const Material& material) {
     if (frame != ShadingModel::Auto) return frame;
     return is_classic_phong(material) ? ShadingModel::Ogl1 : ShadingModel::Gltf;

@@ -694,6 +694,17 @@ std::vector<Setting> make_registry() {
                         [](Job& j) -> int& { return j.output.shadow_cascades; }));
     r.back().example = "3";
     r.push_back(choice(
+        "render.ao", "--ao", {"off", "baked"},
+        "Occlusion of image-based and ambient light: off (as the Khronos Sample Viewer) or baked (the tracer's "
+        "rays at every vertex of the static scene, once per load, with the material's occlusion texture the "
+        "smaller of the two; skinned and morphed meshes are not occluded). trace always occludes",
+        kCli | kSceneFile, [](const Job& j) { return std::string(ambient_occlusion_name(j.output.ao)); },
+        [](Job& j, const std::string& t) { j.output.ao = *parse_ambient_occlusion(t); }));
+    r.push_back(integer("render.aoRays", "--ao-rays", "rays", 4, 4096,
+                        "Rays per vertex of --ao baked (the visibility's noise falls as 1/sqrt of it)",
+                        kCli | kSceneFile, [](Job& j) -> int& { return j.output.ao_rays; }));
+    r.back().example = "256";
+    r.push_back(choice(
         "render.shading", "--shading", {"auto", "gltf", "ogl1", "ogl1-pixel", "blinn-phong-normalized"},
         "Shading model: auto (OpenGL 1 for OBJ/MTL Phong materials, glTF for the rest), gltf, ogl1 (OpenGL 1 per "
         "vertex), ogl1-pixel (per fragment) or blinn-phong-normalized",

@@ -657,3 +657,25 @@ TEST(DiffuseRoughness, RetroReflectionRisesAndForwardScatteringFalls) {
     EXPECT_GT(eon_factor(rho, 1.0f, back.z, v.z, glm::dot(back, v)).x, 1.2f);
     EXPECT_LT(eon_factor(rho, 1.0f, forward.z, v.z, glm::dot(forward, v)).x, 0.8f);
 }
+
+// The GTAO multiple-bounce fit: no change where nothing occludes, never darker than the
+// visibility itself, brighter for lighter surroundings, and monotonic in the visibility.
+TEST(AoMultibounce, KeepsFullVisibilityAndBrightensWithAlbedo) {
+    for (float albedo : {0.0f, 0.18f, 0.5f, 0.9f, 1.0f}) {
+        const glm::vec3 one = fresnel::brdf::ao_multibounce(1.0f, glm::vec3(albedo));
+        EXPECT_NEAR(one.x, 1.0f, 1e-3f) << albedo;
+        float last = -1.0f;
+        for (float ao = 0.0f; ao <= 1.0f; ao += 0.05f) {
+            const float m = fresnel::brdf::ao_multibounce(ao, glm::vec3(albedo)).y;
+            EXPECT_GE(m, ao - 1e-6f);
+            EXPECT_GE(m, last - 1e-6f) << "not monotonic at ao " << ao << ", albedo " << albedo;
+            last = m;
+        }
+    }
+    EXPECT_FLOAT_EQ(fresnel::brdf::ao_multibounce(0.0f, glm::vec3(0.8f)).x, 0.0f);
+    // A white crease half occluded gets back much of what a black one loses.
+    EXPECT_GT(fresnel::brdf::ao_multibounce(0.5f, glm::vec3(0.9f)).x, fresnel::brdf::ao_multibounce(0.5f, glm::vec3(0.1f)).x + 0.1f);
+    const glm::vec3 rgb = fresnel::brdf::ao_multibounce(0.4f, glm::vec3(0.9f, 0.5f, 0.1f));
+    EXPECT_GT(rgb.x, rgb.y);
+    EXPECT_GT(rgb.y, rgb.z);
+}

@@ -79,6 +79,9 @@ struct GpuPrimitive {
     // drawn, the VAO's per-instance attributes pointing into it, refilled by every batch.
     mutable gpu::Buffer instance_buffer;
     mutable bool instance_attributes = false;  // the VAO's per-instance attributes point into it
+    // The baked occlusion buffer the VAO's attribute gpu::kOcclusionLocation reads (a placement's,
+    // Renderer::Impl::occlusion), or null with the array off (submit sets it per draw).
+    mutable const gpu::Buffer* occlusion_bound = nullptr;
 };
 
 // An instanced batch's per-instance attributes (pbr.vert's a_instance_model, a_instance_normal).
@@ -109,6 +112,9 @@ struct Draw {
     // on; `model` is the first one's.
     int instances = 0;
     std::uint32_t instance_first = 0;
+    // Baked per-vertex occlusion of this placement (Renderer::set_vertex_occlusion), or null.
+    // Such draws are not batched: the values are the placement's own.
+    const gpu::Buffer* occlusion = nullptr;
 };
 
 gpu::Primitive to_gpu(Topology t) {
@@ -144,6 +150,24 @@ struct Renderer::Impl {
     int scene_index = -1;
     std::vector<NodeInstance> instances;
     std::vector<std::vector<GpuPrimitive>> meshes;
+    // Baked occlusion (set_vertex_occlusion): by node, then by primitive of its mesh, a vertex
+    // buffer of vec4s (bent normal, visibility), or an empty buffer where none was baked.
+    std::vector<std::vector<gpu::Buffer>> occlusion;
+    std::size_t occlusion_draw_count = 0;  // placements with a buffer
+    const gpu::Buffer* occlusion_for(int node, std::size_t primitive) const {
+        if (node < 0 || std::size_t(node) >= occlusion.size()) return nullptr;
+        const std::vector<gpu::Buffer>& prims = occlusion[std::size_t(node)];
+        return primitive < prims.size() && prims[primitive] ? &prims[primitive] : nullptr;
+    }
+    // Turns every VAO's occlusion array off (before the buffers it reads go).
+    void unbind_occlusion() {
+        for (auto& mesh : meshes)
+            for (GpuPrimitive& p : mesh)
+                if (p.occlusion_bound) {
+                    p.vao.disable_attribute(gpu::kOcclusionLocation);
+                    p.occlusion_bound = nullptr;
+                }
+    }
 
     // The multisampled frame's targets at one size, sample count and format, rebuilt when one
     // of those changes (ensure_targets).
@@ -970,7 +994,7 @@ struct Renderer::Impl {
     // placement, not skinned or morphed, a glTF-shaded material that neither blends (blended
     // draws go far to near) nor transmits (transmission reads the model's scale from u_model).
     bool batchable(const Draw& d, const RenderSettings& s) const {
-        if (d.joints || d.morph_weights >= 0 || d.instances > 0) return false;
+        if (d.joints || d.morph_weights >= 0 || d.instances > 0 || d.occlusion) return false;
         static const Material kDefaultMaterial{};
         const Material& m = d.prim->material >= 0 ? scene->materials[std::size_t(d.prim->material)] : kDefaultMaterial;
         return m.alpha_mode != AlphaMode::Blend && !is_transmissive(m) &&
@@ -1150,6 +1174,12 @@ struct Renderer::Impl {
             state.depth_write = false;
         }
         device.apply(state);
+        if (d.occlusion != p.occlusion_bound) {
+            gpu::VertexArray& vao = const_cast<gpu::VertexArray&>(p.vao);  // the renderer's own (meshes)
+            if (d.occlusion) vao.set_attribute(gpu::kOcclusionLocation, *d.occlusion, 4);
+            else vao.disable_attribute(gpu::kOcclusionLocation);
+            p.occlusion_bound = d.occlusion;
+        }
         if (d.instances > 0) {
             upload_instances(d);
             device.draw_instanced(p.vao, to_gpu(p.topology), p.count, p.indexed, d.instances);
@@ -1415,12 +1445,38 @@ Renderer::Renderer(gpu::Context& context) : impl_(std::make_unique<Impl>(context
 Renderer::~Renderer() = default;
 
 void Renderer::set_scene(const Scene& scene, int scene_index) {
+    impl_->unbind_occlusion();
+    impl_->occlusion.clear();
+    impl_->occlusion_draw_count = 0;
     impl_->scene = &scene;
     impl_->scene_index = scene_index;
     impl_->shadow_key = 0;  // new primitives may sit where the old ones were
     impl_->instances = flatten(scene, scene_index);
     impl_->upload(scene);
     impl_->upload_textures();
+}
+
+void Renderer::set_vertex_occlusion(const VertexOcclusion* occlusion) {
+    Impl& r = *impl_;
+    r.unbind_occlusion();
+    r.occlusion.clear();
+    r.occlusion_draw_count = 0;
+    if (!occlusion || !r.scene) return;
+    r.occlusion.resize(std::min(occlusion->nodes.size(), r.scene->nodes.size()));
+    for (std::size_t n = 0; n < r.occlusion.size(); ++n) {
+        const int mesh = r.scene->nodes[n].mesh;
+        if (mesh < 0 || std::size_t(mesh) >= r.meshes.size()) continue;
+        const std::vector<GpuPrimitive>& prims = r.meshes[std::size_t(mesh)];
+        const Mesh& m = r.scene->meshes[std::size_t(mesh)];
+        r.occlusion[n].resize(prims.size());
+        for (std::size_t k = 0; k < prims.size(); ++k) {
+            const std::vector<glm::vec4>* values = occlusion->find(int(n), k);
+            // Values for every vertex the primitive has, or none (a bake of another scene).
+            if (!values || values->size() != m.primitives[k].positions.size()) continue;
+            r.occlusion[n][k] = gpu::Buffer(gpu::BufferKind::Vertex, values->data(), values->size() * sizeof(glm::vec4));
+            ++r.occlusion_draw_count;
+        }
+    }
 }
 
 void Renderer::update_transforms() {
@@ -1583,6 +1639,7 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
                 d.sequence = std::uint32_t(opaque.size() + blended.size() + transmissive.size());
                 d.mirrored = glm::determinant(glm::mat3(model)) < 0.0f;
                 d.posed = node.world_space_mesh;
+                d.occlusion = r.occlusion_for(inst.node, k);
                 if (settings.gpu_animation && !node.world_space_mesh) {
                     if (p.has_skin && node.skin >= 0 && std::size_t(node.skin) < skins.size() &&
                         !skins[std::size_t(node.skin)].empty()) {

@@ -520,6 +520,9 @@ std::size_t TraceScene::stored_triangle_count() const { return impl_->stored_tri
 std::size_t TraceScene::placement_count() const { return impl_->placements.size() - std::size_t(std::count_if(
     impl_->placements.begin(), impl_->placements.end(), [](const Placement& p) { return p.geometries == nullptr; })); }
 double TraceScene::build_ms() const { return impl_->build_ms; }
+bool TraceScene::occluded(glm::vec3 p, glm::vec3 n, glm::vec3 d, float tfar, std::uint64_t seed) const {
+    return impl_->occluded(offset_ray(p, n), d, tfar, seed);
+}
 
 namespace {
 

@@ -75,6 +75,10 @@ private:
 // The per-instance attributes of instanced mesh draws (Program binds them at link):
 // "a_instance_model" (mat4: locations 8..11) and "a_instance_normal" (mat3: 12..14).
 constexpr unsigned kInstanceModelLocation = 8, kInstanceNormalLocation = 12;
+// Baked per-vertex occlusion ("a_occlusion", a vec4, location 15: the last of the 16 attributes
+// OpenGL ES 3.0 guarantees). A mesh draw without it leaves the array disabled: the attribute
+// then reads the default (0, 0, 0, 1), visibility 1.
+constexpr unsigned kOcclusionLocation = 15;
 
 // A vertex array: float attributes from buffers, optional index buffer (uint32).
 class VertexArray : public Handle {
@@ -90,6 +94,8 @@ public:
     void set_instance_attribute(unsigned location, const Buffer& buffer, int components, std::size_t stride,
                                 std::size_t offset);
     void set_indices(const Buffer& buffer);
+    // Turns attribute `location`'s array off: the attribute reads its constant default value.
+    void disable_attribute(unsigned location);
 };
 
 enum class TextureFormat { RGBA8, SRGB8_ALPHA8, RGBA16F, RGBA32F, RG16F, R8 };

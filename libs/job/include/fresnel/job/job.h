@@ -153,6 +153,11 @@ struct Job {
         Shadows shadows = Shadows::Soft;  // punctual lights' shadows in the rasteriser (RenderSettings)
         int shadow_map_size = 2048;
         int shadow_cascades = 2;
+        // Occlusion of image-based and ambient light (`--ao`): off (as the Khronos Sample Viewer),
+        // or baked, the tracer's rays at every vertex of the static scene
+        // (trace::bake_vertex_occlusion, Renderer::set_vertex_occlusion), ao_rays per vertex.
+        AmbientOcclusion ao = AmbientOcclusion::Off;
+        int ao_rays = 128;
         // The shading model for the frame, or Auto: per material (RenderSettings::shading).
         ShadingModel shading = ShadingModel::Auto;
         brdf::BrdfModel brdf;  // the glTF BRDF's terms for punctual lights (RenderSettings::brdf)

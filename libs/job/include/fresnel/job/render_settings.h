@@ -78,6 +78,12 @@ enum class Shadows { Off = 0, Hard, Soft };
 std::optional<Shadows> parse_shadows(const std::string& name);
 const char* shadows_name(Shadows s);
 
+// Occlusion of the environment's and the ambient light (`--ao`): off, or baked per vertex with
+// the tracer's rays once per scene (fresnel/trace/vertex_occlusion.h).
+enum class AmbientOcclusion { Off = 0, Baked };
+std::optional<AmbientOcclusion> parse_ambient_occlusion(const std::string& name);
+const char* ambient_occlusion_name(AmbientOcclusion ao);
+
 struct RenderSettings {
     int width = 1024, height = 768;
     int msaa = 4;

@@ -394,4 +394,18 @@ inline float sheen_albedo_scaling(glm::vec3 sheen_color, float e_v, float e_l) {
 // Used by tests (energy conservation; ibl_test's check of the split-sum table).
 glm::vec3 directional_albedo(const Surface& s, float n_dot_v, int samples_per_axis = 256);
 
+// Multiple-bounce ambient occlusion (Jimenez et al. 2016, "Practical Real-Time Strategies for
+// Accurate Indirect Occlusion", the GTAO fit): visibility `ao` of a surface of diffuse albedo
+// `albedo`, raised by the light its surroundings (taken to have the same albedo) send back.
+// 1 at ao = 1 for any albedo; never below `ao`. brdf.glsl's ao_multibounce (pbr.frag applies it
+// to the diffuse share of indirect light under `--ao baked`).
+inline glm::vec3 ao_multibounce(float ao, glm::vec3 albedo) {
+    glm::vec3 out;
+    for (int i = 0; i < 3; ++i) {
+        const float a = 2.0404f * albedo[i] - 0.3324f, b = -4.7951f * albedo[i] + 0.6417f, c = 2.7552f * albedo[i] + 0.6903f;
+        out[i] = std::max(ao, ((ao * a + b) * ao + c) * ao);
+    }
+    return out;
+}
+
 }  // namespace fresnel::brdf

@@ -16,6 +16,7 @@
 #include "fresnel/job/render_settings.h"
 #include "fresnel/render/limits.h"
 #include "fresnel/scene/scene.h"
+#include "fresnel/scene/vertex_occlusion.h"
 
 namespace fresnel {
 
@@ -88,6 +89,13 @@ public:
     // Uploads meshes and textures of `scene` (index -1: its default scene). The scene
     // must outlive the renderer's use of it.
     void set_scene(const Scene& scene, int scene_index = -1);
+    // Baked visibility of the environment per vertex (`--ao baked`: trace::bake_vertex_occlusion
+    // of the scene set_scene uploaded, in its current pose), copied to the GPU: image-based and
+    // ambient light at those vertices is occluded by it (with the material's occlusion texture,
+    // the smaller of the two; pbr.frag). Placements with values draw one at a time (not
+    // instanced). Null clears it; set_scene clears it too. Values for a primitive whose vertex
+    // count differs are ignored.
+    void set_vertex_occlusion(const VertexOcclusion* occlusion);
     // Reads the scene's node transforms again (after fresnel::animate changed them in place);
     // meshes and textures stay uploaded.
     void update_transforms();

@@ -9,6 +9,7 @@
 #include "fresnel/job/job.h"
 #include "fresnel/trace/environment_light.h"
 #include "fresnel/trace/tracer.h"
+#include "fresnel/trace/vertex_occlusion.h"
 
 namespace fresnel::trace {
 
@@ -31,5 +32,12 @@ struct JobInputs {
 // panorama) and, with energy compensation, the BRDF table (from the cache the rasteriser uses).
 // Throws fresnel::Error naming the file.
 JobInputs load_job_inputs(const ResolvedJob& job);
+
+// The rasteriser's baked occlusion for `job` (Job::Output::ao baked; nothing when it asks for
+// none): `scene` (scene `scene_index`, in its current pose) in a TraceScene, then
+// bake_vertex_occlusion with the job's rays per vertex. Every front end that rasterises a job
+// (render, batch, view, Python) calls this and hands the result to Renderer::set_vertex_occlusion.
+std::optional<VertexOcclusion> job_vertex_occlusion(const Job& job, const Scene& scene, int scene_index,
+                                                    const OcclusionProgress& progress = {});
 
 }  // namespace fresnel::trace

@@ -26,6 +26,8 @@
 #include <memory>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "fresnel/core/image.h"
 #include "fresnel/ibl/cubemap.h"
 #include "fresnel/material/brdf_model.h"
@@ -97,6 +99,12 @@ public:
     std::size_t stored_triangle_count() const;  // held: a mesh placed several times once
     std::size_t placement_count() const;        // Embree instances (TraceSceneOptions::instancing)
     double build_ms() const;
+    // Whether a ray from the surface point `p` (normal `n`, which moves the origin off the
+    // surface by a few ulps, as every bounce's) in the unit direction `d` meets a surface before
+    // `tfar`. Surfaces are those every ray sees: single-sided back faces, MASK texels below the
+    // cutoff and (with probability 1 - alpha, drawn from `seed`) BLEND surfaces let it pass.
+    // Thread-safe (bake_vertex_occlusion calls it from every core).
+    bool occluded(glm::vec3 p, glm::vec3 n, glm::vec3 d, float tfar, std::uint64_t seed) const;
 
     struct Impl;
     const Impl& impl() const { return *impl_; }
