@@ -67,9 +67,15 @@ def main():
                         if not os.path.exists(cycles):
                             continue
                         print(f"  Cycles: {model} {env} {view} ({a.samples} spp)...", file=sys.stderr, flush=True)
+                        # Blender and cycles-ref's post-processing want Debian's python3 (numpy, PIL), not
+                        # one a version manager put first on the PATH.
+                        env_vars = {k: v for k, v in os.environ.items() if not k.startswith("PYENV")}
+                        env_vars["PATH"] = os.pathsep.join(p for p in os.environ.get("PATH", "").split(os.pathsep)
+                                                           if ".pyenv" not in p)
                         subprocess.run([cycles, "--model", path, "--env", env_path, "--out", truth + ".tmp.png",
                                         "--size", "512x512", "--yaw", str(yaw), "--pitch", str(pitch),
-                                        "--samples", str(a.samples)], check=True, capture_output=True)
+                                        "--samples", str(a.samples)], check=True, stdout=subprocess.DEVNULL,
+                                       env=env_vars)
                         os.replace(truth + ".tmp.png", truth)
                     row = {"view": f"{model} {env} {view}", "khronos": psnr(khronos, truth)}
                     for ao in ("off", "baked"):

@@ -107,3 +107,36 @@ TEST_F(Shadows, EnvironmentOnlyIsUnchanged) {
     ASSERT_EQ(run(with({"render", scene.string(), "-o", b.string(), "--shadows", "off"}, view)).exit_code, 0);
     EXPECT_TRUE(std::isinf(psnr(a, b)));
 }
+
+// Baked occlusion (`--ao baked`, issue 31): the tracer's rays at each vertex darken the light
+// the environment sends under the spheres and the box; the frame is otherwise the same, the JSON
+// says what was baked, and a wrong value is a usage error naming the choices.
+TEST_F(Shadows, BakedOcclusionDarkensWhatTheSceneHides) {
+    const fs::path scene = kScenes / "shadow-environment.gltf";
+    const fs::path off = dir_ / "off.png", baked = dir_ / "baked.png";
+    const std::vector<std::string> view = {"--env", "color:0.5,0.6,0.8", "--size", "96", "--pitch", "20"};
+    Result r = run(with({"render", scene.string(), "-o", off.string()}, view));
+    ASSERT_EQ(r.exit_code, 0) << show(r);
+    r = run(with({"render", scene.string(), "-o", baked.string(), "--ao", "baked", "--ao-rays", "64", "--json"}, view));
+    ASSERT_EQ(r.exit_code, 0) << show(r);
+    EXPECT_NE(r.out.find("\"ao\":\"baked\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"ao_rays\":64"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"ao_vertices\":"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("\"ao_vertices\":0"), std::string::npos) << r.out;
+    const fresnel::Image8 a = fresnel::read_image8(off), b = fresnel::read_image8(baked);
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    double sum_off = 0, sum_baked = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        sum_off += a.pixels[i];
+        sum_baked += b.pixels[i];
+    }
+    const double p = psnr(off, baked);
+    std::printf("--ao baked against off: %.2f dB, mean value %.2f -> %.2f\n", p, sum_off / double(a.pixels.size()),
+                sum_baked / double(a.pixels.size()));
+    EXPECT_LT(sum_baked, sum_off - 0.001 * sum_off) << "occlusion darkens";
+    EXPECT_GT(p, 25.0);  // the same frame, darkened where the scene hides the sky
+    EXPECT_LT(p, 60.0);
+    r = run(with({"render", scene.string(), "-o", baked.string(), "--ao", "sometimes"}, view));
+    EXPECT_EQ(r.exit_code, 2) << show(r);
+    EXPECT_NE(r.err.find("baked"), std::string::npos) << r.err;
+}
