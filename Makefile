@@ -80,10 +80,12 @@ bench: build
 	python3 bench/scaling_bench.py $(BUILD)/bin/fresnel $(CURDIR)/../shared
 
 # Optional, not part of `make test`: raster vs `fresnel trace` per shared model x environment
-# (~10 min on 2 cores); writes docs/fidelity/ and the README's fidelity-report section.
+# (~10 min on 2 cores); writes docs/fidelity/ and the README's fidelity-report section. Then
+# --ao off/baked against Blender Cycles (Debian's blender; its images made once, ~8 min).
 fidelity-report: configure
 	cmake --build $(BUILD) -j $(JOBS) --target fresnel
 	bench/fidelity_report.py $(BUILD)/bin/fresnel --readme docs/fidelity.md
+	python3 bench/occlusion_fidelity.py $(BUILD)/bin/fresnel
 
 # The web page: the same libraries through Debian's Emscripten on WebGL 2, into $(WEB_BUILD)/
 # (index.html, fresnel.js, fresnel.wasm; serve the folder with any static server). Debian's

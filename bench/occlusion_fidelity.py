@@ -10,6 +10,7 @@ reused. Standard library only; exits 0 with a note when ../shared is absent.
 import argparse
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -64,7 +65,8 @@ def main():
                         continue
                     truth = os.path.join(refs, f"{model}_{env}_{view}_{a.samples}spp.png")
                     if not os.path.exists(truth):
-                        if not os.path.exists(cycles):
+                        if not os.path.exists(cycles) or not shutil.which("blender"):
+                            print(f"  no Cycles image for {model} {env} {view} (needs Debian's blender)", file=sys.stderr)
                             continue
                         print(f"  Cycles: {model} {env} {view} ({a.samples} spp)...", file=sys.stderr, flush=True)
                         # Blender and cycles-ref's post-processing want Debian's python3 (numpy, PIL), not
