@@ -36,6 +36,7 @@
 #include "fresnel/scene/scene.h"
 #include "fresnel/scene/scene_textures.h"
 #include "fresnel/scene/tangents.h"
+#include "fresnel/scene/vertex_occlusion.h"
 
 #include "fresnel/material/brdf.h"
 #include "fresnel/material/brdf_model.h"
@@ -77,6 +78,7 @@
 #include "fresnel/trace/environment_light.h"
 #include "fresnel/trace/job_inputs.h"
 #include "fresnel/trace/tracer.h"
+#include "fresnel/trace/vertex_occlusion.h"
 
 #include "fresnel/viewer/automation.h"
 #include "fresnel/viewer/files.h"

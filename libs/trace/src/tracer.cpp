@@ -3,6 +3,8 @@
 // and the tiled, progressive image loop are one concern: a path and the scene it is traced in.
 #include "fresnel/trace/tracer.h"
 
+#include "splitmix.h"
+
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -33,13 +35,6 @@ double ms_since(Clock::time_point t) { return std::chrono::duration<double, std:
 
 // ---------------------------------------------------------------------------
 // Random numbers: PCG32 (O'Neill), its state hashed from (seed, pixel, sample).
-
-std::uint64_t splitmix64(std::uint64_t x) {
-    x += 0x9E3779B97F4A7C15ull;
-    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-    return x ^ (x >> 31);
-}
 
 struct Rng {
     std::uint64_t state = 0, inc = 1;

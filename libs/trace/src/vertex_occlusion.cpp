@@ -11,17 +11,11 @@
 
 #include "fresnel/core/parallel.h"
 #include "fresnel/material/sampling.h"
+#include "splitmix.h"
 
 namespace fresnel::trace {
 
 namespace {
-
-std::uint64_t mix64(std::uint64_t x) {
-    x += 0x9E3779B97F4A7C15ull;
-    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-    return x ^ (x >> 31);
-}
 
 // One placed primitive to bake.
 struct Task {
@@ -97,7 +91,7 @@ VertexOcclusion bake_vertex_occlusion(const TraceScene& tscene, const Scene& sce
                 glm::vec3 tx, ty;
                 sampling::basis(n, tx, ty);
                 const std::uint64_t key =
-                    mix64(options.seed ^ mix64((std::uint64_t(std::uint32_t(t.node)) << 32) ^ (t.primitive << 24) ^ v));
+                    splitmix64(options.seed ^ splitmix64((std::uint64_t(std::uint32_t(t.node)) << 32) ^ (t.primitive << 24) ^ v));
                 // Cranley-Patterson rotation of the Hammersley set, per vertex.
                 const glm::vec2 shift(float(key >> 40) * 0x1p-24f, float((key >> 16) & 0xFFFFFF) * 0x1p-24f);
                 int open = 0;
