@@ -271,6 +271,14 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
         j["environment"] = environment ? environment->source : "none";
         j["environment_ms"] = lighting.environment_ms;
         j["environment_cached"] = environment ? environment->from_cache : false;
+        j["env_light"] = env_light_name(job.output.env_light);
+        if (environment && environment->dominant_light) {
+            const ibl::DominantLight& d = *environment->dominant_light;
+            j["environment_light"] = {{"direction", {d.direction.x, d.direction.y, d.direction.z}},
+                                      {"irradiance", {d.irradiance.x, d.irradiance.y, d.irradiance.z}},
+                                      {"solid_angle", d.solid_angle},
+                                      {"share", d.share}};
+        }
         j["camera"] = camera_json(camera);
         j["warnings"] = diag.lines();
         std::printf("%s\n", j.dump().c_str());

@@ -3,7 +3,9 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cmath>
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -159,6 +161,16 @@ void write_baked_files(const BakedIbl& ibl, const fs::path& dir, const BakeOptio
         {"bake_breakdown_ms", {{"cube", ibl.cube_ms}, {"specular", ibl.specular_ms}, {"irradiance", ibl.irradiance_ms}, {"lut", ibl.lut_ms}}},
         {"files", files},
     };
+    if (ibl.dominant_light) {
+        const DominantLight& l = *ibl.dominant_light;
+        manifest["dominant_light"] = {
+            {"description", "taken out of the maps: a directional light towards `direction` (the panorama's frame) "
+                            "of `irradiance` (linear RGB, on a surface facing it)"},
+            {"direction", {l.direction.x, l.direction.y, l.direction.z}},
+            {"irradiance", {l.irradiance.x, l.irradiance.y, l.irradiance.z}},
+            {"solid_angle", l.solid_angle},
+            {"share", l.share}};
+    }
     write_file_atomically(dir / "manifest.json", manifest.dump(2));
 }
 }  // namespace
@@ -229,6 +241,22 @@ BakedIbl load_baked(const fs::path& dir) {
             throw Error(mpath.string(), "/format_version", "baked with another format version; bake again");
         ibl.source = m.value("source", "");
         ibl.key = m.value("key", "");
+        if (m.contains("dominant_light")) {
+            const json& d = m.at("dominant_light");
+            DominantLight l;
+            for (int c = 0; c < 3; ++c) {
+                l.direction[c] = d.at("direction").at(std::size_t(c)).get<float>();
+                l.irradiance[c] = d.at("irradiance").at(std::size_t(c)).get<float>();
+            }
+            l.solid_angle = d.value("solid_angle", 0.0f);
+            l.share = d.value("share", 0.0f);
+            const float len = glm::length(l.direction);
+            if (!(len > 0.5f && len < 2.0f) || !std::isfinite(l.irradiance.x + l.irradiance.y + l.irradiance.z) ||
+                l.irradiance.x < 0 || l.irradiance.y < 0 || l.irradiance.z < 0)
+                throw Error(mpath.string(), "/dominant_light", "needs a unit direction and a non-negative irradiance");
+            l.direction /= len;
+            ibl.dominant_light = l;
+        }
         const json& sh = m.at("irradiance_sh");
         if (!sh.is_array() || sh.size() != 9) throw Error(mpath.string(), "/irradiance_sh", "needs 9 RGB triples");
         for (std::size_t i = 0; i < 9; ++i)
@@ -339,6 +367,7 @@ BakedIbl load_or_bake(const EnvironmentSource& source, const BakeOptions& option
     if (source.kind == EnvironmentSource::Kind::File) {
         auto bytes = read_file_bytes(source.path, std::size_t(2) << 30);
         h = content_hash(bytes, h);
+        if (source.split_dominant_light) h = content_hash({reinterpret_cast<const std::uint8_t*>("split"), 5}, h);
     } else {
         std::string d = source.describe();
         h = content_hash({reinterpret_cast<const std::uint8_t*>(d.data()), d.size()}, h);
@@ -353,7 +382,11 @@ BakedIbl load_or_bake(const EnvironmentSource& source, const BakeOptions& option
             // A damaged cache entry is rebuilt below.
         }
     }
-    BakedIbl ibl = bake(load_panorama(source), o, progress);
+    ImageF panorama = load_panorama(source);
+    std::optional<DominantLight> light;
+    if (source.split_dominant_light) light = split_dominant_light(panorama);
+    BakedIbl ibl = bake(panorama, o, progress);
+    ibl.dominant_light = light;
     ibl.source = source.describe();
     if (use_cache) {
         // save_baked writes the set whole or not at all, so a concurrent reader never sees half a bake.

@@ -13,14 +13,15 @@
 namespace fresnel::ibl {
 
 std::string EnvironmentSource::describe() const {
+    const std::string split = split_dominant_light ? " without its dominant light" : "";
     switch (kind) {
-        case Kind::File: return path.string();
+        case Kind::File: return path.string() + split;
         case Kind::Uniform: {
             std::ostringstream s;
             s << "color:" << color.x << "," << color.y << "," << color.z;
-            return s.str();
+            return s.str() + split;
         }
-        case Kind::Studio: return "studio-v2";
+        case Kind::Studio: return "studio-v2" + split;
     }
     return "?";
 }

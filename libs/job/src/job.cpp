@@ -160,6 +160,11 @@ ResolvedJob resolve(const Job& job, const Scene& scene, Diagnostics* diag) {
     r.bake_options.samples = env.bake_samples;
     r.bake_options.size = env.bake_size;
     r.use_cache = env.use_cache;
+    // --env-light dominant: a panorama's dominant light comes out of the bake as a directional light
+    // (BakedIbl::dominant_light), which the renderer adds to the frame's lights and shadows.
+    if (r.environment && r.environment->kind != ibl::EnvironmentSource::Kind::Uniform &&
+        job.output.env_light == EnvLight::Dominant)
+        r.environment->split_dominant_light = true;
 
     // The default pair of directional lights only when nothing else lights the scene.
     r.default_lights = r.lights.empty() && !r.environment;

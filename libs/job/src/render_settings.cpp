@@ -79,6 +79,12 @@ std::optional<AmbientOcclusion> parse_ambient_occlusion(const std::string& name)
     return std::nullopt;
 }
 const char* ambient_occlusion_name(AmbientOcclusion ao) { return ao == AmbientOcclusion::Baked ? "baked" : "off"; }
+std::optional<EnvLight> parse_env_light(const std::string& name) {
+    if (name == "off") return EnvLight::Off;
+    if (name == "dominant") return EnvLight::Dominant;
+    return std::nullopt;
+}
+const char* env_light_name(EnvLight e) { return e == EnvLight::Dominant ? "dominant" : "off"; }
 
 ShadingModel material_shading(ShadingModel frame, const Material& material) {
     if (frame != ShadingModel::Auto) return frame;

@@ -285,6 +285,24 @@ struct Renderer::Impl {
         }
     }
 
+    // The frame's punctual lights: `given`, and the environment's dominant light where its bake
+    // took one out (--env-light dominant: BakedIbl::dominant_light) as a directional light, turned
+    // with the environment and scaled by its intensity (the renderer's own vector: no allocation
+    // once warm).
+    std::vector<LightInstance> lights_with_environment;
+    const std::vector<LightInstance>& frame_lights(const std::vector<LightInstance>& given, const RenderSettings& s) {
+        if (!s.environment || !s.environment->dominant_light || given.size() >= std::size_t(kMaxFrameLights)) return given;
+        const ibl::DominantLight& d = *s.environment->dominant_light;
+        lights_with_environment.assign(given.begin(), given.end());
+        LightInstance sun;
+        sun.type = Light::Type::Directional;
+        // env_rotation maps world directions to the environment's; its transpose maps back.
+        sun.direction = -glm::normalize(glm::transpose(env_rotation(s)) * d.direction);
+        sun.radiance = d.irradiance * s.env_intensity;
+        lights_with_environment.push_back(sun);
+        return lights_with_environment;
+    }
+
     glm::mat3 env_rotation(const RenderSettings& s) const {
         // World -> environment: turning the environment by +angle about +Y samples it at -angle.
         float a = -s.env_rotation_deg * 3.14159265358979f / 180.0f;
@@ -1580,9 +1598,10 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& li
     draw(cam, lights, settings, RenderTarget::offscreen(), stats_out);
 }
 
-void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& lights, const RenderSettings& settings,
+void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& given_lights, const RenderSettings& settings,
                     const RenderTarget& target, FrameStats* stats_out) {
     Impl& r = *impl_;
+    const std::vector<LightInstance>& lights = r.frame_lights(given_lights, settings);
     FrameStats stats;
     int w = settings.width, h = settings.height;
     int samples = std::clamp(settings.msaa, 1, std::max(1, r.context.capabilities().max_samples_float));

@@ -23,7 +23,9 @@ JobInputs load_job_inputs(const ResolvedJob& job) {
     JobInputs in;
     const RenderSettings& rs = job.settings;
     if (job.environment) {
-        const ibl::EnvironmentSource& src = *job.environment;
+        // The whole environment: --env-light's split is the rasteriser's (the tracer shadows every light).
+        ibl::EnvironmentSource src = *job.environment;
+        src.split_dominant_light = false;
         if (src.kind == ibl::EnvironmentSource::Kind::File && ibl::is_baked_dir(src.path))
             throw Error(src.path.string(), "--env",
                         "a baked folder holds no panorama; trace needs the .hdr/.exr it was baked from");

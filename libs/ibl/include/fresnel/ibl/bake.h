@@ -17,6 +17,7 @@
 
 #include "fresnel/core/image.h"
 #include "fresnel/ibl/cubemap.h"
+#include "fresnel/ibl/dominant_light.h"
 #include "fresnel/ibl/environment.h"
 #include "fresnel/ibl/precompute.h"
 
@@ -52,6 +53,9 @@ struct BakedIbl {
     // Where the bake's time went: cube conversion + mips, specular prefilter, irradiance, LUT.
     double cube_ms = 0, specular_ms = 0, irradiance_ms = 0, lut_ms = 0;
     bool from_cache = false;
+    // Set when the source asked for it (EnvironmentSource::split_dominant_light) and the panorama
+    // has one: the light taken out of the maps above, in the environment's frame.
+    std::optional<DominantLight> dominant_light;
     // Identity of the baked data (specular, irradiance, table): baked_content_hash(*this),
     // set by bake() and load_baked(). Renderers key their uploads by it, not by address.
     std::uint64_t content_hash = 0;

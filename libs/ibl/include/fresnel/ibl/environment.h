@@ -13,7 +13,11 @@ struct EnvironmentSource {
     enum class Kind { File, Uniform, Studio } kind = Kind::Studio;
     std::filesystem::path path;  // Kind::File
     glm::vec3 color{1.0f};       // Kind::Uniform, linear
-    // A stable description used in cache keys and manifests ("studio-v2", "color:1,1,1", the path).
+    // Bake without the panorama's dominant light, which the bake returns as a directional light
+    // (fresnel/ibl/dominant_light.h, BakedIbl::dominant_light; `--env-light dominant`).
+    bool split_dominant_light = false;
+    // A stable description used in cache keys and manifests ("studio-v2", "color:1,1,1", the path;
+    // " without its dominant light" appended when split_dominant_light).
     std::string describe() const;
 };
 

@@ -158,6 +158,9 @@ struct Job {
         // (trace::bake_vertex_occlusion, Renderer::set_vertex_occlusion), ao_rays per vertex.
         AmbientOcclusion ao = AmbientOcclusion::Off;
         int ao_rays = 128;
+        // The environment's dominant light (a sun, a key light) out of the image-based light and
+        // drawn as a shadowed directional light (`--env-light dominant`), or left in it (off).
+        EnvLight env_light = EnvLight::Off;
         // The shading model for the frame, or Auto: per material (RenderSettings::shading).
         ShadingModel shading = ShadingModel::Auto;
         brdf::BrdfModel brdf;  // the glTF BRDF's terms for punctual lights (RenderSettings::brdf)

@@ -81,6 +81,11 @@ const char* shadows_name(Shadows s);
 // Occlusion of the environment's and the ambient light (`--ao`): off, or baked per vertex with
 // the tracer's rays once per scene (fresnel/trace/vertex_occlusion.h).
 enum class AmbientOcclusion { Off = 0, Baked };
+// The environment's dominant light (`--env-light`): part of the image-based light (off), or taken
+// out of it and drawn as a directional light with shadows (dominant; fresnel/ibl/dominant_light.h).
+enum class EnvLight { Off = 0, Dominant };
+std::optional<EnvLight> parse_env_light(const std::string& name);
+const char* env_light_name(EnvLight e);
 std::optional<AmbientOcclusion> parse_ambient_occlusion(const std::string& name);
 const char* ambient_occlusion_name(AmbientOcclusion ao);
 
