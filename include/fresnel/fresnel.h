@@ -53,6 +53,7 @@
 
 #include "fresnel/ibl/bake.h"
 #include "fresnel/ibl/cubemap.h"
+#include "fresnel/ibl/dominant_light.h"
 #include "fresnel/ibl/environment.h"
 #include "fresnel/ibl/ktx2.h"
 #include "fresnel/ibl/precompute.h"
