@@ -422,6 +422,42 @@ TEST_F(View, ShadowsToggleLive) {
     EXPECT_GE(psnr("soft.png", "hard.png"), 30.0);  // and hard ones fall where soft ones do
 }
 
+// Baked occlusion and the environment's dominant light toggled live by a script (`set render.ao
+// baked`, `set render.envLight dominant`): each screenshot equals `fresnel render` with the same
+// flags, and each toggle changes the picture.
+TEST_F(View, OcclusionAndTheEnvironmentsLightToggleLive) {
+    const fs::path model = fs::path(FRESNEL_SOURCE_DIR) / "tests/data/shadows/shadow-environment.gltf";
+    fs::path env = kShared / "assets/env/studio_small_03_1k.hdr";
+    if (!fs::exists(env)) GTEST_SKIP() << "needs " << env;
+    std::ofstream(dir_ / "o.txt") << "orbit 20 30\n"
+                                     "screenshot " << (dir_ / "plain.png").string() << "\n"
+                                     "set render.ao baked\n"
+                                     "wait 1\n"
+                                     "screenshot " << (dir_ / "ao.png").string() << "\n"
+                                     "set render.envLight dominant\n"
+                                     "wait 30\n"
+                                     "screenshot " << (dir_ / "both.png").string() << "\n"
+                                     "quit\n";
+    const std::vector<std::string> common = {"--size", "200x150", "--env", env.string(), "--background", "0.2,0.2,0.2"};
+    std::vector<std::string> args = {"view", model.string(), "--script", (dir_ / "o.txt").string()};
+    args.insert(args.end(), common.begin(), common.end());
+    Result r = run(args, true);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+        {"plain", {}}, {"ao", {"--ao", "baked"}}, {"both", {"--ao", "baked", "--env-light", "dominant"}}};
+    for (const auto& [name, flags] : cases) {
+        std::vector<std::string> ra = {"render", model.string(), "--yaw", "20", "--pitch", "30", "-o",
+                                       (dir_ / ("r-" + name + ".png")).string()};
+        ra.insert(ra.end(), common.begin(), common.end());
+        ra.insert(ra.end(), flags.begin(), flags.end());
+        Result rr = run(ra, false);
+        ASSERT_EQ(rr.exit_code, 0) << rr.err;
+        EXPECT_GE(psnr((name + ".png").c_str(), ("r-" + name + ".png").c_str()), 40.0) << name;
+    }
+    EXPECT_LT(psnr("plain.png", "ao.png"), 50.0);  // the occlusion darkened the contacts
+    EXPECT_LT(psnr("ao.png", "both.png"), 30.0);   // the key light's shadows fell
+}
+
 // Animation playback (issue: the viewer played no animation). A screenshot at --time T equals
 // `fresnel render --time T`; a scripted session scrubs (`time`), chooses an animation, plays for
 // a while, pauses, and its screenshot equals the render command line it prints (which names

@@ -3,7 +3,6 @@
 #include <cstdio>
 
 #include "fresnel/job/scene_file.h"
-#include "fresnel/trace/job_inputs.h"
 #include "fresnel/scene/scene_writer.h"
 #include "fresnel/material/properties.h"
 #include "fresnel/viewer/files.h"
@@ -70,14 +69,7 @@ bool Viewer::load_job(Job job, const std::string& label) {
         ResolvedJob resolved = resolve(job, *scene);  // e.g. --camera or --scene out of range
         uploading = true;
         renderer_->set_scene(*scene, resolved.scene_index);
-        // --ao baked: the rest pose's occlusion (an animated file's moving parts keep it as they move).
-        if (job.output.ao == AmbientOcclusion::Baked) {
-            if (!scene->animations.empty())
-                diag.warn(label.empty() ? std::string("demo") : label, "--ao baked",
-                          "the file is animated: occlusion is baked for its rest pose");
-            if (auto occlusion = trace::job_vertex_occlusion(job, *scene, resolved.scene_index))
-                renderer_->set_vertex_occlusion(&*occlusion);
-        }
+        occlusion_rays_ = 0;  // set_scene dropped it: sync_occlusion bakes it again when asked for
         posing_.reset(*scene);
         state_.scene = std::move(scene);
         state_.playback.playing = false;

@@ -363,6 +363,8 @@ void Viewer::draw_environment_panel() {
     if (job.background.mode == Mode::Color) ImGui::ColorEdit3("background colour", &job.background.color.x);
     setting_widget(job, "sceneLights");
     setting_widget(job, "render.shadows");
+    setting_widget(job, "render.envLight", "key light shadowed");
+    setting_widget(job, "render.ao", "occlusion (baked)");
 }
 
 // "Output" and "Split view".

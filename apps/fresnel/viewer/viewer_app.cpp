@@ -10,6 +10,7 @@
 #include <iterator>
 
 #include "fresnel/core/process_memory.h"
+#include "fresnel/trace/job_inputs.h"
 #include "fresnel/core/atomic_file.h"
 #include "fresnel/gpu/device.h"
 #include "fresnel/ibl/bake.h"
@@ -125,6 +126,7 @@ int Viewer::loop(gui::Window& window) {
             draw_gui();
             reload_if_needed();
             sync_pose();
+            if (sync_occlusion()) redraw = 3;
             const bool baking = bake_ != nullptr;
             ready = update_lighting();
             // The bake ended in this frame, whose panel was drawn before: draw a few more, or its
@@ -249,6 +251,26 @@ void Viewer::reload_if_needed() {
     state_.job.source = loaded_source_;
     state_.job.source.animation = animation;
     if (!options_.script.empty()) automation_.mark_failed();  // a script's `set` that did not load: exit 1, as open and env
+}
+
+bool Viewer::sync_occlusion() {
+    if (!state_.scene) return false;
+    const int wanted = state_.job.output.ao == AmbientOcclusion::Baked ? state_.job.output.ao_rays : 0;
+    if (wanted == occlusion_rays_) return false;
+    occlusion_rays_ = wanted;
+    if (wanted == 0) {
+        renderer_->set_vertex_occlusion(nullptr);
+        return true;
+    }
+    if (!state_.scene->animations.empty()) {
+        Diagnostics note;
+        note.warn(state_.opened.empty() ? std::string("demo") : state_.opened, "render.ao baked",
+                  "the file is animated: occlusion is baked for the pose shown");
+        print_warnings(note);
+    }
+    const auto occlusion = trace::job_vertex_occlusion(state_.job, *state_.scene, resolve(state_.job, *state_.scene).scene_index);
+    renderer_->set_vertex_occlusion(occlusion ? &*occlusion : nullptr);
+    return true;
 }
 
 // The scene posed at the time the state shows (job.source.animation), when that changed.

@@ -84,6 +84,10 @@ private:
     bool update_lighting();
     void reload_if_needed();
     void sync_pose();
+    // --ao baked / `set render.ao`: bakes the shown scene's occlusion when the job asks for it and
+    // the renderer does not hold it (a new scene, other rays), or drops it.
+    bool sync_occlusion();  // true when it changed what the renderer holds
+    int occlusion_rays_ = 0;  // rays per vertex of what the renderer holds; 0: none
     void draw_scene();
     // Something moves by the clock: auto-rotation or animation playback.
     bool moving() const { return state_.spinning() || state_.playback.playing; }

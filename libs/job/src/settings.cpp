@@ -698,18 +698,18 @@ std::vector<Setting> make_registry() {
         "Occlusion of image-based and ambient light: off (as the Khronos Sample Viewer) or baked (the tracer's "
         "rays at every vertex of the static scene, once per load, with the material's occlusion texture the "
         "smaller of the two; skinned and morphed meshes are not occluded). trace always occludes",
-        kCli | kSceneFile, [](const Job& j) { return std::string(ambient_occlusion_name(j.output.ao)); },
+        kCli | kSceneFile | kViewScript, [](const Job& j) { return std::string(ambient_occlusion_name(j.output.ao)); },
         [](Job& j, const std::string& t) { j.output.ao = *parse_ambient_occlusion(t); }));
     r.push_back(choice(
         "render.envLight", "--env-light", {"off", "dominant"},
         "The environment's dominant light (a sun or a studio's key light: a small region carrying at least a "
         "quarter of its light): off (part of the image-based light, never shadowed) or dominant (taken out of the "
         "bake and drawn as a directional light that casts shadows). trace always uses the whole environment",
-        kCli | kSceneFile, [](const Job& j) { return std::string(env_light_name(j.output.env_light)); },
+        kCli | kSceneFile | kViewScript, [](const Job& j) { return std::string(env_light_name(j.output.env_light)); },
         [](Job& j, const std::string& t) { j.output.env_light = *parse_env_light(t); }));
     r.push_back(integer("render.aoRays", "--ao-rays", "rays", 4, 4096,
                         "Rays per vertex of --ao baked (the visibility's noise falls as 1/sqrt of it)",
-                        kCli | kSceneFile, [](Job& j) -> int& { return j.output.ao_rays; }));
+                        kCli | kSceneFile | kViewScript, [](Job& j) -> int& { return j.output.ao_rays; }));
     r.back().example = "256";
     r.push_back(choice(
         "render.shading", "--shading", {"auto", "gltf", "ogl1", "ogl1-pixel", "blinn-phong-normalized"},
