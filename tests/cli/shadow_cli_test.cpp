@@ -182,4 +182,18 @@ TEST_F(Shadows, TheEnvironmentsDominantLightCastsShadows) {
     const double p_off = psnr(off, truth), p_split = psnr(split, truth);
     std::printf("against the one-bounce trace: the sun in the image-based light %.2f dB, split out %.2f dB\n", p_off, p_split);
     EXPECT_GT(p_split, p_off + 3.0);
+    // Behind the scene, the environment drawn as the background (blurred, the default) keeps the
+    // sun: the sky is the one drawn without the split.
+    std::vector<std::string> sky_view = view;
+    sky_view.resize(sky_view.size() - 2);  // without --background 0,0,0
+    const fs::path sky_off = dir_ / "sky-off.png", sky_split = dir_ / "sky-split.png";
+    ASSERT_EQ(run(with({"render", scene.string(), "-o", sky_off.string()}, sky_view)).exit_code, 0);
+    ASSERT_EQ(run(with({"render", scene.string(), "-o", sky_split.string(), "--env-light", "dominant"}, sky_view)).exit_code, 0);
+    const fresnel::Image8 a = fresnel::read_image8(sky_off), b = fresnel::read_image8(sky_split);
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    int differ = 0;
+    for (int y = 0; y < 20; ++y)  // the top rows: sky only
+        for (int x = 0; x < a.width; ++x)
+            for (int c = 0; c < a.channels; ++c) differ += std::abs(int(a.at(x, y)[c]) - int(b.at(x, y)[c])) > 1;
+    EXPECT_EQ(differ, 0) << "top-right " << int(a.at(a.width - 1, 0)[0]) << " vs " << int(b.at(a.width - 1, 0)[0]);
 }

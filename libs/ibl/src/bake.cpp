@@ -123,6 +123,7 @@ void write_baked_files(const BakedIbl& ibl, const fs::path& dir, const BakeOptio
     write_ktx2_cube(dir / "irradiance.ktx2", irr);
     write_ktx2_2d(dir / "brdf_lut.ktx2", ibl.lut);
     write_ktx2_cube(dir / "sheen.ktx2", ibl.sheen);
+    if (ibl.background.size() > 0) write_ktx2_cube(dir / "background.ktx2", ibl.background);
     if (!ibl.charlie_lut.pixels.empty()) write_ktx2_2d(dir / "charlie_lut.ktx2", ibl.charlie_lut);
     json sh = json::array();
     for (const auto& c : ibl.irradiance.c) sh.push_back({c.x, c.y, c.z});
@@ -132,6 +133,7 @@ void write_baked_files(const BakedIbl& ibl, const fs::path& dir, const BakeOptio
                                {"coefficients", sh}}
                               .dump(2));
     json files = {"specular.ktx2", "irradiance.ktx2", "irradiance_sh.json", "brdf_lut.ktx2", "sheen.ktx2"};
+    if (ibl.background.size() > 0) files.push_back("background.ktx2");
     if (!ibl.charlie_lut.pixels.empty()) files.push_back("charlie_lut.ktx2");
     if (previews) {
         fs::create_directories(dir / "preview", ec);
@@ -285,6 +287,11 @@ BakedIbl load_baked(const fs::path& dir) {
         if (lut.width == kCharlieLutSize && lut.height == kCharlieLutSize) ibl.charlie_lut = std::move(lut);
     }
     if (ibl.charlie_lut.pixels.empty()) ibl.charlie_lut = compute_charlie_lut();
+    if (ibl.dominant_light && fs::is_regular_file(dir / "background.ktx2", ec)) {
+        ibl.background = read_ktx2_cube(dir / "background.ktx2");
+        if (ibl.background.size() != ibl.specular.size() || ibl.background.levels.size() != ibl.specular.levels.size())
+            throw Error((dir / "background.ktx2").string(), "", "not the size and levels of specular.ktx2");
+    }
     ibl.from_cache = true;
     ibl.content_hash = baked_content_hash(ibl);
     return ibl;
@@ -317,6 +324,7 @@ std::uint64_t baked_content_hash(const BakedIbl& ibl) {
     std::uint64_t h = mix_cube(ibl.specular, 0x243F6A8885A308D3ull);
     h = mix_cube(ibl.irradiance_map, h);
     h = mix_cube(ibl.sheen, h);
+    if (ibl.background.size() > 0) h = mix_cube(ibl.background, h);
     return image_content_hash(ibl.lut, h) | 1u;  // never 0 (0 = not computed)
 }
 
@@ -377,16 +385,31 @@ BakedIbl load_or_bake(const EnvironmentSource& source, const BakeOptions& option
     fs::path dir = cache_root() / "env" / name;
     if (use_cache && is_baked_dir(dir)) {
         try {
-            return load_baked(dir);
+            BakedIbl cached = load_baked(dir);
+            // A split bake holds the background with the light; an entry without it is rebuilt.
+            if (!(cached.dominant_light && cached.background.size() == 0)) return cached;
         } catch (const Error&) {
             // A damaged cache entry is rebuilt below.
         }
     }
     ImageF panorama = load_panorama(source);
     std::optional<DominantLight> light;
-    if (source.split_dominant_light) light = split_dominant_light(panorama);
+    ImageF whole;
+    if (source.split_dominant_light) {
+        whole = panorama;
+        light = split_dominant_light(panorama);
+    }
     BakedIbl ibl = bake(panorama, o, progress);
     ibl.dominant_light = light;
+    if (light) {
+        // The background keeps the light: the whole panorama, prefiltered as the shading's cube.
+        const auto t = std::chrono::steady_clock::now();
+        Cubemap source_cube = cubemap_from_equirect(whole, o.size, o.threads);
+        build_mip_chain(source_cube);
+        ibl.background = prefilter_ggx(source_cube, PrefilterOptions{o.size, o.levels, o.samples, o.threads, o.lod_bias});
+        ibl.content_hash = baked_content_hash(ibl);
+        ibl.bake_ms += ms_since(t);
+    }
     ibl.source = source.describe();
     if (use_cache) {
         // save_baked writes the set whole or not at all, so a concurrent reader never sees half a bake.

@@ -126,12 +126,25 @@ TEST(DominantLight, ABakeAskedToSplitKeepsTheLightInItsCache) {
     ASSERT_TRUE(split.dominant_light.has_value());
     EXPECT_FALSE(split.from_cache);
     EXPECT_NE(split.content_hash, whole.content_hash);
+    // The background keeps the light: the whole panorama's cube, as the bake without the split has it.
+    ASSERT_EQ(split.background.size(), whole.specular.size());
+    EXPECT_EQ(split.background.levels[0].faces, whole.specular.levels[0].faces);
+    EXPECT_NE(split.specular.levels[0].faces, whole.specular.levels[0].faces);
     EXPECT_GT(glm::dot(split.dominant_light->direction, glm::normalize(glm::vec3(-1, 1, 0))), 0.999f);
     const BakedIbl cached = load_or_bake(src, o);
     EXPECT_TRUE(cached.from_cache);
     ASSERT_TRUE(cached.dominant_light.has_value());
     EXPECT_NEAR(cached.dominant_light->irradiance.x, split.dominant_light->irradiance.x, 1e-3f);
-    EXPECT_EQ(cached.content_hash, split.content_hash);
+    // The cache holds half floats: the same cubes to half precision.
+    ASSERT_EQ(cached.background.size(), split.background.size());
+    ASSERT_EQ(cached.background.levels.size(), split.background.levels.size());
+    for (std::size_t l = 0; l < cached.background.levels.size(); ++l)
+        for (int f = 0; f < 6; ++f)
+            for (std::size_t i = 0; i < cached.background.levels[l].faces[std::size_t(f)].size(); ++i) {
+                const float x = cached.background.levels[l].faces[std::size_t(f)][i];
+                const float y = split.background.levels[l].faces[std::size_t(f)][i];
+                ASSERT_NEAR(x, y, 1e-3f * std::abs(y) + 1e-6f) << "background level " << l << " face " << f;
+            }
     if (old_cache) setenv("XDG_CACHE_HOME", restore.c_str(), 1);
     else unsetenv("XDG_CACHE_HOME");
     std::filesystem::remove_all(dir);

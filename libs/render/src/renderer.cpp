@@ -241,6 +241,7 @@ struct Renderer::Impl {
     gpu::Texture env_specular;
     gpu::Texture env_irradiance;
     gpu::Texture env_sheen, charlie_lut;
+    gpu::Texture env_background;  // BakedIbl::background (with a dominant light taken out), else none
     std::uint64_t uploaded_lut = 0;
     gpu::Texture lut_texture;
 
@@ -266,6 +267,14 @@ struct Renderer::Impl {
                 for (std::size_t l = 0; l < sh.levels.size(); ++l)
                     for (int f = 0; f < 6; ++f)
                         env_sheen.upload_cube_face(f, int(l), sh.levels[l].size, sh.levels[l].faces[std::size_t(f)].data());
+            }
+            const ibl::Cubemap& bg = s.environment->background;
+            env_background = {};
+            if (bg.size() > 0) {
+                env_background = gpu::Texture::create_cube(bg.size(), gpu::TextureFormat::RGBA16F, int(bg.levels.size()), immutable);
+                for (std::size_t l = 0; l < bg.levels.size(); ++l)
+                    for (int f = 0; f < 6; ++f)
+                        env_background.upload_cube_face(f, int(l), bg.levels[l].size, bg.levels[l].faces[std::size_t(f)].data());
             }
             const ImageF& cl = s.environment->charlie_lut;
             charlie_lut = {};
@@ -326,7 +335,8 @@ struct Renderer::Impl {
         device.apply(st);
         const gpu::Program& prog = shaders.get("fullscreen.vert", "sky.frag", 0, frame_variant(s, linear));
         prog.use();
-        device.bind_texture(int(TextureUnit::SkyEnvironment), env_specular);
+        // The whole environment where the shading's cube lacks its dominant light (--env-light dominant).
+        device.bind_texture(int(TextureUnit::SkyEnvironment), env_background ? env_background : env_specular);
         prog.set("u_specular_env", int(TextureUnit::SkyEnvironment));
         prog.set("u_inverse_view_projection", glm::inverse(cam.projection * cam.view));
         prog.set("u_env_rotation", env_rotation(s));

@@ -56,6 +56,10 @@ struct BakedIbl {
     // Set when the source asked for it (EnvironmentSource::split_dominant_light) and the panorama
     // has one: the light taken out of the maps above, in the environment's frame.
     std::optional<DominantLight> dominant_light;
+    // With a dominant light taken out: the whole panorama prefiltered as `specular` is (same size
+    // and levels), which a background drawn from the environment shows (the light's region
+    // included); the shading reads `specular`, without it. Empty otherwise.
+    Cubemap background;
     // Identity of the baked data (specular, irradiance, table): baked_content_hash(*this),
     // set by bake() and load_baked(). Renderers key their uploads by it, not by address.
     std::uint64_t content_hash = 0;
