@@ -260,6 +260,7 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
             j["ao_ms"] = ao_ms;  // every bake: the trace scene's build and the rays
             j["ao_vertices"] = ao_vertices;
             j["ao_rays"] = occlusion->rays_per_vertex;
+            j["ao_cached"] = occlusion->from_cache;
         }
         j["triangles"] = stats.triangles;
         j["programs"] = renderer.program_count();

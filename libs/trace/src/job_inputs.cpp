@@ -40,15 +40,11 @@ JobInputs load_job_inputs(const ResolvedJob& job) {
 std::optional<VertexOcclusion> job_vertex_occlusion(const Job& job, const Scene& scene, int scene_index,
                                                     const OcclusionProgress& progress) {
     if (job.output.ao != AmbientOcclusion::Baked) return std::nullopt;
-    const std::vector<NodeInstance> instances = flatten(scene, scene_index);
-    TraceSceneOptions options;
-    options.instancing = job.output.instancing;
-    const TraceScene tscene(scene, instances, options);
     VertexOcclusionOptions bake;
     bake.rays = job.output.ao_rays;
-    VertexOcclusion out = bake_vertex_occlusion(tscene, scene, instances, bake, progress);
-    out.bake_ms += tscene.build_ms();
-    return out;
+    // Cached like baked environments (--no-cache: neither read nor written).
+    return load_or_bake_vertex_occlusion(scene, flatten(scene, scene_index), bake, job.environment.use_cache,
+                                         job.output.instancing, progress);
 }
 
 }  // namespace fresnel::trace

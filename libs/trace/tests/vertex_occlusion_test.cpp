@@ -10,6 +10,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
 
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
@@ -152,4 +155,72 @@ TEST(VertexOcclusion, SkinnedPrimitivesAndHiddenNodesGetNone) {
     EXPECT_EQ(occ.find(1, 0), nullptr);
     EXPECT_EQ(occ.find(2, 0), nullptr);
     EXPECT_EQ(occ.vertices, 9u);
+}
+
+// The cache (load_or_bake_vertex_occlusion): a second bake of the same scene is read back equal;
+// the key follows what the values depend on; a file cut short, of another scene, with another key
+// or with a value out of range is not used.
+TEST(VertexOcclusionCache, RoundTripsAndRefusesWhatDoesNotFit) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / "fresnel_occlusion_cache_test";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const char* old_cache = std::getenv("XDG_CACHE_HOME");
+    const std::string restore = old_cache ? old_cache : "";
+    setenv("XDG_CACHE_HOME", (dir / "cache").c_str(), 1);
+
+    Primitive wall = square(glm::vec3(-1e-3f, 5.0f, 0.0f), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1), 5.0f);
+    Scene s = scene_of({floor_square(), wall});
+    const std::vector<NodeInstance> instances = flatten(s);
+    VertexOcclusionOptions o;
+    o.rays = 32;
+    const VertexOcclusion first = load_or_bake_vertex_occlusion(s, instances, o, true);
+    const VertexOcclusion again = load_or_bake_vertex_occlusion(s, instances, o, true);
+    EXPECT_FALSE(first.from_cache);
+    EXPECT_TRUE(again.from_cache);
+    EXPECT_EQ(again.nodes, first.nodes);
+    EXPECT_EQ(again.vertices, first.vertices);
+    EXPECT_EQ(again.rays_per_vertex, 32);
+    EXPECT_FALSE(load_or_bake_vertex_occlusion(s, instances, o, false).from_cache);  // --no-cache
+
+    // The key: rays, a moved node, a moved vertex, a material's alpha mode.
+    const std::uint64_t key = vertex_occlusion_key(s, instances, o);
+    VertexOcclusionOptions more = o;
+    more.rays = 64;
+    EXPECT_NE(vertex_occlusion_key(s, instances, more), key);
+    std::vector<NodeInstance> moved = instances;
+    moved[1].world[3][0] += 0.5f;
+    EXPECT_NE(vertex_occlusion_key(s, moved, o), key);
+    Scene edited = s;
+    edited.meshes[1].primitives[0].positions[4].y += 0.1f;
+    EXPECT_NE(vertex_occlusion_key(edited, instances, o), key);
+    edited = s;
+    edited.materials[0].alpha_mode = AlphaMode::Mask;
+    EXPECT_NE(vertex_occlusion_key(edited, instances, o), key);
+
+    // Files that do not fit.
+    const fs::path file = dir / "x.ao";
+    write_vertex_occlusion(file, first, key);
+    ASSERT_TRUE(read_vertex_occlusion(file, s, key).has_value());
+    EXPECT_FALSE(read_vertex_occlusion(file, s, key + 1).has_value());
+    Scene other = s;
+    other.meshes[0].primitives[0].positions.pop_back();
+    EXPECT_FALSE(read_vertex_occlusion(file, other, key).has_value());
+    const auto size = fs::file_size(file);
+    for (std::uintmax_t cut : {std::uintmax_t(0), std::uintmax_t(7), std::uintmax_t(30), size / 2, size - 1}) {
+        fs::copy_file(file, dir / "cut.ao", fs::copy_options::overwrite_existing);
+        fs::resize_file(dir / "cut.ao", cut);
+        EXPECT_FALSE(read_vertex_occlusion(dir / "cut.ao", s, key).has_value()) << "cut at " << cut;
+    }
+    VertexOcclusion bad = first;
+    bad.nodes[0][0][2].w = std::nanf("");
+    write_vertex_occlusion(file, bad, key);
+    EXPECT_FALSE(read_vertex_occlusion(file, s, key).has_value());
+    bad.nodes[0][0][2].w = 1.5f;
+    write_vertex_occlusion(file, bad, key);
+    EXPECT_FALSE(read_vertex_occlusion(file, s, key).has_value());
+
+    if (old_cache) setenv("XDG_CACHE_HOME", restore.c_str(), 1);
+    else unsetenv("XDG_CACHE_HOME");
+    fs::remove_all(dir);
 }

@@ -21,7 +21,8 @@ struct VertexOcclusion {
     std::vector<std::vector<std::vector<glm::vec4>>> nodes;
     int rays_per_vertex = 0;
     std::size_t vertices = 0;  // vertices baked, over every placement
-    double bake_ms = 0;
+    double bake_ms = 0;        // the bake's time (with its trace scene), or the time to read it from a cache
+    bool from_cache = false;   // read from the cache (trace::load_or_bake_vertex_occlusion)
 
     // The values of node `node`'s primitive `primitive`, or null when none were baked.
     const std::vector<glm::vec4>* find(int node, std::size_t primitive) const {
