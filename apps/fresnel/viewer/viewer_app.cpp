@@ -268,7 +268,7 @@ bool Viewer::sync_occlusion() {
                   "the file is animated: occlusion is baked for the pose shown");
         print_warnings(note);
     }
-    const auto occlusion = trace::job_vertex_occlusion(state_.job, *state_.scene, resolve(state_.job, *state_.scene).scene_index);
+    const auto occlusion = trace::job_vertex_occlusion(state_.job, *state_.scene, state_.job.source.scene);  // resolve()'s scene_index
     renderer_->set_vertex_occlusion(occlusion ? &*occlusion : nullptr);
     return true;
 }

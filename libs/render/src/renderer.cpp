@@ -245,37 +245,26 @@ struct Renderer::Impl {
     std::uint64_t uploaded_lut = 0;
     gpu::Texture lut_texture;
 
+    // Every level of `cube` as an RGBA16F cube texture; none for an empty cube.
+    static gpu::Texture upload_cube(const ibl::Cubemap& cube, bool immutable) {
+        if (cube.size() <= 0) return {};
+        gpu::Texture t = gpu::Texture::create_cube(cube.size(), gpu::TextureFormat::RGBA16F, int(cube.levels.size()), immutable);
+        for (std::size_t l = 0; l < cube.levels.size(); ++l)
+            for (int f = 0; f < 6; ++f)
+                t.upload_cube_face(f, int(l), cube.levels[l].size, cube.levels[l].faces[std::size_t(f)].data());
+        return t;
+    }
+
     void ensure_environment(const RenderSettings& s) {
         std::uint64_t env_id = 0;
         if (s.environment)
             env_id = s.environment->content_hash ? s.environment->content_hash : ibl::baked_content_hash(*s.environment);
         if (s.environment && env_id != uploaded_env) {
             const bool immutable = context.capabilities().texture_storage;
-            const ibl::Cubemap& c = s.environment->specular;
-            env_specular = gpu::Texture::create_cube(c.size(), gpu::TextureFormat::RGBA16F, int(c.levels.size()), immutable);
-            for (std::size_t l = 0; l < c.levels.size(); ++l)
-                for (int f = 0; f < 6; ++f)
-                    env_specular.upload_cube_face(f, int(l), c.levels[l].size, c.levels[l].faces[std::size_t(f)].data());
-            const ibl::Cubemap& irr = s.environment->irradiance_map;
-            env_irradiance = gpu::Texture::create_cube(irr.size(), gpu::TextureFormat::RGBA16F, 1, immutable);
-            for (int f = 0; f < 6; ++f)
-                env_irradiance.upload_cube_face(f, 0, irr.size(), irr.levels[0].faces[std::size_t(f)].data());
-            const ibl::Cubemap& sh = s.environment->sheen;
-            env_sheen = {};
-            if (sh.size() > 0) {
-                env_sheen = gpu::Texture::create_cube(sh.size(), gpu::TextureFormat::RGBA16F, int(sh.levels.size()), immutable);
-                for (std::size_t l = 0; l < sh.levels.size(); ++l)
-                    for (int f = 0; f < 6; ++f)
-                        env_sheen.upload_cube_face(f, int(l), sh.levels[l].size, sh.levels[l].faces[std::size_t(f)].data());
-            }
-            const ibl::Cubemap& bg = s.environment->background;
-            env_background = {};
-            if (bg.size() > 0) {
-                env_background = gpu::Texture::create_cube(bg.size(), gpu::TextureFormat::RGBA16F, int(bg.levels.size()), immutable);
-                for (std::size_t l = 0; l < bg.levels.size(); ++l)
-                    for (int f = 0; f < 6; ++f)
-                        env_background.upload_cube_face(f, int(l), bg.levels[l].size, bg.levels[l].faces[std::size_t(f)].data());
-            }
+            env_specular = upload_cube(s.environment->specular, immutable);
+            env_irradiance = upload_cube(s.environment->irradiance_map, immutable);
+            env_sheen = upload_cube(s.environment->sheen, immutable);
+            env_background = upload_cube(s.environment->background, immutable);
             const ImageF& cl = s.environment->charlie_lut;
             charlie_lut = {};
             if (cl.width > 0) {
