@@ -18,14 +18,16 @@ layout(std140) uniform FrameBlock {
     float u_env_intensity;
     int u_debug;              // 0 = shading; other values select a debug channel (see debug.glsl)
     int u_energy_compensation;  // 1: multiple-scattering compensation of punctual specular
-    // KHR_lights_punctual, packed per light: position.xyz + type (0 dir, 1 point, 2 spot);
-    // direction the light travels .xyz + range (0 = infinite); colour * intensity; spot cone
-    // scale and offset.
+    // The lights, packed per light: position.xyz + type (0 dir, 1 point, 2 spot, 3 rect, 4 disk,
+    // 5 sphere); direction the light travels (an area light's facing) .xyz + range (0 =
+    // infinite); colour * intensity; spot cone scale and offset, or an area light's first
+    // half-extent axis .xyz + a sphere's radius; an area light's second half-extent axis.
     int u_light_count;
     vec4 u_light_position_type[MAX_LIGHTS];
     vec4 u_light_direction_range[MAX_LIGHTS];
     vec4 u_light_color[MAX_LIGHTS];
     vec4 u_light_cone[MAX_LIGHTS];
+    vec4 u_light_axis[MAX_LIGHTS];
     // Shadows (shadows.glsl; fresnel::FrameBlock says what each holds).
     vec4 u_shadow_atlas_info;
     vec4 u_light_shadow[MAX_LIGHTS];

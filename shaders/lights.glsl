@@ -1,6 +1,5 @@
-// KHR_lights_punctual: directional (lux), point and spot (candela) lights.
-// Packed per light: position.xyz + type (0 dir, 1 point, 2 spot); direction the light
-// travels .xyz + range (0 = infinite); colour * intensity; spot cone scale and offset.
+// KHR_lights_punctual: directional (lux), point and spot (candela) lights; area lights (nits),
+// packed as frame_block.glsl says.
 #ifndef MAX_LIGHTS
 #define MAX_LIGHTS 16
 #endif
@@ -30,6 +29,18 @@ vec3 light_arriving(int i, vec3 position, bool falloff, out vec3 l) {
     if (pt.w < 0.5) {
         l = -dr.xyz;
         return radiance;
+    }
+    if (pt.w > 2.5) {
+        // An area light seen as a point at its centre: luminance x projected area (the
+        // Blinn-Phong and OpenGL 1 shading's view of it; pbr.frag integrates the area, ltc.glsl).
+        vec3 to_center = pt.xyz - position;
+        float d2 = max(dot(to_center, to_center), 1e-8);
+        l = to_center * inversesqrt(d2);
+        float r = u_light_cone[i].w;
+        float projected = pt.w > 4.5 ? 3.14159265 * r * r
+                                     : (pt.w > 3.5 ? 3.14159265 : 4.0) * length(cross(u_light_cone[i].xyz, u_light_axis[i].xyz)) *
+                                           max(dot(dr.xyz, -l), 0.0);
+        return radiance * (projected / d2);
     }
     vec3 to_light = pt.xyz - position;
     float dist = length(to_light);

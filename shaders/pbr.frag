@@ -24,6 +24,9 @@ uniform int u_encoding;    // -1 = none (linear output), 0 = sRGB, 1 = gamma 2.2
 #include "ibl.glsl"
 #include "material_inputs.glsl"
 #include "transmission.glsl"
+#ifdef FRAME_AREA_LIGHTS
+#include "area_lights.glsl"
+#endif
 #include "debug.glsl"
 
 struct Frame {
@@ -110,6 +113,19 @@ void main() {
     // rasteriser runs every copy (docs/performance.md).
     int i = 0;
     if (u_light_count > 0) do {
+#ifdef FRAME_AREA_LIGHTS
+        // Rectangles, disks and spheres (area_lights.glsl): their area integrated, the shadow
+        // looked up towards their centre.
+        if (u_light_position_type[i].w > 2.5) {
+            vec3 pts[17];
+            int count = area_light_polygon(i, v_position, pts);
+            vec3 to_centre = u_light_position_type[i].xyz - v_position;
+            vec3 toward = dot(to_centre, to_centre) > 0.0 ? normalize(to_centre) : f.n;
+            color += shade_area_light(m, v, pts, count, u_light_color[i].rgb, toward, comp_dielectric, comp_metal) *
+                     shadow_visibility(i, v_position, f.ng, toward);
+            continue;
+        }
+#endif
         vec3 l;
         vec3 radiance = light_incident(i, v_position, l);
         radiance *= shadow_visibility(i, v_position, f.ng, l);

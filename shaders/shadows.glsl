@@ -2,7 +2,8 @@
 // every shadowed light's maps are square tiles of one depth atlas, read with comparison
 // (sampler2DShadow: each probe is the hardware's 2x2 percentage-closer filter). A directional
 // light's point is looked up in its first cascade that holds it, a point light's in the cube
-// face of the direction's major axis, a spot light's in its one map. The lookup point moves
+// face of the direction's major axis (an area light's too, around its centre), a spot light's in
+// its one map. The lookup point moves
 // off the surface along the geometric normal by about a texel of the map there (normal offset),
 // the depth pass adds a slope-scaled bias: neither acne nor shadows detached from their casters.
 // FRAME_SHADOWS 1: one probe (hard); 2: four probes on a disk turned per pixel (soft edges a
@@ -17,7 +18,7 @@ int shadow_tile(int i, vec3 p) {
     int first = int(u_light_shadow[i].x);
     if (first < 0) return -1;
     float type = u_light_position_type[i].w;
-    if (type > 0.5 && type < 1.5) {  // point: the cube face of the major axis
+    if ((type > 0.5 && type < 1.5) || type > 2.5) {  // point and area lights: the cube face of the major axis
         vec3 d = p - u_light_position_type[i].xyz;
         vec3 a = abs(d);
         int face = a.x >= a.y && a.x >= a.z ? (d.x < 0.0 ? 1 : 0) : (a.y >= a.z ? (d.y < 0.0 ? 3 : 2) : (d.z < 0.0 ? 5 : 4));
@@ -64,7 +65,14 @@ float shadow_visibility(int i, vec3 p, vec3 ng, vec3 l) {
     const vec2 kDisk[4] = vec2[4](vec2(-0.840, -0.074), vec2(0.962, -0.195), vec2(0.519, 0.767), vec2(-0.322, -0.933));
     float angle = 6.2831853 * shadow_noise(gl_FragCoord.xy);
     float cs = cos(angle), sn = sin(angle);
-    mat2 turn = mat2(cs, sn, -sn, cs) * u_shadow_atlas_info.z;
+    // An area light's penumbra widens with its size: the disk grows by the light's half extent
+    // over the texel here (as if its blockers stood halfway to it; at most 6 texels in all).
+    float radius = u_shadow_atlas_info.z;
+    if (u_light_position_type[i].w > 2.5) {
+        float extent = max(max(length(u_light_cone[i].xyz), length(u_light_axis[i].xyz)), u_light_cone[i].w);
+        radius = min(radius + extent / max(texel, 1e-6), 6.0);
+    }
+    mat2 turn = mat2(cs, sn, -sn, cs) * radius;
     vec2 atlas_texel = u_shadow_atlas_info.xy;
     float sum = 0.0;
     for (int k = 0; k < 4; ++k)

@@ -1,7 +1,6 @@
 #include "command_line.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <string_view>
@@ -10,21 +9,6 @@
 #include "fresnel/render/renderer.h"
 
 namespace fresnel::cli {
-namespace {
-
-// The shortest decimal form that reads back as the same float.
-std::string num(float v) {
-    char buf[32];
-    auto r = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, r.ptr);
-}
-std::string nums(std::initializer_list<float> v) {
-    std::string s;
-    for (float f : v) s += (s.empty() ? "" : ",") + num(f);
-    return s;
-}
-
-}  // namespace
 
 gpu::ContextOptions context_options(const RenderOptions& o) {
     gpu::ContextOptions co;
@@ -73,22 +57,7 @@ std::string render_command_line(const Job& job, const std::string& output) {
         if (!shortcut) add(s.flag, value);
     }
     // Extra lights, as --light writes them (a range is not part of that syntax).
-    for (const LightInstance& l : job.lights.extra) {
-        float lum = std::max({l.radiance.x, l.radiance.y, l.radiance.z});
-        glm::vec3 color = lum > 0 ? l.radiance / lum : glm::vec3(1.0f);
-        std::string rgb = color == glm::vec3(1.0f) ? "" : "," + nums({color.x, color.y, color.z});
-        const float deg = 180.0f / 3.14159265358979f;
-        glm::vec3 from = -l.direction;
-        float el = std::asin(std::clamp(from.y, -1.0f, 1.0f)) * deg, az = std::atan2(from.x, from.z) * deg;
-        if (l.type == Light::Type::Point) {
-            add("--light", "point:" + nums({l.position.x, l.position.y, l.position.z, lum}) + rgb);
-        } else if (l.type == Light::Type::Spot) {
-            add("--light", "spot:" + nums({l.position.x, l.position.y, l.position.z, az, el, lum, l.inner_cone * deg,
-                                           l.outer_cone * deg}) + rgb);
-        } else {
-            add("--light", "dir:" + nums({az, el, lum}) + rgb);
-        }
-    }
+    for (const LightInstance& l : job.lights.extra) add("--light", light_spec(l));
     return line;
 }
 

@@ -35,6 +35,7 @@ struct ConvertOptions {
     bool no_diffuse_bake = false;
     std::string match = "albedo";  // Phong -> PBR intent (fit::Match)
     bool rewrite = false;          // glTF -> glTF through the scene model instead of copy_gltf
+    bool area_lights = false;      // --rewrite: area lights written as EXT_lights_area
 };
 
 std::string lower_ext(const fs::path& p) {
@@ -288,7 +289,9 @@ int run_convert(const ConvertOptions& o) {
         written = write_obj(scene, o.output, diagnostics);
     } else {
         if (in_obj) fit_phong_materials(scene, o.quiet, *fit::parse_match(o.match), diagnostics, o.input);
-        written = write_gltf(scene, o.output, diagnostics);
+        GltfWriteOptions wo;
+        wo.area_lights = o.area_lights;
+        written = write_gltf(scene, o.output, diagnostics, wo);
     }
     print_warnings(diagnostics);
     // What was written, whole (the set is committed together: fresnel/core/atomic_file.h).
@@ -322,6 +325,10 @@ Runner add_convert_command(CLI::App& app) {
                   "metallic-roughness, tangents generated, images re-encoded as PNG), dropping what the model does "
                   "not hold (animations, skins, morph targets, extras, unknown extensions); without it the file is "
                   "kept as it is, only its container changes");
+    cmd->add_flag("--area-lights", opts->area_lights,
+                  "glTF output through the scene model (--rewrite): write area lights (rect, disk, sphere) as "
+                  "EXT_lights_area, fresnel's extension; without it they are left out with a warning (a plain glTF -> "
+                  "glTF convert keeps the file's extension data as it is)");
     cmd->add_option("--match", opts->match,
                     "OBJ -> glTF: what the fitted materials are for: albedo (Kd is the albedo, as Blender and obj2gltf "
                     "read it; roughness and specular fitted from Ks and Ns) or opengl1 (look like the OpenGL 1 render "

@@ -487,9 +487,12 @@ function buildLights(st) {
                 z = field(row, 'z', { type: 'number', step: 0.1, value: num(l.position[2]) }, apply);
             }
             let color = { value: toHex(l.color) }, i = { value: num(l.intensity) };
-            if (l.type !== 'spot') {  // a scene file's spot lights: listed and removable (--light has no spot form)
+            if (l.type === 'directional' || l.type === 'point') {
                 color = field(row, 'colour', { type: 'color', value: toHex(l.color) }, apply);
                 i = field(row, l.type === 'directional' ? 'lux' : 'candela', { type: 'number', min: 0, step: 0.1, value: num(l.intensity) }, apply);
+            } else {  // spot and area lights: edited as their --light text (rect:X,Y,Z,AZ,EL,W,H,NITS[,R,G,B], ...)
+                const t = field(row, '--light', { type: 'text', size: 48, value: l.spec }, () => {});
+                t.addEventListener('change', () => { try { set(`light:${l.index}`, t.value); } catch (err) { showError(err.message); } scheduleDraw(); });
             }
             const remove = document.createElement('button');
             remove.textContent = 'remove';
@@ -498,7 +501,7 @@ function buildLights(st) {
         }
         box.append(row);
     }
-    $('add-dir').dataset.next = $('add-point').dataset.next = String(extras.length);
+    $('add-dir').dataset.next = $('add-point').dataset.next = $('add-rect').dataset.next = String(extras.length);
 }
 
 // The material editor, built from the material property registry (fresnel_material_properties:
@@ -771,6 +774,7 @@ function bindPanel() {
     };
     $('add-dir').addEventListener('click', add('dir:30,45,3'));
     $('add-point').addEventListener('click', add('point:0,1,1,5'));
+    $('add-rect').addEventListener('click', add('rect:0,1.5,1.5,0,45,1,1,5'));
     $('play').addEventListener('click', () => play(!playback.playing));
     $('rest-pose').addEventListener('click', async () => {
         play(false);

@@ -46,8 +46,7 @@ nlohmann::json light_json(const LightInstance& l, const std::string& origin, int
     glm::vec3 color = intensity > 0 ? l.radiance / intensity : glm::vec3(1.0f);
     glm::vec3 from = -l.direction;
     const float deg = 180.0f / 3.14159265358979f;
-    const char* type = l.type == Light::Type::Directional ? "directional" : l.type == Light::Type::Point ? "point" : "spot";
-    return {{"origin", origin}, {"index", index}, {"type", type},
+    return {{"origin", origin}, {"index", index}, {"type", light_type_name(l.type)}, {"spec", light_spec(l)},
             {"azimuth", std::atan2(from.x, from.z) * deg}, {"elevation", std::asin(std::clamp(from.y, -1.0f, 1.0f)) * deg},
             {"position", {l.position.x, l.position.y, l.position.z}}, {"color", {color.x, color.y, color.z}},
             {"intensity", intensity}};

@@ -38,6 +38,7 @@
 #include "fresnel/scene/tangents.h"
 #include "fresnel/scene/vertex_occlusion.h"
 
+#include "fresnel/material/area_light.h"
 #include "fresnel/material/brdf.h"
 #include "fresnel/material/brdf_model.h"
 #include "fresnel/material/bsdf.h"
@@ -45,6 +46,7 @@
 #include "fresnel/material/fit.h"
 #include "fresnel/material/material.h"
 #include "fresnel/material/legacy_shading.h"
+#include "fresnel/material/ltc.h"
 #include "fresnel/material/phong.h"
 #include "fresnel/material/properties.h"
 #include "fresnel/material/sampling.h"
@@ -75,6 +77,7 @@
 #include "fresnel/job/scene_file.h"
 #include "fresnel/job/settings.h"
 
+#include "fresnel/trace/area_lights.h"
 #include "fresnel/trace/distribution.h"
 #include "fresnel/trace/environment_light.h"
 #include "fresnel/trace/job_inputs.h"

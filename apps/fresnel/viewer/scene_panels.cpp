@@ -16,14 +16,6 @@
 #include "viewer_app.h"
 
 namespace fresnel::cli::view {
-namespace {
-
-const char* light_type_name(Light::Type t) {
-    return t == Light::Type::Directional ? "directional" : t == Light::Type::Point ? "point" : "spot";
-}
-
-}  // namespace
-
 // Light handles and the picked primitive's box, under the panels.
 void Viewer::draw_gizmos() {
     if (!state_.last_camera || !state_.scene) return;
@@ -62,6 +54,19 @@ void Viewer::draw_gizmos() {
             if (auto sc = to_window(c)) dl->AddLine(at, ImVec2(sc->x, sc->y), col, 1.0f);
         } else if (l.type == Light::Type::Spot) {
             if (auto e = to_window(l.position + l.direction * radius * 0.3f)) dl->AddLine(at, ImVec2(e->x, e->y), col, 2.0f);
+        } else if (l.type == Light::Type::Rect || l.type == Light::Type::Disk) {
+            // Its outline (a disk as 16 sides) and a stroke where it faces.
+            const glm::vec3 o = h - l.position;  // the handle may sit off the light (an added one's orbit)
+            const int sides = l.type == Light::Type::Rect ? 4 : 16;
+            std::optional<glm::vec2> prev;
+            for (int k = 0; k <= sides; ++k) {
+                float a = 6.2831853f * (float(k) + (sides == 4 ? 0.5f : 0.0f)) / float(sides);
+                glm::vec3 q = o + l.position + (sides == 4 ? 1.41421356f : 1.0f) * (std::cos(a) * l.axis_u + std::sin(a) * l.axis_v);
+                auto w = to_window(q);
+                if (w && prev) dl->AddLine(ImVec2(prev->x, prev->y), ImVec2(w->x, w->y), col, 1.5f);
+                prev = w;
+            }
+            if (auto e = to_window(h + l.direction * radius * 0.3f)) dl->AddLine(at, ImVec2(e->x, e->y), col, 2.0f);
         }
         dl->AddCircleFilled(at, 6.0f, col);
         dl->AddCircle(at, 8.0f, IM_COL32(0, 0, 0, 200), 0, 1.5f);
@@ -87,6 +92,11 @@ void Viewer::draw_lights_panel() {
     if (ImGui::Button("+ point")) state_.add_light(Light::Type::Point);
     ImGui::SameLine();
     if (ImGui::Button("+ spot")) state_.add_light(Light::Type::Spot);
+    if (ImGui::Button("+ rect")) state_.add_light(Light::Type::Rect);
+    ImGui::SameLine();
+    if (ImGui::Button("+ disk")) state_.add_light(Light::Type::Disk);
+    ImGui::SameLine();
+    if (ImGui::Button("+ sphere")) state_.add_light(Light::Type::Sphere);
     if (ImGui::Checkbox("orbit lights around the model", &state_.orbit_lights) && state_.orbit_lights) spin_last_.reset();
     int remove = -1;
     for (int i = 0; i < int(job.lights.extra.size()); ++i) {
@@ -99,22 +109,40 @@ void Viewer::draw_lights_panel() {
         if (ImGui::SmallButton("delete")) remove = i;
         if (open) {
             int type = int(l.type);
-            if (ImGui::Combo("type", &type, "directional\0point\0spot\0")) l.type = Light::Type(type);
-            if (l.type != Light::Type::Point) {  // where it shines from, as --light dir:AZ,EL
+            if (ImGui::Combo("type", &type, "directional\0point\0spot\0rect\0disk\0sphere\0")) {
+                const Light::Type was = l.type;
+                l.type = Light::Type(type);
+                if (l.is_area() && !is_area_light(was)) state_.shape_area_light(l);  // a size and nits for it
+            }
+            if (l.type != Light::Type::Point && l.type != Light::Type::Sphere) {  // where it shines from, as --light dir:AZ,EL
                 glm::vec3 from = -l.direction;
                 float el = glm::degrees(std::asin(std::clamp(from.y, -1.0f, 1.0f)));
                 float az = glm::degrees(std::atan2(from.x, from.z));
                 bool ch = ImGui::DragFloat("azimuth", &az, 0.5f, -180.0f, 180.0f, "%.1f deg");
                 ch |= ImGui::DragFloat("elevation", &el, 0.5f, -90.0f, 90.0f, "%.1f deg");
-                if (ch) l.direction = direction_from_angles(az, std::clamp(el, -90.0f, 90.0f));
+                if (ch) {
+                    const float w = 2.0f * glm::length(l.axis_u), h = 2.0f * glm::length(l.axis_v);
+                    l.direction = direction_from_angles(az, std::clamp(el, -90.0f, 90.0f));
+                    if (l.type == Light::Type::Rect || l.type == Light::Type::Disk) area_light_axes(l.direction, w, h, l.axis_u, l.axis_v);
+                }
             }
+            if (l.type == Light::Type::Rect || l.type == Light::Type::Disk) {
+                float w = 2.0f * glm::length(l.axis_u), h = 2.0f * glm::length(l.axis_v);
+                bool ch = l.type == Light::Type::Rect ? ImGui::DragFloat2("width, height", &w, 0.005f * r, 1e-4f, 1e6f)
+                                                      : ImGui::DragFloat("diameter", &w, 0.005f * r, 1e-4f, 1e6f);
+                if (l.type == Light::Type::Disk) h = w;
+                if (ch) area_light_axes(l.direction, std::max(w, 1e-4f), std::max(h, 1e-4f), l.axis_u, l.axis_v);
+            }
+            if (l.type == Light::Type::Sphere) ImGui::DragFloat("radius", &l.radius, 0.002f * r, 1e-4f, 1e6f);
             if (l.type != Light::Type::Directional) ImGui::DragFloat3("position", &l.position.x, 0.01f * r);
             float lum = std::max({l.radiance.x, l.radiance.y, l.radiance.z});
             glm::vec3 color = lum > 0.0f ? l.radiance / lum : glm::vec3(1.0f);
             bool ch = ImGui::ColorEdit3("colour", &color.x);
-            ch |= ImGui::DragFloat(l.type == Light::Type::Directional ? "lux" : "candela", &lum, 0.01f * std::max(lum, 1.0f), 0.0f, 1e6f);
+            ch |= ImGui::DragFloat(l.type == Light::Type::Directional ? "lux" : l.is_area() ? "nits" : "candela", &lum,
+                                   0.01f * std::max(lum, 1.0f), 0.0f, 1e9f);
             if (ch) l.radiance = color * std::max(lum, 0.0f);
-            if (l.type != Light::Type::Directional) ImGui::DragFloat("range (0: infinite)", &l.range, 0.01f * r, 0.0f, 1e6f);
+            if (l.type == Light::Type::Point || l.type == Light::Type::Spot)
+                ImGui::DragFloat("range (0: infinite)", &l.range, 0.01f * r, 0.0f, 1e6f);
             if (l.type == Light::Type::Spot) {
                 float inner = glm::degrees(l.inner_cone), outer = glm::degrees(l.outer_cone);
                 if (ImGui::DragFloatRange2("cone", &inner, &outer, 0.2f, 0.0f, 90.0f, "inner %.1f", "outer %.1f")) {

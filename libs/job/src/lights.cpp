@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <charconv>
 #include <sstream>
 
 #include "fresnel/core/error.h"
@@ -26,6 +27,14 @@ glm::vec3 light_incident(const LightInstance& light, glm::vec3 position, glm::ve
         attenuation = std::clamp(1.0f - r * r * r * r, 0.0f, 1.0f) / d2;
     }
     glm::vec3 radiance = light.radiance * attenuation;
+    if (light.is_area()) {
+        // Seen as a point at its centre: luminance x projected area (a rectangle or disk seen at
+        // an angle; a sphere's disk). Shading that integrates the area (ltc.h) does not use this.
+        float projected = light.type == Light::Type::Sphere
+                              ? 3.14159265f * light.radius * light.radius
+                              : light.area() * std::max(glm::dot(light.direction, -l), 0.0f);
+        return light.radiance * (projected / d2);
+    }
     if (light.type == Light::Type::Spot) {
         // The renderer's packing (renderer.cpp, pack_frame): scale and offset of the cone.
         float scale = 1.0f / std::max(0.001f, std::cos(light.inner_cone) - std::cos(light.outer_cone));
@@ -34,6 +43,25 @@ glm::vec3 light_incident(const LightInstance& light, glm::vec3 position, glm::ve
         radiance *= a * a;
     }
     return radiance;
+}
+
+float LightInstance::area() const {
+    switch (type) {
+        case Light::Type::Rect: return 4.0f * glm::length(glm::cross(axis_u, axis_v));
+        case Light::Type::Disk: return 3.14159265f * glm::length(glm::cross(axis_u, axis_v));
+        case Light::Type::Sphere: return 4.0f * 3.14159265f * radius * radius;
+        default: return 0.0f;
+    }
+}
+
+void area_light_axes(glm::vec3 direction, float width, float height, glm::vec3& axis_u, glm::vec3& axis_v) {
+    glm::vec3 d = glm::normalize(direction);
+    glm::vec3 up = std::abs(d.y) > 0.999f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+    // u across; v = d x u, so that u x v = u x (d x u) = d (u.u) - u (u.d) = d (u is normal to d).
+    glm::vec3 u = glm::normalize(glm::cross(up, d));
+    glm::vec3 v = glm::cross(d, u);
+    axis_u = u * (0.5f * width);
+    axis_v = v * (0.5f * height);
 }
 
 std::vector<LightInstance> scene_lights(const Scene& scene, const std::vector<NodeInstance>& instances) {
@@ -52,6 +80,21 @@ std::vector<LightInstance> scene_lights(const Scene& scene, const std::vector<No
         li.range = l.range;
         li.inner_cone = l.inner_cone_angle;
         li.outer_cone = l.outer_cone_angle;
+        // Area lights: the node's X and Y axes (scale included) span the rectangle or disk; a
+        // sphere takes the largest scale.
+        glm::vec3 x = glm::vec3(inst.world[0]), y = glm::vec3(inst.world[1]), z = glm::vec3(inst.world[2]);
+        if (l.type == Light::Type::Rect) {
+            li.axis_u = x * (0.5f * l.width);
+            li.axis_v = y * (0.5f * l.height);
+        } else if (l.type == Light::Type::Disk) {
+            li.axis_u = x * l.radius;
+            li.axis_v = y * l.radius;
+        } else if (l.type == Light::Type::Sphere) {
+            li.radius = l.radius * std::max({glm::length(x), glm::length(y), glm::length(z)});
+        }
+        // u x v faces where the light emits (the node's X x Y is its +Z, away from it; a
+        // mirroring transform turns that too).
+        if (li.is_area() && glm::dot(glm::cross(li.axis_u, li.axis_v), li.direction) < 0.0f) li.axis_v = -li.axis_v;
         out.push_back(li);
     }
     return out;
@@ -77,8 +120,9 @@ LightInstance parse_light(const std::string& spec) {
     auto colon = spec.find(':');
     auto fail = [&](const std::string& why) -> void { throw Error("--light", spec, why); };
     if (colon == std::string::npos)
-        fail("expected dir:AZIMUTH,ELEVATION,LUX[,R,G,B], point:X,Y,Z,CANDELA[,R,G,B] or "
-             "spot:X,Y,Z,AZIMUTH,ELEVATION,CANDELA,INNER,OUTER[,R,G,B]");
+        fail("expected dir:AZIMUTH,ELEVATION,LUX[,R,G,B], point:X,Y,Z,CANDELA[,R,G,B], "
+             "spot:X,Y,Z,AZIMUTH,ELEVATION,CANDELA,INNER,OUTER[,R,G,B], rect:X,Y,Z,AZIMUTH,ELEVATION,WIDTH,HEIGHT,NITS[,R,G,B], "
+             "disk:X,Y,Z,AZIMUTH,ELEVATION,RADIUS,NITS[,R,G,B] or sphere:X,Y,Z,RADIUS,NITS[,R,G,B]");
     std::string kind = spec.substr(0, colon);
     std::vector<float> v;
     std::stringstream ss(spec.substr(colon + 1));
@@ -119,11 +163,74 @@ LightInstance parse_light(const std::string& spec) {
         if (!(v[6] >= 0.0f && v[6] < v[7] && v[7] <= 90.0f)) fail("spot cone angles need 0 <= INNER < OUTER <= 90 degrees");
         if (v.size() == 11) color = {v[8], v[9], v[10]};
         l.radiance = color * v[5];
+    } else if (kind == "rect" || kind == "disk") {
+        const bool rect = kind == "rect";
+        const std::size_t n = rect ? 8 : 7;
+        if (v.size() != n && v.size() != n + 3)
+            fail(rect ? "rect: needs X,Y,Z,AZIMUTH,ELEVATION,WIDTH,HEIGHT,NITS[,R,G,B]" : "disk: needs X,Y,Z,AZIMUTH,ELEVATION,RADIUS,NITS[,R,G,B]");
+        l.type = rect ? Light::Type::Rect : Light::Type::Disk;
+        l.position = {v[0], v[1], v[2]};
+        l.direction = direction_from_angles(v[3], v[4]);  // it faces as a spot light from AZIMUTH,ELEVATION aims
+        float w = v[5], h = rect ? v[6] : v[5];
+        if (!(w > 0.0f && h > 0.0f)) fail(rect ? "WIDTH and HEIGHT must be positive" : "RADIUS must be positive");
+        area_light_axes(l.direction, rect ? w : 2.0f * w, rect ? h : 2.0f * h, l.axis_u, l.axis_v);
+        if (v.size() == n + 3) color = {v[n], v[n + 1], v[n + 2]};
+        l.radiance = color * v[n - 1];
+    } else if (kind == "sphere") {
+        if (v.size() != 5 && v.size() != 8) fail("sphere: needs X,Y,Z,RADIUS,NITS[,R,G,B]");
+        l.type = Light::Type::Sphere;
+        l.position = {v[0], v[1], v[2]};
+        if (!(v[3] > 0.0f)) fail("RADIUS must be positive");
+        l.radius = v[3];
+        if (v.size() == 8) color = {v[5], v[6], v[7]};
+        l.radiance = color * v[4];
     } else {
-        fail("unknown light type '" + kind + "' (use dir, point or spot)");
+        fail("unknown light type '" + kind + "' (use dir, point, spot, rect, disk or sphere)");
     }
     if (l.radiance.x < 0 || l.radiance.y < 0 || l.radiance.z < 0) fail("intensity and colour must not be negative");
     return l;
+}
+
+const char* light_type_name(Light::Type type) {
+    switch (type) {
+        case Light::Type::Directional: return "directional";
+        case Light::Type::Point: return "point";
+        case Light::Type::Spot: return "spot";
+        case Light::Type::Rect: return "rect";
+        case Light::Type::Disk: return "disk";
+        case Light::Type::Sphere: return "sphere";
+    }
+    return "directional";
+}
+
+std::string light_spec(const LightInstance& l) {
+    auto nums = [](std::initializer_list<float> v) {  // the shortest forms that read back as the same floats
+        std::string out;
+        for (float f : v) {
+            char buf[32];
+            auto r = std::to_chars(buf, buf + sizeof buf, f);
+            out += (out.empty() ? "" : ",") + std::string(buf, r.ptr);
+        }
+        return out;
+    };
+    const float lum = std::max({l.radiance.x, l.radiance.y, l.radiance.z});
+    const glm::vec3 color = lum > 0 ? l.radiance / lum : glm::vec3(1.0f);
+    const std::string rgb = color == glm::vec3(1.0f) ? "" : "," + nums({color.x, color.y, color.z});
+    const float deg = 180.0f / 3.14159265358979f;
+    const glm::vec3 from = -l.direction;
+    const float el = std::asin(std::clamp(from.y, -1.0f, 1.0f)) * deg, az = std::atan2(from.x, from.z) * deg;
+    const glm::vec3 p = l.position;
+    switch (l.type) {
+        case Light::Type::Directional: return "dir:" + nums({az, el, lum}) + rgb;
+        case Light::Type::Point: return "point:" + nums({p.x, p.y, p.z, lum}) + rgb;
+        case Light::Type::Spot:
+            return "spot:" + nums({p.x, p.y, p.z, az, el, lum, l.inner_cone * deg, l.outer_cone * deg}) + rgb;
+        case Light::Type::Rect:
+            return "rect:" + nums({p.x, p.y, p.z, az, el, 2.0f * glm::length(l.axis_u), 2.0f * glm::length(l.axis_v), lum}) + rgb;
+        case Light::Type::Disk: return "disk:" + nums({p.x, p.y, p.z, az, el, glm::length(l.axis_u), lum}) + rgb;
+        case Light::Type::Sphere: return "sphere:" + nums({p.x, p.y, p.z, l.radius, lum}) + rgb;
+    }
+    return "";
 }
 
 }  // namespace fresnel

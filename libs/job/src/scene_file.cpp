@@ -383,9 +383,9 @@ void read_camera(const Reader& r, const json& c, Job& job) {
 LightInstance read_light(const Reader& r, const json& l, const std::string& ptr) {
     r.object(l, ptr);
     r.keys(l, ptr, {"type", "color", "intensity", "range", "direction", "azimuth", "elevation", "position", "target",
-                    "innerConeAngle", "outerConeAngle", "name"});
+                    "innerConeAngle", "outerConeAngle", "width", "height", "radius", "name"});
     const json* t = r.find(l, "type");
-    if (!t) r.fail(ptr, "needs a 'type': directional, point or spot");
+    if (!t) r.fail(ptr, "needs a 'type': directional, point, spot, rect, disk or sphere");
     std::string type = r.string(*t, at(ptr, "type"));
     LightInstance li;
     glm::vec3 color(1.0f);
@@ -437,9 +437,34 @@ LightInstance read_light(const Reader& r, const json& l, const std::string& ptr)
         if (auto* v = r.find(l, "innerConeAngle")) li.inner_cone = float(r.number(*v, at(ptr, "innerConeAngle"), 0, 1.5707964));
         if (auto* v = r.find(l, "outerConeAngle")) li.outer_cone = float(r.number(*v, at(ptr, "outerConeAngle"), 0, 1.5707964));
         if (!(li.inner_cone < li.outer_cone)) r.fail(ptr, "innerConeAngle must be less than outerConeAngle (radians)");
+    } else if (type == "rect" || type == "disk") {
+        // Facing along 'direction' (or azimuth/elevation, or towards 'target'), as a spot light aims.
+        li.type = type == "rect" ? Light::Type::Rect : Light::Type::Disk;
+        position();
+        direction(true);
+        auto length = [&](const char* key, double fallback) {
+            const json* v = r.find(l, key);
+            return v ? float(r.number(*v, at(ptr, key), 1e-6, 1e6)) : float(fallback);
+        };
+        if (li.type == Light::Type::Rect) {
+            area_light_axes(li.direction, length("width", 1.0), length("height", 1.0), li.axis_u, li.axis_v);
+        } else {
+            float radius = length("radius", 0.5);
+            area_light_axes(li.direction, 2.0f * radius, 2.0f * radius, li.axis_u, li.axis_v);
+        }
+    } else if (type == "sphere") {
+        li.type = Light::Type::Sphere;
+        position();
+        const json* v = r.find(l, "radius");
+        li.radius = v ? float(r.number(*v, at(ptr, "radius"), 1e-6, 1e6)) : 0.5f;
     } else {
-        r.fail(at(ptr, "type"), "must be directional, point or spot, not '" + type + "'");
+        r.fail(at(ptr, "type"), "must be directional, point, spot, rect, disk or sphere, not '" + type + "'");
     }
+    if (li.type != Light::Type::Rect)
+        for (const char* key : {"width", "height"})
+            if (r.find(l, key)) r.fail(at(ptr, key), "is for rect lights");
+    if (li.type != Light::Type::Disk && li.type != Light::Type::Sphere && r.find(l, "radius"))
+        r.fail(at(ptr, "radius"), "is for disk and sphere lights");
     if (auto* v = r.find(l, "name")) r.string(*v, at(ptr, "name"));
     return li;
 }
@@ -734,12 +759,21 @@ json light_json(const LightInstance& l) {
         case Light::Type::Directional: o["type"] = "directional"; break;
         case Light::Type::Point: o["type"] = "point"; break;
         case Light::Type::Spot: o["type"] = "spot"; break;
+        case Light::Type::Rect: o["type"] = "rect"; break;
+        case Light::Type::Disk: o["type"] = "disk"; break;
+        case Light::Type::Sphere: o["type"] = "sphere"; break;
     }
     if (color != glm::vec3(1.0f)) o["color"] = nums<3>(color);
     o["intensity"] = num(intensity);
     if (l.type != Light::Type::Directional) o["position"] = nums<3>(l.position);
-    if (l.type != Light::Type::Point) o["direction"] = nums<3>(l.direction);
-    if (l.type != Light::Type::Directional && l.range > 0.0f) o["range"] = num(l.range);
+    if (l.type != Light::Type::Point && l.type != Light::Type::Sphere) o["direction"] = nums<3>(l.direction);
+    if ((l.type == Light::Type::Point || l.type == Light::Type::Spot) && l.range > 0.0f) o["range"] = num(l.range);
+    if (l.type == Light::Type::Rect) {
+        o["width"] = num(2.0f * glm::length(l.axis_u));
+        o["height"] = num(2.0f * glm::length(l.axis_v));
+    }
+    if (l.type == Light::Type::Disk) o["radius"] = num(glm::length(l.axis_u));
+    if (l.type == Light::Type::Sphere) o["radius"] = num(l.radius);
     if (l.type == Light::Type::Spot) {
         o["innerConeAngle"] = num(l.inner_cone);
         o["outerConeAngle"] = num(l.outer_cone);

@@ -97,7 +97,7 @@ TEST(ParseLight, ErrorsNameTheOptionTheSpecAndTheReason) {
         const char* reason;  // a part of the message
     };
     const Case cases[] = {
-        {"", "expected dir:AZIMUTH,ELEVATION,LUX[,R,G,B], point:X,Y,Z,CANDELA[,R,G,B] or spot:"},
+        {"", "expected dir:AZIMUTH,ELEVATION,LUX[,R,G,B], point:X,Y,Z,CANDELA[,R,G,B], spot:"},
         {"dir", "expected dir:"},
         {"30,45,3", "expected dir:"},
         {"dir:", "dir: needs AZIMUTH,ELEVATION,LUX[,R,G,B]"},
@@ -111,7 +111,7 @@ TEST(ParseLight, ErrorsNameTheOptionTheSpecAndTheReason) {
         {"spot:1,2,3,4", "spot: needs X,Y,Z,AZIMUTH,ELEVATION,CANDELA,INNER,OUTER[,R,G,B]"},
         {"spot:0,1,0,0,90,5,30,20", "0 <= INNER < OUTER <= 90"},
         {"spot:0,1,0,0,90,5,10,95", "0 <= INNER < OUTER <= 90"},
-        {"cone:1,2,3,4", "unknown light type 'cone' (use dir, point or spot)"},
+        {"cone:1,2,3,4", "unknown light type 'cone' (use dir, point, spot, rect, disk or sphere)"},
         {"DIR:30,45,3", "unknown light type 'DIR'"},
         {"dir:a,45,3", "'a' is not a number"},
         {"dir:30,45,3x", "'3x' is not a number"},
@@ -223,6 +223,102 @@ TEST(SceneLights, PlacedByTheirNodesWorldMatrices) {
     ASSERT_EQ(other.size(), 1u);
     EXPECT_EQ(other[0].type, Light::Type::Point);
     EXPECT_TRUE(scene_lights(s, {}).empty());
+}
+
+// Area lights from the command line: placed, facing as a spot light aims, sized, wound so that
+// u x v faces where they emit; light_spec writes what parse_light reads back.
+TEST(ParseLight, AreaForms) {
+    LightInstance r = parse_light("rect:1,2,3,30,45,2,0.5,10,1,0.5,0.25");
+    EXPECT_EQ(r.type, Light::Type::Rect);
+    EXPECT_TRUE(r.is_area());
+    expect_near(r.position, {1, 2, 3}, 1e-6f, "rect position");
+    expect_near(r.direction, travel(30, 45), 1e-5f, "rect faces as a spot aims");
+    EXPECT_NEAR(glm::length(r.axis_u), 1.0f, 1e-5f);
+    EXPECT_NEAR(glm::length(r.axis_v), 0.25f, 1e-5f);
+    EXPECT_NEAR(glm::dot(r.axis_u, r.direction), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::dot(r.axis_v, r.direction), 0.0f, 1e-5f);
+    EXPECT_NEAR(r.axis_u.y, 0.0f, 1e-5f) << "the width runs horizontally";
+    expect_near(glm::normalize(glm::cross(r.axis_u, r.axis_v)), r.direction, 1e-5f, "u x v faces the lit side");
+    EXPECT_NEAR(r.area(), 1.0f, 1e-5f);
+    expect_near(r.radiance, {10.0f, 5.0f, 2.5f}, 1e-5f, "nits times colour");
+
+    LightInstance d = parse_light("disk:0,3,0,0,90,0.5,4");
+    EXPECT_EQ(d.type, Light::Type::Disk);
+    expect_near(d.direction, {0, -1, 0}, 1e-5f, "from straight above it faces down");
+    EXPECT_NEAR(d.area(), 3.14159265f * 0.25f, 1e-5f);
+    expect_near(glm::normalize(glm::cross(d.axis_u, d.axis_v)), d.direction, 1e-5f, "u x v faces the lit side");
+
+    LightInstance sp = parse_light("sphere:0,1,0,0.1,100");
+    EXPECT_EQ(sp.type, Light::Type::Sphere);
+    EXPECT_FLOAT_EQ(sp.radius, 0.1f);
+    EXPECT_NEAR(sp.area(), 4.0f * 3.14159265f * 0.01f, 1e-6f);
+
+    for (const LightInstance& l : {r, d, sp}) {
+        LightInstance back = parse_light(light_spec(l));
+        EXPECT_EQ(back.type, l.type) << light_spec(l);
+        expect_near(back.position, l.position, 1e-5f, light_spec(l));
+        expect_near(back.direction, l.direction, 1e-5f, light_spec(l));
+        expect_near(back.axis_u, l.axis_u, 1e-5f, light_spec(l));
+        expect_near(back.axis_v, l.axis_v, 1e-5f, light_spec(l));
+        EXPECT_NEAR(back.radius, l.radius, 1e-6f);
+        expect_near(back.radiance, l.radiance, 1e-4f, light_spec(l));
+    }
+    for (const char* bad : {"rect:0,0,0,0,0,1,1", "rect:0,0,0,0,0,-1,1,5", "disk:0,0,0,0,0,0,5", "sphere:0,0,0,0,5",
+                            "sphere:0,0,0,1", "tube:0,0,0,1,1"}) {
+        try {
+            parse_light(bad);
+            ADD_FAILURE() << bad << " was accepted";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.file(), "--light") << bad;
+        }
+    }
+}
+
+// Seen from far away an area light is a point light of luminance x projected area (what the
+// OpenGL 1 shading takes; light_incident's view of it).
+TEST(LightIncident, AreaLightsFromAfarAreLuminanceTimesProjectedArea) {
+    LightInstance r = parse_light("rect:0,10,0,0,90,2,1,3");  // facing down, 2 m^2
+    glm::vec3 l;
+    float dist = 0;
+    glm::vec3 e = light_incident(r, {0, 0, 0}, l, dist);
+    expect_near(l, {0, 1, 0}, 1e-6f, "towards the centre");
+    EXPECT_NEAR(dist, 10.0f, 1e-5f);
+    EXPECT_NEAR(e.x, 3.0f * 2.0f / 100.0f, 1e-6f);
+    e = light_incident(r, {0, 20, 0}, l, dist);
+    EXPECT_EQ(e.x, 0.0f) << "behind a one-sided light";
+    LightInstance sp = parse_light("sphere:0,0,5,0.5,8");
+    e = light_incident(sp, {0, 0, 0}, l, dist);
+    EXPECT_NEAR(e.x, 8.0f * 3.14159265f * 0.25f / 25.0f, 1e-6f);
+}
+
+// glTF area lights (EXT_lights_area) on nodes: the node's X and Y axes (scale included) span
+// the rectangle or disk, which emits down its -Z; a sphere takes the largest scale.
+TEST(SceneLights, AreaLightsPlacedByTheirNodes) {
+    Scene s;
+    Light rect;
+    rect.type = Light::Type::Rect;
+    rect.width = 2.0f;
+    rect.height = 1.0f;
+    rect.intensity = 5.0f;
+    Light sphere;
+    sphere.type = Light::Type::Sphere;
+    sphere.radius = 0.25f;
+    s.lights = {rect, sphere};
+    Node a, b;
+    a.light = 0;
+    a.local = glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0, 3, 0)), -90.0f * kDeg, glm::vec3(1, 0, 0)),
+                         glm::vec3(2.0f, 1.0f, 1.0f));
+    b.light = 1;
+    b.local = glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, 4.0f, 2.0f));
+    s.nodes = {a, b};
+    s.scenes = {{0, 1}};
+    auto lights = scene_lights(s, flatten(s, 0));
+    ASSERT_EQ(lights.size(), 2u);
+    const LightInstance& r = lights[0];
+    expect_near(r.direction, {0, -1, 0}, 1e-5f, "-Z turned down");
+    EXPECT_NEAR(r.area(), 4.0f, 1e-4f) << "2 x 1 scaled by 2 along its width";
+    expect_near(glm::normalize(glm::cross(r.axis_u, r.axis_v)), r.direction, 1e-5f, "u x v faces the lit side");
+    EXPECT_NEAR(lights[1].radius, 1.0f, 1e-6f) << "the largest scale";
 }
 
 }  // namespace

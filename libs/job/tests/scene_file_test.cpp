@@ -508,6 +508,54 @@ TEST_F(SceneFileTest, SavedFormsReadBack) {
     EXPECT_EQ(wd.total(), 0u);
 }
 
+// Area lights in a scene file: rect (width, height), disk and sphere (radius), placed and aimed
+// as spot lights are; saved and read back; sizes on the wrong type are errors with their pointer.
+TEST_F(SceneFileTest, AreaLightsReadAndSaveBack) {
+    json doc = {{"fresnel", 1},
+                {"model", "models/a.gltf"},
+                {"lights",
+                 {{{"type", "rect"}, {"position", {0, 3, 0}}, {"target", {0, 0, 0}}, {"width", 2}, {"height", 0.5}, {"intensity", 40}},
+                  {{"type", "disk"}, {"position", {1, 2, 0}}, {"azimuth", 90}, {"elevation", 30}, {"radius", 0.3}},
+                  {{"type", "sphere"}, {"position", {0, 1, 1}}, {"radius", 0.1}, {"color", {1, 0.5, 0.5}}, {"intensity", 8}}}}};
+    SceneFile sf = load(doc);
+    const std::vector<LightInstance>& l = sf.job.lights.extra;
+    ASSERT_EQ(l.size(), 3u);
+    EXPECT_EQ(l[0].type, Light::Type::Rect);
+    EXPECT_NEAR(l[0].direction.y, -1.0f, 1e-6f) << "aimed at its target";
+    EXPECT_NEAR(l[0].area(), 1.0f, 1e-5f);
+    EXPECT_EQ(l[1].type, Light::Type::Disk);
+    EXPECT_NEAR(glm::length(l[1].axis_u), 0.3f, 1e-6f);
+    EXPECT_EQ(l[2].type, Light::Type::Sphere);
+    EXPECT_FLOAT_EQ(l[2].radius, 0.1f);
+    EXPECT_EQ(l[2].radiance, glm::vec3(8, 4, 4));
+    fs::path saved = dir_ / "area.fresnel.json";
+    Diagnostics wd;
+    save_scene_file(saved, sf.job, wd);
+    SceneFile back = load_scene_file(saved, Job{}, diag_);
+    ASSERT_EQ(back.job.lights.extra.size(), 3u);
+    for (std::size_t i = 0; i < 3; ++i) {
+        const LightInstance& a = l[i];
+        const LightInstance& b = back.job.lights.extra[i];
+        EXPECT_EQ(a.type, b.type) << i;
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_NEAR(a.position[k], b.position[k], 1e-5f) << i;
+            EXPECT_NEAR(a.axis_u[k], b.axis_u[k], 1e-5f) << i;
+            EXPECT_NEAR(a.axis_v[k], b.axis_v[k], 1e-5f) << i;
+            EXPECT_NEAR(a.radiance[k], b.radiance[k], 1e-4f) << i;
+        }
+        EXPECT_NEAR(a.radius, b.radius, 1e-6f) << i;
+    }
+    for (const auto& [text, pointer] : std::vector<std::pair<std::string, std::string>>{
+             {R"({"fresnel": 1, "lights": [{"type": "sphere", "position": [0, 0, 0], "width": 1}]})", "/lights/0/width"},
+             {R"({"fresnel": 1, "lights": [{"type": "rect", "position": [0, 0, 0], "azimuth": 0, "radius": 1}]})", "/lights/0/radius"},
+             {R"({"fresnel": 1, "lights": [{"type": "rect", "position": [0, 0, 0], "azimuth": 0, "width": 0}]})", "/lights/0/width"},
+             {R"({"fresnel": 1, "lights": [{"type": "disk", "position": [0, 0, 0]}]})", "/lights/0"},
+         }) {
+        Error e = error_of(text);
+        EXPECT_EQ(e.where(), pointer) << text << "\n" << e.what();
+    }
+}
+
 // Files outside the scene file's folder are written with "..", and reported: the reader
 // refuses them unless external files are allowed.
 TEST_F(SceneFileTest, SavedPathsOutsideTheFolderWarn) {

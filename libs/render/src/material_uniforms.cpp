@@ -174,6 +174,7 @@ std::vector<std::pair<std::string, std::size_t>> frame_block_members() {
             {"u_light_direction_range[0]", offsetof(FrameBlock, light_direction_range)},
             {"u_light_color[0]", offsetof(FrameBlock, light_color)},
             {"u_light_cone[0]", offsetof(FrameBlock, light_cone)},
+            {"u_light_axis[0]", offsetof(FrameBlock, light_axis)},
             {"u_shadow_atlas_info", offsetof(FrameBlock, shadow_atlas)},
             {"u_light_shadow[0]", offsetof(FrameBlock, light_shadow)},
             {"u_shadow_matrix[0]", offsetof(FrameBlock, shadow_matrix)},

@@ -21,6 +21,7 @@
 #include "fresnel/gpu/context.h"
 #include "fresnel/gpu/device.h"
 #include "fresnel/gpu/resources.h"
+#include "fresnel/material/ltc.h"
 #include "fresnel/material/phong.h"
 #include "fresnel/material/transmission.h"
 #include "details/material_uniforms.h"
@@ -826,7 +827,8 @@ struct Renderer::Impl {
     int fixed_units(FeatureMask features, const RenderSettings& settings) const {
         const bool env = settings.environment != nullptr;
         return ((features & feature::Transmission) ? 1 : 0) + 1 + (env ? 2 : 0) +
-               ((features & feature::Sheen) && env && env_sheen && charlie_lut ? 2 : 0) + (frame_shadows > 0 ? 1 : 0);
+               ((features & feature::Sheen) && env && env_sheen && charlie_lut ? 2 : 0) + (frame_shadows > 0 ? 1 : 0) +
+               (frame_area_lights ? 1 : 0);
     }
 
     // Adds the GL errors raised since the last look to `stats` (if given).
@@ -882,18 +884,30 @@ struct Renderer::Impl {
         p.debug = int(s.debug);
         p.energy_compensation = s.energy_compensation && lut_texture && uploaded_lut != 0 ? 1 : 0;
         p.light_count = std::min<int>(int(lights.size()), kMaxLights);
+        frame_area_lights = std::any_of(lights.begin(), lights.begin() + p.light_count, [](const LightInstance& l) { return l.is_area(); });
+        if (frame_area_lights && !ltc_texture) {
+            // The GGX lobe's linearly transformed cosines (fresnel/material/ltc.h), made once.
+            ltc_texture = gpu::Texture::create_2d(ltc::kTableSize, ltc::kTableSize, gpu::TextureFormat::RGBA16F,
+                                                  ltc::table_data(), false);
+            ltc_texture.set_sampler(gpu::SamplerState::clamped(Filter::Linear));
+        }
         for (int i = 0; i < p.light_count; ++i) {
             const LightInstance& l = lights[std::size_t(i)];
-            float type = l.type == Light::Type::Directional ? 0.0f : l.type == Light::Type::Point ? 1.0f : 2.0f;
-            p.light_position_type[std::size_t(i)] = glm::vec4(l.position, type);
+            p.light_position_type[std::size_t(i)] = glm::vec4(l.position, float(int(l.type)));  // Light::Type's order
             p.light_direction_range[std::size_t(i)] = glm::vec4(l.direction, l.range);
             p.light_color[std::size_t(i)] = glm::vec4(l.radiance, 0.0f);
-            float scale = 1.0f / std::max(0.001f, std::cos(l.inner_cone) - std::cos(l.outer_cone));
-            p.light_cone[std::size_t(i)] = glm::vec4(scale, -std::cos(l.outer_cone) * scale, 0, 0);
+            if (l.is_area()) {
+                p.light_cone[std::size_t(i)] = glm::vec4(l.axis_u, l.radius);
+                p.light_axis[std::size_t(i)] = glm::vec4(l.axis_v, 0.0f);
+            } else {
+                float scale = 1.0f / std::max(0.001f, std::cos(l.inner_cone) - std::cos(l.outer_cone));
+                p.light_cone[std::size_t(i)] = glm::vec4(scale, -std::cos(l.outer_cone) * scale, 0, 0);
+                p.light_axis[std::size_t(i)] = glm::vec4(0.0f);
+            }
         }
         for (int i = p.light_count; i < kMaxLights; ++i)
             p.light_position_type[std::size_t(i)] = p.light_direction_range[std::size_t(i)] =
-                p.light_color[std::size_t(i)] = p.light_cone[std::size_t(i)] = glm::vec4(0.0f);
+                p.light_color[std::size_t(i)] = p.light_cone[std::size_t(i)] = p.light_axis[std::size_t(i)] = glm::vec4(0.0f);
         p.shadow_atlas = glm::vec4(0.0f);
         for (auto& v : p.light_shadow) v = glm::vec4(-1.0f, 0.0f, 0.0f, 0.0f);
         if (frame_shadows > 0) {
@@ -916,6 +930,9 @@ struct Renderer::Impl {
         frame_buffer.update(&p, sizeof p);
         frame_buffer.bind(kFrameBlockBinding);
     }
+
+    bool frame_area_lights = false;  // this frame's FRAME_AREA_LIGHTS
+    gpu::Texture ltc_texture;         // ltc::table_data(), bound for frames with area lights
 
     // ---- Shadows (details/shadow_maps.h, shaders/shadows.glsl) ----
     static constexpr float kSoftShadowRadius = 1.5f;  // the soft filter's disk, in texels
@@ -1387,6 +1404,7 @@ struct Renderer::Impl {
         const gpu::Program& prog = [&]() -> const gpu::Program& {
             FrameVariant output = frame_variant(settings, linear_pass, !lights.empty());
             if (output.lights) output.shadows = frame_shadows;
+            output.area_lights = output.lights && frame_area_lights;
             if (settings.brdf.is_default()) return shaders.get("pbr.vert", "pbr.frag", features, output);
             const brdf::BrdfModel& b = settings.brdf;
             const std::uint32_t terms = std::uint32_t(b.d) | std::uint32_t(b.g) << 6 | std::uint32_t(b.f) << 12 |
@@ -1441,6 +1459,11 @@ struct Renderer::Impl {
                 device.bind_texture(kCharlieUnit, charlie_lut);
                 prog.set("u_charlie_lut", kCharlieUnit);
             }
+        }
+        if (frame_area_lights && !lights.empty()) {
+            const int kLtcUnit = next_unit++;
+            device.bind_texture(kLtcUnit, ltc_texture);
+            prog.set("u_ltc_table", kLtcUnit);
         }
         if (frame_shadows > 0) {
             const int kShadowUnit = next_unit++;

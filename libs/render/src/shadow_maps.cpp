@@ -142,7 +142,8 @@ void plan_shadows(const std::vector<LightInstance>& lights, int light_count, con
     if (scene.empty || n == 0 || map_size <= 0) return;
     cascades = std::clamp(cascades, 1, 4);
     auto tiles_of = [&](const LightInstance& l) {
-        return l.type == Light::Type::Directional ? cascades : l.type == Light::Type::Point ? 6 : 1;
+        // Point and area lights: a cube around the light's centre.
+        return l.type == Light::Type::Directional ? cascades : l.type == Light::Type::Spot ? 1 : 6;
     };
     int count = 0;
     for (int i = 0; i < n; ++i) {

@@ -41,6 +41,7 @@ const std::vector<std::string>& supported_gltf_extensions() {
         "KHR_animation_pointer", "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_dispersion",
         "KHR_node_visibility", "KHR_materials_anisotropy", "KHR_materials_iridescence", "EXT_mesh_gpu_instancing",
         "KHR_materials_diffuse_transmission", "KHR_materials_diffuse_roughness", "KHR_texture_basisu",
+        "EXT_lights_area",
     };
     return list;
 }
@@ -177,6 +178,7 @@ private:
     const GltfLoadOptions& opt_;
     json doc_;
     Scene scene_;
+    std::size_t area_light_base_ = 0;  // Scene::lights: the punctual ones, then EXT_lights_area's
     std::vector<std::vector<std::uint8_t>> buffers_;
     std::size_t total_bytes_ = 0;
     std::vector<Sampler> samplers_;
@@ -840,6 +842,48 @@ private:
             }
             scene_.lights.push_back(light);
         }
+        area_light_base_ = scene_.lights.size();
+        load_area_lights(ext);
+    }
+
+    // EXT_lights_area (fresnel's, written by `convert --area-lights`): lights [{type rect|disk|
+    // sphere, color, intensity (nits), width, height (rect), radius (disk, sphere), name}], a node
+    // names one as extensions.EXT_lights_area.light. They follow the punctual lights in
+    // Scene::lights.
+    void load_area_lights(const json& ext) {
+        const json& la = r_.object(ext, "EXT_lights_area", "/extensions");
+        std::string base = "/extensions/EXT_lights_area";
+        const json& arr = r_.array(la, "lights", base);
+        for (std::size_t i = 0; i < arr.size(); ++i) {
+            std::string ptr = base + "/lights/" + std::to_string(i);
+            const json& l = arr[i];
+            if (!l.is_object()) r_.fail(ptr, "must be an object");
+            Light light;
+            light.name = r_.string(l, "name", ptr);
+            auto col = r_.numbers<3>(l, "color", ptr, {1, 1, 1});
+            light.color = glm::max(glm::vec3(col[0], col[1], col[2]), 0.0f);
+            light.intensity = float(r_.number(l, "intensity", ptr, 1.0));
+            if (!(light.intensity >= 0.0f && light.intensity < 1e12f)) r_.fail(ptr + "/intensity", "must be 0 or more (nits)");
+            std::string type = r_.string(l, "type", ptr);
+            auto size = [&](const char* key, double fallback) {
+                float v = float(r_.number(l, key, ptr, fallback));
+                if (!(v > 0.0f && v < 1e9f)) r_.fail(ptr + "/" + key, "must be a positive length");
+                return v;
+            };
+            if (type == "rect") {
+                light.type = Light::Type::Rect;
+                light.width = size("width", 1.0);
+                light.height = size("height", 1.0);
+            } else if (type == "disk" || type == "sphere") {
+                light.type = type == "disk" ? Light::Type::Disk : Light::Type::Sphere;
+                light.radius = size("radius", 0.5);
+            } else {
+                warn(ptr + "/type", "unknown area light type '" + type + "'; light ignored");
+                light.type = Light::Type::Sphere;
+                light.intensity = 0.0f;
+            }
+            scene_.lights.push_back(light);
+        }
     }
 
     void load_nodes() {
@@ -857,7 +901,13 @@ private:
             node.skin = r_.index(n, "skin", ptr, r_.array(doc_, "skins", "").size(), "skin");
             const json& ext = r_.object(n, "extensions", ptr);
             if (const json* l = r_.find(ext, "KHR_lights_punctual"))
-                node.light = r_.index(*l, "light", ptr + "/extensions/KHR_lights_punctual", scene_.lights.size(), "light", true);
+                node.light = r_.index(*l, "light", ptr + "/extensions/KHR_lights_punctual", area_light_base_, "light", true);
+            if (const json* l = r_.find(ext, "EXT_lights_area")) {
+                if (node.light >= 0) r_.fail(ptr + "/extensions", "a node holds one light, not a punctual and an area light");
+                int a = r_.index(*l, "light", ptr + "/extensions/EXT_lights_area", scene_.lights.size() - area_light_base_,
+                                 "light", true);
+                node.light = int(area_light_base_) + a;
+            }
             if (const json* v = r_.find(ext, "KHR_node_visibility"))
                 node.visible = r_.boolean(*v, "visible", ptr + "/extensions/KHR_node_visibility", true);
             const json& children = r_.array(n, "children", ptr);

@@ -286,7 +286,7 @@ int wrap_enum(Wrap w) { return w == Wrap::ClampToEdge ? gltf_code::kClampToEdge 
 }  // namespace
 
 
-std::vector<fs::path> write_gltf(const Scene& in, const fs::path& path, Diagnostics& diagnostics) {
+std::vector<fs::path> write_gltf(const Scene& in, const fs::path& path, Diagnostics& diagnostics, const GltfWriteOptions& options) {
     // Primitives whose material needs a tangent space get MikkTSpace tangents, on a copy.
     std::optional<Scene> with_tangents;
     for (std::size_t mi = 0; mi < in.meshes.size(); ++mi)
@@ -400,6 +400,16 @@ std::vector<fs::path> write_gltf(const Scene& in, const fs::path& path, Diagnost
         if (jm["primitives"].empty()) diagnostics.warn(path.string(), "/meshes", "a mesh without vertices was written empty");
         meshes.push_back(jm);
     }
+    // Lights: the punctual ones in KHR_lights_punctual, the area ones in EXT_lights_area (when
+    // asked), each numbered within its own list.
+    std::vector<int> light_index(scene.lights.size(), -1);
+    int punctual_count = 0, area_count = 0;
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+        if (!is_area_light(scene.lights[i].type)) light_index[i] = punctual_count++;
+        else if (options.area_lights) light_index[i] = area_count++;
+    }
+    if (area_count == 0 && std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) { return is_area_light(l.type); }))
+        diagnostics.warn(path.string(), "/extensions", "area lights are not written (convert --area-lights writes them as EXT_lights_area)");
     json nodes = json::array();
     for (const Node& n : scene.nodes) {
         json jn = json::object();
@@ -411,9 +421,10 @@ std::vector<fs::path> write_gltf(const Scene& in, const fs::path& path, Diagnost
             jn["extensions"]["KHR_node_visibility"] = {{"visible", false}};
             b.used.insert("KHR_node_visibility");
         }
-        if (n.light >= 0) {
-            jn["extensions"]["KHR_lights_punctual"] = {{"light", n.light}};
-            b.used.insert("KHR_lights_punctual");
+        if (n.light >= 0 && std::size_t(n.light) < scene.lights.size() && light_index[std::size_t(n.light)] >= 0) {
+            const char* ext = is_area_light(scene.lights[std::size_t(n.light)].type) ? "EXT_lights_area" : "KHR_lights_punctual";
+            jn["extensions"][ext] = {{"light", light_index[std::size_t(n.light)]}};
+            b.used.insert(ext);
         }
         if (n.skin >= 0) diagnostics.warn(path.string(), "/nodes", "skins are not written (the mesh keeps its rest pose)");
         if (!n.children.empty()) jn["children"] = n.children;
@@ -434,20 +445,41 @@ std::vector<fs::path> write_gltf(const Scene& in, const fs::path& path, Diagnost
         if (!c.name.empty()) jc["name"] = c.name;
         cameras.push_back(jc);
     }
-    if (!scene.lights.empty()) {
-        json lights = json::array();
-        for (const Light& l : scene.lights) {
-            json jl = {{"type", l.type == Light::Type::Directional ? "directional" : l.type == Light::Type::Point ? "point" : "spot"}};
+    if (punctual_count + area_count > 0) {
+        json lights = json::array(), area_lights = json::array();
+        for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+            const Light& l = scene.lights[i];
+            if (light_index[i] < 0) continue;
+            json jl;
+            switch (l.type) {
+                case Light::Type::Directional: jl["type"] = "directional"; break;
+                case Light::Type::Point: jl["type"] = "point"; break;
+                case Light::Type::Spot: jl["type"] = "spot"; break;
+                case Light::Type::Rect: jl["type"] = "rect"; break;
+                case Light::Type::Disk: jl["type"] = "disk"; break;
+                case Light::Type::Sphere: jl["type"] = "sphere"; break;
+            }
             if (l.color != glm::vec3(1.0f)) jl["color"] = vec_json(glm::value_ptr(l.color), 3);
             if (l.intensity != 1.0f) jl["intensity"] = l.intensity;
-            if (l.range > 0.0f && l.type != Light::Type::Directional) jl["range"] = l.range;
+            if (l.range > 0.0f && (l.type == Light::Type::Point || l.type == Light::Type::Spot)) jl["range"] = l.range;
             if (l.type == Light::Type::Spot)
                 jl["spot"] = {{"innerConeAngle", l.inner_cone_angle}, {"outerConeAngle", l.outer_cone_angle}};
+            if (l.type == Light::Type::Rect) {
+                jl["width"] = l.width;
+                jl["height"] = l.height;
+            }
+            if (l.type == Light::Type::Disk || l.type == Light::Type::Sphere) jl["radius"] = l.radius;
             if (!l.name.empty()) jl["name"] = l.name;
-            lights.push_back(jl);
+            (is_area_light(l.type) ? area_lights : lights).push_back(jl);
         }
-        doc["extensions"]["KHR_lights_punctual"] = {{"lights", lights}};
-        b.used.insert("KHR_lights_punctual");
+        if (!lights.empty()) {
+            doc["extensions"]["KHR_lights_punctual"] = {{"lights", lights}};
+            b.used.insert("KHR_lights_punctual");
+        }
+        if (!area_lights.empty()) {
+            doc["extensions"]["EXT_lights_area"] = {{"lights", area_lights}};
+            b.used.insert("EXT_lights_area");
+        }
     }
     if (b.used.count("KHR_materials_variants")) {
         json variants = json::array();

@@ -802,6 +802,62 @@ TEST(GltfLights, KhrLightsPunctual) {
     EXPECT_EQ(load_error(doc.gltf()).where(), "/extensions/KHR_lights_punctual/lights/2/spot");
 }
 
+// EXT_lights_area (fresnel's): rect, disk and sphere lights after the punctual ones in
+// Scene::lights, a node naming one by its index in the extension's own list; bad sizes and
+// indices refused with their place, an unknown type ignored with a warning.
+TEST(GltfLights, ExtLightsArea) {
+    Doc doc;
+    doc.j["extensionsUsed"] = {"KHR_lights_punctual", "EXT_lights_area"};
+    doc.j["extensions"] = {{"KHR_lights_punctual", {{"lights", json::array({{{"type", "point"}}})}}},
+                           {"EXT_lights_area",
+                            {{"lights", json::array({
+                                            {{"type", "rect"}, {"name", "panel"}, {"width", 2.0}, {"height", 0.5}, {"intensity", 40.0}},
+                                            {{"type", "disk"}, {"radius", 0.25}, {"color", {1.0, 0.9, 0.8}}},
+                                            {{"type", "sphere"}},
+                                        })}}}};
+    doc.j["nodes"] = json::array({{{"extensions", {{"EXT_lights_area", {{"light", 1}}}}}},
+                                  {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}},
+                                  {{"extensions", {{"EXT_lights_area", {{"light", 0}}}}}}});
+    doc.j["scenes"] = json::array({{{"nodes", {0, 1, 2}}}});
+    Diagnostics d;
+    Scene s = load(doc.gltf(), d);
+    EXPECT_EQ(d.total(), 0u) << all_warnings(d);
+    ASSERT_EQ(s.lights.size(), 4u);
+    EXPECT_EQ(s.lights[0].type, Light::Type::Point);
+    EXPECT_EQ(s.lights[1].type, Light::Type::Rect);
+    EXPECT_EQ(s.lights[1].name, "panel");
+    EXPECT_FLOAT_EQ(s.lights[1].width, 2.0f);
+    EXPECT_FLOAT_EQ(s.lights[1].height, 0.5f);
+    EXPECT_FLOAT_EQ(s.lights[1].intensity, 40.0f);
+    EXPECT_EQ(s.lights[2].type, Light::Type::Disk);
+    EXPECT_FLOAT_EQ(s.lights[2].radius, 0.25f);
+    EXPECT_EQ(s.lights[3].type, Light::Type::Sphere);
+    EXPECT_FLOAT_EQ(s.lights[3].radius, 0.5f) << "the default";
+    EXPECT_EQ(s.nodes[0].light, 2) << "the area list's light 1, after one punctual light";
+    EXPECT_EQ(s.nodes[1].light, 0);
+    EXPECT_EQ(s.nodes[2].light, 1);
+    EXPECT_EQ(gltf_extension_support("EXT_lights_area"), GltfExtensionSupport::Supported);
+
+    Doc bad = doc;
+    bad.j["nodes"][0]["extensions"]["EXT_lights_area"]["light"] = 3;
+    EXPECT_EQ(load_error(bad.gltf()).where(), "/nodes/0/extensions/EXT_lights_area/light");
+    bad = doc;
+    bad.j["nodes"][1]["extensions"]["KHR_lights_punctual"]["light"] = 1;  // only one punctual light
+    EXPECT_EQ(load_error(bad.gltf()).where(), "/nodes/1/extensions/KHR_lights_punctual/light");
+    bad = doc;
+    bad.j["extensions"]["EXT_lights_area"]["lights"][0]["width"] = -1.0;
+    EXPECT_EQ(load_error(bad.gltf()).where(), "/extensions/EXT_lights_area/lights/0/width");
+    bad = doc;
+    bad.j["extensions"]["EXT_lights_area"]["lights"][1]["radius"] = 0.0;
+    EXPECT_EQ(load_error(bad.gltf()).where(), "/extensions/EXT_lights_area/lights/1/radius");
+    bad = doc;
+    bad.j["extensions"]["EXT_lights_area"]["lights"][2]["type"] = "tube";
+    Diagnostics w;
+    Scene t = load(bad.gltf(), w);
+    EXPECT_EQ(t.lights[3].intensity, 0.0f) << "an unknown type is ignored";
+    EXPECT_EQ(w.total(), 1u);
+}
+
 TEST(GltfNodes, KhrNodeVisibility) {
     Doc doc;
     doc.j["extensionsUsed"] = {"KHR_node_visibility"};

@@ -154,6 +154,62 @@ TEST(SceneWriter, FileSetsAreWholeOrAbsentOnAFullDisk) {
     }
 }
 
+// Area lights go to glTF as EXT_lights_area only when asked (convert --rewrite --area-lights),
+// numbered within their own list, and come back as they were; otherwise they are left out
+// with a warning and the file has only the punctual lights.
+TEST(SceneWriter, AreaLightsOnlyWhenAsked) {
+    fs::path dir = temp_dir("area_lights");
+    Scene src = write_source(dir);
+    Light point, rect, sphere;
+    point.type = Light::Type::Point;
+    point.intensity = 3.0f;
+    rect.type = Light::Type::Rect;
+    rect.width = 1.5f;
+    rect.height = 0.25f;
+    rect.intensity = 20.0f;
+    rect.name = "strip";
+    sphere.type = Light::Type::Sphere;
+    sphere.radius = 0.1f;
+    src.lights = {rect, point, sphere};
+    const int base = int(src.nodes.size());
+    for (int i = 0; i < 3; ++i) {
+        Node n;
+        n.light = i;
+        src.nodes.push_back(n);
+        src.scenes[0].push_back(base + i);
+    }
+    Diagnostics d;
+    GltfWriteOptions with;
+    with.area_lights = true;
+    write_gltf(src, dir / "with.gltf", d, with);
+    Scene back = load_gltf(dir / "with.gltf", d);
+    ASSERT_EQ(back.lights.size(), 3u);
+    // The punctual light comes first on reading; the nodes still name the same lights.
+    for (int i = 0; i < 3; ++i) {
+        const Light& a = src.lights[std::size_t(src.nodes[std::size_t(base + i)].light)];
+        const Light& b = back.lights[std::size_t(back.nodes[std::size_t(base + i)].light)];
+        EXPECT_EQ(a.type, b.type) << i;
+        EXPECT_FLOAT_EQ(a.intensity, b.intensity) << i;
+        EXPECT_EQ(a.name, b.name) << i;
+        if (a.type == Light::Type::Rect) {
+            EXPECT_FLOAT_EQ(a.width, b.width);
+            EXPECT_FLOAT_EQ(a.height, b.height);
+        }
+        if (a.type == Light::Type::Sphere) {
+            EXPECT_FLOAT_EQ(a.radius, b.radius);
+        }
+    }
+    EXPECT_EQ(d.total(), 0u);
+    write_gltf(src, dir / "without.gltf", d);
+    EXPECT_EQ(d.total(), 1u) << "one warning: the area lights are not written";
+    std::ifstream f(dir / "without.gltf");
+    const nlohmann::json j = nlohmann::json::parse(f);
+    EXPECT_FALSE(j["extensions"].contains("EXT_lights_area"));
+    EXPECT_EQ(j["extensions"]["KHR_lights_punctual"]["lights"].size(), 1u);
+    for (const auto& e : j["extensionsUsed"]) EXPECT_NE(e.get<std::string>(), "EXT_lights_area");
+    fs::remove_all(dir);
+}
+
 TEST(SceneWriter, ObjTextureCoordinatesComeBackAsWritten) {
     const std::vector<std::string> vs = {"0",        "1",         "0.5",      "0.000123", "0.333333", "0.1234567",
                                          "0.9999999", "0.0000001", "0.01",     "-0.25",    "2.5",      "-3.141593",

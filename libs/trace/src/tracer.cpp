@@ -22,6 +22,7 @@
 #include "fresnel/core/error.h"
 #include "fresnel/core/parallel.h"
 #include "fresnel/material/evaluate.h"
+#include "fresnel/trace/area_lights.h"
 #include "fresnel/ibl/precompute.h"
 #include "fresnel/material/bsdf.h"
 #include "fresnel/scene/scene_textures.h"
@@ -527,6 +528,7 @@ struct Integrator {
     const EnvironmentLight* env;
     const TraceSettings& settings;
     std::uint64_t rays = 0;
+    const bool has_area_lights = std::any_of(lights.begin(), lights.end(), [](const LightInstance& l) { return l.is_area(); });
 
     static float power_heuristic(float a, float b) {
         float a2 = a * a, b2 = b * b;
@@ -555,8 +557,20 @@ struct Integrator {
                 } else if (env && !env_counted) {
                     L += beta * env->radiance(dir) * (transmitted ? 1.0f : power_heuristic(bsdf_pdf, env->pdf(dir)));
                 }
-                break;
             }
+            // Area lights the ray met before the surface (they block nothing): the BSDF-sampled
+            // half of their multiple importance sampling (all of it after a transmission, where no
+            // light was sampled). Camera rays do not see them.
+            if (bounce > 0 && has_area_lights) {
+                const float tmax = hit.valid() ? hit.t : INFINITY;
+                for (const LightInstance& light : lights) {
+                    if (!light.is_area()) continue;
+                    float light_pdf = 0.0f, t = 0.0f;
+                    glm::vec3 le = area_light_hit(light, origin, dir, tmax, light_pdf, t);
+                    if (light_pdf > 0.0f) L += beta * le * (transmitted ? 1.0f : power_heuristic(bsdf_pdf, light_pdf));
+                }
+            }
+            if (!hit.valid()) break;
             if (bounce == 0) covered = true;
             const SurfaceHit sh = scene.surface(hit);
             const Geometry& g = *sh.geometry;
@@ -608,6 +622,20 @@ struct Integrator {
             // Next-event estimation: every punctual light, then one sample of the environment.
             glm::vec3 p_out = offset_ray(p, ng);
             for (const LightInstance& light : lights) {
+                if (light.is_area()) {
+                    // A point on the light, weighed against the BSDF's sampling of the same direction.
+                    AreaLightSample as = sample_area_light(light, p, rng.uniform2());
+                    if (!(as.pdf > 0.0f)) continue;
+                    const bool behind = glm::dot(as.l, ng) <= 0.0f;
+                    if (behind && !(m.diffuse_transmission > 0.0f)) continue;
+                    glm::vec3 f = bsdf.eval(as.l) * as.radiance;
+                    if (!(f.x + f.y + f.z > 0.0f)) continue;
+                    ++rays;
+                    if (!scene.occluded(behind ? offset_ray(p, -ng) : p_out, as.l, as.distance * (1.0f - 1e-4f),
+                                        splitmix64(rng.next())))
+                        L += beta * f * (power_heuristic(as.pdf, bsdf.pdf(as.l)) / as.pdf);
+                    continue;
+                }
                 glm::vec3 l;
                 float dist = 0;
                 glm::vec3 li = light_incident(light, p, l, dist);

@@ -109,9 +109,22 @@ int State::add_light(Light::Type type) {
     l.radiance = glm::vec3(type == Light::Type::Directional ? 3.0f : 3.0f * r * r);
     l.outer_cone = glm::radians(30.0f);
     l.inner_cone = glm::radians(15.0f);
+    if (l.is_area()) shape_area_light(l);
     job.lights.extra.push_back(l);
     selected_light = int(job.lights.extra.size()) - 1;
     return selected_light;
+}
+
+void State::shape_area_light(LightInstance& l) const {
+    const float r = handle_radius(bounds);
+    const float size = 0.25f * r;
+    area_light_axes(l.direction, size, size, l.axis_u, l.axis_v);  // a disk: its radii
+    l.radius = 0.5f * size;
+    // The luminous intensity 3 r^2 cd of an added point light, spread over the area seen face on.
+    const float seen = l.type == Light::Type::Sphere ? 3.14159265f * l.radius * l.radius : l.area();
+    const float lum = std::max({l.radiance.x, l.radiance.y, l.radiance.z});
+    const glm::vec3 color = lum > 0.0f ? l.radiance / lum : glm::vec3(1.0f);
+    l.radiance = color * (3.0f * r * r / std::max(seen, 1e-12f));
 }
 
 void State::remove_light(int index) {

@@ -86,9 +86,12 @@ struct FrameBlock {
     std::int32_t energy_compensation = 0;
     std::int32_t light_count = 0;
     std::int32_t pad = 0;
-    // Per light: position.xyz + type (0 directional, 1 point, 2 spot); direction the light
-    // travels + range (0 = infinite); colour * intensity; spot cone scale and offset.
-    std::array<glm::vec4, kMaxShaderLights> light_position_type{}, light_direction_range{}, light_color{}, light_cone{};
+    // Per light: position.xyz + type (0 directional, 1 point, 2 spot, 3 rect, 4 disk, 5 sphere);
+    // direction the light travels (an area light's facing) + range (0 = infinite); colour *
+    // intensity; spot cone scale and offset, or an area light's first half-extent axis + sphere
+    // radius; an area light's second half-extent axis (LightInstance::axis_u, axis_v, radius).
+    std::array<glm::vec4, kMaxShaderLights> light_position_type{}, light_direction_range{}, light_color{}, light_cone{},
+        light_axis{};
     // Shadows (details/shadow_maps.h, shaders/shadows.glsl): the atlas (1/width, 1/height, the
     // soft filter's radius in texels, 0); per light its first tile (-1: none) and tile count;
     // per tile world -> tile (u, v, depth) in [0, 1], where the tile lies in the atlas (offset,
@@ -99,8 +102,8 @@ struct FrameBlock {
     std::array<glm::vec4, kMaxShadowTiles> shadow_rect{}, shadow_params{};
 };
 static_assert(offsetof(FrameBlock, light_position_type) == 224);
-static_assert(offsetof(FrameBlock, shadow_atlas) == 224 + 64 * kMaxShaderLights);
-static_assert(sizeof(FrameBlock) == 224 + 80 * kMaxShaderLights + 16 + 96 * kMaxShadowTiles);
+static_assert(offsetof(FrameBlock, shadow_atlas) == 224 + 80 * kMaxShaderLights);
+static_assert(sizeof(FrameBlock) == 224 + 96 * kMaxShaderLights + 16 + 96 * kMaxShadowTiles);
 
 // Each member's GLSL name and byte offset in the C++ mirror (the layout test's table).
 std::vector<std::pair<std::string, std::size_t>> material_block_members();

@@ -116,16 +116,26 @@ struct Camera {
     float xmag = 1.0f, ymag = 1.0f;    // orthographic half extents
 };
 
-// KHR_lights_punctual. Intensity: directional in lux, point and spot in candela.
+// KHR_lights_punctual and fresnel's area lights (EXT_lights_area in glTF files). Intensity:
+// directional in lux, point and spot in candela, area lights in nits (cd/m^2: the luminance of
+// the emitting surface, the same everywhere on it and in every direction it emits).
 struct Light {
-    enum class Type { Directional, Point, Spot } type = Type::Directional;
+    // The order is the shaders' light type code (frame_block.glsl).
+    enum class Type { Directional, Point, Spot, Rect, Disk, Sphere } type = Type::Directional;
     std::string name;
     glm::vec3 color{1.0f};
     float intensity = 1.0f;
     float range = 0.0f;                 // 0 = infinite
     float inner_cone_angle = 0.0f;      // radians
     float outer_cone_angle = 0.7853982f;
+    // Area lights, in the node's space: a rectangle width x height (along its X and Y) or a disk
+    // of `radius` in the node's XY plane, emitting from the side its -Z faces (as spot lights
+    // point); a sphere of `radius` emitting everywhere. Metres.
+    float width = 1.0f, height = 1.0f, radius = 0.5f;
 };
+
+// Rectangle, disk and sphere lights (the rest are punctual).
+inline bool is_area_light(Light::Type t) { return t == Light::Type::Rect || t == Light::Type::Disk || t == Light::Type::Sphere; }
 
 struct Node {
     std::string name;

@@ -7,7 +7,7 @@
 // glTF: nodes (as matrices), meshes (POSITION, NORMAL, TANGENT, TEXCOORD_0/1, COLOR_0,
 // 32-bit indices; triangles, lines, points), materials with KHR_materials_specular, _ior,
 // _emissive_strength, _unlit, _clearcoat and KHR_texture_transform, textures (images
-// re-encoded as PNG from the decoded pixels), samplers, cameras, KHR_lights_punctual.
+// re-encoded as PNG from the decoded pixels), samplers, cameras, KHR_lights_punctual (and area lights as EXT_lights_area when asked).
 // Not written: skins and animations (the Scene holds no animations; joints and weights are
 // dropped), the kept-but-unshaded extension blocks (sheen, transmission, ...) and unknown
 // extensions and extras (the glTF loader does not keep them; save_gltf_material_edits below
@@ -30,7 +30,13 @@ namespace fresnel {
 // `.glb` writes a binary container; anything else a .gltf with `<stem>.bin` and
 // `<stem>_imageN.png` beside it. Every writer here returns the files it wrote (one set,
 // committed together).
-std::vector<std::filesystem::path> write_gltf(const Scene& scene, const std::filesystem::path& path, Diagnostics& diagnostics);
+struct GltfWriteOptions {
+    // Area lights as EXT_lights_area (fresnel's extension; other viewers ignore it). Off: they
+    // are left out with a warning, and the file uses only ratified extensions.
+    bool area_lights = false;
+};
+std::vector<std::filesystem::path> write_gltf(const Scene& scene, const std::filesystem::path& path, Diagnostics& diagnostics,
+                                              const GltfWriteOptions& options = {});
 
 // glTF -> glTF as the file is, in the container `dest` names (.gltf or .glb): the JSON key by
 // key (animations, skins, morph targets, cameras, lights, extras, every name, unknown

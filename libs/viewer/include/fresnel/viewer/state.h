@@ -108,6 +108,9 @@ struct State {
 
     // A light added in front of the model (from azimuth 30, elevation 45), selected; its index.
     int add_light(Light::Type type);
+    // Gives an area light a size (a quarter of the model's handle radius across, facing as it
+    // is) and the luminance that lights the model as the added point lights do.
+    void shape_area_light(LightInstance& light) const;
     void remove_light(int index);
     // Left-button drags of a handle of an added light (the panel's gizmos). `clicked`: the button
     // went down this frame (without Shift), `down`: it is held. True while a handle is dragged
