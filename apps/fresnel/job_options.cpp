@@ -164,9 +164,11 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
     cmd->get_option("--camera")->excludes("--yaw")->excludes("--pitch")->excludes("--distance")->excludes("--fov")->excludes("--target");
     cmd->add_option("--light", opts.lights,
                     "Add a light: dir:AZIMUTH,ELEVATION,LUX[,R,G,B] (arriving from that direction), "
-                    "point:X,Y,Z,CANDELA[,R,G,B] or spot:X,Y,Z,AZIMUTH,ELEVATION,CANDELA,INNER,OUTER[,R,G,B] "
-                    "(shining as a dir light from AZIMUTH,ELEVATION; cone half-angles in degrees); repeatable. "
-                    "Replaces a scene file's \"lights\"")
+                    "point:X,Y,Z,CANDELA[,R,G,B], spot:X,Y,Z,AZIMUTH,ELEVATION,CANDELA,INNER,OUTER[,R,G,B] "
+                    "(shining as a dir light from AZIMUTH,ELEVATION; cone half-angles in degrees), or an area light "
+                    "(luminance in nits): rect:X,Y,Z,AZIMUTH,ELEVATION,WIDTH,HEIGHT,NITS[,R,G,B] or "
+                    "disk:X,Y,Z,AZIMUTH,ELEVATION,RADIUS,NITS[,R,G,B] (one-sided, facing as a spot light aims) or "
+                    "sphere:X,Y,Z,RADIUS,NITS[,R,G,B]; repeatable. Replaces a scene file's \"lights\"")
         ->group("Lights");
     if (raster) {
         cmd->add_flag("--gl-debug", opts.gl_debug, "Request a debug GL context and print KHR_debug messages")->group("Graphics API");

@@ -422,6 +422,38 @@ TEST_F(View, ShadowsToggleLive) {
     EXPECT_GE(psnr("soft.png", "hard.png"), 30.0);  // and hard ones fall where soft ones do
 }
 
+// An area light added live by a script (`light rect:...`, as --light writes it): the screenshot
+// equals `fresnel render --light` with it, with and without shadows, and each step changes the
+// picture (the light, then its shadows).
+TEST_F(View, AreaLightAddedLiveEqualsRender) {
+    const fs::path model = fs::path(FRESNEL_SOURCE_DIR) / "tests/data/shadows/shadow-directional.gltf";
+    const std::string light = "rect:0,2.5,0.5,0,70,1.5,1,6";
+    std::ofstream(dir_ / "a.txt") << "orbit 20 30\n"
+                                     "screenshot " << (dir_ / "plain.png").string() << "\n"
+                                     "light " << light << "\n"
+                                     "wait 1\n"
+                                     "screenshot " << (dir_ / "rect.png").string() << "\n"
+                                     "set render.shadows off\n"
+                                     "wait 1\n"
+                                     "screenshot " << (dir_ / "rect-off.png").string() << "\n"
+                                     "quit\n";
+    Result r = run({"view", model.string(), "--size", "200x150", "--env", "none", "--script", (dir_ / "a.txt").string()},
+                   true);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+        {"plain", {}}, {"rect", {"--light", light}}, {"rect-off", {"--light", light, "--shadows", "off"}}};
+    for (const auto& [name, flags] : cases) {
+        std::vector<std::string> ra = {"render", model.string(), "--size", "200x150", "--env", "none", "--yaw", "20",
+                                       "--pitch", "30", "-o", (dir_ / ("r-" + name + ".png")).string()};
+        ra.insert(ra.end(), flags.begin(), flags.end());
+        Result rr = run(ra, false);
+        ASSERT_EQ(rr.exit_code, 0) << rr.err;
+        EXPECT_GE(psnr((name + ".png").c_str(), ("r-" + name + ".png").c_str()), 40.0) << name;
+    }
+    EXPECT_LT(psnr("plain.png", "rect.png"), 30.0);     // the area light shines
+    EXPECT_LT(psnr("rect.png", "rect-off.png"), 40.0);  // and casts shadows
+}
+
 // Baked occlusion and the environment's dominant light toggled live by a script (`set render.ao
 // baked`, `set render.envLight dominant`): each screenshot equals `fresnel render` with the same
 // flags, and each toggle changes the picture.

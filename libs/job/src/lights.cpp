@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
-#include <charconv>
 #include <sstream>
 
 #include "fresnel/core/error.h"
+#include "fresnel/core/float_text.h"
 
 namespace fresnel {
 
@@ -206,11 +206,7 @@ const char* light_type_name(Light::Type type) {
 std::string light_spec(const LightInstance& l) {
     auto nums = [](std::initializer_list<float> v) {  // the shortest forms that read back as the same floats
         std::string out;
-        for (float f : v) {
-            char buf[32];
-            auto r = std::to_chars(buf, buf + sizeof buf, f);
-            out += (out.empty() ? "" : ",") + std::string(buf, r.ptr);
-        }
+        for (float f : v) out += (out.empty() ? "" : ",") + shortest_text(f);
         return out;
     };
     const float lum = std::max({l.radiance.x, l.radiance.y, l.radiance.z});
