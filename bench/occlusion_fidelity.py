@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Occlusion against path-traced truth (issue 31): image-based light of 16 views (4 shared models x
-2 environments x 2 cameras) rendered by `fresnel render` with `--ao off`, `--ao baked`,
+2 environments x 2 cameras) rendered by `fresnel render` with `--ao off`, `--ao baked`, `--ao ssao`,
 `--env-light dominant` (the environment's dominant light drawn as a shadowed directional light) and
 both, and by
 the Khronos glTF Sample Renderer (../shared/refs/khronos), each compared with Blender Cycles
@@ -20,7 +20,10 @@ import tempfile
 MODELS = ["DamagedHelmet", "Suzanne", "2CylinderEngine", "Duck"]
 ENVS = {"studio": "studio_small_03_1k.hdr", "potsdamer": "potsdamer_platz_1k.hdr"}
 VIEWS = {"front": (0, 0), "q": (45, 20)}
-VARIANTS = [("off", "off", "off"), ("baked", "baked", "off"), ("light", "off", "dominant"), ("both", "baked", "dominant")]
+VARIANTS = [("off", "off", "off"), ("baked", "baked", "off"), ("ssao", "ssao", "off"), ("light", "off", "dominant"),
+            ("both", "baked", "dominant"), ("ssao+light", "ssao", "dominant")]
+NAMES = {"off": "fresnel, defaults", "baked": "`--ao baked`", "ssao": "`--ao ssao`", "light": "`--env-light dominant`",
+         "both": "baked + dominant", "ssao+light": "ssao + dominant"}
 
 
 def model_file(shared, name):
@@ -95,26 +98,25 @@ def main():
                             row["ao_ms"] = j.get("ao_ms", 0.0)
                             row["vertices"] = j.get("ao_vertices", 0)
                     rows.append(row)
-                    print(f"{row['view']:34s} Khronos {row['khronos']:6.2f} dB  off {row['off']:6.2f}  ao {row['baked']:6.2f}  "
-                          f"light {row['light']:6.2f}  both {row['both']:6.2f} dB  (bake {row['ao_ms']:.0f} ms, "
-                          f"{row['vertices']} vertices)", flush=True)
+                    print(f"{row['view']:34s} Khronos {row['khronos']:6.2f} dB  " +
+                          "  ".join(f"{k} {row[k]:6.2f}" for k, _, _ in VARIANTS) +
+                          f" dB  (bake {row['ao_ms']:.0f} ms, {row['vertices']} vertices)", flush=True)
     if not rows:
         print("occlusion_fidelity: no view had its model, environment and references")
         return 0
     n = len(rows)
     mean = lambda k: sum(r[k] for r in rows) / n
+    keys = [k for k, _, _ in VARIANTS]
     print()
-    print("| view | Khronos renderer | fresnel, defaults | `--ao baked` | `--env-light dominant` | both |")
-    print("|---|---|---|---|---|---|")
+    print("| view | Khronos renderer | " + " | ".join(NAMES[k] for k in keys) + " |")
+    print("|---" * (len(keys) + 2) + "|")
     for r in rows:
-        print(f"| {r['view']} | {r['khronos']:.2f} dB | {r['off']:.2f} dB | {r['baked']:.2f} dB | {r['light']:.2f} dB | "
-              f"{r['both']:.2f} dB |")
-    print(f"| mean of {n} | {mean('khronos'):.2f} dB | {mean('off'):.2f} dB | {mean('baked'):.2f} dB | "
-          f"{mean('light'):.2f} dB | {mean('both'):.2f} dB |")
+        print(f"| {r['view']} | {r['khronos']:.2f} dB | " + " | ".join(f"{r[k]:.2f} dB" for k in keys) + " |")
+    print(f"| mean of {n} | {mean('khronos'):.2f} dB | " + " | ".join(f"{mean(k):.2f} dB" for k in keys) + " |")
     print()
-    for key, name in (("baked", "--ao baked"), ("light", "--env-light dominant"), ("both", "both")):
+    for key in keys[1:]:
         better = sum(1 for r in rows if r[key] > r["khronos"])
-        print(f"{name}: closer to Cycles than the Khronos renderer on {better} of {n} views, by "
+        print(f"{NAMES[key]}: closer to Cycles than the Khronos renderer on {better} of {n} views, by "
               f"{mean(key) - mean('khronos'):+.2f} dB on average (target: every view, >= +3 dB)")
     return 0
 

@@ -14,6 +14,9 @@ out vec4 frag_color;
 uniform float u_exposure;  // linear multiplier, 2^EV
 uniform int u_tonemap;     // see tonemap.glsl
 uniform int u_encoding;    // -1 = none (linear output), 0 = sRGB, 1 = gamma 2.2
+#ifdef FRAME_SSAO
+uniform sampler2D u_ssao;  // screen-space visibility at each pixel (ssao.frag, ssao_blur.frag)
+#endif
 
 #include "common.glsl"
 #include "color.glsl"
@@ -83,6 +86,11 @@ void main() {
         vec3 turned = dot(v_occlusion.xyz, v_occlusion.xyz) > 1e-8 ? f.n + normalize(v_occlusion.xyz) - f.ng : f.n;
         if (dot(turned, turned) > 1e-8) irradiance_normal = normalize(turned);
     }
+#ifdef FRAME_SSAO
+    // Screen-space occlusion (--ao ssao), combined the same way: the smaller of it and the texture's.
+    m.occlusion = min(m.occlusion, texelFetch(u_ssao, ivec2(gl_FragCoord.xy), 0).r);
+    diffuse_occlusion = ao_multibounce(m.occlusion, m.base_color.rgb);
+#endif
 
     vec3 color = vec3(0.0);
 #ifdef UNLIT

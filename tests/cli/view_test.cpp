@@ -454,6 +454,32 @@ TEST_F(View, AreaLightAddedLiveEqualsRender) {
     EXPECT_LT(psnr("rect.png", "rect-off.png"), 40.0);  // and casts shadows
 }
 
+// Screen-space occlusion toggled live (`set render.ao ssao`): the screenshot equals `fresnel
+// render --ao ssao`, and the contacts darken.
+TEST_F(View, ScreenSpaceOcclusionTogglesLive) {
+    const fs::path model = fs::path(FRESNEL_SOURCE_DIR) / "tests/data/shadows/shadow-environment.gltf";
+    std::ofstream(dir_ / "s.txt") << "orbit 20 30\n"
+                                     "screenshot " << (dir_ / "off.png").string() << "\n"
+                                     "set render.ao ssao\n"
+                                     "wait 1\n"
+                                     "screenshot " << (dir_ / "ssao.png").string() << "\n"
+                                     "quit\n";
+    const std::vector<std::string> common = {"--size", "200x150", "--env", "color:1,1,1"};
+    std::vector<std::string> args = {"view", model.string(), "--script", (dir_ / "s.txt").string()};
+    args.insert(args.end(), common.begin(), common.end());
+    Result r = run(args, true);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* ao : {"off", "ssao"}) {
+        std::vector<std::string> ra = {"render", model.string(), "--yaw", "20", "--pitch", "30", "--ao", ao, "-o",
+                                       (dir_ / (std::string("r-") + ao + ".png")).string()};
+        ra.insert(ra.end(), common.begin(), common.end());
+        Result rr = run(ra, false);
+        ASSERT_EQ(rr.exit_code, 0) << rr.err;
+        EXPECT_GE(psnr((std::string(ao) + ".png").c_str(), (std::string("r-") + ao + ".png").c_str()), 40.0) << ao;
+    }
+    EXPECT_LT(psnr("off.png", "ssao.png"), 45.0);  // the contacts darkened
+}
+
 // Baked occlusion and the environment's dominant light toggled live by a script (`set render.ao
 // baked`, `set render.envLight dominant`): each screenshot equals `fresnel render` with the same
 // flags, and each toggle changes the picture.

@@ -169,7 +169,7 @@ Texture Texture::create_2d(int width, int height, TextureFormat format, const vo
     return t;
 }
 
-Texture Texture::create_depth_2d(int width, int height) {
+Texture Texture::create_depth_2d(int width, int height, bool compare) {
     Texture t;
     t.width_ = width;
     t.height_ = height;
@@ -178,12 +178,17 @@ Texture Texture::create_depth_2d(int width, int height) {
     glBindTexture(GL_TEXTURE_2D, t.id_);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, width, height, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT,
                  nullptr);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    // With comparison: linear (sampler2DShadow's 2x2 filter); without: read as depth values,
+    // which ES 3.0 filters only by the nearest texel.
+    const GLint filter = compare ? GL_LINEAR : GL_NEAREST;
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    if (compare) {
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    }
     t.bytes_ = std::size_t(width) * std::size_t(height) * 4;
     t.linear_ = true;
     glBindTexture(GL_TEXTURE_2D, 0);

@@ -76,9 +76,12 @@ const char* shadows_name(Shadows shadows) {
 std::optional<AmbientOcclusion> parse_ambient_occlusion(const std::string& name) {
     if (name == "off") return AmbientOcclusion::Off;
     if (name == "baked") return AmbientOcclusion::Baked;
+    if (name == "ssao") return AmbientOcclusion::ScreenSpace;
     return std::nullopt;
 }
-const char* ambient_occlusion_name(AmbientOcclusion ao) { return ao == AmbientOcclusion::Baked ? "baked" : "off"; }
+const char* ambient_occlusion_name(AmbientOcclusion ao) {
+    return ao == AmbientOcclusion::Baked ? "baked" : ao == AmbientOcclusion::ScreenSpace ? "ssao" : "off";
+}
 std::optional<EnvLight> parse_env_light(const std::string& name) {
     if (name == "off") return EnvLight::Off;
     if (name == "dominant") return EnvLight::Dominant;

@@ -694,11 +694,13 @@ std::vector<Setting> make_registry() {
                         [](Job& j) -> int& { return j.output.shadow_cascades; }));
     r.back().example = "3";
     r.push_back(choice(
-        "render.ao", "--ao", {"off", "baked"},
-        "Occlusion of image-based and ambient light: off (as the Khronos Sample Viewer) or baked (the tracer's "
-        "rays at every vertex of the static scene, once per load, with the material's occlusion texture the "
-        "smaller of the two; skinned and morphed meshes are not occluded). trace always occludes",
-        kCli | kSceneFile | kViewScript, [](const Job& j) { return std::string(ambient_occlusion_name(j.output.ao)); },
+        "render.ao", "--ao", {"off", "ssao", "baked"},
+        "Occlusion of image-based and ambient light: off (as the Khronos Sample Viewer), ssao (ground-truth "
+        "ambient occlusion from each frame's depth, within an eighth of the scene's radius: everything that moves, "
+        "the web page too) or baked (the tracer's rays at every vertex of the static scene, once per load; skinned "
+        "and morphed meshes are not occluded); the material's occlusion texture and it, the smaller of the two. "
+        "trace always occludes; the web page has no baked",
+        raster, [](const Job& j) { return std::string(ambient_occlusion_name(j.output.ao)); },
         [](Job& j, const std::string& t) { j.output.ao = *parse_ambient_occlusion(t); }));
     r.push_back(choice(
         "render.envLight", "--env-light", {"off", "dominant"},

@@ -828,7 +828,7 @@ struct Renderer::Impl {
         const bool env = settings.environment != nullptr;
         return ((features & feature::Transmission) ? 1 : 0) + 1 + (env ? 2 : 0) +
                ((features & feature::Sheen) && env && env_sheen && charlie_lut ? 2 : 0) + (frame_shadows > 0 ? 1 : 0) +
-               (frame_area_lights ? 1 : 0);
+               (frame_area_lights ? 1 : 0) + (frame_ssao ? 1 : 0);
     }
 
     // Adds the GL errors raised since the last look to `stats` (if given).
@@ -1112,7 +1112,6 @@ struct Renderer::Impl {
         state.offset_factor = 1.5f;
         state.offset_units = 2.0f;
         device.apply(state);
-        static const Material kDefaultMaterial{};
         stats.shadow_tiles_drawn = int(plan.tiles.size());
         for (const ShadowTile& tile : plan.tiles) {
             device.viewport(tile.rect.x, tile.rect.y, tile.rect.z, tile.rect.w);
@@ -1120,58 +1119,136 @@ struct Renderer::Impl {
                 opaque_draws,
                 [&](const Draw& d) { return d.prim->topology == Topology::Triangles && may_cast(d, tile); }, settings,
                 shadow_draws);
-            for (const Draw& d : shadow_draws) {
-                const GpuPrimitive& p = *d.prim;
-                const Material& m = p.material >= 0 ? scene->materials[std::size_t(p.material)] : kDefaultMaterial;
-                FeatureMask features = 0;
-                const gpu::Texture* base = nullptr;
-                if (m.alpha_mode == AlphaMode::Mask) {
-                    features |= feature::AlphaMask;
-                    if (p.has_color) features |= feature::HasColor;
-                    const TextureSlot& slot = m.base_color;
-                    if (p.has_uv0 && slot.tex_coord == 0 && slot.texture >= 0)
-                        base = texture_for(slot, true, Anisotropic::Off, 1.0f);
-                    if (base) features |= feature::HasUv0 | feature::BaseColorMap;
-                }
-                if (d.joints) features |= feature::Skinned;
-                if (d.morph_weights >= 0) features |= feature::MorphTargets;
-                if (d.instances > 0) features |= feature::Instanced;
-                const gpu::Program& prog =
-                    shaders.get_keyed("pbr.vert", "shadow.frag", {kShadowPrograms, features, -1, 0}, [&] {
-                        std::vector<std::string> defines = feature_defines(features);
-                        defines.emplace_back("SHADOW_PASS");
-                        return defines;
-                    });
-                prog.use();
-                prog.set("u_light_view_projection", tile.view_projection);
-                if (d.instances == 0) {
-                    prog.set("u_model", d.model);
-                    prog.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(d.model)));
-                }
-                prog.set("u_handedness", 1.0f);
-                prog.set("u_point_size", 1.0f);
-                if (features & feature::AlphaMask) {
-                    prog.set("u_base_color_factor", m.base_color_factor);
-                    prog.set("u_alpha_cutoff", m.alpha_cutoff);
-                    if (base) {
-                        device.bind_texture(0, *base);
-                        prog.set("u_base_color_map", 0);
-                        prog.set("u_base_color_transform", m.base_color.transform);
-                    }
-                }
-                bind_animation(prog, d);
-                if (d.instances > 0) {
-                    upload_instances(d);
-                    device.draw_instanced(p.vao, gpu::Primitive::Triangles, p.count, p.indexed, d.instances);
-                    ++stats.instanced_draws;
-                    stats.instances_drawn += std::size_t(d.instances);
-                } else {
-                    device.draw(p.vao, gpu::Primitive::Triangles, p.count, p.indexed);
-                }
-                ++stats.draw_calls;
-            }
+            draw_depth(shadow_draws, tile.view_projection, stats);
         }
     }
+
+    // Depth only, seen through `view_projection` (shadow.frag: masked materials discard by their
+    // base colour's alpha): the shadow maps' tiles and screen-space occlusion's depth pass.
+    void draw_depth(const std::vector<Draw>& draws, const glm::mat4& view_projection, FrameStats& stats) {
+        static const Material kDefaultMaterial{};
+        for (const Draw& d : draws) {
+            const GpuPrimitive& p = *d.prim;
+            const Material& m = p.material >= 0 ? scene->materials[std::size_t(p.material)] : kDefaultMaterial;
+            FeatureMask features = 0;
+            const gpu::Texture* base = nullptr;
+            if (m.alpha_mode == AlphaMode::Mask) {
+                features |= feature::AlphaMask;
+                if (p.has_color) features |= feature::HasColor;
+                const TextureSlot& slot = m.base_color;
+                if (p.has_uv0 && slot.tex_coord == 0 && slot.texture >= 0)
+                    base = texture_for(slot, true, Anisotropic::Off, 1.0f);
+                if (base) features |= feature::HasUv0 | feature::BaseColorMap;
+            }
+            if (d.joints) features |= feature::Skinned;
+            if (d.morph_weights >= 0) features |= feature::MorphTargets;
+            if (d.instances > 0) features |= feature::Instanced;
+            const gpu::Program& prog =
+                shaders.get_keyed("pbr.vert", "shadow.frag", {kShadowPrograms, features, -1, 0}, [&] {
+                    std::vector<std::string> defines = feature_defines(features);
+                    defines.emplace_back("SHADOW_PASS");
+                    return defines;
+                });
+            prog.use();
+            prog.set("u_light_view_projection", view_projection);
+            if (d.instances == 0) {
+                prog.set("u_model", d.model);
+                prog.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(d.model)));
+            }
+            prog.set("u_handedness", 1.0f);
+            prog.set("u_point_size", 1.0f);
+            if (features & feature::AlphaMask) {
+                prog.set("u_base_color_factor", m.base_color_factor);
+                prog.set("u_alpha_cutoff", m.alpha_cutoff);
+                if (base) {
+                    device.bind_texture(0, *base);
+                    prog.set("u_base_color_map", 0);
+                    prog.set("u_base_color_transform", m.base_color.transform);
+                }
+            }
+            bind_animation(prog, d);
+            if (d.instances > 0) {
+                upload_instances(d);
+                device.draw_instanced(p.vao, gpu::Primitive::Triangles, p.count, p.indexed, d.instances);
+                ++stats.instanced_draws;
+                stats.instances_drawn += std::size_t(d.instances);
+            } else {
+                device.draw(p.vao, gpu::Primitive::Triangles, p.count, p.indexed);
+            }
+            ++stats.draw_calls;
+        }
+    }
+
+    // ---- Screen-space ambient occlusion (--ao ssao: shaders/ssao.frag, ssao_blur.frag) ----
+    bool frame_ssao = false;  // this frame's FRAME_SSAO: ssao_texture holds its visibility
+    gpu::Texture ssao_depth, ssao_raw, ssao_texture;
+    gpu::Framebuffer ssao_depth_fb, ssao_raw_fb, ssao_fb;
+    int ssao_w = 0, ssao_h = 0;
+
+    // The frame's opaque, triangle draws in depth, the horizon search, the 4x4 blur: the
+    // visibility at each pixel of the frame, which pbr.frag reads at its gl_FragCoord.
+    void draw_ssao(const CameraSetup& cam, const RenderSettings& s, const std::vector<Draw>& draws, FrameStats& stats) {
+        const int w = s.width, h = s.height;
+        if (w != ssao_w || h != ssao_h || !ssao_texture) {
+            ssao_depth = gpu::Texture::create_depth_2d(w, h, false);
+            ssao_depth_fb = gpu::Framebuffer();
+            ssao_depth_fb.attach_depth(ssao_depth);
+            ssao_depth_fb.check();
+            for (auto [texture, fb] : {std::pair{&ssao_raw, &ssao_raw_fb}, std::pair{&ssao_texture, &ssao_fb}}) {
+                *texture = gpu::Texture::create_2d(w, h, gpu::TextureFormat::R8, nullptr, false);
+                texture->set_sampler(gpu::SamplerState::clamped(Filter::Nearest));
+                *fb = gpu::Framebuffer();
+                fb->attach_color(*texture);
+                fb->check();
+            }
+            ssao_w = w;
+            ssao_h = h;
+        }
+        device.bind_framebuffer(&ssao_depth_fb);
+        device.no_scissor();
+        device.viewport(0, 0, w, h);
+        device.clear(glm::vec4(0.0f), true);
+        gpu::PipelineState state;
+        state.cull = gpu::Cull::None;
+        device.apply(state);
+        ssao_draws.clear();
+        for (const Draw& d : draws)
+            if (d.prim->topology == Topology::Triangles) ssao_draws.push_back(d);
+        draw_depth(ssao_draws, cam.projection * cam.view, stats);
+
+        gpu::PipelineState flat;
+        flat.depth_test = false;
+        flat.depth_write = false;
+        flat.cull = gpu::Cull::None;
+        device.apply(flat);
+        const glm::mat4 inverse_projection = glm::inverse(cam.projection);
+        const glm::vec2 texel(1.0f / float(w), 1.0f / float(h));
+        Bounds b;  // the frame's opaque draws: the default radius follows the scene's size
+        for (const Draw& d : opaque_draws) b.extend(d.model, d.prim->bounds_min, d.prim->bounds_max);
+        const float radius = s.ssao_radius > 0.0f ? s.ssao_radius : std::max(b.empty ? 1.0f : b.radius(), 1e-4f) * 0.125f;
+        device.bind_framebuffer(&ssao_raw_fb);
+        const gpu::Program& horizon = shaders.get("fullscreen.vert", "ssao.frag", std::vector<std::string>{});
+        horizon.use();
+        device.bind_texture(0, ssao_depth);
+        horizon.set("u_depth", 0);
+        horizon.set("u_inverse_projection", inverse_projection);
+        horizon.set("u_texel", texel);
+        horizon.set("u_radius", radius);
+        horizon.set("u_pixels_per_unit", cam.projection[1][1] * 0.5f * float(h));
+        device.draw_fullscreen();
+        device.bind_framebuffer(&ssao_fb);
+        const gpu::Program& blur = shaders.get("fullscreen.vert", "ssao_blur.frag", std::vector<std::string>{});
+        blur.use();
+        device.bind_texture(0, ssao_depth);
+        blur.set("u_depth", 0);
+        device.bind_texture(1, ssao_raw);
+        blur.set("u_occlusion", 1);
+        blur.set("u_texel", texel);
+        blur.set("u_inverse_projection", inverse_projection);
+        device.draw_fullscreen();
+        frame_ssao = true;
+    }
+    std::vector<Draw> ssao_draws;  // the frame's (storage kept)
 
     // One uniform buffer per material (index + 1; 0: the glTF default material), refilled
     // only when the material's block changes (an edit in the viewer, another --anisotropy).
@@ -1405,6 +1482,7 @@ struct Renderer::Impl {
             FrameVariant output = frame_variant(settings, linear_pass, !lights.empty());
             if (output.lights) output.shadows = frame_shadows;
             output.area_lights = output.lights && frame_area_lights;
+            output.ssao = frame_ssao && !linear_pass;  // (the transmission pass has its own size)
             if (settings.brdf.is_default()) return shaders.get("pbr.vert", "pbr.frag", features, output);
             const brdf::BrdfModel& b = settings.brdf;
             const std::uint32_t terms = std::uint32_t(b.d) | std::uint32_t(b.g) << 6 | std::uint32_t(b.f) << 12 |
@@ -1459,6 +1537,11 @@ struct Renderer::Impl {
                 device.bind_texture(kCharlieUnit, charlie_lut);
                 prog.set("u_charlie_lut", kCharlieUnit);
             }
+        }
+        if (frame_ssao && !linear_pass) {
+            const int kSsaoUnit = next_unit++;
+            device.bind_texture(kSsaoUnit, ssao_texture);
+            prog.set("u_ssao", kSsaoUnit);
         }
         if (frame_area_lights && !lights.empty()) {
             const int kLtcUnit = next_unit++;
@@ -1742,6 +1825,12 @@ void Renderer::draw(const CameraSetup& cam, const std::vector<LightInstance>& gi
         };
         r.batch_draws(opaque, in_view, settings, r.visible_draws);
         const std::vector<Draw>& opaque_visible = r.visible_draws;
+        r.frame_ssao = false;
+        if (settings.ssao && settings.debug == DebugChannel::None) {
+            r.draw_ssao(cam, settings, opaque_visible, stats);
+            r.device.bind_framebuffer(&r.targets->msaa_fb);
+            r.device.viewport(0, 0, w, h);
+        }
         std::erase_if(blended, [&](const Draw& d) { return !in_view(d); });
         std::erase_if(transmissive, [&](const Draw& d) { return !in_view(d); });
         r.transmission_ready = false;

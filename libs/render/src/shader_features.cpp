@@ -95,6 +95,7 @@ std::vector<std::string> frame_defines(FrameVariant frame) {
     if (!frame.lights) out.emplace_back("FRAME_NO_LIGHTS");
     else if (frame.shadows > 0) out.push_back("FRAME_SHADOWS " + std::to_string(frame.shadows));
     if (frame.lights && frame.area_lights) out.emplace_back("FRAME_AREA_LIGHTS");
+    if (frame.ssao) out.emplace_back("FRAME_SSAO");
     return out;
 }
 

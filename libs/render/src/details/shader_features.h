@@ -234,11 +234,15 @@ struct FrameVariant {
     bool lights = true;   // punctual lights are bound (false: FRAME_NO_LIGHTS)
     int shadows = 0;      // int(fresnel::Shadows) with lights and a shadow atlas bound (FRAME_SHADOWS), else 0
     bool area_lights = false;  // an area light shines (FRAME_AREA_LIGHTS: the LTC table is bound)
+    bool ssao = false;         // screen-space occlusion is bound (FRAME_SSAO)
     // A small integer naming the variant (the shader caches' key).
-    int key() const { return (((tone_mapper * 4 + encoding + 1) * 2 + (lights ? 1 : 0)) * 3 + shadows) * 2 + (area_lights ? 1 : 0); }
+    int key() const {
+        return ((((tone_mapper * 4 + encoding + 1) * 2 + (lights ? 1 : 0)) * 3 + shadows) * 2 + (area_lights ? 1 : 0)) * 2 +
+               (ssao ? 1 : 0);
+    }
 };
 // "FRAME_TONEMAP n", "FRAME_ENCODING n", without lights "FRAME_NO_LIGHTS", with shadows
-// "FRAME_SHADOWS n", with area lights "FRAME_AREA_LIGHTS".
+// "FRAME_SHADOWS n", with area lights "FRAME_AREA_LIGHTS", with screen-space occlusion "FRAME_SSAO".
 std::vector<std::string> frame_defines(FrameVariant frame);
 
 }  // namespace fresnel

@@ -145,8 +145,9 @@ public:
     static Texture create_cube(int size, TextureFormat format, int levels, bool immutable_storage = false);
     // A 24-bit depth texture to render into (Framebuffer::attach_depth) and read with a
     // sampler2DShadow: comparison mode LEQUAL, linear filtering (the 2x2 percentage-closer
-    // filter of OpenGL 3.3 and ES 3.0), clamped to the edge.
-    static Texture create_depth_2d(int width, int height);
+    // filter of OpenGL 3.3 and ES 3.0), clamped to the edge. `compare` false: read as depth
+    // values through a sampler2D, nearest texel (screen-space occlusion).
+    static Texture create_depth_2d(int width, int height, bool compare = true);
     void upload_cube_face(int face, int level, int size, const float* rgba);
     // Data textures: RGBA32F tables a shader reads texel by texel with texelFetch (joint
     // matrices, morph target displacements), never filtered: one level, NEAREST (a float

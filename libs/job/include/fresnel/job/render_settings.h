@@ -78,9 +78,10 @@ enum class Shadows { Off = 0, Hard, Soft };
 std::optional<Shadows> parse_shadows(const std::string& name);
 const char* shadows_name(Shadows s);
 
-// Occlusion of the environment's and the ambient light (`--ao`): off, or baked per vertex with
-// the tracer's rays once per scene (fresnel/trace/vertex_occlusion.h).
-enum class AmbientOcclusion { Off = 0, Baked };
+// Occlusion of the environment's and the ambient light (`--ao`): off, baked per vertex with the
+// tracer's rays once per scene (fresnel/trace/vertex_occlusion.h), or screen-space (ground-truth
+// ambient occlusion from the frame's depth, every frame: shaders/ssao.frag).
+enum class AmbientOcclusion { Off = 0, Baked, ScreenSpace };
 // The environment's dominant light (`--env-light`): part of the image-based light (off), or taken
 // out of it and drawn as a directional light with shadows (dominant; fresnel/ibl/dominant_light.h).
 enum class EnvLight { Off = 0, Dominant };
@@ -133,6 +134,10 @@ struct RenderSettings {
     // Shadows of punctual lights: the filter, each map's size (texels a side; the atlas shrinks
     // tiles that would not fit the GPU's texture size) and a directional light's cascades.
     Shadows shadows = Shadows::Soft;
+    // Screen-space ambient occlusion (--ao ssao): its radius in world units (0: an eighth of
+    // the scene's bounding radius).
+    bool ssao = false;
+    float ssao_radius = 0.0f;
     int shadow_map_size = 2048;
     int shadow_cascades = 2;
     // Skin and morph on the GPU, from the scene's current nodes (fresnel::animate, then
