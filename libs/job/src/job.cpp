@@ -195,6 +195,7 @@ ResolvedJob resolve(const Job& job, const Scene& scene, Diagnostics* diag) {
     rs.instancing = out.instancing;
     rs.shadows = out.shadows;
     rs.ssao = out.ao == AmbientOcclusion::ScreenSpace;
+    rs.ssao_radius = out.ao_radius;
     rs.shadow_map_size = out.shadow_map_size;
     rs.shadow_cascades = out.shadow_cascades;
     rs.shading = out.shading;

@@ -696,7 +696,7 @@ std::vector<Setting> make_registry() {
     r.push_back(choice(
         "render.ao", "--ao", {"off", "ssao", "baked"},
         "Occlusion of image-based and ambient light: off (as the Khronos Sample Viewer), ssao (ground-truth "
-        "ambient occlusion from each frame's depth, within an eighth of the scene's radius: everything that moves, "
+        "ambient occlusion from each frame's depth, within --ao-radius: everything that moves, "
         "the web page too) or baked (the tracer's rays at every vertex of the static scene, once per load; skinned "
         "and morphed meshes are not occluded); the material's occlusion texture and it, the smaller of the two. "
         "trace always occludes; the web page has no baked",
@@ -713,6 +713,11 @@ std::vector<Setting> make_registry() {
                         "Rays per vertex of --ao baked (the visibility's noise falls as 1/sqrt of it)",
                         kCli | kSceneFile | kViewScript, [](Job& j) -> int& { return j.output.ao_rays; }));
     r.back().example = "256";
+    r.push_back(number("render.aoRadius", "--ao-radius", "", 0, 1e9,
+                       "How far --ao ssao looks for occluders, in the scene's units (0: a quarter of the scene's "
+                       "bounding radius)",
+                       raster, [](Job& j) -> float& { return j.output.ao_radius; }));
+    r.back().example = "0.5";
     r.push_back(choice(
         "render.shading", "--shading", {"auto", "gltf", "ogl1", "ogl1-pixel", "blinn-phong-normalized"},
         "Shading model: auto (OpenGL 1 for OBJ/MTL Phong materials, glTF for the rest), gltf, ogl1 (OpenGL 1 per "

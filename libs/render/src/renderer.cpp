@@ -1223,9 +1223,9 @@ struct Renderer::Impl {
         device.apply(flat);
         const glm::mat4 inverse_projection = glm::inverse(cam.projection);
         const glm::vec2 texel(1.0f / float(w), 1.0f / float(h));
-        Bounds b;  // the frame's opaque draws: the default radius follows the scene's size
+        Bounds b;  // the frame's opaque draws: the default radius (a quarter of theirs) follows the scene's size
         for (const Draw& d : opaque_draws) b.extend(d.model, d.prim->bounds_min, d.prim->bounds_max);
-        const float radius = s.ssao_radius > 0.0f ? s.ssao_radius : std::max(b.empty ? 1.0f : b.radius(), 1e-4f) * 0.125f;
+        const float radius = s.ssao_radius > 0.0f ? s.ssao_radius : std::max(b.empty ? 1.0f : b.radius(), 1e-4f) * 0.25f;
         device.bind_framebuffer(&ssao_raw_fb);
         const gpu::Program& horizon = shaders.get("fullscreen.vert", "ssao.frag", std::vector<std::string>{});
         horizon.use();

@@ -158,6 +158,7 @@ struct Job {
         // (trace::bake_vertex_occlusion, Renderer::set_vertex_occlusion), ao_rays per vertex.
         AmbientOcclusion ao = AmbientOcclusion::Off;
         int ao_rays = 128;
+        float ao_radius = 0.0f;  // --ao ssao's reach in scene units (0: a quarter of the scene's radius)
         // The environment's dominant light (a sun, a key light) out of the image-based light and
         // drawn as a shadowed directional light (`--env-light dominant`), or left in it (off).
         EnvLight env_light = EnvLight::Off;

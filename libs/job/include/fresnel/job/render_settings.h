@@ -134,7 +134,7 @@ struct RenderSettings {
     // Shadows of punctual lights: the filter, each map's size (texels a side; the atlas shrinks
     // tiles that would not fit the GPU's texture size) and a directional light's cascades.
     Shadows shadows = Shadows::Soft;
-    // Screen-space ambient occlusion (--ao ssao): its radius in world units (0: an eighth of
+    // Screen-space ambient occlusion (--ao ssao): its radius in world units (0: a quarter of
     // the scene's bounding radius).
     bool ssao = false;
     float ssao_radius = 0.0f;
