@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
         "  --quick            fewer runs\n"
         "  --json             the figures as JSON\n"
         "  --frames-only      only the 1024^2 image-based-light frames (with CPU time per frame)\n"
-        "  --shadows-only     only the shadows' frame cost (1024^2, shadows off / hard / soft)\n"
+        "  --shadows-only     only the shadows' and occlusion's frame cost (1024^2, shadows off / hard / soft, --ao ssao)\n"
         "  --frames N         frames timed per model\n"
         "  --helmet           DamagedHelmet's frames alone (with --frames-only)\n"
         "  --engine           2CylinderEngine's frames alone (with --frames-only)\n"
@@ -192,12 +192,13 @@ int main(int argc, char** argv) {
         nlohmann::json j;
         ibl::BakedIbl studio_env = ibl::load_or_bake(ibl::parse_environment(env.string()), ibl::BakeOptions{}, {}, false);
         auto time_frames = [&](const Scene& scene, const std::vector<LightInstance>& lights, const ibl::BakedIbl* ibl,
-                               Shadows mode) {
+                               Shadows mode, bool ssao = false) {
             Renderer renderer(*context);
             renderer.set_scene(scene);
             RenderSettings rs = frame_settings;
             rs.environment = ibl;
             rs.shadows = mode;
+            rs.ssao = ssao;
             OrbitParams view;
             view.yaw_deg = 20.0f;
             view.pitch_deg = 30.0f;
@@ -218,8 +219,11 @@ int main(int argc, char** argv) {
             const double off = time_frames(scene, lights, ibl, Shadows::Off);
             const double hard = time_frames(scene, lights, ibl, Shadows::Hard);
             const double soft = time_frames(scene, lights, ibl, Shadows::Soft);
+            const double ssao = time_frames(scene, lights, ibl, Shadows::Off, true);
+            const double soft_ssao = time_frames(scene, lights, ibl, Shadows::Soft, true);
             j[name] = {{"off_ms", off}, {"hard_ms", hard}, {"soft_ms", soft}, {"hard_ratio", hard / off},
-                       {"soft_ratio", soft / off}, {"lights", lights.size()}};
+                       {"soft_ratio", soft / off}, {"ssao_ms", ssao}, {"ssao_ratio", ssao / off},
+                       {"soft_ssao_ms", soft_ssao}, {"soft_ssao_ratio", soft_ssao / off}, {"lights", lights.size()}};
         };
         Diagnostics d;
         Scene helmet_scene = load_gltf(helmet, d);
@@ -251,9 +255,11 @@ int main(int argc, char** argv) {
     auto print_shadows = [](const nlohmann::json& j) {
         std::printf("shadows' frame cost, 1024^2, drawn and fenced (median; ratio to --shadows off):\n");
         for (const auto& [name, v] : j.items())
-            std::printf("  %-34s off %.1f ms, hard %.1f ms (%.2fx), soft %.1f ms (%.2fx)  [target: <= 1.5x with occlusion]\n",
+            std::printf("  %-34s off %.1f ms, hard %.1f ms (%.2fx), soft %.1f ms (%.2fx), --ao ssao %.1f ms (%.2fx), "
+                        "soft + ssao %.1f ms (%.2fx)  [target: soft + ssao <= 1.5x]\n",
                         name.c_str(), v["off_ms"].get<double>(), v["hard_ms"].get<double>(), v["hard_ratio"].get<double>(),
-                        v["soft_ms"].get<double>(), v["soft_ratio"].get<double>());
+                        v["soft_ms"].get<double>(), v["soft_ratio"].get<double>(), v["ssao_ms"].get<double>(),
+                        v["ssao_ratio"].get<double>(), v["soft_ssao_ms"].get<double>(), v["soft_ssao_ratio"].get<double>());
     };
     if (shadows_only) {
         nlohmann::json j = shadow_costs();

@@ -88,7 +88,7 @@ void main() {
     }
 #ifdef FRAME_SSAO
     // Screen-space occlusion (--ao ssao), combined the same way: the smaller of it and the texture's.
-    m.occlusion = min(m.occlusion, texelFetch(u_ssao, ivec2(gl_FragCoord.xy), 0).r);
+    m.occlusion = min(m.occlusion, texelFetch(u_ssao, ivec2(gl_FragCoord.xy) / 2, 0).r);  // at half resolution
     diffuse_occlusion = ao_multibounce(m.occlusion, m.base_color.rgb);
 #endif
 

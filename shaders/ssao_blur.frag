@@ -6,11 +6,15 @@ out vec4 frag_color;
 uniform sampler2D u_occlusion;     // ssao.frag's output
 uniform highp sampler2D u_depth;
 uniform vec2 u_texel;
-uniform mat4 u_inverse_projection;
+uniform vec4 u_projection;  // as ssao.frag's
 
 float view_depth(vec2 uv) {
-    vec4 p = u_inverse_projection * vec4(uv * 2.0 - 1.0, texture(u_depth, uv).r * 2.0 - 1.0, 1.0);
-    return p.z / p.w;
+    float nz = texture(u_depth, uv).r * 2.0 - 1.0;
+#ifdef SSAO_ORTHOGRAPHIC
+    return (nz - u_projection.w) / u_projection.z;
+#else
+    return -u_projection.w / (nz + u_projection.z);
+#endif
 }
 
 void main() {

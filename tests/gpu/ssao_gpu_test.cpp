@@ -3,8 +3,8 @@
 // ambient light. The cosine-weighted visibility of the floor at distance x from the wall is
 // V(x) = (1 + x / sqrt(x^2 + H^2)) / 2 (the view factor of an infinite strip: 0.5 at its foot,
 // towards 1 far away); the frame with occlusion over the frame without is ao_multibounce(V, albedo)
-// (the C++ twin of pbr.frag's combination): measured within 0.04 (the wall is long, not
-// infinite; two slices a pixel). With a radius short of the wall, the open floor stays unoccluded
+// (the C++ twin of pbr.frag's combination): measured within 0.037 from a quarter of the height
+// out, 0.06 at a tenth (occlusion is found at half resolution, two slices a pixel). With a radius short of the wall, the open floor stays unoccluded
 // (a plane does not occlude itself). On OpenGL 3.3 and OpenGL ES 3.0.
 #include <gtest/gtest.h>
 
@@ -89,7 +89,7 @@ void check(gpu::Api api) {
 
     // The floor's point under each pixel; the mean ratio in bands at distances x from the wall.
     const glm::mat4 inv_vp = glm::inverse(camera.projection * camera.view);
-    const float distances[] = {0.05f, 0.25f, 0.5f, 1.0f, 2.0f};
+    const float distances[] = {0.1f, 0.25f, 0.5f, 1.0f, 2.0f};
     double sum[5] = {}, open_sum = 0.0, open_worst = 0.0;
     int count[5] = {}, open_count = 0;
     for (int y = 0; y < kSize; ++y)
@@ -122,7 +122,8 @@ void check(gpu::Api api) {
         const double got = sum[k] / count[k];
         std::printf("%s: x = %.2f: visibility %.3f, frame ratio %.3f, expected %.3f\n", dialect, double(xk), double(v), got,
                     expected);
-        EXPECT_NEAR(got, expected, 0.05) << dialect << " x = " << xk;
+        // Within two half-resolution pixels of the wall the blur and the upsampling soften the foot.
+        EXPECT_NEAR(got, expected, k == 0 ? 0.07 : 0.045) << dialect << " x = " << xk;
     }
     ASSERT_GT(open_count, 50);
     std::printf("%s: open floor (radius 0.25, beyond 0.5 of the wall) ratio mean %.4f, worst %.4f\n", dialect,

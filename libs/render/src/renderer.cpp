@@ -1185,10 +1185,11 @@ struct Renderer::Impl {
     gpu::Framebuffer ssao_depth_fb, ssao_raw_fb, ssao_fb;
     int ssao_w = 0, ssao_h = 0;
 
-    // The frame's opaque, triangle draws in depth, the horizon search, the 4x4 blur: the
-    // visibility at each pixel of the frame, which pbr.frag reads at its gl_FragCoord.
+    // The frame's opaque, triangle draws in depth, the horizon search, the 4x4 blur, at half the
+    // frame's resolution each way (a quarter of the cost; occlusion varies slowly): the
+    // visibility pbr.frag reads at gl_FragCoord / 2.
     void draw_ssao(const CameraSetup& cam, const RenderSettings& s, const std::vector<Draw>& draws, FrameStats& stats) {
-        const int w = s.width, h = s.height;
+        const int w = (s.width + 1) / 2, h = (s.height + 1) / 2;
         if (w != ssao_w || h != ssao_h || !ssao_texture) {
             ssao_depth = gpu::Texture::create_depth_2d(w, h, false);
             ssao_depth_fb = gpu::Framebuffer();
@@ -1221,30 +1222,36 @@ struct Renderer::Impl {
         flat.depth_write = false;
         flat.cull = gpu::Cull::None;
         device.apply(flat);
-        const glm::mat4 inverse_projection = glm::inverse(cam.projection);
+        const glm::mat4& P = cam.projection;
+        const bool orthographic = P[2][3] == 0.0f;
+        const glm::vec4 projection(P[0][0], P[1][1], P[2][2], P[3][2]);
+        const glm::vec2 projection_offset = orthographic ? glm::vec2(P[3][0], P[3][1]) : glm::vec2(P[2][0], P[2][1]);
+        const std::vector<std::string> defines = orthographic ? std::vector<std::string>{"SSAO_ORTHOGRAPHIC"}
+                                                              : std::vector<std::string>{};
         const glm::vec2 texel(1.0f / float(w), 1.0f / float(h));
         Bounds b;  // the frame's opaque draws: the default radius (a quarter of theirs) follows the scene's size
         for (const Draw& d : opaque_draws) b.extend(d.model, d.prim->bounds_min, d.prim->bounds_max);
         const float radius = s.ssao_radius > 0.0f ? s.ssao_radius : std::max(b.empty ? 1.0f : b.radius(), 1e-4f) * 0.25f;
         device.bind_framebuffer(&ssao_raw_fb);
-        const gpu::Program& horizon = shaders.get("fullscreen.vert", "ssao.frag", std::vector<std::string>{});
+        const gpu::Program& horizon = shaders.get("fullscreen.vert", "ssao.frag", defines);
         horizon.use();
         device.bind_texture(0, ssao_depth);
         horizon.set("u_depth", 0);
-        horizon.set("u_inverse_projection", inverse_projection);
+        horizon.set("u_projection", projection);
+        horizon.set("u_projection_offset", projection_offset);
         horizon.set("u_texel", texel);
         horizon.set("u_radius", radius);
         horizon.set("u_pixels_per_unit", cam.projection[1][1] * 0.5f * float(h));
         device.draw_fullscreen();
         device.bind_framebuffer(&ssao_fb);
-        const gpu::Program& blur = shaders.get("fullscreen.vert", "ssao_blur.frag", std::vector<std::string>{});
+        const gpu::Program& blur = shaders.get("fullscreen.vert", "ssao_blur.frag", defines);
         blur.use();
         device.bind_texture(0, ssao_depth);
         blur.set("u_depth", 0);
         device.bind_texture(1, ssao_raw);
         blur.set("u_occlusion", 1);
         blur.set("u_texel", texel);
-        blur.set("u_inverse_projection", inverse_projection);
+        blur.set("u_projection", projection);
         device.draw_fullscreen();
         frame_ssao = true;
     }
