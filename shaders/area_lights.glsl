@@ -1,4 +1,4 @@
-// Area lights (rect 3, disk 4, sphere 5 in frame_block.glsl's packing) on the material: the twin
+// Area lights (rect 3, disk 4, sphere 5, tube 6 in frame_block.glsl's packing) on the material: the twin
 // of fresnel::area_light_polygon and fresnel::shade_area_light (fresnel/material/area_light.h),
 // which say what each term is. Needs ltc.glsl's table (u_ltc_table) and the split-sum table.
 #include "ltc.glsl"
@@ -15,6 +15,26 @@ int area_light_polygon(int i, vec3 x, out vec3 pts[17]) {
         pts[1] = c + u - v;
         pts[2] = c + u + v;
         pts[3] = c - u + v;
+        return 4;
+    }
+    if (pt.w > 5.5) {  // a tube: the rectangle through its axis covering its silhouette
+        float half_length = length(u), r = u_light_cone[i].w;
+        vec3 a = half_length > 0.0 ? u / half_length : vec3(1.0, 0.0, 0.0);
+        vec3 w = -c;
+        vec3 across = w - a * dot(w, a);
+        float d = length(across);
+        if (d <= r * 1e-3 + 1e-12) {
+            vec3 end = c + a * (dot(w, a) > 0.0 ? half_length : -half_length);
+            int n = ltc_sphere_polygon(end, r, vec3(0.0), pts, AREA_POLYGON_VERTICES);
+            return n > 0 ? n : -1;
+        }
+        if (d <= r) return -1;
+        vec3 tu = a * (half_length + 0.25 * PI * r);
+        vec3 tv = normalize(cross(across, a)) * (r * d / sqrt((d - r) * (d + r)));
+        pts[0] = c - tu - tv;
+        pts[1] = c + tu - tv;
+        pts[2] = c + tu + tv;
+        pts[3] = c - tu + tv;
         return 4;
     }
     if (pt.w > 4.5) {

@@ -19,9 +19,10 @@ layout(std140) uniform FrameBlock {
     int u_debug;              // 0 = shading; other values select a debug channel (see debug.glsl)
     int u_energy_compensation;  // 1: multiple-scattering compensation of punctual specular
     // The lights, packed per light: position.xyz + type (0 dir, 1 point, 2 spot, 3 rect, 4 disk,
-    // 5 sphere); direction the light travels (an area light's facing) .xyz + range (0 =
+    // 5 sphere, 6 tube); direction the light travels (an area light's facing) .xyz + range (0 =
     // infinite); colour * intensity; spot cone scale and offset, or an area light's first
-    // half-extent axis .xyz + a sphere's radius; an area light's second half-extent axis.
+    // half-extent axis (a tube's half length) .xyz + a sphere's or tube's radius; an area light's
+    // second half-extent axis.
     int u_light_count;
     vec4 u_light_position_type[MAX_LIGHTS];
     vec4 u_light_direction_range[MAX_LIGHTS];

@@ -37,9 +37,10 @@ vec3 light_arriving(int i, vec3 position, bool falloff, out vec3 l) {
         float d2 = max(dot(to_center, to_center), 1e-8);
         l = to_center * inversesqrt(d2);
         float r = u_light_cone[i].w;
-        float projected = pt.w > 4.5 ? 3.14159265 * r * r
-                                     : (pt.w > 3.5 ? 3.14159265 : 4.0) * length(cross(u_light_cone[i].xyz, u_light_axis[i].xyz)) *
-                                           max(dot(dr.xyz, -l), 0.0);
+        float projected = pt.w > 5.5   ? 3.14159265 * r * r + 4.0 * r * length(cross(u_light_cone[i].xyz, l))  // a tube's silhouette
+                          : pt.w > 4.5 ? 3.14159265 * r * r
+                                       : (pt.w > 3.5 ? 3.14159265 : 4.0) * length(cross(u_light_cone[i].xyz, u_light_axis[i].xyz)) *
+                                             max(dot(dr.xyz, -l), 0.0);
         return radiance * (projected / d2);
     }
     vec3 to_light = pt.xyz - position;

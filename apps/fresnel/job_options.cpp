@@ -168,7 +168,8 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
                     "(shining as a dir light from AZIMUTH,ELEVATION; cone half-angles in degrees), or an area light "
                     "(luminance in nits): rect:X,Y,Z,AZIMUTH,ELEVATION,WIDTH,HEIGHT,NITS[,R,G,B] or "
                     "disk:X,Y,Z,AZIMUTH,ELEVATION,RADIUS,NITS[,R,G,B] (one-sided, facing as a spot light aims) or "
-                    "sphere:X,Y,Z,RADIUS,NITS[,R,G,B]; repeatable. Replaces a scene file's \"lights\"")
+                    "sphere:X,Y,Z,RADIUS,NITS[,R,G,B] or tube:X,Y,Z,AZIMUTH,ELEVATION,LENGTH,RADIUS,NITS[,R,G,B] (its axis "
+                    "pointing towards AZIMUTH,ELEVATION); repeatable. Replaces a scene file's \"lights\"")
         ->group("Lights");
     if (raster) {
         cmd->add_flag("--gl-debug", opts.gl_debug, "Request a debug GL context and print KHR_debug messages")->group("Graphics API");

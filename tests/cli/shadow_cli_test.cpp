@@ -76,10 +76,12 @@ TEST_F(Shadows, FallWhereTheTracersDo) {
 
 // Area lights (rect, disk, sphere from --light) over the same scene: the rasteriser's linearly
 // transformed cosines and soft shadows against the tracer's sampled emitters, direct light only.
-// Measured at 160^2 / 48 spp: 36.3, 40.0, 40.4 dB with shadows, 28.8, 31.3, 32.4 dB without.
+// Measured at 160^2 / 48 spp: 36.3, 40.0, 40.4, 32.5 dB with shadows, 28.8, 31.3, 32.4, 27.1 dB
+// without (the tube's trace is the noisiest: a thin light).
 TEST_F(Shadows, AreaLightsLightAndShadowAsTheTracersDo) {
     const fs::path scene = kScenes / "shadow-directional.gltf";
-    for (const char* light : {"rect:0,2.5,0.5,0,70,1.5,1,6", "disk:0.5,2,0.5,30,60,0.5,8", "sphere:0.3,1.6,0.8,0.3,10"}) {
+    for (const char* light : {"rect:0,2.5,0.5,0,70,1.5,1,6", "disk:0.5,2,0.5,30,60,0.5,8", "sphere:0.3,1.6,0.8,0.3,10",
+                              "tube:0,1.8,0.4,90,0,1.6,0.05,40"}) {
         const std::vector<std::string> view = with(kView, {"--no-scene-lights", "--light", light});
         const fs::path truth = dir_ / "trace.png", soft = dir_ / "soft.png", off = dir_ / "off.png";
         Result r = run(with({"trace", scene.string(), "-o", truth.string(), "--spp", "48", "--max-bounces", "1"}, view));
@@ -90,7 +92,7 @@ TEST_F(Shadows, AreaLightsLightAndShadowAsTheTracersDo) {
         ASSERT_EQ(r.exit_code, 0) << show(r);
         const double p_soft = psnr(soft, truth), p_off = psnr(off, truth);
         std::printf("%s: shadows %.2f dB, off %.2f dB against trace --max-bounces 1\n", light, p_soft, p_off);
-        EXPECT_GE(p_soft, 34.0) << light;
+        EXPECT_GE(p_soft, light[0] == 't' ? 30.5 : 34.0) << light;
         EXPECT_GE(p_soft, p_off + 5.0) << light;
     }
 }

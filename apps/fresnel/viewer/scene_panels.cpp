@@ -54,6 +54,9 @@ void Viewer::draw_gizmos() {
             if (auto sc = to_window(c)) dl->AddLine(at, ImVec2(sc->x, sc->y), col, 1.0f);
         } else if (l.type == Light::Type::Spot) {
             if (auto e = to_window(l.position + l.direction * radius * 0.3f)) dl->AddLine(at, ImVec2(e->x, e->y), col, 2.0f);
+        } else if (l.type == Light::Type::Tube) {
+            if (auto a = to_window(h - l.axis_u), b = to_window(h + l.axis_u); a && b)
+                dl->AddLine(ImVec2(a->x, a->y), ImVec2(b->x, b->y), col, 3.0f);
         } else if (l.type == Light::Type::Rect || l.type == Light::Type::Disk) {
             // Its outline (a disk as 16 sides) and a stroke where it faces.
             const glm::vec3 o = h - l.position;  // the handle may sit off the light (an added one's orbit)
@@ -97,6 +100,8 @@ void Viewer::draw_lights_panel() {
     if (ImGui::Button("+ disk")) state_.add_light(Light::Type::Disk);
     ImGui::SameLine();
     if (ImGui::Button("+ sphere")) state_.add_light(Light::Type::Sphere);
+    ImGui::SameLine();
+    if (ImGui::Button("+ tube")) state_.add_light(Light::Type::Tube);
     if (ImGui::Checkbox("orbit lights around the model", &state_.orbit_lights) && state_.orbit_lights) spin_last_.reset();
     int remove = -1;
     for (int i = 0; i < int(job.lights.extra.size()); ++i) {
@@ -109,7 +114,7 @@ void Viewer::draw_lights_panel() {
         if (ImGui::SmallButton("delete")) remove = i;
         if (open) {
             int type = int(l.type);
-            if (ImGui::Combo("type", &type, "directional\0point\0spot\0rect\0disk\0sphere\0")) {
+            if (ImGui::Combo("type", &type, "directional\0point\0spot\0rect\0disk\0sphere\0tube\0")) {
                 const Light::Type was = l.type;
                 l.type = Light::Type(type);
                 if (l.is_area() && !is_area_light(was)) state_.shape_area_light(l);  // a size and nits for it
@@ -124,6 +129,7 @@ void Viewer::draw_lights_panel() {
                     const float w = 2.0f * glm::length(l.axis_u), h = 2.0f * glm::length(l.axis_v);
                     l.direction = direction_from_angles(az, std::clamp(el, -90.0f, 90.0f));
                     if (l.type == Light::Type::Rect || l.type == Light::Type::Disk) area_light_axes(l.direction, w, h, l.axis_u, l.axis_v);
+                    if (l.type == Light::Type::Tube) l.axis_u = l.direction * (0.5f * w);  // (the axis: either way)
                 }
             }
             if (l.type == Light::Type::Rect || l.type == Light::Type::Disk) {
@@ -133,7 +139,12 @@ void Viewer::draw_lights_panel() {
                 if (l.type == Light::Type::Disk) h = w;
                 if (ch) area_light_axes(l.direction, std::max(w, 1e-4f), std::max(h, 1e-4f), l.axis_u, l.axis_v);
             }
-            if (l.type == Light::Type::Sphere) ImGui::DragFloat("radius", &l.radius, 0.002f * r, 1e-4f, 1e6f);
+            if (l.type == Light::Type::Sphere || l.type == Light::Type::Tube)
+                ImGui::DragFloat("radius", &l.radius, 0.002f * r, 1e-4f, 1e6f);
+            if (l.type == Light::Type::Tube) {
+                float length = 2.0f * glm::length(l.axis_u);
+                if (ImGui::DragFloat("length", &length, 0.005f * r, 1e-4f, 1e6f)) l.axis_u = l.direction * (0.5f * std::max(length, 1e-4f));
+            }
             if (l.type != Light::Type::Directional) ImGui::DragFloat3("position", &l.position.x, 0.01f * r);
             float lum = std::max({l.radiance.x, l.radiance.y, l.radiance.z});
             glm::vec3 color = lum > 0.0f ? l.radiance / lum : glm::vec3(1.0f);

@@ -30,8 +30,10 @@ glm::vec3 light_incident(const LightInstance& light, glm::vec3 position, glm::ve
     if (light.is_area()) {
         // Seen as a point at its centre: luminance x projected area (a rectangle or disk seen at
         // an angle; a sphere's disk). Shading that integrates the area (ltc.h) does not use this.
-        float projected = light.type == Light::Type::Sphere
-                              ? 3.14159265f * light.radius * light.radius
+        float projected = light.type == Light::Type::Sphere ? 3.14159265f * light.radius * light.radius
+                          : light.type == Light::Type::Tube
+                              ? 3.14159265f * light.radius * light.radius +
+                                    4.0f * light.radius * glm::length(glm::cross(light.axis_u, l))  // its silhouette
                               : light.area() * std::max(glm::dot(light.direction, -l), 0.0f);
         return light.radiance * (projected / d2);
     }
@@ -50,6 +52,7 @@ float LightInstance::area() const {
         case Light::Type::Rect: return 4.0f * glm::length(glm::cross(axis_u, axis_v));
         case Light::Type::Disk: return 3.14159265f * glm::length(glm::cross(axis_u, axis_v));
         case Light::Type::Sphere: return 4.0f * 3.14159265f * radius * radius;
+        case Light::Type::Tube: return 4.0f * 3.14159265f * radius * (radius + glm::length(axis_u));  // 2 pi r 2L + 4 pi r^2
         default: return 0.0f;
     }
 }
@@ -91,10 +94,17 @@ std::vector<LightInstance> scene_lights(const Scene& scene, const std::vector<No
             li.axis_v = y * l.radius;
         } else if (l.type == Light::Type::Sphere) {
             li.radius = l.radius * std::max({glm::length(x), glm::length(y), glm::length(z)});
+        } else if (l.type == Light::Type::Tube) {  // along the node's X; the radius by the larger of the others
+            li.axis_u = x * (0.5f * l.length);
+            li.axis_v = glm::vec3(0.0f);
+            li.radius = l.radius * std::max(glm::length(y), glm::length(z));
+            if (glm::length(x) > 0.0f) li.direction = glm::normalize(x);
         }
         // u x v faces where the light emits (the node's X x Y is its +Z, away from it; a
         // mirroring transform turns that too).
-        if (li.is_area() && glm::dot(glm::cross(li.axis_u, li.axis_v), li.direction) < 0.0f) li.axis_v = -li.axis_v;
+        if ((li.type == Light::Type::Rect || li.type == Light::Type::Disk) &&
+            glm::dot(glm::cross(li.axis_u, li.axis_v), li.direction) < 0.0f)
+            li.axis_v = -li.axis_v;
         out.push_back(li);
     }
     return out;
@@ -122,7 +132,8 @@ LightInstance parse_light(const std::string& spec) {
     if (colon == std::string::npos)
         fail("expected dir:AZIMUTH,ELEVATION,LUX[,R,G,B], point:X,Y,Z,CANDELA[,R,G,B], "
              "spot:X,Y,Z,AZIMUTH,ELEVATION,CANDELA,INNER,OUTER[,R,G,B], rect:X,Y,Z,AZIMUTH,ELEVATION,WIDTH,HEIGHT,NITS[,R,G,B], "
-             "disk:X,Y,Z,AZIMUTH,ELEVATION,RADIUS,NITS[,R,G,B] or sphere:X,Y,Z,RADIUS,NITS[,R,G,B]");
+             "disk:X,Y,Z,AZIMUTH,ELEVATION,RADIUS,NITS[,R,G,B], sphere:X,Y,Z,RADIUS,NITS[,R,G,B] or "
+             "tube:X,Y,Z,AZIMUTH,ELEVATION,LENGTH,RADIUS,NITS[,R,G,B]");
     std::string kind = spec.substr(0, colon);
     std::vector<float> v;
     std::stringstream ss(spec.substr(colon + 1));
@@ -176,6 +187,17 @@ LightInstance parse_light(const std::string& spec) {
         area_light_axes(l.direction, rect ? w : 2.0f * w, rect ? h : 2.0f * h, l.axis_u, l.axis_v);
         if (v.size() == n + 3) color = {v[n], v[n + 1], v[n + 2]};
         l.radiance = color * v[n - 1];
+    } else if (kind == "tube") {
+        if (v.size() != 8 && v.size() != 11) fail("tube: needs X,Y,Z,AZIMUTH,ELEVATION,LENGTH,RADIUS,NITS[,R,G,B]");
+        l.type = Light::Type::Tube;
+        l.position = {v[0], v[1], v[2]};
+        l.direction = -direction_from_angles(v[3], v[4]);  // its axis points towards AZIMUTH,ELEVATION
+        if (!(v[5] > 0.0f && v[6] > 0.0f)) fail("LENGTH and RADIUS must be positive");
+        l.axis_u = l.direction * (0.5f * v[5]);
+        l.axis_v = glm::vec3(0.0f);
+        l.radius = v[6];
+        if (v.size() == 11) color = {v[8], v[9], v[10]};
+        l.radiance = color * v[7];
     } else if (kind == "sphere") {
         if (v.size() != 5 && v.size() != 8) fail("sphere: needs X,Y,Z,RADIUS,NITS[,R,G,B]");
         l.type = Light::Type::Sphere;
@@ -185,7 +207,7 @@ LightInstance parse_light(const std::string& spec) {
         if (v.size() == 8) color = {v[5], v[6], v[7]};
         l.radiance = color * v[4];
     } else {
-        fail("unknown light type '" + kind + "' (use dir, point, spot, rect, disk or sphere)");
+        fail("unknown light type '" + kind + "' (use dir, point, spot, rect, disk, sphere or tube)");
     }
     if (l.radiance.x < 0 || l.radiance.y < 0 || l.radiance.z < 0) fail("intensity and colour must not be negative");
     return l;
@@ -199,6 +221,7 @@ const char* light_type_name(Light::Type type) {
         case Light::Type::Rect: return "rect";
         case Light::Type::Disk: return "disk";
         case Light::Type::Sphere: return "sphere";
+        case Light::Type::Tube: return "tube";
     }
     return "directional";
 }
@@ -225,6 +248,11 @@ std::string light_spec(const LightInstance& l) {
             return "rect:" + nums({p.x, p.y, p.z, az, el, 2.0f * glm::length(l.axis_u), 2.0f * glm::length(l.axis_v), lum}) + rgb;
         case Light::Type::Disk: return "disk:" + nums({p.x, p.y, p.z, az, el, glm::length(l.axis_u), lum}) + rgb;
         case Light::Type::Sphere: return "sphere:" + nums({p.x, p.y, p.z, l.radius, lum}) + rgb;
+        case Light::Type::Tube: {
+            const glm::vec3 axis = glm::length(l.axis_u) > 0.0f ? glm::normalize(l.axis_u) : glm::vec3(1, 0, 0);
+            const float tel = std::asin(std::clamp(axis.y, -1.0f, 1.0f)) * deg, taz = std::atan2(axis.x, axis.z) * deg;
+            return "tube:" + nums({p.x, p.y, p.z, taz, tel, 2.0f * glm::length(l.axis_u), l.radius, lum}) + rgb;
+        }
     }
     return "";
 }

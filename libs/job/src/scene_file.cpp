@@ -383,9 +383,9 @@ void read_camera(const Reader& r, const json& c, Job& job) {
 LightInstance read_light(const Reader& r, const json& l, const std::string& ptr) {
     r.object(l, ptr);
     r.keys(l, ptr, {"type", "color", "intensity", "range", "direction", "azimuth", "elevation", "position", "target",
-                    "innerConeAngle", "outerConeAngle", "width", "height", "radius", "name"});
+                    "innerConeAngle", "outerConeAngle", "width", "height", "radius", "length", "name"});
     const json* t = r.find(l, "type");
-    if (!t) r.fail(ptr, "needs a 'type': directional, point, spot, rect, disk or sphere");
+    if (!t) r.fail(ptr, "needs a 'type': directional, point, spot, rect, disk, sphere or tube");
     std::string type = r.string(*t, at(ptr, "type"));
     LightInstance li;
     glm::vec3 color(1.0f);
@@ -457,14 +457,25 @@ LightInstance read_light(const Reader& r, const json& l, const std::string& ptr)
         position();
         const json* v = r.find(l, "radius");
         li.radius = v ? float(r.number(*v, at(ptr, "radius"), 1e-6, 1e6)) : 0.5f;
+    } else if (type == "tube") {
+        // Its axis along 'direction' (or azimuth/elevation, or towards 'target').
+        li.type = Light::Type::Tube;
+        position();
+        direction(true);
+        const json* len = r.find(l, "length");
+        const json* rad = r.find(l, "radius");
+        li.axis_u = li.direction * (0.5f * (len ? float(r.number(*len, at(ptr, "length"), 1e-6, 1e6)) : 1.0f));
+        li.axis_v = glm::vec3(0.0f);
+        li.radius = rad ? float(r.number(*rad, at(ptr, "radius"), 1e-6, 1e6)) : 0.05f;
     } else {
-        r.fail(at(ptr, "type"), "must be directional, point, spot, rect, disk or sphere, not '" + type + "'");
+        r.fail(at(ptr, "type"), "must be directional, point, spot, rect, disk, sphere or tube, not '" + type + "'");
     }
+    if (li.type != Light::Type::Tube && r.find(l, "length")) r.fail(at(ptr, "length"), "is for tube lights");
     if (li.type != Light::Type::Rect)
         for (const char* key : {"width", "height"})
             if (r.find(l, key)) r.fail(at(ptr, key), "is for rect lights");
-    if (li.type != Light::Type::Disk && li.type != Light::Type::Sphere && r.find(l, "radius"))
-        r.fail(at(ptr, "radius"), "is for disk and sphere lights");
+    if (li.type != Light::Type::Disk && li.type != Light::Type::Sphere && li.type != Light::Type::Tube && r.find(l, "radius"))
+        r.fail(at(ptr, "radius"), "is for disk, sphere and tube lights");
     if (auto* v = r.find(l, "name")) r.string(*v, at(ptr, "name"));
     return li;
 }
@@ -762,6 +773,7 @@ json light_json(const LightInstance& l) {
         case Light::Type::Rect: o["type"] = "rect"; break;
         case Light::Type::Disk: o["type"] = "disk"; break;
         case Light::Type::Sphere: o["type"] = "sphere"; break;
+        case Light::Type::Tube: o["type"] = "tube"; break;
     }
     if (color != glm::vec3(1.0f)) o["color"] = nums<3>(color);
     o["intensity"] = num(intensity);
@@ -773,7 +785,8 @@ json light_json(const LightInstance& l) {
         o["height"] = num(2.0f * glm::length(l.axis_v));
     }
     if (l.type == Light::Type::Disk) o["radius"] = num(glm::length(l.axis_u));
-    if (l.type == Light::Type::Sphere) o["radius"] = num(l.radius);
+    if (l.type == Light::Type::Sphere || l.type == Light::Type::Tube) o["radius"] = num(l.radius);
+    if (l.type == Light::Type::Tube) o["length"] = num(2.0f * glm::length(l.axis_u));
     if (l.type == Light::Type::Spot) {
         o["innerConeAngle"] = num(l.inner_cone);
         o["outerConeAngle"] = num(l.outer_cone);

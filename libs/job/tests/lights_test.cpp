@@ -111,7 +111,7 @@ TEST(ParseLight, ErrorsNameTheOptionTheSpecAndTheReason) {
         {"spot:1,2,3,4", "spot: needs X,Y,Z,AZIMUTH,ELEVATION,CANDELA,INNER,OUTER[,R,G,B]"},
         {"spot:0,1,0,0,90,5,30,20", "0 <= INNER < OUTER <= 90"},
         {"spot:0,1,0,0,90,5,10,95", "0 <= INNER < OUTER <= 90"},
-        {"cone:1,2,3,4", "unknown light type 'cone' (use dir, point, spot, rect, disk or sphere)"},
+        {"cone:1,2,3,4", "unknown light type 'cone' (use dir, point, spot, rect, disk, sphere or tube)"},
         {"DIR:30,45,3", "unknown light type 'DIR'"},
         {"dir:a,45,3", "'a' is not a number"},
         {"dir:30,45,3x", "'3x' is not a number"},
@@ -253,7 +253,14 @@ TEST(ParseLight, AreaForms) {
     EXPECT_FLOAT_EQ(sp.radius, 0.1f);
     EXPECT_NEAR(sp.area(), 4.0f * 3.14159265f * 0.01f, 1e-6f);
 
-    for (const LightInstance& l : {r, d, sp}) {
+    LightInstance tube = parse_light("tube:0,2,0,90,0,1.5,0.05,30");
+    EXPECT_EQ(tube.type, Light::Type::Tube);
+    expect_near(tube.direction, {1, 0, 0}, 1e-5f, "its axis points towards azimuth 90");
+    EXPECT_NEAR(glm::length(tube.axis_u), 0.75f, 1e-6f);
+    EXPECT_FLOAT_EQ(tube.radius, 0.05f);
+    EXPECT_NEAR(tube.area(), 2.0f * 3.14159265f * 0.05f * 1.5f + 4.0f * 3.14159265f * 0.0025f, 1e-5f);
+
+    for (const LightInstance& l : {r, d, sp, tube}) {
         LightInstance back = parse_light(light_spec(l));
         EXPECT_EQ(back.type, l.type) << light_spec(l);
         expect_near(back.position, l.position, 1e-5f, light_spec(l));
@@ -264,7 +271,7 @@ TEST(ParseLight, AreaForms) {
         expect_near(back.radiance, l.radiance, 1e-4f, light_spec(l));
     }
     for (const char* bad : {"rect:0,0,0,0,0,1,1", "rect:0,0,0,0,0,-1,1,5", "disk:0,0,0,0,0,0,5", "sphere:0,0,0,0,5",
-                            "sphere:0,0,0,1", "tube:0,0,0,1,1"}) {
+                            "sphere:0,0,0,1", "tube:0,0,0,1,1", "tube:0,0,0,0,0,1,0,5", "cone:0,0,0"}) {
         try {
             parse_light(bad);
             ADD_FAILURE() << bad << " was accepted";

@@ -516,10 +516,11 @@ TEST_F(SceneFileTest, AreaLightsReadAndSaveBack) {
                 {"lights",
                  {{{"type", "rect"}, {"position", {0, 3, 0}}, {"target", {0, 0, 0}}, {"width", 2}, {"height", 0.5}, {"intensity", 40}},
                   {{"type", "disk"}, {"position", {1, 2, 0}}, {"azimuth", 90}, {"elevation", 30}, {"radius", 0.3}},
-                  {{"type", "sphere"}, {"position", {0, 1, 1}}, {"radius", 0.1}, {"color", {1, 0.5, 0.5}}, {"intensity", 8}}}}};
+                  {{"type", "sphere"}, {"position", {0, 1, 1}}, {"radius", 0.1}, {"color", {1, 0.5, 0.5}}, {"intensity", 8}},
+                  {{"type", "tube"}, {"position", {0, 2, 0}}, {"direction", {1, 0, 0}}, {"length", 1.5}, {"radius", 0.04}}}}};
     SceneFile sf = load(doc);
     const std::vector<LightInstance>& l = sf.job.lights.extra;
-    ASSERT_EQ(l.size(), 3u);
+    ASSERT_EQ(l.size(), 4u);
     EXPECT_EQ(l[0].type, Light::Type::Rect);
     EXPECT_NEAR(l[0].direction.y, -1.0f, 1e-6f) << "aimed at its target";
     EXPECT_NEAR(l[0].area(), 1.0f, 1e-5f);
@@ -528,12 +529,15 @@ TEST_F(SceneFileTest, AreaLightsReadAndSaveBack) {
     EXPECT_EQ(l[2].type, Light::Type::Sphere);
     EXPECT_FLOAT_EQ(l[2].radius, 0.1f);
     EXPECT_EQ(l[2].radiance, glm::vec3(8, 4, 4));
+    EXPECT_EQ(l[3].type, Light::Type::Tube);
+    EXPECT_NEAR(l[3].axis_u.x, 0.75f, 1e-6f);
+    EXPECT_FLOAT_EQ(l[3].radius, 0.04f);
     fs::path saved = dir_ / "area.fresnel.json";
     Diagnostics wd;
     save_scene_file(saved, sf.job, wd);
     SceneFile back = load_scene_file(saved, Job{}, diag_);
-    ASSERT_EQ(back.job.lights.extra.size(), 3u);
-    for (std::size_t i = 0; i < 3; ++i) {
+    ASSERT_EQ(back.job.lights.extra.size(), 4u);
+    for (std::size_t i = 0; i < 4; ++i) {
         const LightInstance& a = l[i];
         const LightInstance& b = back.job.lights.extra[i];
         EXPECT_EQ(a.type, b.type) << i;
@@ -550,6 +554,7 @@ TEST_F(SceneFileTest, AreaLightsReadAndSaveBack) {
              {R"({"fresnel": 1, "lights": [{"type": "rect", "position": [0, 0, 0], "azimuth": 0, "radius": 1}]})", "/lights/0/radius"},
              {R"({"fresnel": 1, "lights": [{"type": "rect", "position": [0, 0, 0], "azimuth": 0, "width": 0}]})", "/lights/0/width"},
              {R"({"fresnel": 1, "lights": [{"type": "disk", "position": [0, 0, 0]}]})", "/lights/0"},
+             {R"({"fresnel": 1, "lights": [{"type": "sphere", "position": [0, 0, 0], "length": 1}]})", "/lights/0/length"},
          }) {
         Error e = error_of(text);
         EXPECT_EQ(e.where(), pointer) << text << "\n" << e.what();

@@ -22,6 +22,26 @@ int area_light_polygon(const AreaLightGeometry& light, glm::vec3 x, glm::vec3* o
         const int n = ltc::sphere_polygon(c, light.radius, glm::vec3(0.0f), out, kAreaPolygonVertices);
         return n > 0 ? n : -1;  // inside: surrounded
     }
+    if (light.shape == AreaShape::Tube) {
+        const float half = glm::length(light.axis_u), r = light.radius;
+        const glm::vec3 a = half > 0.0f ? light.axis_u / half : glm::vec3(1.0f, 0.0f, 0.0f);
+        const glm::vec3 w = -c;  // from the centre towards x
+        const glm::vec3 across = w - a * glm::dot(w, a);
+        const float d = glm::length(across);
+        if (d <= r * 1e-3f + 1e-12f) {  // on the axis, beyond an end: the end's sphere
+            const glm::vec3 end = c + a * (glm::dot(w, a) > 0.0f ? half : -half);
+            const int n = ltc::sphere_polygon(end, r, glm::vec3(0.0f), out, kAreaPolygonVertices);
+            return n > 0 ? n : -1;
+        }
+        if (d <= r) return -1;  // inside: surrounded
+        const glm::vec3 u = a * (half + 0.25f * brdf::kPi * r);
+        const glm::vec3 v = glm::normalize(glm::cross(across, a)) * (r * d / std::sqrt((d - r) * (d + r)));  // u x v along `across`
+        out[0] = c - u - v;
+        out[1] = c + u - v;
+        out[2] = c + u + v;
+        out[3] = c - u + v;
+        return 4;
+    }
     // The disk's radii as the axes of a unit disk: an ellipse where they differ.
     return ltc::disk_polygon(c, light.axis_u, light.axis_v, 1.0f, out, kAreaPolygonVertices);
 }

@@ -847,7 +847,8 @@ private:
     }
 
     // EXT_lights_area (fresnel's, written by `convert --area-lights`): lights [{type rect|disk|
-    // sphere, color, intensity (nits), width, height (rect), radius (disk, sphere), name}], a node
+    // sphere|tube, color, intensity (nits), width, height (rect), radius (disk, sphere, tube),
+    // length (tube, along the node's X), name}], a node
     // names one as extensions.EXT_lights_area.light. They follow the punctual lights in
     // Scene::lights.
     void load_area_lights(const json& ext) {
@@ -877,6 +878,10 @@ private:
             } else if (type == "disk" || type == "sphere") {
                 light.type = type == "disk" ? Light::Type::Disk : Light::Type::Sphere;
                 light.radius = size("radius", 0.5);
+            } else if (type == "tube") {
+                light.type = Light::Type::Tube;
+                light.length = size("length", 1.0);
+                light.radius = size("radius", 0.05);
             } else {
                 warn(ptr + "/type", "unknown area light type '" + type + "'; light ignored");
                 light.type = Light::Type::Sphere;

@@ -458,6 +458,7 @@ std::vector<fs::path> write_gltf(const Scene& in, const fs::path& path, Diagnost
                 case Light::Type::Rect: jl["type"] = "rect"; break;
                 case Light::Type::Disk: jl["type"] = "disk"; break;
                 case Light::Type::Sphere: jl["type"] = "sphere"; break;
+                case Light::Type::Tube: jl["type"] = "tube"; break;
             }
             if (l.color != glm::vec3(1.0f)) jl["color"] = vec_json(glm::value_ptr(l.color), 3);
             if (l.intensity != 1.0f) jl["intensity"] = l.intensity;
@@ -468,7 +469,8 @@ std::vector<fs::path> write_gltf(const Scene& in, const fs::path& path, Diagnost
                 jl["width"] = l.width;
                 jl["height"] = l.height;
             }
-            if (l.type == Light::Type::Disk || l.type == Light::Type::Sphere) jl["radius"] = l.radius;
+            if (l.type == Light::Type::Disk || l.type == Light::Type::Sphere || l.type == Light::Type::Tube) jl["radius"] = l.radius;
+            if (l.type == Light::Type::Tube) jl["length"] = l.length;
             if (!l.name.empty()) jl["name"] = l.name;
             (is_area_light(l.type) ? area_lights : lights).push_back(jl);
         }

@@ -814,6 +814,7 @@ TEST(GltfLights, ExtLightsArea) {
                                             {{"type", "rect"}, {"name", "panel"}, {"width", 2.0}, {"height", 0.5}, {"intensity", 40.0}},
                                             {{"type", "disk"}, {"radius", 0.25}, {"color", {1.0, 0.9, 0.8}}},
                                             {{"type", "sphere"}},
+                                            {{"type", "tube"}, {"length", 2.0}, {"radius", 0.03}},
                                         })}}}};
     doc.j["nodes"] = json::array({{{"extensions", {{"EXT_lights_area", {{"light", 1}}}}}},
                                   {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}},
@@ -822,7 +823,10 @@ TEST(GltfLights, ExtLightsArea) {
     Diagnostics d;
     Scene s = load(doc.gltf(), d);
     EXPECT_EQ(d.total(), 0u) << all_warnings(d);
-    ASSERT_EQ(s.lights.size(), 4u);
+    ASSERT_EQ(s.lights.size(), 5u);
+    EXPECT_EQ(s.lights[4].type, Light::Type::Tube);
+    EXPECT_FLOAT_EQ(s.lights[4].length, 2.0f);
+    EXPECT_FLOAT_EQ(s.lights[4].radius, 0.03f);
     EXPECT_EQ(s.lights[0].type, Light::Type::Point);
     EXPECT_EQ(s.lights[1].type, Light::Type::Rect);
     EXPECT_EQ(s.lights[1].name, "panel");
@@ -839,7 +843,7 @@ TEST(GltfLights, ExtLightsArea) {
     EXPECT_EQ(gltf_extension_support("EXT_lights_area"), GltfExtensionSupport::Supported);
 
     Doc bad = doc;
-    bad.j["nodes"][0]["extensions"]["EXT_lights_area"]["light"] = 3;
+    bad.j["nodes"][0]["extensions"]["EXT_lights_area"]["light"] = 4;
     EXPECT_EQ(load_error(bad.gltf()).where(), "/nodes/0/extensions/EXT_lights_area/light");
     bad = doc;
     bad.j["nodes"][1]["extensions"]["KHR_lights_punctual"]["light"] = 1;  // only one punctual light
@@ -851,7 +855,7 @@ TEST(GltfLights, ExtLightsArea) {
     bad.j["extensions"]["EXT_lights_area"]["lights"][1]["radius"] = 0.0;
     EXPECT_EQ(load_error(bad.gltf()).where(), "/extensions/EXT_lights_area/lights/1/radius");
     bad = doc;
-    bad.j["extensions"]["EXT_lights_area"]["lights"][2]["type"] = "tube";
+    bad.j["extensions"]["EXT_lights_area"]["lights"][2]["type"] = "strip";
     Diagnostics w;
     Scene t = load(bad.gltf(), w);
     EXPECT_EQ(t.lights[3].intensity, 0.0f) << "an unknown type is ignored";

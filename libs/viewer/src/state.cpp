@@ -120,8 +120,16 @@ void State::shape_area_light(LightInstance& l) const {
     const float size = 0.25f * r;
     area_light_axes(l.direction, size, size, l.axis_u, l.axis_v);  // a disk: its radii
     l.radius = 0.5f * size;
+    if (l.type == Light::Type::Tube) {  // twice as long as the others are wide, a tenth as thick, across the view
+        l.direction = glm::vec3(1.0f, 0.0f, 0.0f);
+        l.axis_u = l.direction * size;
+        l.axis_v = glm::vec3(0.0f);
+        l.radius = 0.05f * size;
+    }
     // The luminous intensity 3 r^2 cd of an added point light, spread over the area seen face on.
-    const float seen = l.type == Light::Type::Sphere ? 3.14159265f * l.radius * l.radius : l.area();
+    const float seen = l.type == Light::Type::Sphere ? 3.14159265f * l.radius * l.radius
+                       : l.type == Light::Type::Tube ? 4.0f * l.radius * glm::length(l.axis_u)  // seen side on
+                                                     : l.area();
     const float lum = std::max({l.radiance.x, l.radiance.y, l.radiance.z});
     const glm::vec3 color = lum > 0.0f ? l.radiance / lum : glm::vec3(1.0f);
     l.radiance = color * (3.0f * r * r / std::max(seen, 1e-12f));

@@ -86,7 +86,7 @@ struct FrameBlock {
     std::int32_t energy_compensation = 0;
     std::int32_t light_count = 0;
     std::int32_t pad = 0;
-    // Per light: position.xyz + type (0 directional, 1 point, 2 spot, 3 rect, 4 disk, 5 sphere);
+    // Per light: position.xyz + type (0 directional, 1 point, 2 spot, 3 rect, 4 disk, 5 sphere, 6 tube);
     // direction the light travels (an area light's facing) + range (0 = infinite); colour *
     // intensity; spot cone scale and offset, or an area light's first half-extent axis + sphere
     // radius; an area light's second half-extent axis (LightInstance::axis_u, axis_v, radius).

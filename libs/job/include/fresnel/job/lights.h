@@ -20,7 +20,8 @@ struct LightInstance {
     // Area lights (radiance in nits): a rectangle's half extents, a disk's radii (both in the
     // plane the light faces out of, along `direction`; u x v = direction, so the corners p - u - v,
     // p + u - v, p + u + v, p - u + v run counter-clockwise seen from the lit side, as
-    // fresnel/material/ltc.h wants them); a sphere's radius.
+    // fresnel/material/ltc.h wants them); a sphere's radius; a tube's half length along axis_u
+    // (its `direction` the axis's) and its radius.
     glm::vec3 axis_u{0.5f, 0.0f, 0.0f}, axis_v{0.0f, 0.5f, 0.0f};
     float radius = 0.0f;
     bool operator==(const LightInstance&) const = default;
@@ -58,7 +59,8 @@ glm::vec3 light_incident(const LightInstance& light, glm::vec3 position, glm::ve
 // "spot:X,Y,Z,AZ,EL,CANDELA,INNER,OUTER[,R,G,B]" (aimed as a dir light from AZ,EL travels;
 // cone half-angles in degrees, 0 <= INNER < OUTER <= 90) and the area lights
 // "rect:X,Y,Z,AZ,EL,WIDTH,HEIGHT,NITS[,R,G,B]", "disk:X,Y,Z,AZ,EL,RADIUS,NITS[,R,G,B]" (facing
-// as a spot light aims) and "sphere:X,Y,Z,RADIUS,NITS[,R,G,B]".
+// as a spot light aims), "sphere:X,Y,Z,RADIUS,NITS[,R,G,B]" and
+// "tube:X,Y,Z,AZ,EL,LENGTH,RADIUS,NITS[,R,G,B]" (its axis pointing towards AZ,EL).
 // Throws fresnel::Error (file "--light") on malformed input.
 LightInstance parse_light(const std::string& spec);
 
@@ -66,7 +68,7 @@ LightInstance parse_light(const std::string& spec);
 // syntax; a rectangle's or disk's turn about its facing is the one area_light_axes gives).
 std::string light_spec(const LightInstance& light);
 
-// "directional", "point", "spot", "rect", "disk", "sphere" (scene files' and glTF's names).
+// "directional", "point", "spot", "rect", "disk", "sphere", "tube" (scene files' and glTF's names).
 const char* light_type_name(Light::Type type);
 
 }  // namespace fresnel

@@ -5,7 +5,10 @@
 // (fresnel/material/ltc.h) weighted by the split-sum table's Fresnel scale and bias; sheen is
 // taken at the direction of the light's centre with the diffuse's irradiance. Lights are one
 // polygon: a rectangle its four corners, a disk (an ellipse under a stretching transform) a
-// 12-gon of its area, a sphere the 12-gon of the disk covering the same cone of directions.
+// 12-gon of its area, a sphere the 12-gon of the disk covering the same cone of directions, a
+// tube (a capsule) the rectangle through its axis facing the point that covers the cylinder's
+// silhouette (half width r d / sqrt(d^2 - r^2) at distance d from the axis), lengthened by pi r / 4
+// at each end for the round ends' area (seen along its axis: the sphere of its end).
 // Not modelled for area lights: anisotropy (the isotropic lobe), the thin film's Fresnel,
 // KHR_materials_transmission's BTDF. The path tracer integrates the lights exactly instead
 // (fresnel/trace/area_lights.h); fidelity tests compare the two.
@@ -16,14 +19,15 @@
 
 namespace fresnel {
 
-enum class AreaShape { Rect, Disk, Sphere };
+enum class AreaShape { Rect, Disk, Sphere, Tube };
 
 struct AreaLightGeometry {
     AreaShape shape = AreaShape::Rect;
     glm::vec3 center{0.0f};
-    // Rect: half extents; disk: radii; u x v the side it lights (ltc.h's winding).
+    // Rect: half extents; disk: radii; u x v the side it lights (ltc.h's winding). Tube: axis_u
+    // its half length along its axis.
     glm::vec3 axis_u{0.5f, 0.0f, 0.0f}, axis_v{0.0f, 0.5f, 0.0f};
-    float radius = 0.5f;  // sphere
+    float radius = 0.5f;  // sphere, tube
 };
 
 inline constexpr int kAreaPolygonVertices = 12;  // a disk's and a sphere's polygon

@@ -121,7 +121,7 @@ struct Camera {
 // the emitting surface, the same everywhere on it and in every direction it emits).
 struct Light {
     // The order is the shaders' light type code (frame_block.glsl).
-    enum class Type { Directional, Point, Spot, Rect, Disk, Sphere } type = Type::Directional;
+    enum class Type { Directional, Point, Spot, Rect, Disk, Sphere, Tube } type = Type::Directional;
     std::string name;
     glm::vec3 color{1.0f};
     float intensity = 1.0f;
@@ -130,12 +130,15 @@ struct Light {
     float outer_cone_angle = 0.7853982f;
     // Area lights, in the node's space: a rectangle width x height (along its X and Y) or a disk
     // of `radius` in the node's XY plane, emitting from the side its -Z faces (as spot lights
-    // point); a sphere of `radius` emitting everywhere. Metres.
-    float width = 1.0f, height = 1.0f, radius = 0.5f;
+    // point); a sphere of `radius` emitting everywhere; a tube (a capsule: a cylinder of
+    // `radius` with round ends) `length` long along the node's X, emitting everywhere. Metres.
+    float width = 1.0f, height = 1.0f, radius = 0.5f, length = 1.0f;
 };
 
-// Rectangle, disk and sphere lights (the rest are punctual).
-inline bool is_area_light(Light::Type t) { return t == Light::Type::Rect || t == Light::Type::Disk || t == Light::Type::Sphere; }
+// Rectangle, disk, sphere and tube lights (the rest are punctual).
+inline bool is_area_light(Light::Type t) {
+    return t == Light::Type::Rect || t == Light::Type::Disk || t == Light::Type::Sphere || t == Light::Type::Tube;
+}
 
 struct Node {
     std::string name;

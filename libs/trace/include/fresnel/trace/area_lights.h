@@ -1,8 +1,8 @@
 #pragma once
-// Area lights (rect, disk, sphere: fresnel::LightInstance) as the path tracer's emitters: points
+// Area lights (rect, disk, sphere, tube: fresnel::LightInstance) as the path tracer's emitters: points
 // sampled on them for next-event estimation, and the rays that meet them, with the solid-angle
 // densities that multiple importance sampling weighs the two by. Rectangles and disks emit from
-// the side they face (LightInstance::direction), spheres everywhere, each with the same radiance
+// the side they face (LightInstance::direction), spheres and tubes everywhere, each with the same radiance
 // (nits) over its surface. Lights are not geometry: they block no ray (as in Cycles, and as the
 // rasteriser draws them), and camera rays do not see them.
 #include <glm/vec2.hpp>
@@ -20,7 +20,8 @@ struct AreaLightSample {
 };
 
 // A point on `light` seen from `p`: uniform over a rectangle's or disk's area (Shirley's
-// concentric map for the disk), uniform over the cone of directions a sphere subtends.
+// concentric map for the disk), uniform over the cone of directions a sphere subtends, uniform
+// over a tube's (capsule's) area, keeping the points whose side faces p.
 AreaLightSample sample_area_light(const LightInstance& light, glm::vec3 p, glm::vec2 u);
 
 // Where the ray origin + t dir (dir unit length) first meets `light`'s emitting side with
