@@ -81,11 +81,13 @@ bench: build
 
 # Optional, not part of `make test`: raster vs `fresnel trace` per shared model x environment
 # (~10 min on 2 cores); writes docs/fidelity/ and the README's fidelity-report section. Then
-# --ao off/baked against Blender Cycles (Debian's blender; its images made once, ~8 min).
+# --ao off/baked against Blender Cycles (Debian's blender; its images made once, ~8 min), and
+# the shadow scenes against Cycles (~3.5 min; its images made once, ~3.5 min more).
 fidelity-report: configure
 	cmake --build $(BUILD) -j $(JOBS) --target fresnel
 	bench/fidelity_report.py $(BUILD)/bin/fresnel --readme docs/fidelity.md
 	python3 bench/occlusion_fidelity.py $(BUILD)/bin/fresnel
+	python3 bench/shadow_fidelity.py $(BUILD)/bin/fresnel
 
 # The web page: the same libraries through Debian's Emscripten on WebGL 2, into $(WEB_BUILD)/
 # (index.html, fresnel.js, fresnel.wasm; serve the folder with any static server). Debian's
