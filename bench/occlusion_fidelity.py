@@ -12,10 +12,12 @@ reused. Standard library only; exits 0 with a note when ../shared is absent.
 import argparse
 import json
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cycles_refs import cycles_image  # noqa: E402
 
 MODELS = ["DamagedHelmet", "Suzanne", "2CylinderEngine", "Duck"]
 ENVS = {"studio": "studio_small_03_1k.hdr", "potsdamer": "potsdamer_platz_1k.hdr"}
@@ -70,21 +72,10 @@ def main():
                     if not (path and os.path.exists(khronos) and os.path.exists(env_path)):
                         continue
                     truth = os.path.join(refs, f"{model}_{env}_{view}_{a.samples}spp.png")
-                    if not os.path.exists(truth):
-                        if not os.path.exists(cycles) or not shutil.which("blender"):
-                            print(f"  no Cycles image for {model} {env} {view} (needs Debian's blender)", file=sys.stderr)
-                            continue
-                        print(f"  Cycles: {model} {env} {view} ({a.samples} spp)...", file=sys.stderr, flush=True)
-                        # Blender and cycles-ref's post-processing want Debian's python3 (numpy, PIL), not
-                        # one a version manager put first on the PATH.
-                        env_vars = {k: v for k, v in os.environ.items() if not k.startswith("PYENV")}
-                        env_vars["PATH"] = os.pathsep.join(p for p in os.environ.get("PATH", "").split(os.pathsep)
-                                                           if ".pyenv" not in p)
-                        subprocess.run([cycles, "--model", path, "--env", env_path, "--out", truth + ".tmp.png",
-                                        "--size", "512x512", "--yaw", str(yaw), "--pitch", str(pitch),
-                                        "--samples", str(a.samples)], check=True, stdout=subprocess.DEVNULL,
-                                       env=env_vars)
-                        os.replace(truth + ".tmp.png", truth)
+                    if not cycles_image(cycles, truth, ["--model", path, "--env", env_path, "--size", "512x512", "--yaw",
+                                                        str(yaw), "--pitch", str(pitch), "--samples", str(a.samples)],
+                                        f"{model} {env} {view} ({a.samples} spp)"):
+                        continue
                     row = {"view": f"{model} {env} {view}", "khronos": psnr(khronos, truth)}
                     for key, ao, light in VARIANTS:
                         out = os.path.join(tmp, f"{model}_{env}_{view}_{key}.png")

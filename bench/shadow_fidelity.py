@@ -18,10 +18,12 @@ when ../shared or blender is absent.
 import argparse
 import json
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cycles_refs import cycles_image  # noqa: E402
 
 SCENES = ["directional", "point", "spot", "environment"]
 ENV_FILE = "studio_small_03_1k.hdr"  # occlusion_fidelity.py's "studio"
@@ -75,23 +77,12 @@ def main():
                 name = f"shadow-{scene}_yaw{yaw}_pitch{pitch}"
                 view = ["--size", SIZE, "--yaw", str(yaw), "--pitch", str(pitch)]
                 truth = os.path.join(refs, f"{name}_{a.samples}spp.png")
-                if not os.path.exists(truth):
-                    if not os.path.exists(cycles) or not shutil.which("blender"):
-                        print(f"  no Cycles image for {name} (needs Debian's blender)", file=sys.stderr)
-                        continue
-                    print(f"  Cycles: {name} ({a.samples} spp)...", file=sys.stderr, flush=True)
-                    # Blender and cycles-ref's post-processing want Debian's python3 (numpy, PIL), not
-                    # one a version manager put first on the PATH.
-                    env_vars = {k: v for k, v in os.environ.items() if not k.startswith("PYENV")}
-                    env_vars["PATH"] = os.pathsep.join(p for p in os.environ.get("PATH", "").split(os.pathsep)
-                                                       if ".pyenv" not in p)
-                    # The lit scenes under a black world (their light alone), the environment scene
-                    # under the studio; the film is transparent either way (black background).
-                    light = ["--punctual", "--env-color", "0,0,0"] if lit else ["--env", env_path]
-                    subprocess.run([cycles, "--model", path, "--out", truth + ".tmp.png", *view, *light,
-                                    "--samples", str(a.samples), "--bounces", "16"], check=True,
-                                   stdout=subprocess.DEVNULL, env=env_vars)
-                    os.replace(truth + ".tmp.png", truth)
+                # The lit scenes under a black world (their light alone), the environment scene
+                # under the studio; the film is transparent either way (black background).
+                light = ["--punctual", "--env-color", "0,0,0"] if lit else ["--env", env_path]
+                if not cycles_image(cycles, truth, ["--model", path, *view, *light, "--samples", str(a.samples),
+                                                    "--bounces", "16"], f"{name} ({a.samples} spp)"):
+                    continue
                 fenv = ["--env", "none"] if lit else ["--env", env_path, "--no-scene-lights"]
                 images = {}
                 for key, bounces in (("trace", "16"), ("direct", "1")):
