@@ -213,19 +213,6 @@ LightInstance parse_light(const std::string& spec) {
     return l;
 }
 
-const char* light_type_name(Light::Type type) {
-    switch (type) {
-        case Light::Type::Directional: return "directional";
-        case Light::Type::Point: return "point";
-        case Light::Type::Spot: return "spot";
-        case Light::Type::Rect: return "rect";
-        case Light::Type::Disk: return "disk";
-        case Light::Type::Sphere: return "sphere";
-        case Light::Type::Tube: return "tube";
-    }
-    return "directional";
-}
-
 std::string light_spec(const LightInstance& l) {
     auto nums = [](std::initializer_list<float> v) {  // the shortest forms that read back as the same floats
         std::string out;

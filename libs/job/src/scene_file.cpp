@@ -766,15 +766,7 @@ json light_json(const LightInstance& l) {
     json o = json::object();
     float intensity = std::max({l.radiance.x, l.radiance.y, l.radiance.z});
     glm::vec3 color = intensity > 0.0f ? l.radiance / intensity : glm::vec3(1.0f);
-    switch (l.type) {
-        case Light::Type::Directional: o["type"] = "directional"; break;
-        case Light::Type::Point: o["type"] = "point"; break;
-        case Light::Type::Spot: o["type"] = "spot"; break;
-        case Light::Type::Rect: o["type"] = "rect"; break;
-        case Light::Type::Disk: o["type"] = "disk"; break;
-        case Light::Type::Sphere: o["type"] = "sphere"; break;
-        case Light::Type::Tube: o["type"] = "tube"; break;
-    }
+    o["type"] = light_type_name(l.type);
     if (color != glm::vec3(1.0f)) o["color"] = nums<3>(color);
     o["intensity"] = num(intensity);
     if (l.type != Light::Type::Directional) o["position"] = nums<3>(l.position);

@@ -808,17 +808,7 @@ private:
         const json& ext = r_.object(doc_, "extensions", "");
         const json& lp = r_.object(ext, "KHR_lights_punctual", "/extensions");
         std::string base = "/extensions/KHR_lights_punctual";
-        const json& arr = r_.array(lp, "lights", base);
-        for (std::size_t i = 0; i < arr.size(); ++i) {
-            std::string ptr = base + "/lights/" + std::to_string(i);
-            const json& l = arr[i];
-            if (!l.is_object()) r_.fail(ptr, "must be an object");
-            Light light;
-            light.name = r_.string(l, "name", ptr);
-            auto col = r_.numbers<3>(l, "color", ptr, {1, 1, 1});
-            light.color = glm::max(glm::vec3(col[0], col[1], col[2]), 0.0f);
-            light.intensity = std::max(0.0f, float(r_.number(l, "intensity", ptr, 1.0)));
-            std::string type = r_.string(l, "type", ptr);
+        for_each_light(lp, base, [&](const json& l, const std::string& ptr, Light& light, const std::string& type) {
             if (type == "directional") light.type = Light::Type::Directional;
             else if (type == "point") light.type = Light::Type::Point;
             else if (type == "spot") light.type = Light::Type::Spot;
@@ -840,10 +830,30 @@ private:
                     !(light.inner_cone_angle >= 0 && light.inner_cone_angle < light.outer_cone_angle))
                     r_.fail(ptr + "/spot", "needs 0 <= innerConeAngle < outerConeAngle <= pi/2");
             }
-            scene_.lights.push_back(light);
-        }
+        });
         area_light_base_ = scene_.lights.size();
         load_area_lights(ext);
+    }
+
+    // Each light of an extension's `lights` list (KHR_lights_punctual, EXT_lights_area): its name,
+    // colour and intensity read, then `type_specific(json, pointer, light, type)`, then added.
+    template <class F>
+    void for_each_light(const json& extension, const std::string& base, F&& type_specific) {
+        const json& arr = r_.array(extension, "lights", base);
+        for (std::size_t i = 0; i < arr.size(); ++i) {
+            std::string ptr = base + "/lights/" + std::to_string(i);
+            const json& l = arr[i];
+            if (!l.is_object()) r_.fail(ptr, "must be an object");
+            Light light;
+            light.name = r_.string(l, "name", ptr);
+            auto col = r_.numbers<3>(l, "color", ptr, {1, 1, 1});
+            light.color = glm::max(glm::vec3(col[0], col[1], col[2]), 0.0f);
+            light.intensity = float(r_.number(l, "intensity", ptr, 1.0));
+            if (!std::isfinite(light.intensity)) r_.fail(ptr + "/intensity", "is too large");
+            light.intensity = std::max(0.0f, light.intensity);
+            type_specific(l, ptr, light, r_.string(l, "type", ptr));
+            scene_.lights.push_back(light);
+        }
     }
 
     // EXT_lights_area (fresnel's, written by `convert --area-lights`): lights [{type rect|disk|
@@ -854,18 +864,7 @@ private:
     void load_area_lights(const json& ext) {
         const json& la = r_.object(ext, "EXT_lights_area", "/extensions");
         std::string base = "/extensions/EXT_lights_area";
-        const json& arr = r_.array(la, "lights", base);
-        for (std::size_t i = 0; i < arr.size(); ++i) {
-            std::string ptr = base + "/lights/" + std::to_string(i);
-            const json& l = arr[i];
-            if (!l.is_object()) r_.fail(ptr, "must be an object");
-            Light light;
-            light.name = r_.string(l, "name", ptr);
-            auto col = r_.numbers<3>(l, "color", ptr, {1, 1, 1});
-            light.color = glm::max(glm::vec3(col[0], col[1], col[2]), 0.0f);
-            light.intensity = float(r_.number(l, "intensity", ptr, 1.0));
-            if (!(light.intensity >= 0.0f && light.intensity < 1e12f)) r_.fail(ptr + "/intensity", "must be 0 or more (nits)");
-            std::string type = r_.string(l, "type", ptr);
+        for_each_light(la, base, [&](const json& l, const std::string& ptr, Light& light, const std::string& type) {
             auto size = [&](const char* key, double fallback) {
                 float v = float(r_.number(l, key, ptr, fallback));
                 if (!(v > 0.0f && v < 1e9f)) r_.fail(ptr + "/" + key, "must be a positive length");
@@ -887,8 +886,7 @@ private:
                 light.type = Light::Type::Sphere;
                 light.intensity = 0.0f;
             }
-            scene_.lights.push_back(light);
-        }
+        });
     }
 
     void load_nodes() {

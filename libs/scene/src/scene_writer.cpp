@@ -450,16 +450,7 @@ std::vector<fs::path> write_gltf(const Scene& in, const fs::path& path, Diagnost
         for (std::size_t i = 0; i < scene.lights.size(); ++i) {
             const Light& l = scene.lights[i];
             if (light_index[i] < 0) continue;
-            json jl;
-            switch (l.type) {
-                case Light::Type::Directional: jl["type"] = "directional"; break;
-                case Light::Type::Point: jl["type"] = "point"; break;
-                case Light::Type::Spot: jl["type"] = "spot"; break;
-                case Light::Type::Rect: jl["type"] = "rect"; break;
-                case Light::Type::Disk: jl["type"] = "disk"; break;
-                case Light::Type::Sphere: jl["type"] = "sphere"; break;
-                case Light::Type::Tube: jl["type"] = "tube"; break;
-            }
+            json jl = {{"type", light_type_name(l.type)}};
             if (l.color != glm::vec3(1.0f)) jl["color"] = vec_json(glm::value_ptr(l.color), 3);
             if (l.intensity != 1.0f) jl["intensity"] = l.intensity;
             if (l.range > 0.0f && (l.type == Light::Type::Point || l.type == Light::Type::Spot)) jl["range"] = l.range;

@@ -14,6 +14,7 @@
 #include <glm/mat3x3.hpp>
 
 #include "fresnel/material/ltc.h"
+#include "fresnel/material/sampling.h"
 
 using namespace fresnel;
 using namespace fresnel::trace;
@@ -23,15 +24,7 @@ namespace {
 constexpr float kPi = 3.14159265358979f;
 
 // A low-discrepancy point set: the estimates below converge fast enough to test tightly.
-glm::vec2 hammersley(std::uint32_t i, std::uint32_t n) {
-    std::uint32_t b = i;
-    b = (b << 16u) | (b >> 16u);
-    b = ((b & 0x55555555u) << 1u) | ((b & 0xAAAAAAAAu) >> 1u);
-    b = ((b & 0x33333333u) << 2u) | ((b & 0xCCCCCCCCu) >> 2u);
-    b = ((b & 0x0F0F0F0Fu) << 4u) | ((b & 0xF0F0F0F0u) >> 4u);
-    b = ((b & 0x00FF00FFu) << 8u) | ((b & 0xFF00FF00u) >> 8u);
-    return {(float(i) + 0.5f) / float(n), float(b) * 2.3283064e-10f};
-}
+using sampling::hammersley;
 
 // Irradiance at p with normal n: the mean of L cos / pdf over n samples.
 double irradiance(const LightInstance& light, glm::vec3 p, glm::vec3 n, std::uint32_t count = 1 << 16) {

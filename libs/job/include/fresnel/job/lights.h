@@ -68,7 +68,5 @@ LightInstance parse_light(const std::string& spec);
 // syntax; a rectangle's or disk's turn about its facing is the one area_light_axes gives).
 std::string light_spec(const LightInstance& light);
 
-// "directional", "point", "spot", "rect", "disk", "sphere", "tube" (scene files' and glTF's names).
-const char* light_type_name(Light::Type type);
 
 }  // namespace fresnel

@@ -140,6 +140,21 @@ inline bool is_area_light(Light::Type t) {
     return t == Light::Type::Rect || t == Light::Type::Disk || t == Light::Type::Sphere || t == Light::Type::Tube;
 }
 
+// "directional", "point", "spot", "rect", "disk", "sphere", "tube": the names glTF files
+// (KHR_lights_punctual, EXT_lights_area) and scene files give the types.
+inline const char* light_type_name(Light::Type type) {
+    switch (type) {
+        case Light::Type::Directional: return "directional";
+        case Light::Type::Point: return "point";
+        case Light::Type::Spot: return "spot";
+        case Light::Type::Rect: return "rect";
+        case Light::Type::Disk: return "disk";
+        case Light::Type::Sphere: return "sphere";
+        case Light::Type::Tube: return "tube";
+    }
+    return "directional";
+}
+
 struct Node {
     std::string name;
     glm::mat4 local{1.0f};
