@@ -122,7 +122,7 @@ void main() {
     int i = 0;
     if (u_light_count > 0) do {
 #ifdef FRAME_AREA_LIGHTS
-        // Rectangles, disks and spheres (area_lights.glsl): their area integrated, the shadow
+        // Rectangles, disks, spheres and tubes (area_lights.glsl): their area integrated, the shadow
         // looked up towards their centre.
         if (u_light_position_type[i].w > 2.5) {
             vec3 pts[17];
