@@ -17,7 +17,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cycles_refs import cycles_image  # noqa: E402
+from cycles_refs import cycles_image, locations, metrics  # noqa: E402
 
 MODELS = ["DamagedHelmet", "Suzanne", "2CylinderEngine", "Duck"]
 ENVS = {"studio": "studio_small_03_1k.hdr", "potsdamer": "potsdamer_platz_1k.hdr"}
@@ -44,20 +44,15 @@ def main():
     ap.add_argument("--rays", type=int, default=128, help="--ao-rays")
     ap.add_argument("--quick", action="store_true", help="the front views of the studio only")
     a = ap.parse_args()
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    shared = os.environ.get("FRESNEL_SHARED_DIR", os.path.join(root, "..", "shared"))
-    cycles = os.path.join(shared, "tools/cycles-ref/render")
-    compare = os.path.join(shared, "tools/fidelity/compare.py")
+    shared, cycles, compare, refs = locations(__file__, a.fresnel, a.refs)
     if not (os.path.exists(compare) and os.path.isdir(os.path.join(shared, "refs/khronos"))):
         print("occlusion_fidelity: ../shared (tools, refs) is absent; nothing to compare")
         return 0
     fresnel = os.path.abspath(a.fresnel)
-    refs = a.refs or os.path.join(os.path.dirname(os.path.dirname(fresnel)), "cycles-refs")
     os.makedirs(refs, exist_ok=True)
 
     def psnr(test, ref):
-        out = subprocess.run(["/usr/bin/python3", compare, test, ref, "--json"], capture_output=True, text=True, check=True).stdout
-        return float(json.loads(out)["psnr_db"])
+        return float(metrics(compare, test, ref)["psnr_db"])
 
     rows = []
     with tempfile.TemporaryDirectory() as tmp:

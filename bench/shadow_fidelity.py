@@ -16,14 +16,13 @@ when ../shared or blender is absent.
   usage: bench/shadow_fidelity.py FRESNEL_BINARY [--refs DIR] [--samples N] [--spp N] [--rays N] [--quick]
 """
 import argparse
-import json
 import os
 import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cycles_refs import cycles_image  # noqa: E402
+from cycles_refs import cycles_image, locations, metrics  # noqa: E402
 
 SCENES = ["directional", "point", "spot", "environment"]
 ENV_FILE = "studio_small_03_1k.hdr"  # occlusion_fidelity.py's "studio"
@@ -50,20 +49,16 @@ def main():
     ap.add_argument("--quick", action="store_true", help="one view of each scene")
     a = ap.parse_args()
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    shared = os.environ.get("FRESNEL_SHARED_DIR", os.path.join(root, "..", "shared"))
-    cycles = os.path.join(shared, "tools/cycles-ref/render")
-    compare = os.path.join(shared, "tools/fidelity/compare.py")
+    shared, cycles, compare, refs = locations(__file__, a.fresnel, a.refs)
     env_path = os.path.join(shared, "assets/env", ENV_FILE)
     if not os.path.exists(compare):
         print("shadow_fidelity: ../shared (tools) is absent; nothing to compare")
         return 0
     fresnel = os.path.abspath(a.fresnel)
-    refs = a.refs or os.path.join(os.path.dirname(os.path.dirname(fresnel)), "cycles-refs")
     os.makedirs(refs, exist_ok=True)
 
-    def metrics(test, ref):
-        out = subprocess.run(["/usr/bin/python3", compare, test, ref, "--json"], capture_output=True, text=True, check=True).stdout
-        j = json.loads(out)
+    def two_metrics(test, ref):
+        j = metrics(compare, test, ref)
         return float(j["psnr_db"]), float(j["mv_rms_db"])
 
     rows = []
@@ -98,10 +93,10 @@ def main():
                 # Against Cycles; the spot light also against fresnel trace (Blender's cone differs);
                 # every scene against fresnel trace's direct light (the rasteriser's light transport).
                 row = {"view": f"shadow-{scene} {yaw}/{pitch}", "scene": scene,
-                       "Cycles": {k: metrics(images[k], truth) for k in ["trace", "direct"] + keys}}
+                       "Cycles": {k: two_metrics(images[k], truth) for k in ["trace", "direct"] + keys}}
                 if scene == "spot":
-                    row["trace"] = {k: metrics(images[k], images["trace"]) for k in ["direct"] + keys}
-                row["direct"] = {k: metrics(images[k], images["direct"]) for k in keys}
+                    row["trace"] = {k: two_metrics(images[k], images["trace"]) for k in ["direct"] + keys}
+                row["direct"] = {k: two_metrics(images[k], images["direct"]) for k in keys}
                 rows.append(row)
                 for ref in REFS:
                     if ref in row:

@@ -739,9 +739,9 @@ function bindPanel() {
             el.step = s.type === 'int' ? 1 : (s.sliderMax - s.sliderMin) / 160;
             el.dataset.unit = s.unit === 'degrees' ? '°' : s.unit;
         }
-        // (--ao baked needs the tracer's rays, which the page does not have.)
-        if (el.tagName === 'SELECT' && !el.options.length)
-            for (const c of s.choices) if (!(s.key === 'render.ao' && c === 'baked')) el.add(new Option(c, c));
+        // (Less the choices the registry does not offer the page: --ao baked needs the tracer.)
+        const offered = c => !s.choicesNotOffered.some(x => x.choice === c && x.frontEnds.includes('web'));
+        if (el.tagName === 'SELECT' && !el.options.length) for (const c of s.choices.filter(offered)) el.add(new Option(c, c));
         showSetting(el, s.default);
         el.addEventListener('input', async () => {
             if (el.type !== 'checkbox') showSetting(el, el.value);

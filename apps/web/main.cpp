@@ -105,13 +105,10 @@ struct App {
         } else {
             const settings::Setting* s = settings::find(key);
             if (!s || !s->offered(settings::kWeb)) throw Error("fresnel_set", "", "unknown setting '" + key + "'");
+            if (!s->choice_offered(value, settings::kWeb))  // (the registry says why: its doc)
+                throw Error("fresnel_set", "", "'" + value + "' is not offered by the page for " + s->key + ": " + s->doc);
             Diagnostics diag;
-            const AmbientOcclusion ao_before = job.output.ao;
             settings::set(job, key, value, key, &diag);
-            if (job.output.ao == AmbientOcclusion::Baked) {  // the tracer's rays: not in the page (no Embree)
-                job.output.ao = ao_before;
-                throw Error("fresnel_set", "", "--ao baked needs the tracer, which the page does not have: use ssao");
-            }
             for (const std::string& w : diag.lines()) warnings += w + "\n";
             if (s->key == "render.size")
                 emscripten_set_canvas_element_size(canvas.c_str(), job.output.width, job.output.height);

@@ -24,6 +24,7 @@
 #include "fresnel/material/ltc.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/scene/procedural.h"
+#include "floor_point.h"
 #include "headless_context.h"
 
 using namespace fresnel;
@@ -83,7 +84,6 @@ void check(gpu::Api api) {
         renderer.set_scene(scene);
         const Bounds bounds = scene_bounds(scene, flatten(scene));
         const CameraSetup camera = look_at_camera(bounds, {0.3f, 1.5f, 1.8f}, {0, 0, 0}, {0, 1, 0}, 50.0f, kSize, kSize);
-        const glm::mat4 inv_vp = glm::inverse(camera.projection * camera.view);
         EvaluatedMaterial em;
         em.surface.base_color = c.base;
         em.surface.metallic = c.metallic;
@@ -107,13 +107,9 @@ void check(gpu::Api api) {
             int lit = 0;
             for (int y = 0; y < kSize; ++y)
                 for (int x = 0; x < kSize; ++x) {
-                    // The floor's point under the pixel's centre (the image's rows run top down).
-                    const glm::vec2 ndc((float(x) + 0.5f) / kSize * 2.0f - 1.0f, 1.0f - (float(y) + 0.5f) / kSize * 2.0f);
-                    const glm::vec4 b = inv_vp * glm::vec4(ndc, 0.0f, 1.0f);
-                    const glm::vec3 o = camera.eye, d = glm::normalize(glm::vec3(b) / b.w - o);
-                    const float t = -o.y / d.y;
-                    const glm::vec3 p = o + t * d;
-                    if (!(t > 0.0f) || std::abs(p.x) > 1.95f || std::abs(p.z) > 1.95f) continue;
+                    const std::optional<glm::vec3> floor = test::floor_point(camera, x, y, kSize, kSize);
+                    if (!floor || std::abs(floor->x) > 1.95f || std::abs(floor->z) > 1.95f) continue;
+                    const glm::vec3 p = *floor;
                     glm::vec3 pts[ltc::kMaxPolygon + 1];
                     const int count = area_light_polygon(g, p, pts);
                     const glm::vec3 v = glm::normalize(camera.eye - p);

@@ -18,6 +18,7 @@
 #include "fresnel/material/brdf.h"
 #include "fresnel/render/renderer.h"
 #include "fresnel/scene/procedural.h"
+#include "floor_point.h"
 #include "headless_context.h"
 
 using namespace fresnel;
@@ -88,18 +89,14 @@ void check(gpu::Api api) {
     const ImageF near_only = renderer.render(camera, {}, rs, &stats);
 
     // The floor's point under each pixel; the mean ratio in bands at distances x from the wall.
-    const glm::mat4 inv_vp = glm::inverse(camera.projection * camera.view);
     const float distances[] = {0.1f, 0.25f, 0.5f, 1.0f, 2.0f};
     double sum[5] = {}, open_sum = 0.0, open_worst = 0.0;
     int count[5] = {}, open_count = 0;
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) {
-            const glm::vec2 ndc((float(x) + 0.5f) / kSize * 2.0f - 1.0f, 1.0f - (float(y) + 0.5f) / kSize * 2.0f);
-            const glm::vec4 b = inv_vp * glm::vec4(ndc, 0.0f, 1.0f);
-            const glm::vec3 d = glm::normalize(glm::vec3(b) / b.w - camera.eye);
-            const float t = -camera.eye.y / d.y;
-            const glm::vec3 p = camera.eye + t * d;
-            if (!(t > 0.0f) || std::abs(p.x) > 0.6f || p.z < kWallFace) continue;
+            const std::optional<glm::vec3> floor = test::floor_point(camera, x, y, kSize, kSize);
+            if (!floor || std::abs(floor->x) > 0.6f || floor->z < kWallFace) continue;
+            const glm::vec3 p = *floor;
             const double ratio = double(occluded.at(x, y)[0]) / double(plain.at(x, y)[0]);
             const float dist = p.z - kWallFace;
             for (int k = 0; k < 5; ++k)

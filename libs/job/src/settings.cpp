@@ -702,6 +702,7 @@ std::vector<Setting> make_registry() {
         "trace always occludes; the web page has no baked",
         raster, [](const Job& j) { return std::string(ambient_occlusion_name(j.output.ao)); },
         [](Job& j, const std::string& t) { j.output.ao = *parse_ambient_occlusion(t); }));
+    r.back().choices_not_offered = {{"baked", kWeb}};
     r.push_back(choice(
         "render.envLight", "--env-light", {"off", "dominant"},
         "The environment's dominant light (a sun or a studio's key light: a small region carrying at least a "
@@ -1035,12 +1036,19 @@ std::string describe_json() {
         out += "],\"none\":" + json_string(s.none) + ",\"default\":" + json_string(default_text(s)) +
                ",\"example\":" + json_string(example(s)) + ",\"expected\":" + json_string(s.expected()) +
                ",\"doc\":" + json_string(s.doc) + ",\"frontEnds\":[";
-        std::string fe;
         const std::pair<unsigned, const char*> names[] = {{kCli, "cli"},   {kTrace, "trace"}, {kSceneFile, "sceneFile"},
                                                           {kViewScript, "viewScript"}, {kWeb, "web"}, {kSweep, "sweep"}};
-        for (const auto& [bit, name] : names)
-            if (s.offered(bit)) fe += std::string(fe.empty() ? "" : ",") + "\"" + name + "\"";
-        out += fe + "],\"oldNames\":[";
+        auto front_end_names = [&](unsigned bits) {
+            std::string fe;
+            for (const auto& [bit, name] : names)
+                if (bits & bit) fe += std::string(fe.empty() ? "" : ",") + "\"" + name + "\"";
+            return fe;
+        };
+        out += front_end_names(s.front_ends) + "],\"choicesNotOffered\":[";
+        for (std::size_t i = 0; i < s.choices_not_offered.size(); ++i)
+            out += std::string(i ? "," : "") + "{\"choice\":" + json_string(s.choices_not_offered[i].first) +
+                   ",\"frontEnds\":[" + front_end_names(s.choices_not_offered[i].second) + "]}";
+        out += "],\"oldNames\":[";
         for (std::size_t i = 0; i < s.old_names.size(); ++i) out += (i ? "," : "") + json_string(s.old_names[i]);
         out += "],\"shortcuts\":[";
         for (std::size_t i = 0; i < s.shortcuts.size(); ++i)

@@ -464,3 +464,15 @@ TEST(Features, TheDisableSettingHasOneSpelling) {
         EXPECT_NE(std::string(e.what()).find("'glow' is not one of"), std::string::npos) << e.what();
     }
 }
+
+// A choice a front end cannot carry out is the registry's to say (the page draws no baked
+// occlusion: it has no tracer), and its JSON says it to the page.
+TEST(Settings, ChoicesNotOfferedToAFrontEnd) {
+    const fresnel::settings::Setting& ao = fresnel::settings::at("render.ao");
+    EXPECT_TRUE(ao.offered(fresnel::settings::kWeb));
+    EXPECT_FALSE(ao.choice_offered("baked", fresnel::settings::kWeb));
+    EXPECT_TRUE(ao.choice_offered("baked", fresnel::settings::kCli));
+    EXPECT_TRUE(ao.choice_offered("ssao", fresnel::settings::kWeb));
+    EXPECT_NE(fresnel::settings::describe_json().find(R"("choicesNotOffered":[{"choice":"baked","frontEnds":["web"]}])"),
+              std::string::npos);
+}

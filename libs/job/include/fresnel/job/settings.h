@@ -96,7 +96,16 @@ struct Setting {
     // Choice and Text: the canonical spelling of an accepted alias ("env" -> "environment").
     std::function<std::string(const std::string& text)> canonical;
 
+    // Choices some front ends offer the setting without (their bits): --ao baked needs the
+    // tracer's rays, which the web page has not.
+    std::vector<std::pair<std::string, unsigned>> choices_not_offered;
+
     bool offered(unsigned front_end) const { return (front_ends & front_end) != 0; }
+    bool choice_offered(const std::string& choice, unsigned front_end) const {
+        for (const auto& [c, bits] : choices_not_offered)
+            if (c == choice && (bits & front_end)) return false;
+        return true;
+    }
     double slider_lo() const { return slider_min == slider_max ? min : slider_min; }
     double slider_hi() const { return slider_min == slider_max ? max : slider_max; }
     // What the setting takes, for messages and --help: "a number in [-90, 90] (degrees)".
