@@ -10,7 +10,7 @@ CMAKE_GEN   := $(shell command -v ninja >/dev/null 2>&1 && echo "-G Ninja")
 
 WEB_BUILD   ?= build-web
 
-.PHONY: all deps configure build demo test test-fast asan fuzz bench fidelity-report clean web web-deps web-bench python
+.PHONY: all deps configure build demo test test-fast asan fuzz bench fidelity-report peer-report clean web web-deps web-bench python
 
 all: build
 
@@ -88,6 +88,16 @@ fidelity-report: configure
 	bench/fidelity_report.py $(BUILD)/bin/fresnel --readme docs/fidelity.md
 	python3 bench/occlusion_fidelity.py $(BUILD)/bin/fresnel
 	python3 bench/shadow_fidelity.py $(BUILD)/bin/fresnel
+
+# Optional, not part of `make test`: OBJ -> glTF against obj2gltf (npm 3.2.0, installed into
+# $(BUILD)/node-tools), under the one OpenGL 1 light (bench/peer-report.sh, ~1 min) and under
+# the studio environment (bench/peer_report_ibl.py, ~9 min); rewrites bench/peer-report*.md.
+peer-report: configure
+	cmake --build $(BUILD) -j $(JOBS) --target fresnel fresnel_python
+	@[ -x $(BUILD)/node-tools/node_modules/.bin/obj2gltf ] || \
+	  (mkdir -p $(BUILD)/node-tools && cd $(BUILD)/node-tools && npm install --no-save obj2gltf@3.2.0)
+	bench/peer-report.sh $(BUILD) $(BUILD)/peer-report && cp $(BUILD)/peer-report/peer-report.md bench/peer-report.md
+	/usr/bin/python3 bench/peer_report_ibl.py --build $(BUILD) --report bench/peer-report-ibl.md
 
 # The web page: the same libraries through Debian's Emscripten on WebGL 2, into $(WEB_BUILD)/
 # (index.html, fresnel.js, fresnel.wasm; serve the folder with any static server). Debian's

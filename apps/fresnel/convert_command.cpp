@@ -44,8 +44,25 @@ std::string lower_ext(const fs::path& p) {
     return e;
 }
 
+// The mean of one channel of a texture (1 without a readable one).
+float texture_mean(const Scene& scene, const TextureSlot& slot, int channel) {
+    if (!slot.valid() || std::size_t(slot.texture) >= scene.textures.size()) return 1.0f;
+    int image = scene.textures[std::size_t(slot.texture)].image;
+    if (image < 0 || std::size_t(image) >= scene.images.size() || !scene.images[std::size_t(image)].valid()) return 1.0f;
+    const Image8& img = scene.images[std::size_t(image)].pixels;
+    double sum = 0.0;
+    std::size_t n = std::size_t(img.width) * std::size_t(img.height);
+    for (std::size_t i = 0; i < n; ++i) sum += img.pixels[i * 4 + std::size_t(channel)];
+    return n ? float(sum / double(n) / 255.0) : 1.0f;
+}
+
 // Phong (MTL) materials -> fitted metallic-roughness, in place, for `match`'s intent. Values
 // outside OpenGL 1's ranges (Kd, Ks above 1, Ns above 128) are clamped with a warning.
+// With a map_Kd and --match opengl1: OpenGL 1 modulates the lighting by the texels as stored
+// (GL_MODULATE) and adds a textured material's highlight after it (GL_SEPARATE_SPECULAR_COLOR),
+// so the highlight is weighed against the diffuse the material shows on average: the fit is of
+// Kd times the texture's mean, and the base colour factor is the fitted colour over that mean as
+// a glTF viewer reads it (sRGB-decoded), clamped to 1, so factor x texture averages to the fit.
 void fit_phong_materials(Scene& scene, bool quiet, fit::Match match, Diagnostics& d, const std::string& file) {
     std::map<std::tuple<float, float, float, float, float, float, float>, fit::PhongToPbr> cache;
     for (Material& m : scene.materials) {
@@ -63,10 +80,19 @@ void fit_phong_materials(Scene& scene, bool quiet, fit::Match match, Diagnostics
         clamp_colour("Ks", ph.ks);
         if (ph.ns < 0.0f || ph.ns > 128.0f) d.warn(file, where, "Ns outside [0, 128] is clamped (OpenGL 1's range)");
         ph.ns = std::clamp(ph.ns, 0.0f, 128.0f);
+        glm::vec3 texel(1.0f);  // the mean of map_Kd as stored
+        if (match == fit::Match::OpenGl1 && p.diffuse_map.slot.valid())
+            for (int c = 0; c < 3; ++c) texel[c] = texture_mean(scene, p.diffuse_map.slot, c);
+        ph.kd *= texel;
         auto key = std::make_tuple(ph.kd.x, ph.kd.y, ph.kd.z, ph.ks.x, ph.ks.y, ph.ks.z, ph.ns);
         auto it = cache.find(key);
         if (it == cache.end()) it = cache.emplace(key, fit::fit_phong_to_pbr(ph, match)).first;
-        const fit::PhongToPbr& f = it->second;
+        fit::PhongToPbr f = it->second;
+        for (int c = 0; c < 3; ++c)
+            if (texel[c] != 1.0f) {
+                const float decoded = srgb_to_linear(texel[c]);
+                f.pbr.base_color[c] = decoded > 0.0f ? std::min(f.pbr.base_color[c] / decoded, 1.0f) : 1.0f;
+            }
         // The formula conversion's textures stay (map_Kd, map_Ks as specular colour, ...); the
         // factors become the fitted ones.
         fit::apply_pbr(f.pbr, m);
@@ -114,18 +140,6 @@ void to_metallic_roughness_all(Scene& scene, Diagnostics& d, const std::string& 
         if (lost)
             d.warn(file, m.name, "the glossiness channel of specularGlossinessTexture has no metallic-roughness form; dropped");
     }
-}
-
-// The mean of one channel of a texture (1 without a readable one).
-float texture_mean(const Scene& scene, const TextureSlot& slot, int channel) {
-    if (!slot.valid() || std::size_t(slot.texture) >= scene.textures.size()) return 1.0f;
-    int image = scene.textures[std::size_t(slot.texture)].image;
-    if (image < 0 || std::size_t(image) >= scene.images.size() || !scene.images[std::size_t(image)].valid()) return 1.0f;
-    const Image8& img = scene.images[std::size_t(image)].pixels;
-    double sum = 0.0;
-    std::size_t n = std::size_t(img.width) * std::size_t(img.height);
-    for (std::size_t i = 0; i < n; ++i) sum += img.pixels[i * 4 + std::size_t(channel)];
-    return n ? float(sum / double(n) / 255.0) : 1.0f;
 }
 
 // The image of a texture slot, or null.

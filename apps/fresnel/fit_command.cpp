@@ -125,16 +125,19 @@ int run_fit(const FitOptions& o) {
                  {"match", fit::match_name(match)},
                  {"fitted", json_of(f.pbr)},
                  {"residual", json_of(f.residual)},
+                 {"image_based_residual", json_of(f.image_based)},
                  {"formula", json_of(f.formula)},
                  {"formula_residual", json_of(f.formula_residual)},
+                 {"formula_image_based_residual", json_of(fit::residual_image_based(p, f.formula))},
                  {"round_trip", json_of(back.phong)},
                  {"round_trip_residual", json_of(trip)}};
         } else {
             std::printf("Phong            %s\n", text(p).c_str());
-            std::printf("fitted PBR       %s\n  residual       %s%s\n", text(f.pbr).c_str(), text(f.residual).c_str(),
-                        match == fit::Match::Albedo ? " (to the OpenGL 1 look; --match albedo keeps Kd)" : "");
-            std::printf("formula PBR      %s\n  residual       %s\n", text(f.formula).c_str(),
-                        text(f.formula_residual).c_str());
+            const char* note = match == fit::Match::Albedo ? " (to the OpenGL 1 look; --match albedo keeps Kd)" : "";
+            std::printf("fitted PBR       %s\n  residual       %s%s\n  image-based    %s\n", text(f.pbr).c_str(),
+                        text(f.residual).c_str(), note, text(f.image_based).c_str());
+            std::printf("formula PBR      %s\n  residual       %s\n  image-based    %s\n", text(f.formula).c_str(),
+                        text(f.formula_residual).c_str(), text(fit::residual_image_based(p, f.formula)).c_str());
             std::printf("round trip       %s\n  vs the Phong   %s\n", text(back.phong).c_str(), text(trip).c_str());
         }
     } else if (!o.pbr.empty()) {

@@ -318,6 +318,7 @@ py::dict fit_material(const py::object& kd, const py::object& ks, const py::obje
         fit::PhongToPbr f = fit::fit_phong_to_pbr(p, *mt);
         d["pbr"] = pbr_dict(f.pbr);
         d["residual"] = residual_dict(f.residual);
+        d["image_based_residual"] = residual_dict(f.image_based);
         d["match"] = fit::match_name(*mt);
     } else {
         fit::Pbr p;
@@ -410,7 +411,8 @@ void bind_tools(py::module_& m) {
     m.def("fit", &fit_material, py::kw_only(), py::arg("kd") = py::none(), py::arg("ks") = py::none(),
           py::arg("ns") = py::none(), py::arg("base_color") = py::none(), py::arg("metallic") = py::none(),
           py::arg("roughness") = py::none(), py::arg("match") = "albedo",
-          "fit(kd=, ks=, ns=, match='albedo') -> {'pbr': {...}, 'residual': {...}}: a Phong (MTL) material as\n"
+          "fit(kd=, ks=, ns=, match='albedo') -> {'pbr': {...}, 'residual': {...}, 'image_based_residual': {...}}: a Phong\n"
+          "(MTL) material as\n"
           "metallic-roughness; fit(base_color=, metallic=, roughness=) -> {'phong': {...}, 'residual': ...}: the other\n"
           "way. `fresnel fit`'s fits.");
     m.def("save", &save_image, py::arg("path"), py::arg("image"),

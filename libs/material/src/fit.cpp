@@ -12,6 +12,7 @@
 #include "fresnel/material/evaluate.h"
 #include "fresnel/material/legacy_shading.h"
 #include "fresnel/material/phong.h"
+#include "fresnel/material/sampling.h"
 
 namespace fresnel::fit {
 
@@ -22,6 +23,30 @@ namespace {
 constexpr float kPi = brdf::kPi;
 constexpr int kLightRings = 16, kLightSectors = 32;
 constexpr std::array<float, 6> kViewElevationsDeg = {5.0f, 20.0f, 35.0f, 50.0f, 65.0f, 80.0f};
+constexpr size_t kViews = kViewElevationsDeg.size();
+constexpr size_t kPerView = size_t(kLightRings) * kLightSectors;  // fit_samples() is view-major
+// Importance samples per view for a lobe's integral over a uniform environment (8 x 8 stratified).
+constexpr int kLobeSamplesSide = 8, kLobeSamples = kLobeSamplesSide * kLobeSamplesSide;
+
+// The image-based part of the objective (fit.h, "Image-based light"): a uniform environment of
+// radiance A alone (the display values of an OpenGL 1 white at A), and the key light at
+// kMixDirect with a uniform environment at kMixAmbient, so that a white surface facing the
+// key shows 1 as under the key alone. Each of the three parts (the key alone, the mix, the
+// environment alone) carries a third of the weight.
+constexpr std::array<float, 2> kAmbientLevels = {0.5f, 1.0f};
+constexpr float kMixDirect = 0.6f, kMixAmbient = 0.4f;
+constexpr float kPartWeight = 1.0f / 3.0f;
+
+glm::vec3 view_direction(size_t view) {
+    float theta_v = (90.0f - kViewElevationsDeg[view]) * kPi / 180.0f;  // from the normal
+    return {std::sin(theta_v), 0.0f, std::cos(theta_v)};
+}
+// A view's share of the weight (n.v, normalised over the views), as fit_samples() weighs them.
+float view_weight(size_t view) {
+    float total = 0.0f;
+    for (size_t i = 0; i < kViews; ++i) total += view_direction(i).z;
+    return view_direction(view).z / total;
+}
 
 // linear_to_srgb on [0, 1] through a table with linear interpolation: the fit evaluates it
 // millions of times. Within 1e-5 of fresnel::linear_to_srgb (checked in fit_test).
@@ -147,8 +172,12 @@ std::array<float, 2> nelder_mead2(const std::function<float(float, float)>& f, s
 }
 
 // Per sample, what the PBR side needs at one roughness: pi n.l, Schlick's (1 - v.h)^5 and V D.
+//   lobe_schlick, lobe_weight: per view, kLobeSamples GGX (VNDF) reflections of the view: Schlick's
+//   term at v.h and V D n.l / pdf, whose mean times the Fresnel factor is the specular lobe's
+//   reflectance of a uniform environment (its directional albedo).
 struct PbrGeometry {
     std::vector<float> nl, schlick, vd;
+    std::vector<float> lobe_schlick, lobe_weight;
 };
 PbrGeometry pbr_geometry(float roughness) {
     const auto& samples = fit_samples();
@@ -166,6 +195,26 @@ PbrGeometry pbr_geometry(float roughness) {
         g.schlick.push_back(brdf::f_schlick(0.0f, 1.0f, vh));
         g.vd.push_back(brdf::d_ggx(nh, alpha) * brdf::v_smith_ggx_correlated(nl, nv, alpha));
     }
+    g.lobe_schlick.reserve(kViews * kLobeSamples);
+    g.lobe_weight.reserve(kViews * kLobeSamples);
+    for (size_t view = 0; view < kViews; ++view) {
+        const glm::vec3 v = view_direction(view);
+        for (int k = 0; k < kLobeSamples; ++k) {
+            glm::vec2 u((float(k % kLobeSamplesSide) + 0.5f) / kLobeSamplesSide,
+                        (float(k / kLobeSamplesSide) + 0.5f) / kLobeSamplesSide);
+            glm::vec3 l = sampling::sample_ggx_reflection(v, u, alpha);
+            float pdf = sampling::pdf_ggx_reflection(v, l, alpha);
+            float weight = 0.0f, schlick = 0.0f;
+            if (l.z > 0.0f && pdf > 0.0f) {
+                glm::vec3 h = glm::normalize(l + v);
+                float nh = std::clamp(h.z, 0.0f, 1.0f), vh = std::clamp(glm::dot(v, h), 0.0f, 1.0f);
+                weight = brdf::d_ggx(nh, alpha) * brdf::v_smith_ggx_correlated(l.z, v.z, alpha) * l.z / pdf;
+                schlick = brdf::f_schlick(0.0f, 1.0f, vh);
+            }
+            g.lobe_schlick.push_back(schlick);
+            g.lobe_weight.push_back(std::isfinite(weight) ? weight : 0.0f);
+        }
+    }
     return g;
 }
 // One channel of pi f n.l: brdf::evaluate_terms written out for one channel (fit_test checks
@@ -177,11 +226,54 @@ inline float pbr_channel(const PbrGeometry& g, size_t i, float base, float metal
     float f = (1.0f - metallic) * (1.0f - fd) * base / kPi + ((1.0f - metallic) * fd + metallic * fm) * g.vd[i];
     return g.nl[i] * f;
 }
+// One channel of what a uniform environment of radiance 1 gives back towards view `view`: the
+// diffuse part averaged over the view's cosine-distributed light samples (pi f_diffuse), the
+// specular part over its GGX samples.
+inline float pbr_ambient_channel(const PbrGeometry& g, size_t view, float base, float metallic, float f0, float w) {
+    float diffuse = 0.0f;
+    if (metallic < 1.0f)
+        for (size_t i = view * kPerView; i < (view + 1) * kPerView; ++i)
+            diffuse += 1.0f - w * (f0 + (1.0f - f0) * g.schlick[i]);
+    diffuse *= (1.0f - metallic) * base / float(kPerView);
+    float specular = 0.0f;
+    for (size_t k = view * kLobeSamples; k < (view + 1) * kLobeSamples; ++k) {
+        float s = g.lobe_schlick[k];
+        float fd = w * (f0 + (1.0f - f0) * s);
+        float fm = base + (1.0f - base) * s;
+        specular += ((1.0f - metallic) * fd + metallic * fm) * g.lobe_weight[k];
+    }
+    return diffuse + specular / float(kLobeSamples);
+}
 
 // Per sample, the Phong side at one shininess: n.l and [n.l > 0] (n.h)^s.
+// ambient_spec: per view, what a uniform environment of radiance 1 (OpenGL 1 lights of colour
+// dw / pi from every direction) adds through a highlight of Ks 1: the integral of
+// [n.l > 0] (n.h)^s over the sphere / pi, by importance samples of the half vector; the diffuse
+// part of that environment is Kd exactly.
 struct PhongGeometry {
     std::vector<float> nl, spec;
+    std::array<float, kViews> ambient_spec{};
 };
+float phong_ambient_specular(const glm::vec3& v, float s) {
+    constexpr int kSide = 32;  // once per shininess, so finer than the PBR side's per-evaluation samples
+    double sum = 0.0;
+    for (int k = 0; k < kSide * kSide; ++k) {
+        float u1 = (float(k % kSide) + 0.5f) / kSide;
+        float u2 = (float(k / kSide) + 0.5f) / kSide;
+        // pdf(h) = (s + 1) / (2 pi) (n.h)^s over the hemisphere of h.
+        float cos_h = std::pow(u1, 1.0f / (s + 1.0f)), sin_h = std::sqrt(std::max(0.0f, 1.0f - cos_h * cos_h));
+        float phi = 2.0f * kPi * u2;
+        glm::vec3 h(sin_h * std::cos(phi), sin_h * std::sin(phi), cos_h);
+        float vh = glm::dot(v, h);
+        if (vh <= 0.0f) continue;
+        glm::vec3 l = 2.0f * vh * h - v;
+        legacy::Ogl1Light one = legacy::ogl1_light(glm::vec3(0, 0, 1), v, l, glm::vec3(1.0f), glm::vec3(0.0f),
+                                                   glm::vec3(1.0f), s);
+        float pdf_l = (s + 1.0f) / (2.0f * kPi) * std::pow(cos_h, s) / (4.0f * vh);
+        if (pdf_l > 0.0f) sum += one.specular.x / kPi / pdf_l;
+    }
+    return float(sum / (kSide * kSide));
+}
 PhongGeometry phong_geometry(float ns) {
     const auto& samples = fit_samples();
     PhongGeometry g;
@@ -192,6 +284,7 @@ PhongGeometry phong_geometry(float ns) {
         g.nl.push_back(one.diffuse.x);
         g.spec.push_back(one.specular.x);
     }
+    for (size_t view = 0; view < kViews; ++view) g.ambient_spec[view] = phong_ambient_specular(view_direction(view), s);
     return g;
 }
 
@@ -214,6 +307,28 @@ Targets pbr_targets(const Pbr& p) {
     return t;
 }
 
+// The image-based parts of the objective, from the Phong side: per channel, the mix per sample
+// (the key light at kMixDirect plus a uniform environment at kMixAmbient) and the uniform
+// environment alone per view and level (view-major). OpenGL 1 clamps once and writes raw.
+struct ImageTargets {
+    std::array<std::vector<float>, 3> mix, ambient;
+};
+ImageTargets phong_image_targets(const Phong& p) {
+    const PhongGeometry g = phong_geometry(p.ns);
+    const glm::vec3 kd = glm::clamp(p.kd, 0.0f, 1.0f), ks = glm::clamp(p.ks, 0.0f, 1.0f);
+    ImageTargets t;
+    for (size_t view = 0; view < kViews; ++view) {
+        const glm::vec3 ambient = kd + ks * g.ambient_spec[view];
+        for (float level : kAmbientLevels)
+            for (int k = 0; k < 3; ++k) t.ambient[k].push_back(clamp01(level * ambient[k]));
+        for (size_t i = view * kPerView; i < (view + 1) * kPerView; ++i) {
+            const glm::vec3 direct = kd * g.nl[i] + ks * g.spec[i];
+            for (int k = 0; k < 3; ++k) t.mix[k].push_back(clamp01(kMixDirect * direct[k] + kMixAmbient * ambient[k]));
+        }
+    }
+    return t;
+}
+
 Residual make_residual(double sum_sq, float max_diff) {
     Residual r;
     r.rms = float(std::sqrt(std::max(sum_sq, 0.0)));
@@ -231,8 +346,10 @@ struct PbrSolution {
 
 // Base colour and F0 per channel for a given roughness, metallic and specular weight.
 // with_specular false pins F0 to 0.04 (no KHR_materials_specular; weight must be 1).
-PbrSolution solve_pbr_colours(const Targets& t, const PbrGeometry& g, float roughness, float metallic, float weight,
-                              bool with_specular, const glm::vec3& start_base, const glm::vec3& start_f0) {
+// `it` null: the one light alone (the highlight fit of --match albedo).
+PbrSolution solve_pbr_colours(const Targets& t, const ImageTargets* it, const PbrGeometry& g, float roughness,
+                              float metallic, float weight, bool with_specular, const glm::vec3& start_base,
+                              const glm::vec3& start_f0) {
     const auto& samples = fit_samples();
     const auto& srgb = srgb_table();
     PbrSolution out;
@@ -241,12 +358,28 @@ PbrSolution solve_pbr_colours(const Targets& t, const PbrGeometry& g, float roug
     out.pbr.specular_weight = weight;
     double total = 0.0;
     for (int k = 0; k < 3; ++k) {
-        const std::vector<float>& target = t[k];
         auto err = [&](float base, float f0) {
             double e = 0.0;
-            for (size_t i = 0; i < samples.size(); ++i) {
-                float d = srgb(pbr_channel(g, i, base, metallic, f0, weight)) - target[i];
-                e += samples[i].weight * d * d;
+            if (!it) {
+                for (size_t i = 0; i < samples.size(); ++i) {
+                    float d = srgb(pbr_channel(g, i, base, metallic, f0, weight)) - t[k][i];
+                    e += samples[i].weight * d * d;
+                }
+                return float(e);
+            }
+            for (size_t view = 0; view < kViews; ++view) {
+                const float ambient = pbr_ambient_channel(g, view, base, metallic, f0, weight);
+                const float wv = kPartWeight * view_weight(view) / float(kAmbientLevels.size());
+                for (size_t a = 0; a < kAmbientLevels.size(); ++a) {
+                    float d = srgb(kAmbientLevels[a] * ambient) - it->ambient[k][view * kAmbientLevels.size() + a];
+                    e += wv * d * d;
+                }
+                for (size_t i = view * kPerView; i < (view + 1) * kPerView; ++i) {
+                    float direct = pbr_channel(g, i, base, metallic, f0, weight);
+                    float d = srgb(direct) - t[k][i];
+                    float dm = srgb(kMixDirect * direct + kMixAmbient * ambient) - it->mix[k][i];
+                    e += kPartWeight * samples[i].weight * (d * d + dm * dm);
+                }
             }
             return float(e);
         };
@@ -265,8 +398,39 @@ PbrSolution solve_pbr_colours(const Targets& t, const PbrGeometry& g, float roug
     return out;
 }
 
-PhongToPbr fit_phong(const Phong& phong, bool use_table) {
+// The residual over the image-based parts alone (their weights normalised to 1).
+Residual image_based_residual(const Phong& phong, const Pbr& pbr) {
+    const ImageTargets it = phong_image_targets(phong);
+    const PbrGeometry g = pbr_geometry(pbr.roughness);
+    const auto& samples = fit_samples();
+    const auto& srgb = srgb_table();
+    double sum = 0.0;
+    float max_diff = 0.0f;
+    for (int k = 0; k < 3; ++k) {
+        const float base = pbr.base_color[k], f0 = pbr.specular_f0[k];
+        for (size_t view = 0; view < kViews; ++view) {
+            const float ambient = pbr_ambient_channel(g, view, base, pbr.metallic, f0, pbr.specular_weight);
+            for (size_t a = 0; a < kAmbientLevels.size(); ++a) {
+                float d = srgb(kAmbientLevels[a] * ambient) - it.ambient[k][view * kAmbientLevels.size() + a];
+                sum += 0.5 * view_weight(view) / double(kAmbientLevels.size()) * d * d;
+                max_diff = std::max(max_diff, std::abs(d));
+            }
+            for (size_t i = view * kPerView; i < (view + 1) * kPerView; ++i) {
+                float direct = pbr_channel(g, i, base, pbr.metallic, f0, pbr.specular_weight);
+                float d = srgb(kMixDirect * direct + kMixAmbient * ambient) - it.mix[k][i];
+                sum += 0.5 * samples[i].weight * d * d;
+                max_diff = std::max(max_diff, std::abs(d));
+            }
+        }
+    }
+    return make_residual(sum / 3.0, max_diff);
+}
+
+// image_based false: the one light alone.
+PhongToPbr fit_phong(const Phong& phong, bool use_table, bool image_based = true) {
     Targets t = phong_targets(phong);
+    const ImageTargets image_targets = phong_image_targets(phong);
+    const ImageTargets* it = image_based ? &image_targets : nullptr;
     glm::vec3 kd = glm::clamp(phong.kd, 0.0f, 1.0f), ks = glm::clamp(phong.ks, 0.0f, 1.0f);
     PhongExt ext;
     ext.diffuse = phong.kd;
@@ -278,8 +442,9 @@ PhongToPbr fit_phong(const Phong& phong, bool use_table) {
         // 0.02), whose reflection the samples almost never see, and which image-based light
         // shows everywhere. Only the base colour is fitted.
         PhongToPbr out;
-        out.pbr = solve_pbr_colours(t, pbr_geometry(1.0f), 1.0f, 0.0f, 0.0f, false, kd, glm::vec3(0.04f)).pbr;
+        out.pbr = solve_pbr_colours(t, it, pbr_geometry(1.0f), 1.0f, 0.0f, 0.0f, false, kd, glm::vec3(0.04f)).pbr;
         out.residual = residual(phong, out.pbr);
+        out.image_based = image_based_residual(phong, out.pbr);
         out.formula = from_material(phong_to_metallic_roughness(ext));
         out.formula_residual = residual(phong, out.formula);
         return out;
@@ -293,7 +458,7 @@ PhongToPbr fit_phong(const Phong& phong, bool use_table) {
         best.error = std::numeric_limits<float>::infinity();
         auto solve = [&](float r, float m, float w) {
             PbrGeometry g = pbr_geometry(r);
-            return solve_pbr_colours(t, g, r, m, w, with_specular, kd, glm::max(ks, glm::vec3(0.0f)));
+            return solve_pbr_colours(t, it, g, r, m, w, with_specular, kd, glm::max(ks, glm::vec3(0.0f)));
         };
         auto keep = [&](const PbrSolution& s) {
             if (s.error < best.error) best = s;
@@ -323,6 +488,7 @@ PhongToPbr fit_phong(const Phong& phong, bool use_table) {
     out.pbr = with.error < 0.98f * without.error ? with.pbr : without.pbr;
     if (!out.pbr.uses_specular()) out.pbr.specular_f0 = glm::vec3(0.04f);
     out.residual = residual(phong, out.pbr);
+    out.image_based = image_based_residual(phong, out.pbr);
     out.formula = from_material(phong_to_metallic_roughness(ext));
     out.formula_residual = residual(phong, out.formula);
     return out;
@@ -461,6 +627,21 @@ Residual residual_of(const A& a, const B& b) {
 }
 }  // namespace
 Residual residual(const Phong& a, const Phong& b) { return residual_of(a, b); }
+Residual residual_image_based(const Phong& phong, const Pbr& pbr) { return image_based_residual(phong, pbr); }
+
+int view_count() { return int(kViews); }
+glm::vec3 view_at(int view) { return view_direction(size_t(view)); }
+glm::vec3 uniform_environment(const Pbr& p, int view) {
+    const PbrGeometry g = pbr_geometry(p.roughness);
+    glm::vec3 out;
+    for (int k = 0; k < 3; ++k)
+        out[k] = pbr_ambient_channel(g, size_t(view), p.base_color[k], p.metallic, p.specular_f0[k], p.specular_weight);
+    return out;
+}
+glm::vec3 uniform_environment(const Phong& p, int view) {
+    const float s = phong_ambient_specular(view_direction(size_t(view)), legacy::ogl1_shininess(p.ns));
+    return glm::clamp(p.kd, 0.0f, 1.0f) + glm::clamp(p.ks, 0.0f, 1.0f) * s;
+}
 Residual residual(const Pbr& a, const Pbr& b) { return residual_of(a, b); }
 
 PhongToPbr fit_phong_to_pbr(const Phong& phong) { return fit_phong(phong, true); }
@@ -469,7 +650,13 @@ PhongToPbr fit_phong_to_pbr(const Phong& phong, Match match) {
     if (match == Match::OpenGl1) return fit_phong_to_pbr(phong);
     // Kd is the albedo; the highlight alone (Kd 0) is fitted for roughness and F0, whether the
     // fit reads it as a metal's tint or a dielectric's specular colour.
-    PhongToPbr out = fit_phong_to_pbr(phong);
+    PhongToPbr out;
+    PhongExt ext;
+    ext.diffuse = phong.kd;
+    ext.specular = phong.ks;
+    ext.shininess = phong.ns;
+    out.formula = from_material(phong_to_metallic_roughness(ext));
+    out.formula_residual = residual(phong, out.formula);
     const glm::vec3 kd = glm::clamp(phong.kd, 0.0f, 1.0f), ks = glm::clamp(phong.ks, 0.0f, 1.0f);
     Pbr p;
     p.base_color = kd;
@@ -478,7 +665,10 @@ PhongToPbr fit_phong_to_pbr(const Phong& phong, Match match) {
         p.roughness = 1.0f;
         p.specular_weight = 0.0f;
     } else {
-        const Pbr h = fit_phong_to_pbr(Phong{glm::vec3(0.0f), ks, phong.ns}).pbr;
+        // The highlight's shape under the one light: under image-based light OpenGL 1's raw
+        // highlight alone reflects so little that the fit would drop it (base colour Kd here
+        // carries what the environment shows).
+        const Pbr h = fit_phong(Phong{glm::vec3(0.0f), ks, phong.ns}, true, false).pbr;
         p.roughness = h.roughness;
         const glm::vec3 dielectric = h.uses_specular() ? h.specular_f0 * h.specular_weight : glm::vec3(0.04f);
         p.specular_f0 = glm::clamp(glm::mix(dielectric, h.base_color, h.metallic), 0.0f, 1.0f);
@@ -486,6 +676,7 @@ PhongToPbr fit_phong_to_pbr(const Phong& phong, Match match) {
     }
     out.pbr = p;
     out.residual = residual(phong, p);
+    out.image_based = image_based_residual(phong, p);
     return out;
 }
 

@@ -18,6 +18,16 @@
 // on a cosine-weighted stratified grid over the hemisphere (fit_samples()). The residual is
 // the weighted RMS of that difference (0..1 display units) and its PSNR, 20 log10(1 / rms).
 //
+// Image-based light. A converted model is mostly seen under an environment, so Phong -> PBR
+// fits three lightings at a third of the weight each: the one light above; a uniform
+// environment alone at two levels (radiance 0.5 and 1, per view); and the light at 0.6 with a
+// uniform environment at 0.4 (per sample). OpenGL 1 under an environment is read as its
+// lighting summed over lights from every direction (colour dw / pi each), clamped once and
+// written raw: Kd plus Ks times the integral of its highlight / pi; the PBR side is the BRDF's
+// directional albedo, sRGB-encoded. Without that, a highlight fitted to one light's peak
+// (OpenGL 1's (n.h)^Ns is not energy-normalised) reflects several times the light OpenGL 1
+// would under an environment. bench/peer_report_ibl.py measures the result under a real one.
+//
 // Phong -> PBR (fit_phong_to_pbr) solves for base colour, metallic, roughness, the
 // KHR_materials_specular F0 colour (specularColorFactor = F0 / 0.04) and specularFactor; the
 // extension is kept only where it lowers the residual by more than 1 % (`uses_specular`).
@@ -69,7 +79,8 @@ struct Residual {
 
 struct PhongToPbr {
     Pbr pbr;
-    Residual residual;          // of the fit
+    Residual residual;          // of the fit, under the one light
+    Residual image_based;       // of the fit, under the image-based parts of the objective
     Pbr formula;                // phong_to_metallic_roughness's values (phong.h)
     Residual formula_residual;  // of the formula
 };
@@ -91,8 +102,21 @@ const std::vector<Sample>& fit_samples();
 glm::vec3 phong_display(const Phong& p, const Sample& s);
 glm::vec3 pbr_display(const Pbr& p, const Sample& s);
 
-// The residual of rendering `pbr` where `phong` was meant (the same function both ways).
+// The residual of rendering `pbr` where `phong` was meant (the same function both ways), under
+// the one light.
 Residual residual(const Phong& phong, const Pbr& pbr);
+// The same under image-based light: the uniform environment alone and the light with it
+// (the objective's image-based parts, their weights normalised to 1).
+Residual residual_image_based(const Phong& phong, const Pbr& pbr);
+// What the image-based parts are made of, at the fit's view directions (view_at(i), i <
+// view_count(), around the normal (0, 0, 1)): the linear radiance a uniform environment of
+// radiance 1 gives back. PBR: the BRDF's directional albedo (cosine samples for the diffuse
+// part, GGX samples for the lobes). Phong: OpenGL 1 lit from every direction by lights of
+// colour dw / pi (Kd + Ks times the highlight's integral / pi), unclamped.
+int view_count();
+glm::vec3 view_at(int view);
+glm::vec3 uniform_environment(const Pbr& p, int view);
+glm::vec3 uniform_environment(const Phong& p, int view);
 // Same-model residuals, for round trips (Phong -> PBR -> Phong, PBR -> Phong -> PBR).
 Residual residual(const Phong& a, const Phong& b);
 Residual residual(const Pbr& a, const Pbr& b);
