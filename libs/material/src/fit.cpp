@@ -346,12 +346,14 @@ struct PbrSolution {
 
 // Base colour and F0 per channel for a given roughness, metallic and specular weight.
 // with_specular false pins F0 to 0.04 (no KHR_materials_specular; weight must be 1).
-// `it` null: the one light alone (the highlight fit of --match albedo).
+// `it` null: the one light alone. `encode` false: the PBR side's values compared linear, not
+// sRGB-encoded (the highlight fit of --match albedo, which reads the MTL's numbers as linear).
 PbrSolution solve_pbr_colours(const Targets& t, const ImageTargets* it, const PbrGeometry& g, float roughness,
                               float metallic, float weight, bool with_specular, const glm::vec3& start_base,
-                              const glm::vec3& start_f0) {
+                              const glm::vec3& start_f0, bool encode = true) {
     const auto& samples = fit_samples();
-    const auto& srgb = srgb_table();
+    const auto& table = srgb_table();
+    auto srgb = [&](float x) { return encode ? table(x) : clamp01(x); };
     PbrSolution out;
     out.pbr.roughness = roughness;
     out.pbr.metallic = metallic;
@@ -427,7 +429,7 @@ Residual image_based_residual(const Phong& phong, const Pbr& pbr) {
 }
 
 // image_based false: the one light alone.
-PhongToPbr fit_phong(const Phong& phong, bool use_table, bool image_based = true) {
+PhongToPbr fit_phong(const Phong& phong, bool use_table, bool image_based = true, bool encode = true) {
     Targets t = phong_targets(phong);
     const ImageTargets image_targets = phong_image_targets(phong);
     const ImageTargets* it = image_based ? &image_targets : nullptr;
@@ -458,7 +460,7 @@ PhongToPbr fit_phong(const Phong& phong, bool use_table, bool image_based = true
         best.error = std::numeric_limits<float>::infinity();
         auto solve = [&](float r, float m, float w) {
             PbrGeometry g = pbr_geometry(r);
-            return solve_pbr_colours(t, it, g, r, m, w, with_specular, kd, glm::max(ks, glm::vec3(0.0f)));
+            return solve_pbr_colours(t, it, g, r, m, w, with_specular, kd, glm::max(ks, glm::vec3(0.0f)), encode);
         };
         auto keep = [&](const PbrSolution& s) {
             if (s.error < best.error) best = s;
@@ -665,10 +667,10 @@ PhongToPbr fit_phong_to_pbr(const Phong& phong, Match match) {
         p.roughness = 1.0f;
         p.specular_weight = 0.0f;
     } else {
-        // The highlight's shape under the one light: under image-based light OpenGL 1's raw
-        // highlight alone reflects so little that the fit would drop it (base colour Kd here
-        // carries what the environment shows).
-        const Pbr h = fit_phong(Phong{glm::vec3(0.0f), ks, phong.ns}, true, false).pbr;
+        // The highlight read as Kd is, linear: fitted without the sRGB encoding, under the one
+        // light and image-based light, so its peak and the light it reflects from an environment
+        // (Ks times the integral of (n.h)^Ns / pi) are both OpenGL 1's numbers.
+        const Pbr h = fit_phong(Phong{glm::vec3(0.0f), ks, phong.ns}, true, true, false).pbr;
         p.roughness = h.roughness;
         const glm::vec3 dielectric = h.uses_specular() ? h.specular_f0 * h.specular_weight : glm::vec3(0.04f);
         p.specular_f0 = glm::clamp(glm::mix(dielectric, h.base_color, h.metallic), 0.0f, 1.0f);

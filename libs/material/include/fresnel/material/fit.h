@@ -126,12 +126,14 @@ PbrToPhong fit_pbr_to_phong(const Pbr& pbr);
 
 // What a Phong -> PBR conversion is for (`--match` of fit and convert):
 //   OpenGl1: look like the OpenGL 1 render of the MTL in a glTF viewer (fit_phong_to_pbr: the
-//            least-squares fit above, one light). A material without specular (Ks 0) gets no
+//            least-squares fit above, the one light and image-based light). A material without specular (Ks 0) gets no
 //            specular lobe (specularFactor 0, roughness 1): matte under any light, never a
 //            mirror.
 //   Albedo:  Kd is the albedo, as Blender and obj2gltf read it: base colour Kd, dielectric;
 //            the highlight alone (Ks, Ns with Kd 0) fitted for roughness and the specular F0
-//            colour (KHR_materials_specular); Ks 0: no specular lobe.
+//            colour (KHR_materials_specular), linear (no sRGB encoding on the PBR side: the
+//            MTL's numbers read as Kd is) under the one light and image-based light; Ks 0: no
+//            specular lobe.
 // Inputs are clamped to [0, 1] (Kd, Ks) and [0, 128] (Ns) as OpenGL 1 does; callers warn.
 enum class Match { OpenGl1, Albedo };
 PhongToPbr fit_phong_to_pbr(const Phong& phong, Match match);
