@@ -159,6 +159,7 @@ ResolvedJob resolve(const Job& job, const Scene& scene, Diagnostics* diag) {
     }
     r.bake_options.samples = env.bake_samples;
     r.bake_options.size = env.bake_size;
+    if (env.exact_irradiance) r.bake_options.irradiance_samples = 0;
     r.use_cache = env.use_cache;
     // --env-light dominant: a panorama's dominant light comes out of the bake as a directional light
     // (BakedIbl::dominant_light), which the renderer adds to the frame's lights and shadows.

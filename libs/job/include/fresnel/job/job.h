@@ -123,6 +123,9 @@ struct Job {
         float intensity = 1.0f;
         int bake_samples = 1024;  // GGX samples per texel when baking a panorama
         int bake_size = 256;      // specular cube face size when baking (power of two)
+        // Diffuse image-based light: false, filtered importance sampling as the Khronos Sample
+        // Viewer bakes it (its blur); true, the exact cosine convolution (ibl::BakeOptions).
+        bool exact_irradiance = false;
         bool use_cache = true;    // load/store bakes and the BRDF table under ibl::cache_root()
         bool operator==(const Environment&) const = default;
     };
