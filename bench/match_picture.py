@@ -26,7 +26,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
     parser.add_argument("--out", default=os.path.join(ROOT, "docs", "images", "match.png"))
-    parser.add_argument("--size", type=int, default=400)
+    parser.add_argument("--size", type=int, default=300)
     args = parser.parse_args()
     build = os.path.abspath(args.build)
     sys.path.insert(0, os.path.join(build, "python"))
@@ -98,7 +98,8 @@ def main():
             draw.text((x + 6, y + 5), titles[r][c], fill=(0, 0, 0))
             sheet.paste(Image.fromarray(np.ascontiguousarray(image)), (x, y + label_h))
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
-    sheet.save(args.out + ".tmp.png", optimize=True)
+    # A dithered 256-colour palette keeps the committed picture small for what it shows.
+    sheet.quantize(colors=256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.FLOYDSTEINBERG).save(args.out + ".tmp.png", optimize=True)
     os.replace(args.out + ".tmp.png", args.out)
     print(args.out)
     return 0

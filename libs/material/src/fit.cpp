@@ -400,9 +400,12 @@ PbrSolution solve_pbr_colours(const Targets& t, const ImageTargets* it, const Pb
     return out;
 }
 
-// The residual over the image-based parts alone (their weights normalised to 1).
-Residual image_based_residual(const Phong& phong, const Pbr& pbr) {
-    const ImageTargets it = phong_image_targets(phong);
+// The residual over the image-based parts alone (their weights normalised to 1); `targets`:
+// phong_image_targets(phong) when the caller has them.
+Residual image_based_residual(const Phong& phong, const Pbr& pbr, const ImageTargets* targets = nullptr) {
+    ImageTargets own;
+    if (!targets) own = phong_image_targets(phong), targets = &own;
+    const ImageTargets& it = *targets;
     const PbrGeometry g = pbr_geometry(pbr.roughness);
     const auto& samples = fit_samples();
     const auto& srgb = srgb_table();
@@ -431,7 +434,7 @@ Residual image_based_residual(const Phong& phong, const Pbr& pbr) {
 // image_based false: the one light alone.
 PhongToPbr fit_phong(const Phong& phong, bool use_table, bool image_based = true, bool encode = true) {
     Targets t = phong_targets(phong);
-    const ImageTargets image_targets = phong_image_targets(phong);
+    const ImageTargets image_targets = phong_image_targets(phong);  // also for the residual reported
     const ImageTargets* it = image_based ? &image_targets : nullptr;
     glm::vec3 kd = glm::clamp(phong.kd, 0.0f, 1.0f), ks = glm::clamp(phong.ks, 0.0f, 1.0f);
     PhongExt ext;
@@ -446,7 +449,7 @@ PhongToPbr fit_phong(const Phong& phong, bool use_table, bool image_based = true
         PhongToPbr out;
         out.pbr = solve_pbr_colours(t, it, pbr_geometry(1.0f), 1.0f, 0.0f, 0.0f, false, kd, glm::vec3(0.04f)).pbr;
         out.residual = residual(phong, out.pbr);
-        out.image_based = image_based_residual(phong, out.pbr);
+        out.image_based = image_based_residual(phong, out.pbr, &image_targets);
         out.formula = from_material(phong_to_metallic_roughness(ext));
         out.formula_residual = residual(phong, out.formula);
         return out;
@@ -490,7 +493,7 @@ PhongToPbr fit_phong(const Phong& phong, bool use_table, bool image_based = true
     out.pbr = with.error < 0.98f * without.error ? with.pbr : without.pbr;
     if (!out.pbr.uses_specular()) out.pbr.specular_f0 = glm::vec3(0.04f);
     out.residual = residual(phong, out.pbr);
-    out.image_based = image_based_residual(phong, out.pbr);
+    out.image_based = image_based_residual(phong, out.pbr, &image_targets);
     out.formula = from_material(phong_to_metallic_roughness(ext));
     out.formula_residual = residual(phong, out.formula);
     return out;
