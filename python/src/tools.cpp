@@ -388,12 +388,17 @@ py::object read_image(const py::object& path) {
 }  // namespace
 
 void bind_tools(py::module_& m) {
-    m.def("bake", &bake, py::arg("environment"), py::arg("output") = py::none(), py::arg("size") = 256,
-          py::arg("samples") = 1024, py::arg("levels") = 5, py::arg("progress") = py::none(),
-          "bake(environment, output=None, size=256, samples=1024, levels=5, progress=None) -> dict\n"
-          "Bakes an equirectangular panorama (a .hdr/.exr file, 'studio', or a float array (H, 2H, 3|4), linear) into\n"
-          "what the rasteriser samples: specular (a list of levels, each (6, S, S, 4)), irradiance (6, s, s, 4),\n"
-          "irradiance_sh (9, 3), brdf_lut (N, N, 4). With `output`, also writes the folder `fresnel bake` writes.");
+    const fresnel::ibl::BakeOptions defaults;
+    // (pybind11 copies a function's docstring.)
+    const std::string bake_doc = "bake(environment, output=None, size=" + std::to_string(defaults.size) +
+                                 ", samples=" + std::to_string(defaults.samples) + ", levels=" + std::to_string(defaults.levels) +
+                                 ", progress=None) -> dict\n"
+                                 "Bakes an equirectangular panorama (a .hdr/.exr file, 'studio', or a float array (H, 2H, 3|4), linear) into\n"
+                                 "what the rasteriser samples: specular (a list of levels, each (6, S, S, 4)), irradiance (6, s, s, 4),\n"
+                                 "irradiance_sh (9, 3), brdf_lut (N, N, 4). With `output`, also writes the folder `fresnel bake` writes.";
+    m.def("bake", &bake, py::arg("environment"), py::arg("output") = py::none(), py::arg("size") = defaults.size,
+          py::arg("samples") = defaults.samples, py::arg("levels") = defaults.levels, py::arg("progress") = py::none(),
+          bake_doc.c_str());
     m.def("evaluate", &evaluate_material, py::arg("scene"), py::arg("material"), py::arg("uv0"), py::arg("uv1") = py::none(),
           py::arg("color") = py::none(), py::arg("normal") = py::none(), py::arg("tangent") = py::none(),
           py::arg("lod") = 0.0f,

@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-constexpr int kFormatVersion = 5;  // bump when the bake's output changes, to invalidate caches
+constexpr int kFormatVersion = 6;  // bump when the bake's output changes, to invalidate caches
 // Version 3 folders lack the table's A channel (5: the sheen albedo) and sheen.ktx2; they load,
 // and the channel is computed on load.
 constexpr int kSheenlessFormatVersion = 3;

@@ -139,6 +139,21 @@ glm::vec3 sample_equirect(const ImageF& img, glm::vec2 uv) {
 }
 }  // namespace
 
+namespace {
+// atan2 to within 2e-6 radians (an odd minimax polynomial on [0, 1] and the octant's
+// symmetries): a hundredth of a texel of a 1k panorama, and no library call, so the
+// resampling loop below vectorises.
+inline float fast_atan2(float y, float x) {
+    const float ax = std::fabs(x), ay = std::fabs(y);
+    const float hi = std::max(ax, ay), lo = std::min(ax, ay);
+    const float a = hi > 0.0f ? lo / hi : 0.0f, a2 = a * a;
+    float r = a * (0.99997726f + a2 * (-0.33262347f + a2 * (0.19354346f + a2 * (-0.11643287f + a2 * (0.05265332f + a2 * -0.01172120f)))));
+    r = ay > ax ? 0.5f * kPi - r : r;
+    r = x < 0.0f ? kPi - r : r;
+    return y < 0.0f ? -r : r;
+}
+}  // namespace
+
 Cubemap cubemap_from_equirect(const ImageF& pano, int size, unsigned threads) {
     Cubemap cube = make_cubemap(size, 1);
     // Samples per texel side: enough to cover the panorama texels a cube texel spans.
@@ -154,7 +169,12 @@ Cubemap cubemap_from_equirect(const ImageF& pano, int size, unsigned threads) {
                     for (int i = 0; i < ss; ++i) {
                         float s = 2.0f * (float(x) + (float(i) + 0.5f) / float(ss)) / float(size) - 1.0f;
                         float t = 2.0f * (float(y) + (float(j) + 0.5f) / float(ss)) / float(size) - 1.0f;
-                        sum += sample_equirect(pano, direction_to_equirect(glm::normalize(face_direction(face, s, t))));
+                        // direction_to_equirect of the (unnormalised) direction: u from its
+                        // azimuth, v from its angle to +Y.
+                        glm::vec3 d = face_direction(face, s, t);
+                        glm::vec2 uv(0.5f + fast_atan2(-d.x, d.z) / (2.0f * kPi),
+                                     fast_atan2(std::sqrt(d.x * d.x + d.z * d.z), d.y) / kPi);
+                        sum += sample_equirect(pano, uv);
                     }
                 sum /= float(ss * ss);
                 float* t = cube.levels[0].texel(face, x, y);

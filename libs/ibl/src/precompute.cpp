@@ -323,7 +323,8 @@ glm::vec3 filter_direction8(const std::vector<LevelView>& views, const std::vect
 
 void store(float* px, glm::vec3 c) { px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = 1.0f; }
 
-std::vector<LobeSample> lobe_samples(float roughness, int count, int source_size, int source_levels, float lod_bias) {
+std::vector<LobeSample> lobe_samples(float roughness, int count, int lod_count, int source_size, int source_levels,
+                                     float lod_bias) {
     std::vector<LobeSample> out;
     float alpha = roughness * roughness;
     // Solid angle of one source texel at level 0 (average over the sphere).
@@ -334,7 +335,7 @@ std::vector<LobeSample> lobe_samples(float roughness, int count, int source_size
         if (l.z <= 0.0f) continue;
         // pdf of l: D(h) h.z / (4 v.h), with v.h = h.z here: D / 4.
         float pdf = brdf::d_ggx(h.z, alpha) * 0.25f;
-        float sample_solid_angle = 1.0f / (float(count) * std::max(pdf, 1e-8f));
+        float sample_solid_angle = 1.0f / (float(lod_count) * std::max(pdf, 1e-8f));
         float lod = std::clamp(0.5f * std::log2(sample_solid_angle / texel_solid_angle) + lod_bias, 0.0f,
                                float(source_levels - 1));
         out.push_back(make_sample(l, l.z, lod, source_levels));
@@ -343,6 +344,8 @@ std::vector<LobeSample> lobe_samples(float roughness, int count, int source_size
     return out;
 }
 }  // namespace
+
+glm::vec3 sample_seamless_cubic(const Cubemap& cube, int level, glm::vec3 dir);  // below
 
 Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& o, const Progress& progress) {
     Cubemap out = make_cubemap(o.size, o.levels);
@@ -362,17 +365,29 @@ Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& o, const Pr
                 }
         }
     }
+    // Each level >= 1 is filtered at `filtered_size` (half its size by default) into `work`,
+    // then magnified into `out`.
+    auto filtered_size = [&](int size) { return o.half_resolution ? std::clamp(size / 2, std::min(size, 8), size) : size; };
+    Cubemap work;
+    work.levels.resize(std::size_t(o.levels));
+    for (int l = 1; l < o.levels; ++l) {
+        CubeLevel& lv = work.levels[std::size_t(l)];
+        lv.size = filtered_size(out.levels[std::size_t(l)].size);
+        for (auto& f : lv.faces) f.assign(std::size_t(lv.size) * std::size_t(lv.size) * 4, 0.0f);
+    }
     // Work units: rows of every face of every level >= 1, weighted by their cost.
     struct Row {
         int level, face, y;
     };
     std::vector<Row> rows;
+    const int lod_count = o.lod_samples > 0 ? o.lod_samples : std::min(kFilterKernelSamples, 4 * o.samples);
     std::vector<std::vector<LobeSample>> lobes(std::size_t(o.levels));
     double total_cost = 0;
     for (int l = 1; l < o.levels; ++l) {
         float roughness = float(l) / float(o.levels - 1);
-        lobes[std::size_t(l)] = lobe_samples(roughness, o.samples, source.size(), int(source.levels.size()), o.lod_bias);
-        int size = out.levels[std::size_t(l)].size;
+        lobes[std::size_t(l)] = lobe_samples(roughness, o.samples, lod_count, source.size(),
+                                             int(source.levels.size()), o.lod_bias);
+        int size = work.levels[std::size_t(l)].size;
         for (int f = 0; f < 6; ++f)
             for (int y = 0; y < size; ++y) rows.push_back({l, f, y});
         total_cost += double(size) * size * 6 * double(lobes[std::size_t(l)].size());
@@ -386,7 +401,7 @@ Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& o, const Pr
         rows.size(),
         [&](std::size_t i) {
             const Row& row = rows[i];
-            CubeLevel& lv = out.levels[std::size_t(row.level)];
+            CubeLevel& lv = work.levels[std::size_t(row.level)];
             const auto& lobe = lobes[std::size_t(row.level)];
             const auto& batch = batches[std::size_t(row.level)];
             for (int x = 0; x < lv.size; ++x) {
@@ -403,6 +418,21 @@ Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& o, const Pr
             }
         },
         o.threads);
+    for (int l = 1; l < o.levels; ++l) {
+        CubeLevel& dst = out.levels[std::size_t(l)];
+        if (work.levels[std::size_t(l)].size == dst.size) {
+            dst = std::move(work.levels[std::size_t(l)]);
+            continue;
+        }
+        parallel_for(
+            std::size_t(6 * dst.size),
+            [&](std::size_t row) {
+                int f = int(row / std::size_t(dst.size)), y = int(row % std::size_t(dst.size));
+                for (int x = 0; x < dst.size; ++x)
+                    store(dst.texel(f, x, y), sample_seamless_cubic(work, l, cube_texel_direction(f, x, y, dst.size)));
+            },
+            o.threads);
+    }
     return out;
 }
 
@@ -525,6 +555,19 @@ glm::vec3 charlie_half(glm::vec2 u, float roughness, float& cos_theta) {
 // WebGL 2 do): a footprint texel beyond the face's edge is read from the face it lies on. The
 // Charlie filter reads the coarsest levels (2x2, 1x1), where clamping at each face's edge would
 // paint the faces as blocks.
+namespace {
+// Texel (x, y) of `face` at one level, where x or y may lie one or two texels beyond the face:
+// then the texel whose centre that point of the face's plane lands on, on its neighbour.
+const float* seamless_texel(const CubeLevel& lv, int face, int x, int y) {
+    if (x >= 0 && y >= 0 && x < lv.size && y < lv.size) return lv.texel(face, x, y);
+    int f2;
+    float s2, t2;
+    cube_face_uv(cube_texel_direction(face, x, y, lv.size), f2, s2, t2);
+    int x2 = std::clamp(int(s2 * float(lv.size)), 0, lv.size - 1), y2 = std::clamp(int(t2 * float(lv.size)), 0, lv.size - 1);
+    return lv.texel(f2, x2, y2);
+}
+}  // namespace
+
 glm::vec3 sample_seamless(const Cubemap& cube, int level, glm::vec3 dir) {
     const CubeLevel& lv = cube.levels[std::size_t(level)];
     int face;
@@ -538,21 +581,42 @@ glm::vec3 sample_seamless(const Cubemap& cube, int level, glm::vec3 dir) {
         for (int i = 0; i < 2; ++i) {
             float w = (i ? ax : 1.0f - ax) * (j ? ay : 1.0f - ay);
             if (w <= 0.0f) continue;
-            int x = x0 + i, y = y0 + j;
-            const float* p;
-            if (x >= 0 && y >= 0 && x < lv.size && y < lv.size) {
-                p = lv.texel(face, x, y);
-            } else {
-                // The texel centre beyond the edge, on the face's plane, lands on a neighbour.
-                int f2;
-                float s2, t2;
-                cube_face_uv(cube_texel_direction(face, x, y, lv.size), f2, s2, t2);
-                int x2 = std::clamp(int(s2 * float(lv.size)), 0, lv.size - 1), y2 = std::clamp(int(t2 * float(lv.size)), 0, lv.size - 1);
-                p = lv.texel(f2, x2, y2);
-            }
+            const float* p = seamless_texel(lv, face, x0 + i, y0 + j);
             sum += w * glm::vec3(p[0], p[1], p[2]);
         }
     return sum;
+}
+
+namespace {
+// Catmull-Rom weights of the four taps around a point a fraction `a` past the second.
+void catmull_rom(float a, float w[4]) {
+    float a2 = a * a, a3 = a2 * a;
+    w[0] = 0.5f * (-a3 + 2.0f * a2 - a);
+    w[1] = 0.5f * (3.0f * a3 - 5.0f * a2 + 2.0f);
+    w[2] = 0.5f * (-3.0f * a3 + 4.0f * a2 + a);
+    w[3] = 0.5f * (a3 - a2);
+}
+}  // namespace
+
+// Bicubic (Catmull-Rom) at one level, seamless as sample_seamless; negative results (a
+// cubic's overshoot beside a bright source) are clamped to 0.
+glm::vec3 sample_seamless_cubic(const Cubemap& cube, int level, glm::vec3 dir) {
+    const CubeLevel& lv = cube.levels[std::size_t(level)];
+    int face;
+    float s, t;
+    cube_face_uv(dir, face, s, t);
+    float fx = s * float(lv.size) - 0.5f, fy = t * float(lv.size) - 0.5f;
+    int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+    float wx[4], wy[4];
+    catmull_rom(fx - float(x0), wx);
+    catmull_rom(fy - float(y0), wy);
+    glm::vec3 sum(0.0f);
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            const float* p = seamless_texel(lv, face, x0 - 1 + i, y0 - 1 + j);
+            sum += (wx[i] * wy[j]) * glm::vec3(p[0], p[1], p[2]);
+        }
+    return glm::max(sum, glm::vec3(0.0f));
 }
 
 Cubemap prefilter_charlie(const Cubemap& source, int size, int levels, int samples, unsigned threads) {
@@ -600,30 +664,41 @@ Cubemap prefilter_charlie(const Cubemap& source, int size, int levels, int sampl
     return out;
 }
 
-ImageF compute_charlie_lut(int size, int samples) {
+ImageF compute_charlie_lut(int size, int samples, unsigned threads) {
     ImageF lut(size, size);
-    for (int j = 0; j < size; ++j) {
-        const float roughness = (float(j) + 0.5f) / float(size);
-        for (int i = 0; i < size; ++i) {
-            const float n_dot_v = (float(i) + 0.5f) / float(size);
-            const glm::vec3 v(std::sqrt(1.0f - n_dot_v * n_dot_v), 0.0f, n_dot_v);
-            double c = 0.0;
+    parallel_for(
+        std::size_t(size),
+        [&](std::size_t row) {
+            const int j = int(row);
+            const float roughness = (float(j) + 0.5f) / float(size);
+            // The half vectors and D of this row's roughness, for every n.v of the row.
+            std::vector<glm::vec3> half(std::size_t(samples), glm::vec3(0.0f));
+            std::vector<float> d(std::size_t(samples), 0.0f);
             for (int k = 0; k < samples; ++k) {
                 float cos_theta;
-                glm::vec3 h = charlie_half(sampling::hammersley(std::uint32_t(k), std::uint32_t(samples)), roughness, cos_theta);
-                glm::vec3 l = glm::normalize(2.0f * glm::dot(v, h) * h - v);
-                float n_dot_l = std::clamp(l.z, 0.0f, 1.0f);
-                if (n_dot_l <= 0.0f) continue;
-                float n_dot_h = std::clamp(h.z, 0.0f, 1.0f), v_dot_h = std::clamp(glm::dot(v, h), 0.0f, 1.0f);
-                float vis = std::clamp(1.0f / (4.0f * (n_dot_l + n_dot_v - n_dot_l * n_dot_v)), 0.0f, 1.0f);  // Ashikhmin
-                c += double(vis * d_charlie_a(roughness, n_dot_h) * n_dot_l * v_dot_h);
+                half[std::size_t(k)] = charlie_half(sampling::hammersley(std::uint32_t(k), std::uint32_t(samples)), roughness, cos_theta);
+                d[std::size_t(k)] = d_charlie_a(roughness, std::clamp(half[std::size_t(k)].z, 0.0f, 1.0f));
             }
-            float* p = lut.at(i, j);
-            p[0] = float(8.0 * double(kPi) * c / double(samples));
-            p[1] = p[2] = 0.0f;
-            p[3] = 1.0f;
-        }
-    }
+            for (int i = 0; i < size; ++i) {
+                const float n_dot_v = (float(i) + 0.5f) / float(size);
+                const glm::vec3 v(std::sqrt(1.0f - n_dot_v * n_dot_v), 0.0f, n_dot_v);
+                double c = 0.0;
+                for (int k = 0; k < samples; ++k) {
+                    const glm::vec3 h = half[std::size_t(k)];
+                    glm::vec3 l = glm::normalize(2.0f * glm::dot(v, h) * h - v);
+                    float n_dot_l = std::clamp(l.z, 0.0f, 1.0f);
+                    if (n_dot_l <= 0.0f) continue;
+                    float v_dot_h = std::clamp(glm::dot(v, h), 0.0f, 1.0f);
+                    float vis = std::clamp(1.0f / (4.0f * (n_dot_l + n_dot_v - n_dot_l * n_dot_v)), 0.0f, 1.0f);  // Ashikhmin
+                    c += double(vis * d[std::size_t(k)] * n_dot_l * v_dot_h);
+                }
+                float* p = lut.at(i, j);
+                p[0] = float(8.0 * double(kPi) * c / double(samples));
+                p[1] = p[2] = 0.0f;
+                p[3] = 1.0f;
+            }
+        },
+        threads);
     return lut;
 }
 

@@ -26,7 +26,7 @@ namespace fresnel::ibl {
 struct BakeOptions {
     int size = 256;          // specular level 0 face size
     int levels = 5;          // specular levels (roughness k/(levels-1))
-    int samples = 1024;      // GGX samples per texel
+    int samples = 1024;      // GGX samples per texel (of the same kernel whatever the count: PrefilterOptions::lod_samples)
     int lut_size = 128;
     int lut_samples = 1024;
     int irradiance_size = 16;  // face size of the irradiance cube (irradiance is smooth; sampled bilinearly)

@@ -121,7 +121,7 @@ struct Job {
         glm::vec3 color{1.0f};   // Kind::Color
         float rotation_deg = 0.0f;  // about +Y
         float intensity = 1.0f;
-        int bake_samples = 1024;  // GGX samples per texel when baking a panorama
+        int bake_samples = 1024;  // GGX samples per texel when baking a panorama (ibl::BakeOptions::samples)
         int bake_size = 256;      // specular cube face size when baking (power of two)
         // Diffuse image-based light: false, filtered importance sampling as the Khronos Sample
         // Viewer bakes it (its blur); true, the exact cosine convolution (ibl::BakeOptions).
