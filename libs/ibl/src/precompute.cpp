@@ -566,16 +566,27 @@ const float* seamless_texel(const CubeLevel& lv, int face, int x, int y) {
     int x2 = std::clamp(int(s2 * float(lv.size)), 0, lv.size - 1), y2 = std::clamp(int(t2 * float(lv.size)), 0, lv.size - 1);
     return lv.texel(f2, x2, y2);
 }
+
+// Where a direction falls on a level: its face, the texel at or before it in x and y (centres
+// at half-integers), and how far past that texel's centre it lies.
+struct FacePoint {
+    int face, x0, y0;
+    float ax, ay;
+};
+FacePoint face_point(const CubeLevel& lv, glm::vec3 dir) {
+    FacePoint p;
+    float s, t;
+    cube_face_uv(dir, p.face, s, t);
+    float fx = s * float(lv.size) - 0.5f, fy = t * float(lv.size) - 0.5f;
+    p.x0 = int(std::floor(fx)), p.y0 = int(std::floor(fy));
+    p.ax = fx - float(p.x0), p.ay = fy - float(p.y0);
+    return p;
+}
 }  // namespace
 
 glm::vec3 sample_seamless(const Cubemap& cube, int level, glm::vec3 dir) {
     const CubeLevel& lv = cube.levels[std::size_t(level)];
-    int face;
-    float s, t;
-    cube_face_uv(dir, face, s, t);
-    float fx = s * float(lv.size) - 0.5f, fy = t * float(lv.size) - 0.5f;
-    int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
-    float ax = fx - float(x0), ay = fy - float(y0);
+    const auto [face, x0, y0, ax, ay] = face_point(lv, dir);
     glm::vec3 sum(0.0f);
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
@@ -602,14 +613,10 @@ void catmull_rom(float a, float w[4]) {
 // cubic's overshoot beside a bright source) are clamped to 0.
 glm::vec3 sample_seamless_cubic(const Cubemap& cube, int level, glm::vec3 dir) {
     const CubeLevel& lv = cube.levels[std::size_t(level)];
-    int face;
-    float s, t;
-    cube_face_uv(dir, face, s, t);
-    float fx = s * float(lv.size) - 0.5f, fy = t * float(lv.size) - 0.5f;
-    int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+    const auto [face, x0, y0, ax, ay] = face_point(lv, dir);
     float wx[4], wy[4];
-    catmull_rom(fx - float(x0), wx);
-    catmull_rom(fy - float(y0), wy);
+    catmull_rom(ax, wx);
+    catmull_rom(ay, wy);
     glm::vec3 sum(0.0f);
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) {
