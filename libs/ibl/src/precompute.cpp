@@ -218,12 +218,13 @@ glm::vec3 filter_direction(const std::vector<LevelView>& views, const std::vecto
 // batches of 8 that share a mip level (padded with zero weights), and the rotation,
 // the cube-face selection and the bilinear weights and addresses are computed with
 // vector extensions (SSE/AVX, whatever the target has); only the texel reads are per
-// lane. About twice as fast as the scalar loop; results agree to float rounding.
+// lane, a row's two texels in one load (PaddedLevel). About three times as fast as the
+// scalar loop (the two-load rows: 375 -> 225 ms for the default bake's specular filter on
+// one thread of this machine); results agree to float rounding.
 // Declared 4-byte aligned: loads and stores are then unaligned ones, so no container
 // has to honour a 32-byte alignment (std::vector does not, in every configuration).
 typedef float V8 __attribute__((vector_size(32), aligned(4)));
 typedef std::int32_t I8 __attribute__((vector_size(32), aligned(4)));
-typedef float V4 __attribute__((vector_size(16), aligned(4)));
 constexpr int kLanes = 8;
 
 struct LobeBatch {
@@ -254,33 +255,61 @@ std::vector<LobeBatch> make_batches(const std::vector<LobeSample>& lobe) {
     return out;
 }
 
-__attribute__((always_inline)) inline void accumulate_bilinear8(const LevelView& L, const I8& face, const V8& s, const V8& t, const V8& w,
-                                 float acc[4]) {
+// The source levels as the eight-lane loop reads them: each face with one more column and one
+// more row, copies of its last (clamped to the edge, as the scalar loop reads), so that a
+// bilinear footprint's two texels of a row are always adjacent: one 8-float load a row.
+struct PaddedLevel {
+    std::vector<float> texels;  // 6 faces of (size + 1)^2 RGBA texels
+    int size = 0;
+    float fsize = 0.0f;
+};
+
+std::vector<PaddedLevel> padded_levels(const Cubemap& cube) {
+    std::vector<PaddedLevel> out;
+    for (const auto& lv : cube.levels) {
+        PaddedLevel p;
+        p.size = lv.size;
+        p.fsize = float(lv.size);
+        const std::size_t n = std::size_t(lv.size), stride = n + 1;
+        p.texels.resize(6 * stride * stride * 4);
+        for (int f = 0; f < 6; ++f) {
+            float* dst = p.texels.data() + std::size_t(f) * stride * stride * 4;
+            for (std::size_t y = 0; y <= n; ++y) {
+                const float* row = lv.faces[std::size_t(f)].data() + std::min(y, n - 1) * n * 4;
+                std::memcpy(dst + y * stride * 4, row, n * 4 * sizeof(float));
+                std::memcpy(dst + (y * stride + n) * 4, row + (n - 1) * 4, 4 * sizeof(float));
+            }
+        }
+        out.push_back(std::move(p));
+    }
+    return out;
+}
+
+__attribute__((always_inline)) inline void accumulate_bilinear8(const PaddedLevel& L, const I8& face, const V8& s, const V8& t,
+                                                                const V8& w, V8& acc) {
     const V8 zero = V8{} + 0.0f, maxc = zero + (L.fsize - 1.0f);
     V8 fx = s * L.fsize - 0.5f, fy = t * L.fsize - 0.5f;
     fx = fx < zero ? zero : (fx > maxc ? maxc : fx);
     fy = fy < zero ? zero : (fy > maxc ? maxc : fy);
     const I8 x0 = __builtin_convertvector(fx, I8), y0 = __builtin_convertvector(fy, I8);
-    const I8 last = I8{} + (L.size - 1);
-    // x0 + 1 and y0 + 1, clamped to the edge (a true comparison is -1).
-    const I8 x1 = x0 - (x0 < last), y1 = y0 - (y0 < last);
     const V8 ax = fx - __builtin_convertvector(x0, V8), ay = fy - __builtin_convertvector(y0, V8);
     const V8 w00 = (1.0f - ax) * (1.0f - ay) * w, w10 = ax * (1.0f - ay) * w;
     const V8 w01 = (1.0f - ax) * ay * w, w11 = ax * ay * w;
-    const I8 r0 = y0 * L.size, r1 = y1 * L.size;
-    const I8 i00 = (r0 + x0) * 4, i10 = (r0 + x1) * 4, i01 = (r1 + x0) * 4, i11 = (r1 + x1) * 4;
-    // Texels are RGBA floats: one 4-wide load and multiply-add per texel.
-    V4 sum = V4{} + 0.0f;
+    const int stride = L.size + 1;
+    const I8 i00 = ((face * stride + y0) * stride + x0) * 4;
+    const float* base = L.texels.data();
+    const std::size_t row = std::size_t(stride) * 4;
+    // Per lane: texels (x0, y0), (x0 + 1, y0) in one load and the row below in another,
+    // weighted [w00 x4, w10 x4] and [w01 x4, w11 x4].
     for (int k = 0; k < kLanes; ++k) {
-        const float* f = L.faces[face[k]];
-        V4 p00, p10, p01, p11;
-        std::memcpy(&p00, f + i00[k], sizeof(V4));
-        std::memcpy(&p10, f + i10[k], sizeof(V4));
-        std::memcpy(&p01, f + i01[k], sizeof(V4));
-        std::memcpy(&p11, f + i11[k], sizeof(V4));
-        sum += p00 * w00[k] + p10 * w10[k] + p01 * w01[k] + p11 * w11[k];
+        const float* p = base + i00[k];
+        V8 top, bottom;
+        std::memcpy(&top, p, sizeof(V8));
+        std::memcpy(&bottom, p + row, sizeof(V8));
+        const V8 wt = {w00[k], w00[k], w00[k], w00[k], w10[k], w10[k], w10[k], w10[k]};
+        const V8 wb = {w01[k], w01[k], w01[k], w01[k], w11[k], w11[k], w11[k], w11[k]};
+        acc += top * wt + bottom * wb;
     }
-    acc[0] += sum[0], acc[1] += sum[1], acc[2] += sum[2];
 }
 
 // On x86-64 this is compiled twice, for Haswell-class CPUs (AVX2, FMA: the eight lanes
@@ -293,10 +322,10 @@ __attribute__((always_inline)) inline void accumulate_bilinear8(const LevelView&
 #endif
 
 FRESNEL_KERNEL
-glm::vec3 filter_direction8(const std::vector<LevelView>& views, const std::vector<LobeBatch>& batches, glm::vec3 n) {
+glm::vec3 filter_direction8(const std::vector<PaddedLevel>& views, const std::vector<LobeBatch>& batches, glm::vec3 n) {
     glm::vec3 t, b;
     sampling::basis(n, t, b);
-    float acc[4] = {0, 0, 0, 0};
+    V8 acc = V8{} + 0.0f;  // two RGBA sums (the left and right texels' shares)
     float wsum = 0.0f;
     const V8 zero = V8{} + 0.0f;
     for (const LobeBatch& B : batches) {
@@ -318,7 +347,7 @@ glm::vec3 filter_direction8(const std::vector<LevelView>& views, const std::vect
         if (B.has_w1) accumulate_bilinear8(views[std::size_t(B.level0 + 1)], face, s, tt, B.w1, acc);
         wsum += B.weight_sum;
     }
-    return glm::vec3(acc[0], acc[1], acc[2]) / std::max(wsum, 1e-8f);
+    return glm::vec3(acc[0] + acc[4], acc[1] + acc[5], acc[2] + acc[6]) / std::max(wsum, 1e-8f);
 }
 
 void store(float* px, glm::vec3 c) { px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = 1.0f; }
@@ -393,6 +422,7 @@ Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& o, const Pr
         total_cost += double(size) * size * 6 * double(lobes[std::size_t(l)].size());
     }
     std::vector<LevelView> views = level_views(source);
+    const std::vector<PaddedLevel> padded = o.vectorized ? padded_levels(source) : std::vector<PaddedLevel>{};
     std::vector<std::vector<LobeBatch>> batches;
     for (const auto& lobe : lobes) batches.push_back(make_batches(lobe));
     const bool kScalar = !o.vectorized;
@@ -406,7 +436,7 @@ Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& o, const Pr
             const auto& batch = batches[std::size_t(row.level)];
             for (int x = 0; x < lv.size; ++x) {
                 glm::vec3 n = cube_texel_direction(row.face, x, row.y, lv.size);
-                store(lv.texel(row.face, x, row.y), kScalar ? filter_direction(views, lobe, n) : filter_direction8(views, batch, n));
+                store(lv.texel(row.face, x, row.y), kScalar ? filter_direction(views, lobe, n) : filter_direction8(padded, batch, n));
             }
             if (progress) {
                 double c = double(lv.size) * double(lobe.size());
@@ -450,7 +480,7 @@ Cubemap irradiance_filtered(const Cubemap& source, int size, int samples, float 
         lobe.push_back(make_sample(l, 1.0f, lod, levels));
     }
     sort_for_locality(lobe);
-    std::vector<LevelView> views = level_views(source);
+    const std::vector<PaddedLevel> padded = padded_levels(source);
     std::vector<LobeBatch> batches = make_batches(lobe);
     Cubemap out = make_cubemap(size, 1);
     parallel_for(
@@ -458,7 +488,7 @@ Cubemap irradiance_filtered(const Cubemap& source, int size, int samples, float 
         [&](std::size_t row) {
             int f = int(row / std::size_t(size)), y = int(row % std::size_t(size));
             for (int x = 0; x < size; ++x)
-                store(out.levels[0].texel(f, x, y), filter_direction8(views, batches, cube_texel_direction(f, x, y, size)));
+                store(out.levels[0].texel(f, x, y), filter_direction8(padded, batches, cube_texel_direction(f, x, y, size)));
         },
         threads);
     return out;
