@@ -137,9 +137,7 @@ glm::vec3 sample_equirect(const ImageF& img, glm::vec2 uv) {
     }
     return r;
 }
-}  // namespace
 
-namespace {
 // atan2 to within 2e-6 radians (an odd minimax polynomial on [0, 1] and the octant's
 // symmetries): a hundredth of a texel of a 1k panorama, and no library call, so the
 // resampling loop below vectorises.

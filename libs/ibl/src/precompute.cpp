@@ -108,26 +108,49 @@ Cubemap irradiance_convolution(const Cubemap& source, int size, int source_size,
 namespace {
 // The inner loop of the prefilter: one face selection per sample, then bilinear
 // reads at the two mip levels around the sample's lod, weights pre-multiplied.
-struct LevelView {
-    const float* faces[6];
-    int size;
-    float fsize;
+// The source levels as the prefilter reads them: each face with one more column and one more
+// row, copies of its last (reads clamp to the face's edge), so that a bilinear footprint's
+// texels are always (x0, y0) to (x0 + 1, y0 + 1), and a row's two are adjacent (one 8-float
+// load in the eight-lane loop).
+struct PaddedLevel {
+    std::vector<float> texels;  // 6 faces of (size + 1)^2 RGBA texels
+    int size = 0;
+    float fsize = 0.0f;
 };
 
-inline void accumulate_bilinear(const LevelView& L, int face, float s, float t, float w, float acc[4]) {
+std::vector<PaddedLevel> padded_levels(const Cubemap& cube) {
+    std::vector<PaddedLevel> out;
+    for (const auto& lv : cube.levels) {
+        PaddedLevel p;
+        p.size = lv.size;
+        p.fsize = float(lv.size);
+        const std::size_t n = std::size_t(lv.size), stride = n + 1;
+        p.texels.resize(6 * stride * stride * 4);
+        for (int f = 0; f < 6; ++f) {
+            float* dst = p.texels.data() + std::size_t(f) * stride * stride * 4;
+            for (std::size_t y = 0; y <= n; ++y) {
+                const float* row = lv.faces[std::size_t(f)].data() + std::min(y, n - 1) * n * 4;
+                std::memcpy(dst + y * stride * 4, row, n * 4 * sizeof(float));
+                std::memcpy(dst + (y * stride + n) * 4, row + (n - 1) * 4, 4 * sizeof(float));
+            }
+        }
+        out.push_back(std::move(p));
+    }
+    return out;
+}
+
+inline void accumulate_bilinear(const PaddedLevel& L, int face, float s, float t, float w, float acc[4]) {
     float fx = s * L.fsize - 0.5f, fy = t * L.fsize - 0.5f;
     float maxc = L.fsize - 1.0f;
     fx = fx < 0.0f ? 0.0f : (fx > maxc ? maxc : fx);
     fy = fy < 0.0f ? 0.0f : (fy > maxc ? maxc : fy);
     int x0 = int(fx), y0 = int(fy);
-    int x1 = x0 + (x0 < L.size - 1 ? 1 : 0), y1 = y0 + (y0 < L.size - 1 ? 1 : 0);
     float ax = fx - float(x0), ay = fy - float(y0);
-    const float* f = L.faces[face];
-    const std::size_t n = std::size_t(L.size);
-    const float* p00 = f + (std::size_t(y0) * n + std::size_t(x0)) * 4;
-    const float* p10 = f + (std::size_t(y0) * n + std::size_t(x1)) * 4;
-    const float* p01 = f + (std::size_t(y1) * n + std::size_t(x0)) * 4;
-    const float* p11 = f + (std::size_t(y1) * n + std::size_t(x1)) * 4;
+    const std::size_t stride = std::size_t(L.size) + 1;
+    const float* p00 = L.texels.data() + ((std::size_t(face) * stride + std::size_t(y0)) * stride + std::size_t(x0)) * 4;
+    const float* p10 = p00 + 4;
+    const float* p01 = p00 + stride * 4;
+    const float* p11 = p01 + 4;
     float w00 = (1 - ax) * (1 - ay) * w, w10 = ax * (1 - ay) * w, w01 = (1 - ax) * ay * w, w11 = ax * ay * w;
     for (int c = 0; c < 4; ++c) acc[c] += p00[c] * w00 + p10[c] * w10 + p01[c] * w01 + p11[c] * w11;
 }
@@ -182,20 +205,8 @@ void sort_for_locality(std::vector<LobeSample>& lobe) {
     });
 }
 
-std::vector<LevelView> level_views(const Cubemap& cube) {
-    std::vector<LevelView> views;
-    for (const auto& lv : cube.levels) {
-        LevelView v;
-        for (int f = 0; f < 6; ++f) v.faces[f] = lv.faces[std::size_t(f)].data();
-        v.size = lv.size;
-        v.fsize = float(lv.size);
-        views.push_back(v);
-    }
-    return views;
-}
-
 // The weighted mean of the source over `lobe` (defined around +Z) turned to normal n.
-glm::vec3 filter_direction(const std::vector<LevelView>& views, const std::vector<LobeSample>& lobe, glm::vec3 n) {
+glm::vec3 filter_direction(const std::vector<PaddedLevel>& views, const std::vector<LobeSample>& lobe, glm::vec3 n) {
     glm::vec3 t, b;
     sampling::basis(n, t, b);
     float acc[4] = {0, 0, 0, 0};
@@ -251,36 +262,6 @@ std::vector<LobeBatch> make_batches(const std::vector<LobeSample>& lobe) {
             b.has_w1 = b.has_w1 || s.w1 > 0.0f;
         }
         out.push_back(b);
-    }
-    return out;
-}
-
-// The source levels as the eight-lane loop reads them: each face with one more column and one
-// more row, copies of its last (clamped to the edge, as the scalar loop reads), so that a
-// bilinear footprint's two texels of a row are always adjacent: one 8-float load a row.
-struct PaddedLevel {
-    std::vector<float> texels;  // 6 faces of (size + 1)^2 RGBA texels
-    int size = 0;
-    float fsize = 0.0f;
-};
-
-std::vector<PaddedLevel> padded_levels(const Cubemap& cube) {
-    std::vector<PaddedLevel> out;
-    for (const auto& lv : cube.levels) {
-        PaddedLevel p;
-        p.size = lv.size;
-        p.fsize = float(lv.size);
-        const std::size_t n = std::size_t(lv.size), stride = n + 1;
-        p.texels.resize(6 * stride * stride * 4);
-        for (int f = 0; f < 6; ++f) {
-            float* dst = p.texels.data() + std::size_t(f) * stride * stride * 4;
-            for (std::size_t y = 0; y <= n; ++y) {
-                const float* row = lv.faces[std::size_t(f)].data() + std::min(y, n - 1) * n * 4;
-                std::memcpy(dst + y * stride * 4, row, n * 4 * sizeof(float));
-                std::memcpy(dst + (y * stride + n) * 4, row + (n - 1) * 4, 4 * sizeof(float));
-            }
-        }
-        out.push_back(std::move(p));
     }
     return out;
 }
@@ -421,8 +402,7 @@ Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& o, const Pr
             for (int y = 0; y < size; ++y) rows.push_back({l, f, y});
         total_cost += double(size) * size * 6 * double(lobes[std::size_t(l)].size());
     }
-    std::vector<LevelView> views = level_views(source);
-    const std::vector<PaddedLevel> padded = o.vectorized ? padded_levels(source) : std::vector<PaddedLevel>{};
+    const std::vector<PaddedLevel> padded = padded_levels(source);
     std::vector<std::vector<LobeBatch>> batches;
     for (const auto& lobe : lobes) batches.push_back(make_batches(lobe));
     const bool kScalar = !o.vectorized;
@@ -436,7 +416,7 @@ Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& o, const Pr
             const auto& batch = batches[std::size_t(row.level)];
             for (int x = 0; x < lv.size; ++x) {
                 glm::vec3 n = cube_texel_direction(row.face, x, row.y, lv.size);
-                store(lv.texel(row.face, x, row.y), kScalar ? filter_direction(views, lobe, n) : filter_direction8(padded, batch, n));
+                store(lv.texel(row.face, x, row.y), kScalar ? filter_direction(padded, lobe, n) : filter_direction8(padded, batch, n));
             }
             if (progress) {
                 double c = double(lv.size) * double(lobe.size());
