@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
@@ -118,10 +119,12 @@ struct PaddedLevel {
     float fsize = 0.0f;
 };
 
-std::vector<PaddedLevel> padded_levels(const Cubemap& cube) {
-    std::vector<PaddedLevel> out;
-    for (const auto& lv : cube.levels) {
-        PaddedLevel p;
+// Levels below `first` (which no sample reads) are left empty.
+std::vector<PaddedLevel> padded_levels(const Cubemap& cube, int first) {
+    std::vector<PaddedLevel> out(cube.levels.size());
+    for (std::size_t l = std::size_t(std::max(first, 0)); l < cube.levels.size(); ++l) {
+        const CubeLevel& lv = cube.levels[l];
+        PaddedLevel& p = out[l];
         p.size = lv.size;
         p.fsize = float(lv.size);
         const std::size_t n = std::size_t(lv.size), stride = n + 1;
@@ -134,10 +137,10 @@ std::vector<PaddedLevel> padded_levels(const Cubemap& cube) {
                 std::memcpy(dst + (y * stride + n) * 4, row + (n - 1) * 4, 4 * sizeof(float));
             }
         }
-        out.push_back(std::move(p));
     }
     return out;
 }
+
 
 inline void accumulate_bilinear(const PaddedLevel& L, int face, float s, float t, float w, float acc[4]) {
     float fx = s * L.fsize - 0.5f, fy = t * L.fsize - 0.5f;
@@ -194,6 +197,13 @@ LobeSample make_sample(glm::vec3 dir, float weight, float lod, int levels) {
     int level0 = std::min(int(lod), levels - 1);
     float frac = level0 + 1 < levels ? lod - float(level0) : 0.0f;
     return {dir, weight, lod, level0, weight * (1.0f - frac), weight * frac};
+}
+
+// The finest level any of `lobe`'s samples reads.
+int first_level_read(const std::vector<LobeSample>& lobe) {
+    int first = std::numeric_limits<int>::max();
+    for (const LobeSample& s : lobe) first = std::min(first, s.level0);
+    return first;
 }
 
 // Visit samples mip by mip and around the lobe in order, so consecutive reads touch
@@ -402,7 +412,9 @@ Cubemap prefilter_ggx(const Cubemap& source, const PrefilterOptions& o, const Pr
             for (int y = 0; y < size; ++y) rows.push_back({l, f, y});
         total_cost += double(size) * size * 6 * double(lobes[std::size_t(l)].size());
     }
-    const std::vector<PaddedLevel> padded = padded_levels(source);
+    int first_read = std::numeric_limits<int>::max();
+    for (const auto& lobe : lobes) first_read = std::min(first_read, lobe.empty() ? first_read : first_level_read(lobe));
+    const std::vector<PaddedLevel> padded = padded_levels(source, first_read);
     std::vector<std::vector<LobeBatch>> batches;
     for (const auto& lobe : lobes) batches.push_back(make_batches(lobe));
     const bool kScalar = !o.vectorized;
@@ -460,7 +472,7 @@ Cubemap irradiance_filtered(const Cubemap& source, int size, int samples, float 
         lobe.push_back(make_sample(l, 1.0f, lod, levels));
     }
     sort_for_locality(lobe);
-    const std::vector<PaddedLevel> padded = padded_levels(source);
+    const std::vector<PaddedLevel> padded = padded_levels(source, first_level_read(lobe));
     std::vector<LobeBatch> batches = make_batches(lobe);
     Cubemap out = make_cubemap(size, 1);
     parallel_for(
