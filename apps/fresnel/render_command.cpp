@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <thread>
 #include <filesystem>
+#include <future>
 #include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -145,20 +146,31 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
 
     // Scene (at rest: posed below, frame by frame), then the rules of docs/shading.md's
     // "Lighting rules" (fresnel/job/job.h).
+    // One frame (or a sequence) from one load: each decoded image is freed once its textures
+    // are on the GPU (llvmpipe's copies reuse its memory; a texture asked for later decodes it
+    // again). `--ao baked` traces the scene, which reads the images: they stay.
+    const bool release_images = job.output.ao != AmbientOcclusion::Baked;
+    if (release_images) keep_freed_memory_for_reuse();
     auto t_load = Clock::now();
-    Scene scene = load_rest_scene(job, diag);
+    Scene scene = load_rest_scene(job, diag, LoadKeep{.encoded_images = release_images});
     double load_ms = ms_since(t_load);
     ResolvedJob resolved = resolve(job, scene, &diag);
     print_warnings(diag);
     const std::string model_name = o.models.empty() ? std::string("demo") : o.models[0];
     std::string label = "baking " + (resolved.environment ? resolved.environment->describe() : std::string());
     ProgressBar bar(label);
-    JobLighting lighting = load_lighting(resolved, [&](double f) { bar.update(f); });
-    bar.finish();
+    // The environment loads (or bakes) while the GPU context starts: independent work, each
+    // mostly on one core (the context's start is the GL driver's loading).
+    std::future<JobLighting> lighting_task =
+        std::async(std::launch::async, [&] { return load_lighting(resolved, [&](double f) { bar.update(f); }); });
 
     // GPU.
     auto t_gpu = Clock::now();
     auto context = gpu::create_headless_context(context_options(o));
+    double context_ms = ms_since(t_gpu);
+    JobLighting lighting = lighting_task.get();
+    bar.finish();
+    t_gpu = Clock::now();
     Renderer renderer(*context);
     double upload_ms = 0.0;
 
@@ -168,8 +180,9 @@ int run_render(const RenderOptions& o, const CLI::App* cmd) {
     // bind pose once and moves only the nodes; CPU posing (the reference) uploads each
     // frame's posed meshes.
     RenderSettings rs = lighting.settings(resolved);
-    renderer.set_scene(scene, resolved.scene_index);
-    upload_ms += ms_since(t_gpu);
+    renderer.set_scene(scene, resolved.scene_index,
+                       release_images ? Renderer::ImageResidency::GpuOnly : Renderer::ImageResidency::Keep);
+    upload_ms += context_ms + ms_since(t_gpu);
     // --ao baked: the tracer's rays at every vertex of the scene as drawn (each posed frame's own).
     double ao_ms = 0.0;
     std::size_t ao_vertices = 0;

@@ -510,6 +510,78 @@ TEST_F(RenderTargets, MetallicRoughnessInAlphaIsTheSameImage) {
     EXPECT_EQ(packed_bytes[OtherUvSet], packed_bytes[Plain] + 5461u * 4u);
 }
 
+// Renderer::ImageResidency::GpuOnly (a one-shot `fresnel render`): each image whose encoded
+// bytes the scene keeps is freed once its textures are uploaded (an image one packed key alone
+// reads is packed in place), and the frames are the ones of a renderer that kept them, to the
+// bit: the frame set_scene uploaded for, and frames with other settings that make textures
+// afterwards (channels not packed, a debug view's maps as stored), which decode the released
+// images again. An image without encoded bytes stays.
+TEST_F(RenderTargets, ReleasedImagesDrawTheSameFrames) {
+    if (!start()) GTEST_SKIP() << why_;
+    Material m;
+    m.base_color_factor = glm::vec4(0.9f, 0.8f, 0.7f, 1.0f);
+    m.emissive_factor = glm::vec3(0.5f);
+    m.base_color.texture = 0;
+    m.metallic_roughness.texture = 1;
+    m.normal.texture = 2;
+    m.emissive.texture = 3;
+    m.occlusion.texture = 4;
+    m.occlusion_strength = 0.8f;
+    Primitive p = make_uv_sphere(48, 24);
+    for (auto& uv : p.uv0) uv *= 3.0f;
+    ASSERT_TRUE(generate_tangents(p, 0));
+    p.material = 0;
+    Image8 normals = noise_image(3);
+    for (std::size_t i = 2; i < normals.pixels.size(); i += 4) normals.pixels[i] = 255;
+    Scene kept = make_single_primitive_scene(std::move(p), {m});
+    kept.images = {{"base colour", noise_image(1)}, {"metallic-roughness", noise_image(2)}, {"normal", normals},
+                   {"emissive", noise_image(4)}, {"occlusion", noise_image(5)}};
+    kept.textures = {{0, {}}, {1, {}}, {2, {}}, {3, {}}, {4, {}}};
+    Scene released = kept;
+    for (std::size_t i = 0; i + 1 < released.images.size(); ++i)  // the occlusion without its bytes
+        released.images[i].encoded =
+            std::make_shared<const std::vector<std::uint8_t>>(encode_png(released.images[i].pixels));
+
+    RenderSettings rs;
+    rs.width = rs.height = 96;
+    rs.ambient = glm::vec3(1.0f);
+    Renderer keeping(*context_), releasing(*context_);
+    keeping.set_scene(kept);
+    releasing.set_scene(released, -1, Renderer::ImageResidency::GpuOnly);
+    for (std::size_t i = 0; i < released.images.size(); ++i) {
+        SCOPED_TRACE(released.images[i].name);
+        EXPECT_EQ(released.images[i].released(), i + 1 < released.images.size());
+        EXPECT_EQ(released.images[i].pixels.width, kept.images[i].pixels.width);  // the size stays
+        EXPECT_FALSE(kept.images[i].released());
+    }
+    const CameraSetup cam = orbit_camera(scene_bounds(kept, flatten(kept)), {}, rs.width, rs.height);
+    auto compare = [&](const char* what) {
+        SCOPED_TRACE(what);
+        FrameStats a, b;
+        const ImageF want = keeping.render(cam, default_lights(), rs, &a);
+        const ImageF got = releasing.render(cam, default_lights(), rs, &b);
+        EXPECT_EQ(b.gl_errors, "");
+        ASSERT_EQ(got.pixels.size(), want.pixels.size());
+        float max_diff = 0.0f, spread = 0.0f;
+        for (std::size_t i = 0; i < got.pixels.size(); ++i) {
+            max_diff = std::max(max_diff, std::abs(got.pixels[i] - want.pixels[i]));
+            spread = std::max(spread, std::abs(want.pixels[i] - want.pixels[0]));
+        }
+        EXPECT_EQ(max_diff, 0.0f);
+        EXPECT_GT(spread, 0.05f);
+    };
+    compare("the frame set_scene uploaded for");
+    rs.pack_channels = false;  // the metallic-roughness and normal maps as stored: decoded again
+    compare("channels not packed");
+    rs.pack_channels = true;
+    rs.debug = DebugChannel::BaseColor;
+    compare("debug view: the base colour as stored");
+    rs.debug = DebugChannel::Occlusion;
+    compare("debug view: the occlusion (never released)");
+    // The scene's images stay released: what was decoded again is the renderer's own copy.
+    EXPECT_TRUE(released.images[0].released());
+}
+
 // A material that reads more maps than the texture units hold: with the limit at the 16 units
 // OpenGL 3.3 and ES 3.0 guarantee, its last maps in MaterialMap order go unread (the newest
 // extensions' first), with no GL error, and the frame is the one of the material without them.

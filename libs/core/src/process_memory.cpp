@@ -4,6 +4,10 @@
 #include <fstream>
 #include <string>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 namespace fresnel {
 
 namespace {
@@ -19,5 +23,13 @@ double status_mib(const char* name) {
 
 double resident_mib() { return status_mib("VmRSS"); }
 double peak_resident_mib() { return status_mib("VmHWM"); }
+
+void keep_freed_memory_for_reuse() {
+#if defined(__GLIBC__)
+    mallopt(M_ARENA_MAX, 1);
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's most (HEAP_MAX_SIZE / 2 on 64-bit)
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
+#endif
+}
 
 }  // namespace fresnel

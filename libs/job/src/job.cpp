@@ -27,8 +27,8 @@ std::size_t mib_bytes(float mib) {
 namespace {
 void check_animation(const Job& job, const Scene& scene, Diagnostics& diag);
 
-Scene load_unposed(const Job& job, Diagnostics& diag) {
-    if (!job.source.models.empty()) return load_models(job, diag);
+Scene load_unposed(const Job& job, Diagnostics& diag, LoadKeep keep) {
+    if (!job.source.models.empty()) return load_models(job, diag, keep);
     if (job.source.model.empty()) return make_demo_scene();
     if (is_obj_path(job.source.model)) {
         ObjLoadOptions oo;
@@ -42,6 +42,7 @@ Scene load_unposed(const Job& job, Diagnostics& diag) {
     GltfLoadOptions lo;
     lo.allow_external_files = job.source.allow_external_files;
     if (job.source.max_memory_mib > 0) lo.max_total_bytes = lo.max_geometry_bytes = mib_bytes(job.source.max_memory_mib);
+    lo.keep_encoded_images = keep.encoded_images;
     lo.pose_skins = job.source.pose_skins && !job.source.animation.posed();  // animated skins pose from the bind pose
     Scene scene = load_gltf(job.source.model, diag, lo);
     if (!job.source.variant.empty()) apply_material_variant(scene, find_material_variant(scene, job.source.variant));
@@ -53,8 +54,8 @@ Scene load_unposed(const Job& job, Diagnostics& diag) {
 }
 }  // namespace
 
-Scene load_scene(const Job& job, Diagnostics& diag) {
-    Scene scene = load_unposed(job, diag);
+Scene load_scene(const Job& job, Diagnostics& diag, LoadKeep keep) {
+    Scene scene = load_unposed(job, diag, keep);
     const Job::Source::Animation& a = job.source.animation;
     if (a.posed() && job.source.models.empty()) {  // several models: each was posed as it loaded
         check_animation(job, scene, diag);
@@ -76,10 +77,10 @@ void check_animation(const Job& job, const Scene& scene, Diagnostics& diag) {
 }
 }  // namespace
 
-Scene load_rest_scene(const Job& job, Diagnostics& diag) {
+Scene load_rest_scene(const Job& job, Diagnostics& diag, LoadKeep keep) {
     Job rest = job;
     rest.source.animation = {};
-    Scene scene = load_scene(rest, diag);
+    Scene scene = load_scene(rest, diag, keep);
     check_animation(job, scene, diag);
     return scene;
 }

@@ -17,7 +17,7 @@ void apply_override(Material& m, const Job::Source::MaterialOverride& o) {
 
 }  // namespace
 
-Scene load_models(const Job& job, Diagnostics& diag) {
+Scene load_models(const Job& job, Diagnostics& diag, LoadKeep keep) {
     Scene merged = make_composite_scene(job.source.models.front().path);
     // A model named again (the same file, scene and material overrides) is loaded once and
     // placed again (append_instance): its data is held and uploaded once.
@@ -41,7 +41,7 @@ Scene load_models(const Job& job, Diagnostics& diag) {
         one.source.max_memory_mib = job.source.max_memory_mib;
         one.source.animation = job.source.animation;
         one.source.disabled = job.source.disabled;
-        Scene scene = load_scene(one, diag);
+        Scene scene = load_scene(one, diag, keep);
         const std::string name = m.path.empty() ? std::string("demo") : m.path;
         for (const auto& o : m.materials) {
             if (o.index) {

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <cassert>
@@ -574,9 +575,25 @@ struct Renderer::Impl {
             return ao.texture;  // glTF's ORM packing: one texture already
         return stored_alike(mr, ao) ? ao.texture : -1;
     }
+    // A texture's image as stored (its size; its pixels may have been released: pixels_of).
     const Image8& image_of(int texture) const {
         return scene->images[std::size_t(scene->textures[std::size_t(texture)].image)].pixels;
     }
+    // A texture's image with its pixels: as loaded, or decoded again where set_scene released
+    // them (ImageResidency::GpuOnly) and a texture not made then is asked for (kept until the
+    // next set_scene).
+    const Image8& pixels_of(int texture) const {
+        const int image = scene->textures[std::size_t(texture)].image;
+        const SceneImage& im = scene->images[std::size_t(image)];
+        if (!im.released()) return im.pixels;
+        std::lock_guard lock(redecode_mutex);
+        auto it = redecoded.find(image);
+        if (it == redecoded.end()) it = redecoded.emplace(image, decode_again(im)).first;
+        return it->second;
+    }
+    mutable std::mutex redecode_mutex;
+    mutable std::map<int, Image8> redecoded;  // image index -> its pixels decoded again
+    Scene* releasing = nullptr;  // set_scene with ImageResidency::GpuOnly: the scene whose images upload_textures releases
     // Whether the texels of maps `a` and `b` can share one texture, channel by channel (the
     // renderer's packings, occlusion_packs and alpha_packs): both usable, on one UV set through
     // one transform, textures with one sampler and RGBA images of one size.
@@ -589,11 +606,15 @@ struct Renderer::Impl {
     }
     // The level-0 image of a packed key: the texture's image with the source's channel copied in.
     Image8 packed_image(const TextureKey& key) const {
-        Image8 out = image_of(key.texture);
-        const Image8& src = image_of(key.source);
+        Image8 out = pixels_of(key.texture);
+        pack_into(out, key);
+        return out;
+    }
+    // The source's channel copied into `out` (the texture's image, or a copy of it).
+    void pack_into(Image8& out, const TextureKey& key) const {
+        const Image8& src = pixels_of(key.source);
         for (std::size_t i = 0, n = std::size_t(out.width) * std::size_t(out.height); i < n; ++i)
             out.pixels[i * 4 + std::size_t(key.to)] = src.pixels[i * 4 + std::size_t(key.from)];
-        return out;
     }
 
     // Where an opaque metallic-roughness material's metallic-roughness texture can live in
@@ -645,7 +666,7 @@ struct Renderer::Impl {
             local_packed = packed_image(key);
             packed = &local_packed;
         }
-        const Image8& img = packed ? *packed : scene->images[std::size_t(tex.image)].pixels;
+        const Image8& img = packed ? *packed : pixels_of(key.texture);
         auto format = key.srgb ? gpu::TextureFormat::SRGB8_ALPHA8 : gpu::TextureFormat::RGBA8;
         GpuTexture g;
         g.mipmapped = wants_mipmaps(tex.sampler);
@@ -680,18 +701,49 @@ struct Renderer::Impl {
         }
         std::sort(keys.begin(), keys.end());
         keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+        // A releasing set_scene (ImageResidency::GpuOnly) frees each image once nothing left
+        // to upload reads it, so that the driver's copies reuse its memory: an image that one
+        // packed key alone reads becomes that key's packed image in place (no copy: decode_again
+        // gives the stored one back); the images only packed copies read, before the first
+        // upload; the others after the last key that uploads them.
+        auto image_of_key = [&](int texture) { return scene->textures[std::size_t(texture)].image; };
+        std::map<int, int> readers;  // image -> keys that read it
+        for (const TextureKey& k : keys) {
+            ++readers[image_of_key(k.texture)];
+            if (k.packed()) ++readers[image_of_key(k.source)];
+        }
+        std::vector<Image8*> in_place(keys.size(), nullptr);  // the scene's image packed in place
+        std::map<int, std::size_t> release_after;  // image -> how many keys are uploaded when it goes
+        if (releasing)
+            for (std::size_t i = 0; i < keys.size(); ++i) {
+                const int image = image_of_key(keys[i].texture);
+                SceneImage& stored = releasing->images[std::size_t(image)];
+                const bool own = keys[i].packed() && readers[image] == 1 && !stored.released() && stored.encoded;
+                if (own) in_place[i] = &stored.pixels;
+                std::size_t& after = release_after[image];
+                if (!keys[i].packed() || own) after = std::max(after, i + 1);
+                if (keys[i].packed()) release_after.try_emplace(image_of_key(keys[i].source), 0);
+            }
         std::vector<std::vector<Image8>> chains(keys.size());
         std::vector<Image8> packed(keys.size());
         parallel_for(keys.size(), [&](std::size_t i) {
             const Texture& tex = scene->textures[std::size_t(keys[i].texture)];
-            if (keys[i].packed()) packed[i] = packed_image(keys[i]);
-            const Image8& img = keys[i].packed() ? packed[i] : scene->images[std::size_t(tex.image)].pixels;
+            if (in_place[i]) pack_into(*in_place[i], keys[i]);
+            else if (keys[i].packed()) packed[i] = packed_image(keys[i]);
+            const Image8& img = in_place[i] ? *in_place[i] : keys[i].packed() ? packed[i] : pixels_of(keys[i].texture);
             if (wants_mipmaps(tex.sampler)) chains[i] = build_mip_chain(img, keys[i].srgb);
         });
+        auto release = [&](std::size_t uploaded) {
+            for (const auto& [image, after] : release_after)
+                if (after == uploaded) releasing->images[std::size_t(image)].release_pixels();
+        };
+        if (releasing) release(0);
         for (std::size_t i = 0; i < keys.size(); ++i) {
-            textures.emplace(keys[i], make_texture(keys[i], &chains[i], keys[i].packed() ? &packed[i] : nullptr));
+            const Image8* level0 = in_place[i] ? in_place[i] : keys[i].packed() ? &packed[i] : nullptr;
+            textures.emplace(keys[i], make_texture(keys[i], &chains[i], level0));
             chains[i] = {};
             packed[i] = {};
+            if (releasing) release(i + 1);
         }
     }
 
@@ -1574,7 +1626,14 @@ struct Renderer::Impl {
 Renderer::Renderer(gpu::Context& context) : impl_(std::make_unique<Impl>(context)) {}
 Renderer::~Renderer() = default;
 
+void Renderer::set_scene(Scene& scene, int scene_index, ImageResidency residency) {
+    impl_->releasing = residency == ImageResidency::GpuOnly ? &scene : nullptr;
+    set_scene(static_cast<const Scene&>(scene), scene_index);
+    impl_->releasing = nullptr;
+}
+
 void Renderer::set_scene(const Scene& scene, int scene_index) {
+    impl_->redecoded.clear();
     impl_->unbind_occlusion();
     impl_->occlusion.clear();
     impl_->occlusion_draw_count = 0;

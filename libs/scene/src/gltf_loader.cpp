@@ -427,6 +427,8 @@ private:
                 } catch (const Error& e) {
                     errors[i] = e.reason();
                 }
+                if (opt_.keep_encoded_images && errors[i].empty())
+                    scene_.images[i].encoded = std::make_shared<const std::vector<std::uint8_t>>(std::move(encoded[i]));
                 encoded[i] = {};
             },
             opt_.threads);

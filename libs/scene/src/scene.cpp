@@ -1,10 +1,37 @@
 #include "fresnel/scene/scene.h"
 
+#include <algorithm>
+#include <span>
+
 #include <glm/geometric.hpp>
 
+#include "fresnel/core/error.h"
 #include "fresnel/scene/mesh_ops.h"
+#include "webp_decoder.h"
 
 namespace fresnel {
+
+bool SceneImage::release_pixels() {
+    if (!valid() || !encoded || encoded->empty()) return false;
+    std::vector<std::uint8_t>().swap(pixels.pixels);
+    return true;
+}
+
+Image8 decode_again(const SceneImage& image) {
+    if (!image.encoded || image.encoded->empty())
+        throw Error(image.name, "", "the decoded image was released and its encoded bytes were not kept");
+    const std::span<const std::uint8_t> bytes(*image.encoded);
+    // The bytes decoded within the load's limits once; these limits admit their own size.
+    ImageLimits limits;
+    limits.max_dimension = std::max({limits.max_dimension, image.pixels.width, image.pixels.height});
+    limits.max_decoded_bytes = std::max(limits.max_decoded_bytes, std::size_t(image.pixels.width) * std::size_t(image.pixels.height) * 4);
+    Image8 out = gltf::is_webp(bytes) ? gltf::decode_webp(bytes, image.name, limits) : decode_image8(bytes, image.name, limits);
+    if (out.width != image.pixels.width || out.height != image.pixels.height)
+        throw Error(image.name, "", "decoded again to " + std::to_string(out.width) + "x" + std::to_string(out.height) +
+                                        ", not the " + std::to_string(image.pixels.width) + "x" +
+                                        std::to_string(image.pixels.height) + " first decoded");
+    return out;
+}
 
 std::size_t Primitive::triangle_count() const {
     if (topology != Topology::Triangles) return 0;

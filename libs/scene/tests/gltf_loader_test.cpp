@@ -1326,6 +1326,50 @@ TEST(GltfGlb, BinChunkWithGeometryAndImage) {
     EXPECT_EQ(d.total(), 0u) << all_warnings(d);
 }
 
+// GltfLoadOptions::keep_encoded_images keeps each image's bytes (SceneImage::encoded, off by
+// default); release_pixels frees the decoded pixels (the size stays) only where they are kept,
+// and decode_again gives them back as first decoded, or names the image when it cannot.
+TEST(GltfGlb, KeptEncodedImagesDecodeAgain) {
+    Image8 pixels;
+    auto png = make_png(4, 3, &pixels);
+    Doc doc;
+    int pos = doc.positions(kQuad);
+    int img_view = doc.view(png);
+    int ind = doc.indices(UNSIGNED_SHORT, {0, 1, 2, 0, 2, 3});
+    doc.j["images"] = json::array({{{"bufferView", img_view}, {"mimeType", "image/png"}, {"name", "quad colour"}}});
+    doc.j["textures"] = json::array({{{"source", 0}}});
+    doc.j["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    doc.mesh({{"attributes", {{"POSITION", pos}}}, {"indices", ind}, {"material", 0}});
+    const auto glb = doc.glb();
+    Diagnostics d;
+    Scene plain = load(glb, d);
+    ASSERT_TRUE(plain.images.at(0).valid());
+    EXPECT_EQ(plain.images[0].encoded, nullptr);
+    EXPECT_FALSE(plain.images[0].release_pixels());  // nothing to decode again from: kept
+    EXPECT_EQ(plain.images[0].pixels.pixels, pixels.pixels);
+    try {
+        (void)decode_again(plain.images[0]);
+        FAIL() << "decoded an image without its bytes";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("quad colour"), std::string::npos) << e.what();
+    }
+
+    GltfLoadOptions keep;
+    keep.keep_encoded_images = true;
+    Scene s = load(glb, d, keep);
+    ASSERT_TRUE(s.images.at(0).encoded);
+    EXPECT_EQ(*s.images[0].encoded, png);
+    EXPECT_TRUE(s.images[0].release_pixels());
+    EXPECT_TRUE(s.images[0].released());
+    EXPECT_TRUE(s.images[0].valid());
+    EXPECT_EQ(s.images[0].pixels.width, 4);
+    EXPECT_TRUE(s.images[0].pixels.pixels.empty());
+    EXPECT_EQ(decode_again(s.images[0]).pixels, pixels.pixels);
+    Scene copy = s;  // copies share the bytes
+    EXPECT_EQ(copy.images[0].encoded.get(), s.images[0].encoded.get());
+    EXPECT_EQ(d.total(), 0u) << all_warnings(d);
+}
+
 TEST(GltfGlb, JsonOnlyGlbAndBadHeaders) {
     Doc doc;
     doc.j["nodes"] = json::array({{{"name", "only"}}});

@@ -188,17 +188,22 @@ struct Job {
 // with Source::models, every visible model merged into one scene (load_models); posed at
 // Source::animation when it asks for a time (on the CPU, fresnel/scene/pose.h). Front ends that
 // pose the scene themselves load it with load_rest_scene.
-Scene load_scene(const Job& job, Diagnostics& diag);
+// `keep`: what the loaders keep beyond the scene (SceneImage::encoded: a one-shot render that
+// frees decoded images once uploaded, Renderer::set_scene's ImageResidency).
+struct LoadKeep {
+    bool encoded_images = false;
+};
+Scene load_scene(const Job& job, Diagnostics& diag, LoadKeep keep = {});
 
 // The job's scene at rest, for front ends that pose it themselves (a frame sequence, the
 // viewer's and the page's playback: fresnel/render/scene_posing.h): load_scene with the
 // animation unset, the job's Source::animation checked against it (an animation index the file
 // lacks throws fresnel::Error naming the file; a file without animations warns).
-Scene load_rest_scene(const Job& job, Diagnostics& diag);
+Scene load_rest_scene(const Job& job, Diagnostics& diag, LoadKeep keep = {});
 
 // Source::models: each visible model loaded (through load_scene), its material overrides
 // applied, put under a root with its transform. Throws fresnel::Error (the model's file).
-Scene load_models(const Job& job, Diagnostics& diag);
+Scene load_models(const Job& job, Diagnostics& diag, LoadKeep keep = {});
 
 // Everything the renderer needs for one job on one scene.
 struct ResolvedJob {

@@ -89,6 +89,17 @@ public:
     // Uploads meshes and textures of `scene` (index -1: its default scene). The scene
     // must outlive the renderer's use of it.
     void set_scene(const Scene& scene, int scene_index = -1);
+    // What set_scene does with the scene's decoded images once their textures are on the GPU.
+    enum class ImageResidency {
+        Keep,     // nothing: the scene stays as loaded (the viewer, batch, Python)
+        // Each image whose encoded bytes the loader kept (SceneImage::encoded) is released
+        // (SceneImage::release_pixels) as soon as the textures made from it are uploaded, so the
+        // GPU driver's copies reuse its memory (a one-shot render: llvmpipe's texture storage is
+        // process memory). A later texture that needs a released image (a frame with other
+        // settings: a debug view, another shading model) decodes it again (decode_again).
+        GpuOnly,
+    };
+    void set_scene(Scene& scene, int scene_index, ImageResidency residency);
     // Baked visibility of the environment per vertex (`--ao baked`: trace::bake_vertex_occlusion
     // of the scene set_scene uploaded, in its current pose), copied to the GPU: image-based and
     // ambient light at those vertices is occluded by it (with the material's occlusion texture,

@@ -32,6 +32,9 @@ struct GltfLoadOptions {
     // With decode_images false: still read each image's bytes for its header (SceneImage::header,
     // encoded_bytes), as fresnel info lists formats and sizes.
     bool read_image_headers = false;
+    // Keep each decoded image's encoded bytes (SceneImage::encoded), so that a renderer can
+    // release the decoded pixels once they are on the GPU (a one-shot `fresnel render`).
+    bool keep_encoded_images = false;
     // false (fresnel info): an unsupported extension in extensionsRequired is a warning, not
     // an error, so the file can still be described.
     bool require_supported_extensions = true;

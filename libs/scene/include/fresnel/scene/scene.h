@@ -5,6 +5,7 @@
 // consumers never see raw glTF accessors.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -52,10 +53,25 @@ struct SceneImage {
     // format and size (peek_image_header), and its encoded size.
     ImageHeader header;
     std::size_t encoded_bytes = 0;
+    // The file's bytes, kept when the loader was asked to (GltfLoadOptions::keep_encoded_images):
+    // then `pixels.pixels` may be released once the image is on the GPU (width and height stay,
+    // released() says so) and decode_again gives the pixels back. Shared: copies of a scene
+    // share the bytes, not the decoded pixels.
+    std::shared_ptr<const std::vector<std::uint8_t>> encoded;
     SceneImage() = default;
     SceneImage(std::string image_name, Image8 image) : name(std::move(image_name)), pixels(std::move(image)) {}
     bool valid() const { return pixels.width > 0; }
+    // Whether the decoded pixels were let go (release_pixels): read them with decode_again.
+    bool released() const { return valid() && pixels.pixels.empty(); }
+    // Frees the decoded pixels where the encoded bytes can give them back; false (nothing freed)
+    // where they cannot.
+    bool release_pixels();
 };
+
+// A released image's pixels decoded again from its encoded bytes, as the loader decoded them
+// (8-bit RGBA; WebP, PNG, JPEG, KTX2). Throws fresnel::Error naming the image when it holds no
+// encoded bytes or they no longer decode to its size.
+Image8 decode_again(const SceneImage& image);
 
 enum class Topology { Points, Lines, LineLoop, LineStrip, Triangles };
 
