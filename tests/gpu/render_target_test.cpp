@@ -361,6 +361,30 @@ Image8 noise_image(std::uint32_t seed) {
     }
     return img;
 }
+
+// A material reading five maps (textures 0-4): base colour, metallic-roughness, normal,
+// emissive and, with `occlusion`, occlusion.
+Material five_map_material(bool occlusion) {
+    Material m;
+    m.base_color_factor = glm::vec4(0.9f, 0.8f, 0.7f, 1.0f);
+    m.emissive_factor = glm::vec3(0.5f);
+    m.base_color.texture = 0;
+    m.metallic_roughness.texture = 1;
+    m.normal.texture = 2;
+    m.emissive.texture = 3;
+    if (occlusion) {
+        m.occlusion.texture = 4;
+        m.occlusion_strength = 0.8f;
+    }
+    return m;
+}
+
+// A normal map of noise: z up, x and y random.
+Image8 noise_normals(std::uint32_t seed) {
+    Image8 normals = noise_image(seed);
+    for (std::size_t i = 2; i < normals.pixels.size(); i += 4) normals.pixels[i] = 255;
+    return normals;
+}
 }  // namespace
 
 // The occlusion read from the metallic-roughness texture's R channel (the renderer's packing of
@@ -436,21 +460,10 @@ TEST_F(RenderTargets, MetallicRoughnessInAlphaIsTheSameImage) {
     if (!start()) GTEST_SKIP() << why_;
     Image8 flat_occlusion(64, 64, 4);
     for (std::size_t i = 0; i < flat_occlusion.pixels.size(); ++i) flat_occlusion.pixels[i] = i % 4 == 0 ? 90 : 255;
-    Image8 normals = noise_image(3);
-    for (std::size_t i = 2; i < normals.pixels.size(); i += 4) normals.pixels[i] = 255;  // z up, xy noise
+    const Image8 normals = noise_normals(3);
     enum Case { Plain, WithOcclusion, Blended, OtherUvSet };
     auto scene_with = [&](Case c) {
-        Material m;
-        m.base_color_factor = glm::vec4(0.9f, 0.8f, 0.7f, 1.0f);
-        m.emissive_factor = glm::vec3(0.5f);
-        m.base_color.texture = 0;
-        m.metallic_roughness.texture = 1;
-        m.normal.texture = 2;
-        m.emissive.texture = 3;
-        if (c == WithOcclusion) {
-            m.occlusion.texture = 4;
-            m.occlusion_strength = 0.8f;
-        }
+        Material m = five_map_material(c == WithOcclusion);
         if (c == Blended) m.alpha_mode = AlphaMode::Blend;
         if (c == OtherUvSet) m.normal.tex_coord = 1;
         Primitive p = make_uv_sphere(48, 24);
@@ -518,23 +531,12 @@ TEST_F(RenderTargets, MetallicRoughnessInAlphaIsTheSameImage) {
 // images again. An image without encoded bytes stays.
 TEST_F(RenderTargets, ReleasedImagesDrawTheSameFrames) {
     if (!start()) GTEST_SKIP() << why_;
-    Material m;
-    m.base_color_factor = glm::vec4(0.9f, 0.8f, 0.7f, 1.0f);
-    m.emissive_factor = glm::vec3(0.5f);
-    m.base_color.texture = 0;
-    m.metallic_roughness.texture = 1;
-    m.normal.texture = 2;
-    m.emissive.texture = 3;
-    m.occlusion.texture = 4;
-    m.occlusion_strength = 0.8f;
     Primitive p = make_uv_sphere(48, 24);
     for (auto& uv : p.uv0) uv *= 3.0f;
     ASSERT_TRUE(generate_tangents(p, 0));
     p.material = 0;
-    Image8 normals = noise_image(3);
-    for (std::size_t i = 2; i < normals.pixels.size(); i += 4) normals.pixels[i] = 255;
-    Scene kept = make_single_primitive_scene(std::move(p), {m});
-    kept.images = {{"base colour", noise_image(1)}, {"metallic-roughness", noise_image(2)}, {"normal", normals},
+    Scene kept = make_single_primitive_scene(std::move(p), {five_map_material(true)});
+    kept.images = {{"base colour", noise_image(1)}, {"metallic-roughness", noise_image(2)}, {"normal", noise_normals(3)},
                    {"emissive", noise_image(4)}, {"occlusion", noise_image(5)}};
     kept.textures = {{0, {}}, {1, {}}, {2, {}}, {3, {}}, {4, {}}};
     Scene released = kept;
