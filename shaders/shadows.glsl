@@ -7,7 +7,11 @@
 // off the surface along the geometric normal by about a texel of the map there (normal offset),
 // the depth pass adds a slope-scaled bias: neither acne nor shadows detached from their casters.
 // FRAME_SHADOWS 1: one probe (hard); 2: four probes on a disk turned per pixel (soft edges a
-// few texels wide). Without FRAME_SHADOWS every light is unshadowed.
+// few texels wide); 3: as 2, and a point or spot light with a bulb radius (u_light_shadow[i].z)
+// casts contact-hardening shadows (percentage-closer soft shadows, Fernando 2005): the mean
+// depth of the blockers found around the point sets the width of the filter, sharp where a
+// caster touches its shadow and wider away from it. Without FRAME_SHADOWS every light is
+// unshadowed.
 #include "frame_block.glsl"
 
 #if defined(FRAME_SHADOWS) && FRAME_SHADOWS > 0
@@ -37,6 +41,51 @@ int shadow_tile(int i, vec3 p) {
 // Interleaved gradient noise (Jimenez 2014): a per-pixel angle for the soft filter's disk.
 float shadow_noise(vec2 pixel) { return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715)))); }
 
+#if FRAME_SHADOWS == 3
+uniform highp sampler2D u_shadow_depth;  // the same atlas read as depths (no comparison)
+
+// A perspective tile's depth (0..1) as the distance along its axis (params.zw: near, far).
+float shadow_distance(vec4 params, float depth) {
+    float n = params.z, f = params.w;
+    return 2.0 * f * n / ((f + n) - (2.0 * depth - 1.0) * (f - n));
+}
+
+// Contact-hardening shadows of a bulb of radius `bulb` seen from its map's centre: the blockers
+// within reach on twelve taps of a disk turned by `turn` (nearest depths), then the filter
+// that their mean distance d_b gives a receiver at d_r: a penumbra bulb (d_r - d_b) / d_b wide
+// there, in texels of tau d_r (tau: the map's texel at unit distance). Twelve probes of the
+// hardware's 2x2 filter on the same disk (a Vogel spiral), at least the soft filter's radius, at
+// most 32 texels (against the tracer's bulb on tests/data/shadows at 384^2: a 0.5 m bulb 37.2 dB
+// with 32, 35.1 dB with 16, 36.3 dB with 64: the twelve probes spread too thin).
+float contact_hardening(vec4 params, vec2 uv, float depth, vec2 lo, vec2 hi, float bulb, mat2 turn) {
+    const vec2 kVogel[12] = vec2[12](vec2(0.204, 0.000), vec2(-0.261, 0.239), vec2(0.040, -0.455), vec2(0.329, 0.429),
+                                     vec2(-0.603, -0.107), vec2(0.571, -0.363), vec2(-0.191, 0.711), vec2(-0.364, -0.702),
+                                     vec2(0.791, 0.289), vec2(-0.822, 0.339), vec2(0.396, -0.847), vec2(0.293, 0.934));
+    float tau = params.x, near = params.z;
+    float d_r = shadow_distance(params, depth);
+    vec2 atlas_texel = u_shadow_atlas_info.xy;
+    // Blockers at distance d occlude from the bulb's edge (bulb (d_r - d) / (d d_r tau) texels
+    // off): searched out to those a tenth of the way to the receiver, or at the map's near plane.
+    float reach_distance = max(near, 0.1 * d_r);
+    float search = clamp(bulb * (d_r - reach_distance) / (reach_distance * d_r * tau), 1.0, 32.0);
+    float blockers = 0.0, sum = 0.0;
+    for (int k = 0; k < 12; ++k) {
+        float z = texture(u_shadow_depth, clamp(uv + atlas_texel * (turn * kVogel[k]) * search, lo, hi)).r;
+        if (z < depth) {
+            sum += shadow_distance(params, z);
+            blockers += 1.0;
+        }
+    }
+    if (blockers == 0.0) return 1.0;
+    float d_b = sum / blockers;
+    float width = clamp(bulb * (d_r - d_b) / (d_b * d_r * tau), u_shadow_atlas_info.z, 32.0);
+    float lit = 0.0;
+    for (int k = 0; k < 12; ++k)
+        lit += texture(u_shadow_atlas, vec3(clamp(uv + atlas_texel * (turn * kVogel[k]) * width, lo, hi), depth));
+    return lit / 12.0;
+}
+#endif
+
 // The fraction of light i that reaches `p` (1: lit), `ng` the geometric normal, `l` the
 // direction to the light.
 float shadow_visibility(int i, vec3 p, vec3 ng, vec3 l) {
@@ -65,6 +114,10 @@ float shadow_visibility(int i, vec3 p, vec3 ng, vec3 l) {
     const vec2 kDisk[4] = vec2[4](vec2(-0.840, -0.074), vec2(0.962, -0.195), vec2(0.519, 0.767), vec2(-0.322, -0.933));
     float angle = 6.2831853 * shadow_noise(gl_FragCoord.xy);
     float cs = cos(angle), sn = sin(angle);
+#if FRAME_SHADOWS == 3
+    float bulb = u_light_shadow[i].z;
+    if (bulb > 0.0) return contact_hardening(params, uv, s.z, lo, hi, bulb, mat2(cs, sn, -sn, cs));
+#endif
     // An area light's penumbra widens with its size: the disk grows by the light's half extent
     // over the texel here (as if its blockers stood halfway to it; at most 6 texels in all).
     float radius = u_shadow_atlas_info.z;

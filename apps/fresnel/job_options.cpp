@@ -165,7 +165,9 @@ void add_job_flags(CLI::App* cmd, RenderOptions& opts, JobFlagSet set) {
     cmd->add_option("--light", opts.lights,
                     "Add a light: dir:AZIMUTH,ELEVATION,LUX[,R,G,B] (arriving from that direction), "
                     "point:X,Y,Z,CANDELA[,R,G,B], spot:X,Y,Z,AZIMUTH,ELEVATION,CANDELA,INNER,OUTER[,R,G,B] "
-                    "(shining as a dir light from AZIMUTH,ELEVATION; cone half-angles in degrees), or an area light "
+                    "(shining as a dir light from AZIMUTH,ELEVATION; cone half-angles in degrees; point and spot "
+                    "lights take a last ,radius=R: the bulb their contact-hardening soft shadows come from, metres), "
+                    "or an area light "
                     "(luminance in nits): rect:X,Y,Z,AZIMUTH,ELEVATION,WIDTH,HEIGHT,NITS[,R,G,B] or "
                     "disk:X,Y,Z,AZIMUTH,ELEVATION,RADIUS,NITS[,R,G,B] (one-sided, facing as a spot light aims) or "
                     "sphere:X,Y,Z,RADIUS,NITS[,R,G,B] or tube:X,Y,Z,AZIMUTH,ELEVATION,LENGTH,RADIUS,NITS[,R,G,B] (its axis "

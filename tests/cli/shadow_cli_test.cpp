@@ -97,6 +97,31 @@ TEST_F(Shadows, AreaLightsLightAndShadowAsTheTracersDo) {
     }
 }
 
+// A point or spot light with a bulb radius (--light ...,radius=R): the rasteriser's
+// contact-hardening shadows against the tracer's shadows of a sphere of that radius, direct light
+// only, and the same light's shadows without the radius (the soft filter alone). Measured at
+// 160^2 / 48 spp with a 0.3 m bulb: point 36.7 dB against 32.9 dB, spot 38.0 dB against 35.5 dB.
+TEST_F(Shadows, BulbRadiusHardensShadowsAtContactAsTheTracersDo) {
+    const fs::path scene = kScenes / "shadow-directional.gltf";
+    for (const char* light : {"point:0.6,3,1.2,40", "spot:-1.5,3.5,2.5,-24.8,48,60,20,34"}) {
+        const std::string bulb = std::string(light) + ",radius=0.3";
+        const fs::path truth = dir_ / "trace.png", hardening = dir_ / "bulb.png", point = dir_ / "point.png";
+        Result r = run(with({"trace", scene.string(), "-o", truth.string(), "--spp", "48", "--max-bounces", "1",
+                             "--no-scene-lights", "--light", bulb},
+                            kView));
+        ASSERT_EQ(r.exit_code, 0) << show(r);
+        r = run(with({"render", scene.string(), "-o", hardening.string(), "--no-scene-lights", "--light", bulb}, kView));
+        ASSERT_EQ(r.exit_code, 0) << show(r);
+        r = run(with({"render", scene.string(), "-o", point.string(), "--no-scene-lights", "--light", light}, kView));
+        ASSERT_EQ(r.exit_code, 0) << show(r);
+        const double p_bulb = psnr(hardening, truth), p_point = psnr(point, truth);
+        std::printf("%s: with the bulb %.2f dB, without %.2f dB against trace --max-bounces 1\n", bulb.c_str(), p_bulb,
+                    p_point);
+        EXPECT_GE(p_bulb, 35.5) << bulb;
+        EXPECT_GE(p_bulb, p_point + 2.0) << bulb;
+    }
+}
+
 // A directional light's cascades: more of them and smaller maps still put the shadows in place;
 // the settings are checked (a cascade count outside 1..4 is an error naming the flag).
 TEST_F(Shadows, CascadesAndMapSizes) {

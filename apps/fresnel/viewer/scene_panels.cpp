@@ -152,8 +152,11 @@ void Viewer::draw_lights_panel() {
             ch |= ImGui::DragFloat(l.type == Light::Type::Directional ? "lux" : l.is_area() ? "nits" : "candela", &lum,
                                    0.01f * std::max(lum, 1.0f), 0.0f, 1e9f);
             if (ch) l.radiance = color * std::max(lum, 0.0f);
-            if (l.type == Light::Type::Point || l.type == Light::Type::Spot)
+            if (l.type == Light::Type::Point || l.type == Light::Type::Spot) {
                 ImGui::DragFloat("range (0: infinite)", &l.range, 0.01f * r, 0.0f, 1e6f);
+                // The bulb its soft shadows come from (contact hardening; 0: a point).
+                ImGui::DragFloat("bulb radius (0: point)", &l.radius, 0.002f * r, 0.0f, 1e6f);
+            }
             if (l.type == Light::Type::Spot) {
                 float inner = glm::degrees(l.inner_cone), outer = glm::degrees(l.outer_cone);
                 if (ImGui::DragFloatRange2("cone", &inner, &outer, 0.2f, 0.0f, 90.0f, "inner %.1f", "outer %.1f")) {

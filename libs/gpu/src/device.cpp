@@ -59,7 +59,15 @@ void Device::apply(const PipelineState& s) {
     else glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
 }
 
-void Device::bind_texture(int unit, const Texture& t) {
+void Device::bind_texture(int unit, const Texture& t, const SamplerObject* sampler) {
+    const std::uint64_t bit = unit >= 0 && unit < 64 ? std::uint64_t(1) << unit : 0;
+    if (sampler) {
+        glBindSampler(GLuint(unit), sampler->id());
+        units_with_sampler_ |= bit;
+    } else if (units_with_sampler_ & bit) {
+        glBindSampler(GLuint(unit), 0);
+        units_with_sampler_ &= ~bit;
+    }
     glActiveTexture(GLenum(GL_TEXTURE0 + unit));
     GLenum target = GL_TEXTURE_2D;
     if (t.kind() == Texture::Kind::Cube) target = GL_TEXTURE_CUBE_MAP;

@@ -195,6 +195,21 @@ Texture Texture::create_depth_2d(int width, int height, bool compare) {
     return t;
 }
 
+SamplerObject SamplerObject::depth_values() {
+    SamplerObject o;
+    glGenSamplers(1, &o.id_);
+    glSamplerParameteri(o.id_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glSamplerParameteri(o.id_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glSamplerParameteri(o.id_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(o.id_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(o.id_, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    return o;
+}
+
+SamplerObject::~SamplerObject() {
+    if (id_) glDeleteSamplers(1, &id_);
+}
+
 void Texture::generate_mipmaps() {
     glBindTexture(GL_TEXTURE_2D, id_);
     glGenerateMipmap(GL_TEXTURE_2D);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <glm/geometric.hpp>
 #include <sstream>
 
@@ -138,7 +139,21 @@ LightInstance parse_light(const std::string& spec) {
     std::vector<float> v;
     std::stringstream ss(spec.substr(colon + 1));
     std::string item;
+    std::optional<float> bulb;  // point and spot lights: a last item radius=R
     while (std::getline(ss, item, ',')) {
+        if (bulb) fail("radius=R comes last");
+        if (item.rfind("radius=", 0) == 0) {
+            try {
+                std::size_t used = 0;
+                const std::string value = item.substr(7);
+                float f = std::stof(value, &used);
+                if (used != value.size() || !std::isfinite(f) || f < 0.0f) fail("radius: '" + value + "' is not a length >= 0");
+                bulb = f;
+            } catch (const std::logic_error&) {
+                fail("radius: '" + item.substr(7) + "' is not a number");
+            }
+            continue;
+        }
         try {
             std::size_t used = 0;
             float f = std::stof(item, &used);
@@ -210,6 +225,11 @@ LightInstance parse_light(const std::string& spec) {
         fail("unknown light type '" + kind + "' (use dir, point, spot, rect, disk, sphere or tube)");
     }
     if (l.radiance.x < 0 || l.radiance.y < 0 || l.radiance.z < 0) fail("intensity and colour must not be negative");
+    if (bulb) {
+        if (l.type != Light::Type::Point && l.type != Light::Type::Spot)
+            fail("radius=R is for point and spot lights (the bulb their soft shadows come from)");
+        l.radius = *bulb;
+    }
     return l;
 }
 
@@ -226,11 +246,12 @@ std::string light_spec(const LightInstance& l) {
     const glm::vec3 from = -l.direction;
     const float el = std::asin(std::clamp(from.y, -1.0f, 1.0f)) * deg, az = std::atan2(from.x, from.z) * deg;
     const glm::vec3 p = l.position;
+    const std::string bulb = l.radius > 0.0f ? ",radius=" + shortest_text(l.radius) : "";
     switch (l.type) {
         case Light::Type::Directional: return "dir:" + nums({az, el, lum}) + rgb;
-        case Light::Type::Point: return "point:" + nums({p.x, p.y, p.z, lum}) + rgb;
+        case Light::Type::Point: return "point:" + nums({p.x, p.y, p.z, lum}) + rgb + bulb;
         case Light::Type::Spot:
-            return "spot:" + nums({p.x, p.y, p.z, az, el, lum, l.inner_cone * deg, l.outer_cone * deg}) + rgb;
+            return "spot:" + nums({p.x, p.y, p.z, az, el, lum, l.inner_cone * deg, l.outer_cone * deg}) + rgb + bulb;
         case Light::Type::Rect:
             return "rect:" + nums({p.x, p.y, p.z, az, el, 2.0f * glm::length(l.axis_u), 2.0f * glm::length(l.axis_v), lum}) + rgb;
         case Light::Type::Disk: return "disk:" + nums({p.x, p.y, p.z, az, el, glm::length(l.axis_u), lum}) + rgb;

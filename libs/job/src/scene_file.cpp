@@ -474,8 +474,13 @@ LightInstance read_light(const Reader& r, const json& l, const std::string& ptr)
     if (li.type != Light::Type::Rect)
         for (const char* key : {"width", "height"})
             if (r.find(l, key)) r.fail(at(ptr, key), "is for rect lights");
-    if (li.type != Light::Type::Disk && li.type != Light::Type::Sphere && li.type != Light::Type::Tube && r.find(l, "radius"))
-        r.fail(at(ptr, "radius"), "is for disk, sphere and tube lights");
+    if (li.type == Light::Type::Point || li.type == Light::Type::Spot) {
+        // A bulb radius: the light shades as a point and casts contact-hardening shadows.
+        if (const json* v = r.find(l, "radius")) li.radius = float(r.number(*v, at(ptr, "radius"), 0, 1e6));
+    } else if (li.type != Light::Type::Disk && li.type != Light::Type::Sphere && li.type != Light::Type::Tube &&
+               r.find(l, "radius")) {
+        r.fail(at(ptr, "radius"), "is for point, spot, disk, sphere and tube lights");
+    }
     if (auto* v = r.find(l, "name")) r.string(*v, at(ptr, "name"));
     return li;
 }
@@ -778,6 +783,7 @@ json light_json(const LightInstance& l) {
     }
     if (l.type == Light::Type::Disk) o["radius"] = num(glm::length(l.axis_u));
     if (l.type == Light::Type::Sphere || l.type == Light::Type::Tube) o["radius"] = num(l.radius);
+    if ((l.type == Light::Type::Point || l.type == Light::Type::Spot) && l.radius > 0.0f) o["radius"] = num(l.radius);
     if (l.type == Light::Type::Tube) o["length"] = num(2.0f * glm::length(l.axis_u));
     if (l.type == Light::Type::Spot) {
         o["innerConeAngle"] = num(l.inner_cone);

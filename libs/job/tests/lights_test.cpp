@@ -91,6 +91,24 @@ TEST(ParseLight, SpotForms) {
     expect_near(l.radiance, {4.0f, 2.0f, 0.0f}, 1e-6f, "colour times candela");
 }
 
+// A point or spot light's bulb (the last item radius=R): its soft shadows' size (the
+// rasteriser's contact hardening, the tracer's sphere), read back by light_spec; none by default.
+TEST(ParseLight, BulbRadiusOfPointAndSpotLights) {
+    LightInstance l = parse_light("point:1,2,3,40,radius=0.25");
+    EXPECT_EQ(l.type, Light::Type::Point);
+    EXPECT_FLOAT_EQ(l.radius, 0.25f);
+    expect_near(l.radiance, glm::vec3(40.0f), 1e-6f, "white, 40 cd");
+    EXPECT_EQ(light_spec(l), "point:1,2,3,40,radius=0.25");
+    EXPECT_EQ(parse_light(light_spec(l)), l);
+    l = parse_light("spot:0,3,0,0,90,60,20,34,1,0.5,0,radius=0.1");
+    EXPECT_EQ(l.type, Light::Type::Spot);
+    EXPECT_FLOAT_EQ(l.radius, 0.1f);
+    expect_near(l.radiance, {60.0f, 30.0f, 0.0f}, 1e-5f, "colour times candela");
+    EXPECT_EQ(parse_light(light_spec(l)).radius, 0.1f);
+    EXPECT_EQ(parse_light("point:1,2,3,40").radius, 0.0f);
+    EXPECT_EQ(light_spec(parse_light("point:1,2,3,40")), "point:1,2,3,40");
+}
+
 TEST(ParseLight, ErrorsNameTheOptionTheSpecAndTheReason) {
     struct Case {
         const char* spec;
@@ -121,6 +139,11 @@ TEST(ParseLight, ErrorsNameTheOptionTheSpecAndTheReason) {
         {"dir:30,45,1e99", "'1e99' is not a number"},
         {"dir:30,45,-3", "must not be negative"},
         {"point:0,0,0,1,1,-0.5,1", "must not be negative"},
+        {"point:0,1,0,10,radius=-0.1", "radius: '-0.1' is not a length >= 0"},
+        {"point:0,1,0,10,radius=x", "radius: 'x' is not a number"},
+        {"point:0,1,0,10,radius=0.1,1,1,1", "radius=R comes last"},
+        {"dir:30,45,3,radius=0.1", "radius=R is for point and spot lights"},
+        {"sphere:0,1,0,0.2,5,radius=0.1", "radius=R is for point and spot lights"},
     };
     for (const auto& c : cases) {
         try {

@@ -880,6 +880,7 @@ struct Renderer::Impl {
         const bool env = settings.environment != nullptr;
         return ((features & feature::Transmission) ? 1 : 0) + 1 + (env ? 2 : 0) +
                ((features & feature::Sheen) && env && env_sheen && charlie_lut ? 2 : 0) + (frame_shadows > 0 ? 1 : 0) +
+               (frame_shadows == kContactHardeningShadows ? 1 : 0) +
                (frame_area_lights ? 1 : 0) + (frame_ssao ? 1 : 0);
     }
 
@@ -967,7 +968,8 @@ struct Renderer::Impl {
             p.shadow_atlas = glm::vec4(1.0f / float(plan.atlas_width), 1.0f / float(plan.atlas_height),
                                        kSoftShadowRadius, 0.0f);
             for (std::size_t i = 0; i < plan.lights.size() && i < p.light_shadow.size(); ++i)
-                p.light_shadow[i] = glm::vec4(float(plan.lights[i].first_tile), float(plan.lights[i].tiles), 0, 0);
+                p.light_shadow[i] = glm::vec4(float(plan.lights[i].first_tile), float(plan.lights[i].tiles),
+                                              i < lights.size() ? bulb_radius(lights[i]) : 0.0f, 0);
             for (std::size_t t = 0; t < plan.tiles.size(); ++t) {
                 const ShadowTile& tile = plan.tiles[t];
                 p.shadow_matrix[t] = tile_lookup_matrix(tile);
@@ -975,7 +977,8 @@ struct Renderer::Impl {
                                              float(tile.rect.y) / float(plan.atlas_height),
                                              float(tile.rect.z) / float(plan.atlas_width),
                                              float(tile.rect.w) / float(plan.atlas_height));
-                p.shadow_params[t] = glm::vec4(tile.texel_world, float(ShadowPlan::kMarginTexels) / float(tile.rect.z), 0, 0);
+                p.shadow_params[t] =
+                    glm::vec4(tile.texel_world, float(ShadowPlan::kMarginTexels) / float(tile.rect.z), tile.near, tile.far);
             }
         }
         if (!frame_buffer) frame_buffer = gpu::UniformBuffer(sizeof(FrameBlock));
@@ -988,6 +991,14 @@ struct Renderer::Impl {
 
     // ---- Shadows (details/shadow_maps.h, shaders/shadows.glsl) ----
     static constexpr float kSoftShadowRadius = 1.5f;  // the soft filter's disk, in texels
+    // FRAME_SHADOWS 3: soft shadows whose lights include a point or spot light with a bulb
+    // radius (LightInstance::radius): contact-hardening (PCSS) for those, shadows.glsl.
+    static constexpr int kContactHardeningShadows = 3;
+    // The size a point or spot light's shadows come from (0: a point, the soft filter alone).
+    static float bulb_radius(const LightInstance& l) {
+        return (l.type == Light::Type::Point || l.type == Light::Type::Spot) && l.radius > 0.0f ? l.radius : 0.0f;
+    }
+    gpu::SamplerObject shadow_depth_sampler;  // the atlas read as depths (the blocker search)
     ShadowPlan shadow_plan;  // this frame's
     int frame_shadows = 0;   // this frame's FRAME_SHADOWS: int(Shadows) when its maps are drawn, else 0
     gpu::Texture shadow_atlas;
@@ -1011,7 +1022,12 @@ struct Renderer::Impl {
         scene_box.max += pad;
         plan_shadows(lights, std::min<int>(int(lights.size()), kMaxLights), cam, scene_box, s.shadow_map_size,
                      s.shadow_cascades, context.capabilities().max_texture_size, shadow_plan);
-        if (!shadow_plan.empty()) frame_shadows = int(s.shadows);
+        if (shadow_plan.empty()) return;
+        frame_shadows = int(s.shadows);
+        if (s.shadows == Shadows::Soft)
+            for (std::size_t i = 0; i < shadow_plan.lights.size() && i < lights.size(); ++i)
+                if (shadow_plan.lights[i].first_tile >= 0 && bulb_radius(lights[i]) > 0.0f)
+                    frame_shadows = kContactHardeningShadows;
     }
 
     // What the maps were last drawn from (shadow_inputs_key): a frame with the same plan, draws
@@ -1611,6 +1627,12 @@ struct Renderer::Impl {
             const int kShadowUnit = next_unit++;
             device.bind_texture(kShadowUnit, shadow_atlas);
             prog.set("u_shadow_atlas", kShadowUnit);
+            if (frame_shadows == kContactHardeningShadows) {
+                if (!shadow_depth_sampler) shadow_depth_sampler = gpu::SamplerObject::depth_values();
+                const int kShadowDepthUnit = next_unit++;
+                device.bind_texture(kShadowDepthUnit, shadow_atlas, &shadow_depth_sampler);
+                prog.set("u_shadow_depth", kShadowDepthUnit);
+            }
         }
         assert(next_unit <= unit_limit(settings));  // fixed_units counts what this packs
         bind_material_block(p.material, mu);

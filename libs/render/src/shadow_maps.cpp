@@ -121,6 +121,8 @@ ShadowTile perspective_tile(glm::vec3 eye, glm::vec3 dir, glm::vec3 up, float ha
     t.view_projection =
         glm::perspective(2.0f * std::atan(half_tan), 1.0f, near, far) * light_view(eye, glm::normalize(dir), up);
     t.texel_world = 2.0f * half_tan / float(tile);
+    t.near = near;
+    t.far = far;
     return t;
 }
 

@@ -646,7 +646,22 @@ struct Integrator {
                 if (f.x + f.y + f.z <= 0.0f) continue;
                 ++rays;
                 float tmax = std::isfinite(dist) ? dist * (1.0f - 1e-4f) : INFINITY;
-                if (!scene.occluded(behind ? offset_ray(p, -ng) : p_out, l, tmax, splitmix64(rng.next()))) L += beta * f;
+                // A point or spot light with a bulb radius shades as the point it is and casts
+                // the soft shadow of a sphere: the shadow ray goes to a uniform point of the
+                // sphere's disk as seen from here (the rasteriser's contact-hardening shadows).
+                glm::vec3 shadow_dir = l;
+                if (light.radius > 0.0f && std::isfinite(dist) &&
+                    (light.type == Light::Type::Point || light.type == Light::Type::Spot)) {
+                    const glm::vec2 u = rng.uniform2();
+                    const float r = light.radius * std::sqrt(u.x), phi = 6.28318531f * u.y;
+                    const glm::vec3 a = std::abs(l.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+                    const glm::vec3 t = glm::normalize(glm::cross(l, a)), b = glm::cross(l, t);
+                    const glm::vec3 target = l * dist + r * (std::cos(phi) * t + std::sin(phi) * b);
+                    const float target_dist = glm::length(target);
+                    shadow_dir = target / target_dist;
+                    tmax = target_dist * (1.0f - 1e-4f);
+                }
+                if (!scene.occluded(behind ? offset_ray(p, -ng) : p_out, shadow_dir, tmax, splitmix64(rng.next()))) L += beta * f;
             }
             glm::vec2 u_env = rng.uniform2();
             if (env) {

@@ -232,12 +232,14 @@ struct FrameVariant {
     int tone_mapper = 0;  // int(fresnel::ToneMapper)
     int encoding = 0;     // int(fresnel::Encoding); -1: none (linear radiance, the transmission pass)
     bool lights = true;   // punctual lights are bound (false: FRAME_NO_LIGHTS)
-    int shadows = 0;      // int(fresnel::Shadows) with lights and a shadow atlas bound (FRAME_SHADOWS), else 0
+    // int(fresnel::Shadows) with lights and a shadow atlas bound (FRAME_SHADOWS), 3 for soft
+    // shadows with contact hardening (a light with a bulb radius), else 0
+    int shadows = 0;
     bool area_lights = false;  // an area light shines (FRAME_AREA_LIGHTS: the LTC table is bound)
     bool ssao = false;         // screen-space occlusion is bound (FRAME_SSAO)
     // A small integer naming the variant (the shader caches' key).
     int key() const {
-        return ((((tone_mapper * 4 + encoding + 1) * 2 + (lights ? 1 : 0)) * 3 + shadows) * 2 + (area_lights ? 1 : 0)) * 2 +
+        return ((((tone_mapper * 4 + encoding + 1) * 2 + (lights ? 1 : 0)) * 4 + shadows) * 2 + (area_lights ? 1 : 0)) * 2 +
                (ssao ? 1 : 0);
     }
 };

@@ -32,6 +32,9 @@ struct ShadowTile {
     // The world size of one texel: orthographic maps a length, perspective ones a length per
     // unit of distance from the light (shadows.glsl's normal offset).
     float texel_world = 0.0f;
+    // A perspective map's depth range (the distances along its axis its depths 0..1 span, as
+    // glm::perspective maps them); 0, 0 for an orthographic map, whose depths are linear.
+    float near = 0.0f, far = 0.0f;
 };
 
 struct LightShadow {

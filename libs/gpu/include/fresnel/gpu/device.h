@@ -41,7 +41,9 @@ public:
     void no_scissor();
     void clear(glm::vec4 color, bool depth = true);
     void apply(const PipelineState& state);
-    void bind_texture(int unit, const Texture& texture);
+    // Binds `texture` to `unit`, sampled by its own state or, when given, by `sampler`'s (the
+    // unit's sampler object is unbound again by the next bind_texture without one).
+    void bind_texture(int unit, const Texture& texture, const SamplerObject* sampler = nullptr);
     void draw(const VertexArray& vao, Primitive mode, int count, bool indexed);
     // `instances` copies of the same draw (glDraw*Instanced; the VAO's per-instance attributes
     // step once per copy: VertexArray::set_instance_attribute).
@@ -63,6 +65,7 @@ public:
 
 private:
     VertexArray& empty_vao();
+    std::uint64_t units_with_sampler_ = 0;  // units 0..63 that have a sampler object bound
     std::unique_ptr<VertexArray> empty_vao_;
 };
 

@@ -188,6 +188,21 @@ private:
     bool linear_ = true;  // the magnification filter set: LINEAR (else NEAREST)
 };
 
+// A sampler object (OpenGL 3.3, OpenGL ES 3.0): sampling state bound to a texture unit
+// (Device::bind_texture's `sampler`) in place of the texture's own, so that one texture can be
+// read two ways at once from two units.
+class SamplerObject : public Handle {
+public:
+    SamplerObject() = default;
+    // A depth texture read as its depth values through a sampler2D (no comparison, the nearest
+    // texel, clamped to the edge): beside its sampler2DShadow reads (create_depth_2d), the
+    // blocker search of contact-hardening shadows.
+    static SamplerObject depth_values();
+    SamplerObject(SamplerObject&&) noexcept = default;
+    SamplerObject& operator=(SamplerObject&&) noexcept = default;
+    ~SamplerObject();
+};
+
 enum class RenderbufferFormat { RGBA16F, RGBA32F, RGBA8, Depth24 };
 
 class Renderbuffer : public Handle {

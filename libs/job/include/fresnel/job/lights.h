@@ -21,7 +21,9 @@ struct LightInstance {
     // plane the light faces out of, along `direction`; u x v = direction, so the corners p - u - v,
     // p + u - v, p + u + v, p - u + v run counter-clockwise seen from the lit side, as
     // fresnel/material/ltc.h wants them); a sphere's radius; a tube's half length along axis_u
-    // (its `direction` the axis's) and its radius.
+    // (its `direction` the axis's) and its radius. A point or spot light's radius: its bulb,
+    // which only its shadows see (contact-hardening in the rasteriser, a sphere's shadow in the
+    // tracer); 0: a point.
     glm::vec3 axis_u{0.5f, 0.0f, 0.0f}, axis_v{0.0f, 0.5f, 0.0f};
     float radius = 0.0f;
     bool operator==(const LightInstance&) const = default;
@@ -60,7 +62,9 @@ glm::vec3 light_incident(const LightInstance& light, glm::vec3 position, glm::ve
 // cone half-angles in degrees, 0 <= INNER < OUTER <= 90) and the area lights
 // "rect:X,Y,Z,AZ,EL,WIDTH,HEIGHT,NITS[,R,G,B]", "disk:X,Y,Z,AZ,EL,RADIUS,NITS[,R,G,B]" (facing
 // as a spot light aims), "sphere:X,Y,Z,RADIUS,NITS[,R,G,B]" and
-// "tube:X,Y,Z,AZ,EL,LENGTH,RADIUS,NITS[,R,G,B]" (its axis pointing towards AZ,EL).
+// "tube:X,Y,Z,AZ,EL,LENGTH,RADIUS,NITS[,R,G,B]" (its axis pointing towards AZ,EL). Point and
+// spot lights take a last item "radius=R": their bulb's radius (LightInstance::radius), which
+// softens their shadows (contact hardening) and leaves their shading a point's.
 // Throws fresnel::Error (file "--light") on malformed input.
 LightInstance parse_light(const std::string& spec);
 
