@@ -146,6 +146,11 @@ void Viewer::draw_lights_panel() {
                 if (ImGui::DragFloat("length", &length, 0.005f * r, 1e-4f, 1e6f)) l.axis_u = l.direction * (0.5f * std::max(length, 1e-4f));
             }
             if (l.type != Light::Type::Directional) ImGui::DragFloat3("position", &l.position.x, 0.01f * r);
+            if (l.type == Light::Type::Directional) {  // the angular radius its soft shadows come from
+                float angle = glm::degrees(l.radius);
+                if (ImGui::DragFloat("angular radius (0: one direction)", &angle, 0.02f, 0.0f, 20.0f, "%.2f deg"))
+                    l.radius = glm::radians(std::clamp(angle, 0.0f, 20.0f));
+            }
             float lum = std::max({l.radiance.x, l.radiance.y, l.radiance.z});
             glm::vec3 color = lum > 0.0f ? l.radiance / lum : glm::vec3(1.0f);
             bool ch = ImGui::ColorEdit3("colour", &color.x);

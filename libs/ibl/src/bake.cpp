@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-constexpr int kFormatVersion = 6;  // bump when the bake's output changes, to invalidate caches
+constexpr int kFormatVersion = 7;  // bump when the bake's output changes, to invalidate caches
 // Version 3 folders lack the table's A channel (5: the sheen albedo) and sheen.ktx2; they load,
 // and the channel is computed on load.
 constexpr int kSheenlessFormatVersion = 3;
@@ -171,6 +171,7 @@ void write_baked_files(const BakedIbl& ibl, const fs::path& dir, const BakeOptio
             {"direction", {l.direction.x, l.direction.y, l.direction.z}},
             {"irradiance", {l.irradiance.x, l.irradiance.y, l.irradiance.z}},
             {"solid_angle", l.solid_angle},
+            {"angular_radius", l.angular_radius},
             {"share", l.share}};
     }
     write_file_atomically(dir / "manifest.json", manifest.dump(2));
@@ -251,6 +252,7 @@ BakedIbl load_baked(const fs::path& dir) {
                 l.irradiance[c] = d.at("irradiance").at(std::size_t(c)).get<float>();
             }
             l.solid_angle = d.value("solid_angle", 0.0f);
+            l.angular_radius = std::clamp(d.value("angular_radius", 0.0f), 0.0f, 0.5f);
             l.share = d.value("share", 0.0f);
             const float len = glm::length(l.direction);
             if (!(len > 0.5f && len < 2.0f) || !std::isfinite(l.irradiance.x + l.irradiance.y + l.irradiance.z) ||

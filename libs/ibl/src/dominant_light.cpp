@@ -106,6 +106,7 @@ std::optional<DominantLight> split_dominant_light(ImageF& panorama, const Domina
     // the luminance-weighted mean of the texels' directions.
     glm::dvec3 e(0.0), d(0.0);
     double light = 0.0;
+    std::vector<std::pair<glm::dvec3, double>> weighed;  // each texel's direction and luminance x solid angle
     for (std::size_t i = 0; i < region.size(); ++i) {
         if (!region[i]) continue;
         const int x = int(i % std::size_t(w)), y = int(i / std::size_t(w));
@@ -116,9 +117,17 @@ std::optional<DominantLight> split_dominant_light(ImageF& panorama, const Domina
         e += excess * o;
         const double l = (0.2126 * excess.x + 0.7152 * excess.y + 0.0722 * excess.z) * o;
         light += l;
-        d += glm::dvec3(equirect_to_direction({(x + 0.5f) / float(w), (y + 0.5f) / float(h)})) * l;
+        const glm::dvec3 dir(equirect_to_direction({(x + 0.5f) / float(w), (y + 0.5f) / float(h)}));
+        d += dir * l;
+        weighed.emplace_back(dir, l);
     }
     if (light / total < options.min_share || !(glm::length(d) > 0.0)) return std::nullopt;
+    double spread = 0.0;  // the luminance-weighted sum of the squared angle from the mean direction
+    const glm::dvec3 centre = glm::normalize(d);
+    for (const auto& [dir, l] : weighed) {
+        const double theta = std::acos(std::clamp(glm::dot(dir, centre), -1.0, 1.0));
+        spread += l * theta * theta;
+    }
     for (std::size_t i = 0; i < region.size(); ++i)
         if (region[i]) {
             float* p = &panorama.pixels[i * 4];
@@ -131,6 +140,9 @@ std::optional<DominantLight> split_dominant_light(ImageF& panorama, const Domina
     out.irradiance = glm::vec3(e);
     out.solid_angle = float(region_omega);
     out.share = float(light / total);
+    // Its spread about that direction (the panorama's texels already hold the background now:
+    // `spread` was weighed above, before they were replaced).
+    out.angular_radius = float(std::sqrt(2.0 * spread / light));
     return out;
 }
 

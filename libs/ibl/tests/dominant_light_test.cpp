@@ -1,7 +1,8 @@
 // The environment's dominant light (split_dominant_light) on panoramas whose answer is known:
 //  - a uniform sky has none, and is left as it is;
 //  - a small, very bright disk on a uniform sky is found: its direction, its irradiance (the
-//    disk's radiance above the sky times its solid angle), and the panorama left uniform, so the
+//    disk's radiance above the sky times its solid angle), its angular radius, and the
+//    panorama left uniform, so the
 //    light taken out plus the light left is the light there was;
 //  - a large bright region (an overcast sky's brighter half) is sky, not a light;
 //  - a bake asked to split returns the light and, from the cache, the same light again.
@@ -85,6 +86,9 @@ TEST(DominantLight, ASmallBrightDiskIsTakenOutWhole) {
     const double total = 0.2126 * before[0] + 0.7152 * before[1] + 0.0722 * before[2];
     EXPECT_NEAR(l->share, excess / total, 1e-3);
     EXPECT_GE(l->solid_angle, float(omega));  // grown by two texels: the filtered edge goes too
+    // Its angular radius: the 3-degree disk's, from the light's spread (the grown texels carry
+    // none of it), within the texels' own size (0.35 degrees here).
+    EXPECT_NEAR(l->angular_radius, 3.0 * kPi / 180.0, 0.35 * kPi / 180.0);
     for (float v : p.pixels) EXPECT_EQ(v, 1.0f);  // the sky left, alpha included
     for (int c = 0; c < 3; ++c)
         EXPECT_NEAR(light_of(p, c) + l->irradiance[c], before[c], 1e-4 * before[c]) << "channel " << c;
@@ -135,6 +139,8 @@ TEST(DominantLight, ABakeAskedToSplitKeepsTheLightInItsCache) {
     EXPECT_TRUE(cached.from_cache);
     ASSERT_TRUE(cached.dominant_light.has_value());
     EXPECT_NEAR(cached.dominant_light->irradiance.x, split.dominant_light->irradiance.x, 1e-3f);
+    EXPECT_GT(split.dominant_light->angular_radius, 0.0f);
+    EXPECT_FLOAT_EQ(cached.dominant_light->angular_radius, split.dominant_light->angular_radius);
     // The cache holds half floats: the same cubes to half precision.
     ASSERT_EQ(cached.background.size(), split.background.size());
     ASSERT_EQ(cached.background.levels.size(), split.background.levels.size());

@@ -139,18 +139,22 @@ LightInstance parse_light(const std::string& spec) {
     std::vector<float> v;
     std::stringstream ss(spec.substr(colon + 1));
     std::string item;
-    std::optional<float> bulb;  // point and spot lights: a last item radius=R
+    // The size its shadows come from, a last item: radius=R (point and spot lights: the bulb,
+    // metres) or angle=A (directional lights: the angular radius, degrees).
+    std::optional<float> bulb, angle;
     while (std::getline(ss, item, ',')) {
-        if (bulb) fail("radius=R comes last");
-        if (item.rfind("radius=", 0) == 0) {
+        if (bulb || angle) fail("radius=R or angle=A comes last");
+        const bool is_radius = item.rfind("radius=", 0) == 0, is_angle = item.rfind("angle=", 0) == 0;
+        if (is_radius || is_angle) {
+            const std::string key = is_radius ? "radius" : "angle", value = item.substr(key.size() + 1);
             try {
                 std::size_t used = 0;
-                const std::string value = item.substr(7);
                 float f = std::stof(value, &used);
-                if (used != value.size() || !std::isfinite(f) || f < 0.0f) fail("radius: '" + value + "' is not a length >= 0");
-                bulb = f;
+                if (used != value.size() || !std::isfinite(f) || f < 0.0f || (is_angle && f > 20.0f))
+                    fail(key + ": '" + value + (is_angle ? "' is not an angle in [0, 20] degrees" : "' is not a length >= 0"));
+                (is_radius ? bulb : angle) = f;
             } catch (const std::logic_error&) {
-                fail("radius: '" + item.substr(7) + "' is not a number");
+                fail(key + ": '" + value + "' is not a number");
             }
             continue;
         }
@@ -230,6 +234,10 @@ LightInstance parse_light(const std::string& spec) {
             fail("radius=R is for point and spot lights (the bulb their soft shadows come from)");
         l.radius = *bulb;
     }
+    if (angle) {
+        if (l.type != Light::Type::Directional) fail("angle=A is for dir lights (the angular radius their soft shadows come from)");
+        l.radius = *angle * 3.14159265358979f / 180.0f;
+    }
     return l;
 }
 
@@ -248,7 +256,8 @@ std::string light_spec(const LightInstance& l) {
     const glm::vec3 p = l.position;
     const std::string bulb = l.radius > 0.0f ? ",radius=" + shortest_text(l.radius) : "";
     switch (l.type) {
-        case Light::Type::Directional: return "dir:" + nums({az, el, lum}) + rgb;
+        case Light::Type::Directional:
+            return "dir:" + nums({az, el, lum}) + rgb + (l.radius > 0.0f ? ",angle=" + shortest_text(l.radius * deg) : "");
         case Light::Type::Point: return "point:" + nums({p.x, p.y, p.z, lum}) + rgb + bulb;
         case Light::Type::Spot:
             return "spot:" + nums({p.x, p.y, p.z, az, el, lum, l.inner_cone * deg, l.outer_cone * deg}) + rgb + bulb;

@@ -383,7 +383,7 @@ void read_camera(const Reader& r, const json& c, Job& job) {
 LightInstance read_light(const Reader& r, const json& l, const std::string& ptr) {
     r.object(l, ptr);
     r.keys(l, ptr, {"type", "color", "intensity", "range", "direction", "azimuth", "elevation", "position", "target",
-                    "innerConeAngle", "outerConeAngle", "width", "height", "radius", "length", "name"});
+                    "innerConeAngle", "outerConeAngle", "width", "height", "radius", "angularRadius", "length", "name"});
     const json* t = r.find(l, "type");
     if (!t) r.fail(ptr, "needs a 'type': directional, point, spot, rect, disk, sphere or tube");
     std::string type = r.string(*t, at(ptr, "type"));
@@ -425,6 +425,9 @@ LightInstance read_light(const Reader& r, const json& l, const std::string& ptr)
     if (type == "directional") {
         li.type = Light::Type::Directional;
         direction(true);
+        // The angular radius its soft shadows come from (degrees; the sun's is about 0.27).
+        if (const json* v = r.find(l, "angularRadius"))
+            li.radius = float(r.number(*v, at(ptr, "angularRadius"), 0, 20)) * 3.14159265358979f / 180.0f;
     } else if (type == "point") {
         li.type = Light::Type::Point;
         position();
@@ -471,6 +474,8 @@ LightInstance read_light(const Reader& r, const json& l, const std::string& ptr)
         r.fail(at(ptr, "type"), "must be directional, point, spot, rect, disk, sphere or tube, not '" + type + "'");
     }
     if (li.type != Light::Type::Tube && r.find(l, "length")) r.fail(at(ptr, "length"), "is for tube lights");
+    if (li.type != Light::Type::Directional && r.find(l, "angularRadius"))
+        r.fail(at(ptr, "angularRadius"), "is for directional lights");
     if (li.type != Light::Type::Rect)
         for (const char* key : {"width", "height"})
             if (r.find(l, key)) r.fail(at(ptr, key), "is for rect lights");
@@ -783,6 +788,7 @@ json light_json(const LightInstance& l) {
     }
     if (l.type == Light::Type::Disk) o["radius"] = num(glm::length(l.axis_u));
     if (l.type == Light::Type::Sphere || l.type == Light::Type::Tube) o["radius"] = num(l.radius);
+    if (l.type == Light::Type::Directional && l.radius > 0.0f) o["angularRadius"] = num(l.radius * 180.0f / 3.14159265358979f);
     if ((l.type == Light::Type::Point || l.type == Light::Type::Spot) && l.radius > 0.0f) o["radius"] = num(l.radius);
     if (l.type == Light::Type::Tube) o["length"] = num(2.0f * glm::length(l.axis_u));
     if (l.type == Light::Type::Spot) {

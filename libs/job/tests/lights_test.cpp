@@ -107,6 +107,11 @@ TEST(ParseLight, BulbRadiusOfPointAndSpotLights) {
     EXPECT_EQ(parse_light(light_spec(l)).radius, 0.1f);
     EXPECT_EQ(parse_light("point:1,2,3,40").radius, 0.0f);
     EXPECT_EQ(light_spec(parse_light("point:1,2,3,40")), "point:1,2,3,40");
+    // A dir light's angular radius, in degrees (radians in LightInstance::radius).
+    l = parse_light("dir:30,45,3,angle=0.5");
+    EXPECT_NEAR(l.radius, 0.5f * 3.14159265f / 180.0f, 1e-7f);
+    EXPECT_NEAR(parse_light(light_spec(l)).radius, l.radius, 1e-7f);
+    EXPECT_NE(light_spec(l).find(",angle="), std::string::npos) << light_spec(l);
 }
 
 TEST(ParseLight, ErrorsNameTheOptionTheSpecAndTheReason) {
@@ -141,8 +146,10 @@ TEST(ParseLight, ErrorsNameTheOptionTheSpecAndTheReason) {
         {"point:0,0,0,1,1,-0.5,1", "must not be negative"},
         {"point:0,1,0,10,radius=-0.1", "radius: '-0.1' is not a length >= 0"},
         {"point:0,1,0,10,radius=x", "radius: 'x' is not a number"},
-        {"point:0,1,0,10,radius=0.1,1,1,1", "radius=R comes last"},
+        {"point:0,1,0,10,radius=0.1,1,1,1", "radius=R or angle=A comes last"},
         {"dir:30,45,3,radius=0.1", "radius=R is for point and spot lights"},
+        {"point:0,1,0,10,angle=1", "angle=A is for dir lights"},
+        {"dir:30,45,3,angle=30", "angle: '30' is not an angle in [0, 20] degrees"},
         {"sphere:0,1,0,0.2,5,radius=0.1", "radius=R is for point and spot lights"},
     };
     for (const auto& c : cases) {

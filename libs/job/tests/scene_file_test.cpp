@@ -562,32 +562,40 @@ TEST_F(SceneFileTest, AreaLightsReadAndSaveBack) {
 }
 
 // A point or spot light's "radius" is its bulb (contact-hardening shadows; LightInstance::radius),
-// written back when set; 0 or absent is a point; negative is refused naming the key.
-TEST_F(SceneFileTest, PointAndSpotLightsTakeABulbRadius) {
+// a directional light's "angularRadius" its angular size (degrees), each written back when set;
+// 0 or absent is a point; out of range or on another type is refused naming the key.
+TEST_F(SceneFileTest, LightsTakeTheSizeTheirShadowsComeFrom) {
     json doc = {{"fresnel", 1},
                 {"lights",
                  {{{"type", "point"}, {"position", {0, 2, 0}}, {"intensity", 40}, {"radius", 0.2}},
                   {{"type", "spot"}, {"position", {0, 3, 0}}, {"target", {0, 0, 0}}, {"intensity", 60}, {"radius", 0.05}},
-                  {{"type", "point"}, {"position", {1, 2, 0}}}}}};
+                  {{"type", "point"}, {"position", {1, 2, 0}}},
+                  {{"type", "directional"}, {"azimuth", 30}, {"elevation", 40}, {"angularRadius", 2}}}}};
     SceneFile sf = load(doc);
     const auto& l = sf.job.lights.extra;
-    ASSERT_EQ(l.size(), 3u);
+    ASSERT_EQ(l.size(), 4u);
     EXPECT_FLOAT_EQ(l[0].radius, 0.2f);
     EXPECT_FLOAT_EQ(l[1].radius, 0.05f);
     EXPECT_EQ(l[2].radius, 0.0f);
+    EXPECT_NEAR(l[3].radius, 2.0f * 3.14159265f / 180.0f, 1e-7f);  // degrees in the file, radians in the light
     fs::path saved = dir_ / "bulbs.fresnel.json";
     Diagnostics wd;
     save_scene_file(saved, sf.job, wd);
     const json written = json::parse(std::ifstream(saved));
     EXPECT_EQ(written["lights"][0]["radius"], 0.2);
     EXPECT_FALSE(written["lights"][2].contains("radius")) << written.dump();
+    EXPECT_NEAR(written["lights"][3]["angularRadius"].get<double>(), 2.0, 1e-5);
     SceneFile back = load_scene_file(saved, Job{}, diag_);
-    ASSERT_EQ(back.job.lights.extra.size(), 3u);
-    for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(back.job.lights.extra[i].radius, l[i].radius, 1e-7f) << i;
+    ASSERT_EQ(back.job.lights.extra.size(), 4u);
+    for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(back.job.lights.extra[i].radius, l[i].radius, 1e-7f) << i;
     Error e = error_of(R"({"fresnel": 1, "lights": [{"type": "point", "position": [0, 0, 0], "radius": -1}]})");
     EXPECT_EQ(e.where(), "/lights/0/radius") << e.what();
     e = error_of(R"({"fresnel": 1, "lights": [{"type": "directional", "azimuth": 0, "radius": 1}]})");
     EXPECT_EQ(e.where(), "/lights/0/radius") << e.what();
+    e = error_of(R"({"fresnel": 1, "lights": [{"type": "point", "position": [0, 0, 0], "angularRadius": 1}]})");
+    EXPECT_EQ(e.where(), "/lights/0/angularRadius") << e.what();
+    e = error_of(R"({"fresnel": 1, "lights": [{"type": "directional", "azimuth": 0, "angularRadius": 45}]})");
+    EXPECT_EQ(e.where(), "/lights/0/angularRadius") << e.what();
 }
 
 // Files outside the scene file's folder are written with "..", and reported: the reader

@@ -299,6 +299,8 @@ struct Renderer::Impl {
         // env_rotation maps world directions to the environment's; its transpose maps back.
         sun.direction = -glm::normalize(glm::transpose(env_rotation(s)) * d.direction);
         sun.radiance = d.irradiance * s.env_intensity;
+        // Its shadows are those of a disk as spread as the light it took out.
+        sun.radius = d.angular_radius;
         lights_with_environment.push_back(sun);
         return lights_with_environment;
     }
@@ -969,7 +971,7 @@ struct Renderer::Impl {
                                        kSoftShadowRadius, 0.0f);
             for (std::size_t i = 0; i < plan.lights.size() && i < p.light_shadow.size(); ++i)
                 p.light_shadow[i] = glm::vec4(float(plan.lights[i].first_tile), float(plan.lights[i].tiles),
-                                              i < lights.size() ? bulb_radius(lights[i]) : 0.0f, 0);
+                                              i < lights.size() ? shadow_source_size(lights[i]) : 0.0f, 0);
             for (std::size_t t = 0; t < plan.tiles.size(); ++t) {
                 const ShadowTile& tile = plan.tiles[t];
                 p.shadow_matrix[t] = tile_lookup_matrix(tile);
@@ -991,12 +993,18 @@ struct Renderer::Impl {
 
     // ---- Shadows (details/shadow_maps.h, shaders/shadows.glsl) ----
     static constexpr float kSoftShadowRadius = 1.5f;  // the soft filter's disk, in texels
-    // FRAME_SHADOWS 3: soft shadows whose lights include a point or spot light with a bulb
-    // radius (LightInstance::radius): contact-hardening (PCSS) for those, shadows.glsl.
+    // FRAME_SHADOWS 3: soft shadows whose lights include one with a size (LightInstance::radius:
+    // a point or spot light's bulb, a directional light's angular radius): contact-hardening
+    // (PCSS) for those, shadows.glsl.
     static constexpr int kContactHardeningShadows = 3;
-    // The size a point or spot light's shadows come from (0: a point, the soft filter alone).
-    static float bulb_radius(const LightInstance& l) {
-        return (l.type == Light::Type::Point || l.type == Light::Type::Spot) && l.radius > 0.0f ? l.radius : 0.0f;
+    // The size a light's shadows come from, as shadows.glsl's contact_hardening reads it: a point
+    // or spot light's bulb radius (metres), the tangent of a directional light's angular radius;
+    // 0: a point (the soft filter alone).
+    static float shadow_source_size(const LightInstance& l) {
+        if (!(l.radius > 0.0f)) return 0.0f;
+        if (l.type == Light::Type::Point || l.type == Light::Type::Spot) return l.radius;
+        if (l.type == Light::Type::Directional) return std::tan(std::min(l.radius, 0.5f));
+        return 0.0f;
     }
     gpu::SamplerObject shadow_depth_sampler;  // the atlas read as depths (the blocker search)
     ShadowPlan shadow_plan;  // this frame's
@@ -1026,7 +1034,7 @@ struct Renderer::Impl {
         frame_shadows = int(s.shadows);
         if (s.shadows == Shadows::Soft)
             for (std::size_t i = 0; i < shadow_plan.lights.size() && i < lights.size(); ++i)
-                if (shadow_plan.lights[i].first_tile >= 0 && bulb_radius(lights[i]) > 0.0f)
+                if (shadow_plan.lights[i].first_tile >= 0 && shadow_source_size(lights[i]) > 0.0f)
                     frame_shadows = kContactHardeningShadows;
     }
 

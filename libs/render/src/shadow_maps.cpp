@@ -110,6 +110,7 @@ void plan_directional(const LightInstance& l, const CameraSetup& cam, const Boun
         ShadowTile t;
         t.view_projection = projection * view;
         t.texel_world = texel;
+        t.far = (-lmin.z + depth_pad) - (-lmax.z - depth_pad);
         out.push_back(t);
     }
 }

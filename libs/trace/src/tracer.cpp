@@ -646,12 +646,12 @@ struct Integrator {
                 if (f.x + f.y + f.z <= 0.0f) continue;
                 ++rays;
                 float tmax = std::isfinite(dist) ? dist * (1.0f - 1e-4f) : INFINITY;
-                // A point or spot light with a bulb radius shades as the point it is and casts
-                // the soft shadow of a sphere: the shadow ray goes to a uniform point of the
-                // sphere's disk as seen from here (the rasteriser's contact-hardening shadows).
+                // A light with a size shades as the point or direction it is and casts the
+                // shadow of its extent (the rasteriser's contact-hardening shadows): a point or
+                // spot light's shadow ray goes to a uniform point of its bulb's disk as seen from
+                // here, a directional light's along a uniform direction of its cone.
                 glm::vec3 shadow_dir = l;
-                if (light.radius > 0.0f && std::isfinite(dist) &&
-                    (light.type == Light::Type::Point || light.type == Light::Type::Spot)) {
+                if (light.radius > 0.0f && light.type != Light::Type::Directional && std::isfinite(dist)) {
                     const glm::vec2 u = rng.uniform2();
                     const float r = light.radius * std::sqrt(u.x), phi = 6.28318531f * u.y;
                     const glm::vec3 a = std::abs(l.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
@@ -660,6 +660,13 @@ struct Integrator {
                     const float target_dist = glm::length(target);
                     shadow_dir = target / target_dist;
                     tmax = target_dist * (1.0f - 1e-4f);
+                } else if (light.radius > 0.0f && light.type == Light::Type::Directional) {
+                    const glm::vec2 u = rng.uniform2();
+                    const float cos_t = 1.0f - u.x * (1.0f - std::cos(std::min(light.radius, 0.5f)));
+                    const float sin_t = std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t)), phi = 6.28318531f * u.y;
+                    const glm::vec3 a = std::abs(l.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+                    const glm::vec3 t = glm::normalize(glm::cross(l, a)), b = glm::cross(l, t);
+                    shadow_dir = cos_t * l + sin_t * (std::cos(phi) * t + std::sin(phi) * b);
                 }
                 if (!scene.occluded(behind ? offset_ray(p, -ng) : p_out, shadow_dir, tmax, splitmix64(rng.next()))) L += beta * f;
             }

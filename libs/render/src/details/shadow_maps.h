@@ -33,7 +33,8 @@ struct ShadowTile {
     // unit of distance from the light (shadows.glsl's normal offset).
     float texel_world = 0.0f;
     // A perspective map's depth range (the distances along its axis its depths 0..1 span, as
-    // glm::perspective maps them); 0, 0 for an orthographic map, whose depths are linear.
+    // glm::perspective maps them); for an orthographic map, whose depths are linear, near 0 and
+    // far the length its depths 0..1 span.
     float near = 0.0f, far = 0.0f;
 };
 

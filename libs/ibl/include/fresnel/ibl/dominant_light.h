@@ -18,6 +18,11 @@ struct DominantLight {
     glm::vec3 irradiance{0.0f};             // linear RGB on a surface facing it (a directional light's lux)
     float solid_angle = 0.0f;               // of the region taken out, steradians
     float share = 0.0f;                     // of the panorama's light (sum of luminance x solid angle)
+    // The angular radius (radians) of a uniform disk as spread as the light about `direction`:
+    // sqrt(2 E[theta^2]), the light's texels weighted by their luminance above the background
+    // (the two texels the region is grown by carry almost none, unlike its solid angle). The
+    // size its shadows come from (contact-hardening shadows).
+    float angular_radius = 0.0f;
 };
 
 struct DominantLightOptions {

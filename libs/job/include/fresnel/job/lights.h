@@ -23,7 +23,8 @@ struct LightInstance {
     // fresnel/material/ltc.h wants them); a sphere's radius; a tube's half length along axis_u
     // (its `direction` the axis's) and its radius. A point or spot light's radius: its bulb,
     // which only its shadows see (contact-hardening in the rasteriser, a sphere's shadow in the
-    // tracer); 0: a point.
+    // tracer); a directional light's: its angular radius in radians, the same for its cone of
+    // directions; 0: a point, one direction.
     glm::vec3 axis_u{0.5f, 0.0f, 0.0f}, axis_v{0.0f, 0.5f, 0.0f};
     float radius = 0.0f;
     bool operator==(const LightInstance&) const = default;
@@ -64,7 +65,8 @@ glm::vec3 light_incident(const LightInstance& light, glm::vec3 position, glm::ve
 // as a spot light aims), "sphere:X,Y,Z,RADIUS,NITS[,R,G,B]" and
 // "tube:X,Y,Z,AZ,EL,LENGTH,RADIUS,NITS[,R,G,B]" (its axis pointing towards AZ,EL). Point and
 // spot lights take a last item "radius=R": their bulb's radius (LightInstance::radius), which
-// softens their shadows (contact hardening) and leaves their shading a point's.
+// softens their shadows (contact hardening) and leaves their shading a point's; dir lights
+// "angle=A": their angular radius in degrees (at most 20; the sun's is about 0.27).
 // Throws fresnel::Error (file "--light") on malformed input.
 LightInstance parse_light(const std::string& spec);
 
