@@ -8,7 +8,8 @@
 // the depth pass adds a slope-scaled bias: neither acne nor shadows detached from their casters.
 // FRAME_SHADOWS 1: one probe (hard); 2: four probes on a disk turned per pixel (soft edges a
 // few texels wide); 3: as 2, and a light with a size (u_light_shadow[i].z: a point or spot
-// light's bulb radius, the tangent of a directional light's angular radius) casts
+// light's bulb radius, an area light's half extent, the tangent of a directional light's
+// angular radius) casts
 // contact-hardening shadows (percentage-closer soft shadows, Fernando 2005): the mean depth of
 // the blockers found around the point sets the width of the filter, sharp where a caster
 // touches its shadow and wider away from it. Without FRAME_SHADOWS every light is unshadowed.
@@ -56,7 +57,8 @@ float shadow_distance(vec4 params, float depth) {
 // Contact-hardening shadows (`size`: u_light_shadow[i].z) from the blockers within reach on
 // twelve taps of a Vogel spiral turned by `turn` (nearest depths): their mean distance d_b and the
 // receiver's d_r give the penumbra there, in texels,
-//   a bulb of radius `size` seen from a perspective map's centre: size (d_r - d_b) / (d_b d_r tau)
+//   a bulb of radius `size` seen from a perspective map's centre (an area light: its half
+//   extent, as if it were a sphere): size (d_r - d_b) / (d_b d_r tau)
 //     (tau: the map's texel at unit distance; searched out to blockers a tenth of the way to the
 //     receiver, or at the near plane),
 //   a directional light of angular radius a (`size` = tan a), orthographic: (d_r - d_b) size / tau
@@ -131,14 +133,7 @@ float shadow_visibility(int i, vec3 p, vec3 ng, vec3 l) {
     float size = u_light_shadow[i].z;
     if (size > 0.0) return contact_hardening(params, uv, s.z, lo, hi, size, mat2(cs, sn, -sn, cs));
 #endif
-    // An area light's penumbra widens with its size: the disk grows by the light's half extent
-    // over the texel here (as if its blockers stood halfway to it; at most 6 texels in all).
-    float radius = u_shadow_atlas_info.z;
-    if (u_light_position_type[i].w > 2.5) {
-        float extent = max(max(length(u_light_cone[i].xyz), length(u_light_axis[i].xyz)), u_light_cone[i].w);
-        radius = min(radius + extent / max(texel, 1e-6), 6.0);
-    }
-    mat2 turn = mat2(cs, sn, -sn, cs) * radius;
+    mat2 turn = mat2(cs, sn, -sn, cs) * u_shadow_atlas_info.z;
     vec2 atlas_texel = u_shadow_atlas_info.xy;
     float sum = 0.0;
     for (int k = 0; k < 4; ++k)

@@ -75,9 +75,10 @@ TEST_F(Shadows, FallWhereTheTracersDo) {
 }
 
 // Area lights (rect, disk, sphere from --light) over the same scene: the rasteriser's linearly
-// transformed cosines and soft shadows against the tracer's sampled emitters, direct light only.
-// Measured at 160^2 / 48 spp: 36.3, 40.0, 40.4, 32.5 dB with shadows, 28.8, 31.3, 32.4, 27.1 dB
-// without (the tube's trace is the noisiest: a thin light).
+// transformed cosines and contact-hardening shadows (as of a sphere as wide as the light) against
+// the tracer's sampled emitters, direct light only. Measured at 160^2 / 48 spp: 39.0, 42.4, 44.7,
+// 33.4 dB with shadows (36.3, 40.0, 40.4, 32.5 dB when the filter only widened by the light's
+// size), 28.8, 31.3, 32.4, 27.1 dB without (the tube's trace is the noisiest: a thin light).
 TEST_F(Shadows, AreaLightsLightAndShadowAsTheTracersDo) {
     const fs::path scene = kScenes / "shadow-directional.gltf";
     for (const char* light : {"rect:0,2.5,0.5,0,70,1.5,1,6", "disk:0.5,2,0.5,30,60,0.5,8", "sphere:0.3,1.6,0.8,0.3,10",
@@ -92,7 +93,7 @@ TEST_F(Shadows, AreaLightsLightAndShadowAsTheTracersDo) {
         ASSERT_EQ(r.exit_code, 0) << show(r);
         const double p_soft = psnr(soft, truth), p_off = psnr(off, truth);
         std::printf("%s: shadows %.2f dB, off %.2f dB against trace --max-bounces 1\n", light, p_soft, p_off);
-        EXPECT_GE(p_soft, light[0] == 't' ? 30.5 : 34.0) << light;
+        EXPECT_GE(p_soft, light[0] == 't' ? 31.5 : 37.0) << light;
         EXPECT_GE(p_soft, p_off + 5.0) << light;
     }
 }

@@ -993,14 +993,16 @@ struct Renderer::Impl {
 
     // ---- Shadows (details/shadow_maps.h, shaders/shadows.glsl) ----
     static constexpr float kSoftShadowRadius = 1.5f;  // the soft filter's disk, in texels
-    // FRAME_SHADOWS 3: soft shadows whose lights include one with a size (LightInstance::radius:
-    // a point or spot light's bulb, a directional light's angular radius): contact-hardening
-    // (PCSS) for those, shadows.glsl.
+    // FRAME_SHADOWS 3: soft shadows whose lights include one with a size (an area light;
+    // LightInstance::radius: a point or spot light's bulb, a directional light's angular
+    // radius): contact-hardening (PCSS) for those, shadows.glsl.
     static constexpr int kContactHardeningShadows = 3;
     // The size a light's shadows come from, as shadows.glsl's contact_hardening reads it: a point
-    // or spot light's bulb radius (metres), the tangent of a directional light's angular radius;
-    // 0: a point (the soft filter alone).
+    // or spot light's bulb radius (metres), an area light's half extent (its shadows those of a
+    // sphere as wide), the tangent of a directional light's angular radius; 0: a point (the soft
+    // filter alone).
     static float shadow_source_size(const LightInstance& l) {
+        if (l.is_area()) return std::max({glm::length(l.axis_u), glm::length(l.axis_v), l.radius});
         if (!(l.radius > 0.0f)) return 0.0f;
         if (l.type == Light::Type::Point || l.type == Light::Type::Spot) return l.radius;
         if (l.type == Light::Type::Directional) return std::tan(std::min(l.radius, 0.5f));
