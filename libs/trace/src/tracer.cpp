@@ -25,6 +25,7 @@
 #include "fresnel/trace/area_lights.h"
 #include "fresnel/ibl/precompute.h"
 #include "fresnel/material/bsdf.h"
+#include "fresnel/material/sampling.h"
 #include "fresnel/scene/scene_textures.h"
 
 namespace fresnel::trace {
@@ -651,22 +652,21 @@ struct Integrator {
                 // spot light's shadow ray goes to a uniform point of its bulb's disk as seen from
                 // here, a directional light's along a uniform direction of its cone.
                 glm::vec3 shadow_dir = l;
-                if (light.radius > 0.0f && light.type != Light::Type::Directional && std::isfinite(dist)) {
+                if (light.radius > 0.0f) {
                     const glm::vec2 u = rng.uniform2();
-                    const float r = light.radius * std::sqrt(u.x), phi = 6.28318531f * u.y;
-                    const glm::vec3 a = std::abs(l.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-                    const glm::vec3 t = glm::normalize(glm::cross(l, a)), b = glm::cross(l, t);
-                    const glm::vec3 target = l * dist + r * (std::cos(phi) * t + std::sin(phi) * b);
-                    const float target_dist = glm::length(target);
-                    shadow_dir = target / target_dist;
-                    tmax = target_dist * (1.0f - 1e-4f);
-                } else if (light.radius > 0.0f && light.type == Light::Type::Directional) {
-                    const glm::vec2 u = rng.uniform2();
-                    const float cos_t = 1.0f - u.x * (1.0f - std::cos(std::min(light.radius, 0.5f)));
-                    const float sin_t = std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t)), phi = 6.28318531f * u.y;
-                    const glm::vec3 a = std::abs(l.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-                    const glm::vec3 t = glm::normalize(glm::cross(l, a)), b = glm::cross(l, t);
-                    shadow_dir = cos_t * l + sin_t * (std::cos(phi) * t + std::sin(phi) * b);
+                    glm::vec3 t, b;
+                    sampling::basis(l, t, b);
+                    const float phi = 6.28318531f * u.y;
+                    const glm::vec3 across = std::cos(phi) * t + std::sin(phi) * b;
+                    if (light.type == Light::Type::Directional) {
+                        const float cos_t = 1.0f - u.x * (1.0f - std::cos(std::min(light.radius, 0.5f)));
+                        shadow_dir = cos_t * l + std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t)) * across;
+                    } else if (std::isfinite(dist)) {
+                        const glm::vec3 target = l * dist + light.radius * std::sqrt(u.x) * across;
+                        const float target_dist = glm::length(target);
+                        shadow_dir = target / target_dist;
+                        tmax = target_dist * (1.0f - 1e-4f);
+                    }
                 }
                 if (!scene.occluded(behind ? offset_ray(p, -ng) : p_out, shadow_dir, tmax, splitmix64(rng.next()))) L += beta * f;
             }
